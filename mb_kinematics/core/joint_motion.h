@@ -1,0 +1,202 @@
+// What a joint contributes, per update: SJK, s_k, and the columns that map its generalized
+// speeds to the relative angular velocity w_k and translation rate s_k' (method.md 2, 4, 5).
+#pragma once
+
+#include <cmath>
+
+#include "mb_kinematics/core/joint.h"
+#include "mb_kinematics/core/types.h"
+
+namespace mbk {
+
+constexpr int kMaxJointSpeeds = 7;
+
+// All vectors in Bj components. w_k = sum_c angular[c] y_c, s_k' = sum_c linear[c] y_c,
+// w_k' = sum_c (angular[c] y_c' + angular_dot[c] y_c); linear columns are constant in Bj.
+template <typename S>
+struct JointMotion {
+  Mat3<S> rotation;     // SJK = C_k R_motion
+  Vec3<S> translation;  // s_k
+  int speeds = 0;
+  Vec3<S> angular[kMaxJointSpeeds];
+  Vec3<S> linear[kMaxJointSpeeds];
+  Vec3<S> angular_dot[kMaxJointSpeeds];
+};
+
+// 1-2-3 rotation A(alpha) B(beta) C(gamma) (eq. 4.4.9-4.4.12, with the erratum of method.md 7).
+template <typename S>
+Mat3<S> rotation_123(S alpha, S beta, S gamma) {
+  using std::cos;
+  using std::sin;
+  const S ca = cos(alpha), sa = sin(alpha), cb = cos(beta), sb = sin(beta), cg = cos(gamma),
+          sg = sin(gamma);
+  Mat3<S> a, b, c;
+  a << S(1), S(0), S(0), S(0), ca, -sa, S(0), sa, ca;
+  b << cb, S(0), sb, S(0), S(1), S(0), -sb, S(0), cb;
+  c << cg, -sg, S(0), sg, cg, S(0), S(0), S(0), S(1);
+  return a * b * c;
+}
+
+// Rotation of Euler parameters e = (e1, e2, e3, e4), e4 scalar, divided by |e|^2 so that an
+// unnormalized e gives the rotation of e / |e|.
+template <typename S>
+Mat3<S> rotation_euler(const S* e) {
+  const Vec3<S> v(e[0], e[1], e[2]);
+  const S n2 = v.squaredNorm() + e[3] * e[3];
+  Mat3<S> r = (e[3] * e[3] - v.squaredNorm()) * Mat3<S>::Identity() + S(2) * v * v.transpose() +
+              S(2) * e[3] * skew(v);
+  return r / n2;
+}
+
+// Rotation by angle theta about a unit axis (Rodrigues).
+template <typename S>
+Mat3<S> rotation_axis(const Vec3<S>& axis, S theta) {
+  using std::cos;
+  using std::sin;
+  const Mat3<S> k = skew(axis);
+  return Mat3<S>::Identity() + sin(theta) * k + (S(1) - cos(theta)) * (k * k);
+}
+
+namespace detail {
+
+// 1-2-3 angle columns [e1, A e2, A B e3] and their time derivatives (eq. 4.4.13-4.4.16, 4.5).
+template <typename S>
+void angles_123_columns(const S* q, const S* qd, Vec3<S>* angular, Vec3<S>* angular_dot) {
+  using std::cos;
+  using std::sin;
+  const S ca = cos(q[0]), sa = sin(q[0]), cb = cos(q[1]), sb = sin(q[1]);
+  angular[0] = Vec3<S>(S(1), S(0), S(0));
+  angular[1] = Vec3<S>(S(0), ca, sa);
+  angular[2] = Vec3<S>(sb, -sa * cb, ca * cb);
+  if (!qd) return;
+  angular_dot[0].setZero();
+  angular_dot[1] = qd[0] * Vec3<S>(S(0), -sa, ca);
+  angular_dot[2] = qd[0] * Vec3<S>(S(0), -ca * cb, -sa * cb) + qd[1] * Vec3<S>(cb, sa * sb, -ca * sb);
+}
+
+// Euler-parameter columns: w = 2 (e4 e' - e4' e + e x e') / |e|^2, with coordinate-derivative
+// speeds (e1'..e4'), or the identity with angular velocity speeds.
+template <typename S>
+int euler_columns(const S* e, const S* ed, SpeedKind speeds, Vec3<S>* angular,
+                  Vec3<S>* angular_dot) {
+  if (speeds == SpeedKind::kAngularVelocity) {
+    for (int i = 0; i < 3; ++i) {
+      angular[i] = Vec3<S>::Unit(i);
+      if (ed) angular_dot[i].setZero();
+    }
+    return 3;
+  }
+  const Vec3<S> v(e[0], e[1], e[2]);
+  const S n2 = v.squaredNorm() + e[3] * e[3];
+  for (int i = 0; i < 3; ++i) angular[i] = S(2) / n2 * (e[3] * Vec3<S>::Unit(i) + v.cross(Vec3<S>::Unit(i)));
+  angular[3] = S(-2) / n2 * v;
+  if (!ed) return 4;
+  const Vec3<S> vd(ed[0], ed[1], ed[2]);
+  const S n2_dot = S(2) * (v.dot(vd) + e[3] * ed[3]);
+  for (int i = 0; i < 3; ++i)
+    angular_dot[i] = S(2) / n2 * (ed[3] * Vec3<S>::Unit(i) + vd.cross(Vec3<S>::Unit(i))) -
+                     n2_dot / n2 * angular[i];
+  angular_dot[3] = S(-2) / n2 * vd - n2_dot / n2 * angular[3];
+  return 4;
+}
+
+// Unit vectors u1, u2 with (u1, u2, normal) right-handed; x and y for the z axis.
+template <typename S>
+void plane_basis(const Vec3<S>& normal, Vec3<S>& u1, Vec3<S>& u2) {
+  using std::abs;
+  const Vec3<S> seed = abs(normal.z()) > S(0.9) ? Vec3<S>::UnitX() : Vec3<S>::UnitZ();
+  u2 = normal.cross(seed).normalized();
+  u1 = u2.cross(normal);
+}
+
+}  // namespace detail
+
+// Fills `out` for one joint. q: the joint's coordinates; qd: its speeds, or nullptr when only
+// the pose is wanted (then no columns are computed). With qd, angular_dot is filled as well.
+template <typename S>
+void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
+                  JointMotion<S>& out) {
+  const Mat3<S> c = joint.rotation.cast<S>();
+  const Vec3<S> axis = joint.axis.cast<S>();
+  Mat3<S> motion = Mat3<S>::Identity();
+  Vec3<S> s = Vec3<S>::Zero();
+  int n = 0;  // number of columns
+  Vec3<S>* ang = out.angular;
+  Vec3<S>* lin = out.linear;
+  Vec3<S>* ang_dot = out.angular_dot;
+  auto translation_columns = [&](int count) {
+    for (int i = 0; i < count; ++i) {
+      lin[i] = Vec3<S>::Unit(i);
+      ang[i].setZero();
+      ang_dot[i].setZero();
+    }
+  };
+  switch (joint.type) {
+    case JointType::kFixed: break;
+    case JointType::kRevolute:
+      motion = rotation_axis(axis, q[0]);
+      n = 1;
+      ang[0] = axis;
+      lin[0].setZero();
+      ang_dot[0].setZero();
+      break;
+    case JointType::kPrismatic:
+      s = axis * q[0];
+      n = 1;
+      ang[0].setZero();
+      lin[0] = axis;
+      ang_dot[0].setZero();
+      break;
+    case JointType::kBall123:
+    case JointType::kFree123: {
+      const int t = joint.type == JointType::kFree123 ? 3 : 0;
+      if (t) {
+        s = Vec3<S>(q[0], q[1], q[2]);
+        translation_columns(3);
+      }
+      motion = rotation_123(q[t], q[t + 1], q[t + 2]);
+      detail::angles_123_columns(q + t, qd ? qd + t : nullptr, ang + t, ang_dot + t);
+      for (int i = t; i < t + 3; ++i) lin[i].setZero();
+      n = t + 3;
+      break;
+    }
+    case JointType::kBallEuler:
+    case JointType::kFreeEuler: {
+      const int t = joint.type == JointType::kFreeEuler ? 3 : 0;
+      if (t) {
+        s = Vec3<S>(q[0], q[1], q[2]);
+        translation_columns(3);
+      }
+      motion = rotation_euler(q + t);
+      const int r = detail::euler_columns(q + t, qd ? qd + t : nullptr, speeds, ang + t, ang_dot + t);
+      for (int i = t; i < t + r; ++i) lin[i].setZero();
+      n = t + r;
+      break;
+    }
+    case JointType::kPlanar: {
+      Vec3<S> u1, u2;
+      detail::plane_basis(axis, u1, u2);
+      s = q[0] * u1 + q[1] * u2;
+      motion = rotation_axis(axis, q[2]);
+      n = 3;
+      lin[0] = u1;
+      lin[1] = u2;
+      lin[2].setZero();
+      for (int i = 0; i < 2; ++i) ang[i].setZero();
+      ang[2] = axis;
+      for (int i = 0; i < 3; ++i) ang_dot[i].setZero();
+      break;
+    }
+  }
+  out.rotation = c * motion;
+  out.translation = c * s;
+  out.speeds = n;
+  if (!qd) return;
+  for (int i = 0; i < n; ++i) {  // columns are in the joint frame; C_k takes them to Bj
+    ang[i] = c * ang[i];
+    lin[i] = c * lin[i];
+    ang_dot[i] = c * ang_dot[i];
+  }
+}
+
+}  // namespace mbk

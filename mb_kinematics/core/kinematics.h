@@ -1,0 +1,75 @@
+// Absolute kinematics by the O(N) outward recursion along the lower body array (method.md 4).
+#pragma once
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/joint_motion.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+
+namespace mbk {
+namespace detail {
+
+// Orientation, origin and mass center of body k from its lower body's (method.md 4); also
+// returns d = S0J (q_k + s_k) and rho = S0K r_k, which the velocity terms reuse.
+template <typename S>
+void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d,
+               Vec3<S>& rho) {
+  const int j = body.lower;
+  data.rotation[k] = data.rotation[j] * m.rotation;                         // S0K = S0J SJK
+  d = data.rotation[j] * (body.joint.offset.cast<S>() + m.translation);    // S0J (q_k + s_k)
+  data.origin[k] = data.origin[j] + d;                                      // eq. 4.6.2
+  rho = data.rotation[k] * body.mass_center.cast<S>();                     // S0K r_k
+  data.mass_center[k] = data.origin[k] + rho;
+}
+
+}  // namespace detail
+
+// Computes, for every body k = 1..N in increasing order (so L(k) is done first), its
+// orientation and origin, and with `level` its velocities and accelerations. No allocation.
+template <typename S>
+void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>& data,
+                        Level level = Level::kAcceleration) {
+  JointMotion<S> m;
+  const bool velocities = level != Level::kPose;
+  const bool accelerations = level == Level::kAcceleration;
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Body& body = model.bodies[k];
+    const int j = body.lower;
+    const S* y = velocities ? state.velocity.data() + body.v_index : nullptr;
+    joint_motion(body.joint, model.speeds, state.position.data() + body.q_index, y, m);
+    Vec3<S> d, rho;
+    detail::pose_step(body, k, m, data, d, rho);
+    if (!velocities) continue;
+
+    const Mat3<S>& s0j = data.rotation[j];
+
+    Vec3<S> w = Vec3<S>::Zero(), sd = Vec3<S>::Zero();  // w_k, s_k' in Bj
+    for (int c = 0; c < m.speeds; ++c) {
+      w += m.angular[c] * y[c];
+      sd += m.linear[c] * y[c];
+    }
+    const Vec3<S> w0 = s0j * w, sd0 = s0j * sd;
+    const Vec3<S>& omega_j = data.omega[j];
+    data.omega[k] = omega_j + w0;                                                 // eq. 4.4.6
+    data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // method.md 4
+    data.velocity[k] = data.origin_velocity[k] + data.omega[k].cross(rho);
+    if (!accelerations) continue;
+
+    const S* yd = state.acceleration.data() + body.v_index;
+    Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // w_k', s_k'' in Bj
+    for (int c = 0; c < m.speeds; ++c) {
+      wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
+      sdd += m.linear[c] * yd[c];
+    }
+    const Vec3<S>& alpha_j = data.alpha[j];
+    data.alpha[k] = alpha_j + s0j * wd + omega_j.cross(w0);  // eq. 4.5.1
+    data.origin_acceleration[k] = data.origin_acceleration[j] + alpha_j.cross(d) +
+                                  omega_j.cross(omega_j.cross(d)) + S(2) * omega_j.cross(sd0) +
+                                  s0j * sdd;
+    const Vec3<S>& omega_k = data.omega[k];
+    data.acceleration[k] =
+        data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k.cross(rho));
+  }
+}
+
+}  // namespace mbk

@@ -1,0 +1,66 @@
+#include "mb_kinematics/core/lower_body_array.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace mbk {
+
+void validate_lower_body_array(const std::vector<int>& lower) {
+  if (lower.empty()) throw std::invalid_argument("lower body array is empty: it needs L(1) = 0");
+  for (size_t i = 0; i < lower.size(); ++i) {
+    const int k = static_cast<int>(i) + 1;
+    if (lower[i] < 0 || lower[i] >= k) {
+      std::ostringstream msg;
+      msg << "lower body array: body " << k << " has L(" << k << ") = " << lower[i]
+          << ", must satisfy 0 <= L(k) < k";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+}
+
+std::vector<int> parse_lower_body_array(const std::string& text) {
+  std::vector<int> lower;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
+      throw std::invalid_argument("lower body array: entry " + std::to_string(lower.size() + 1) +
+                                  " ('" + item + "') is not an integer");
+    lower.push_back(value);
+  }
+  return lower;
+}
+
+int lower_body_power(const std::vector<int>& lower, int k, int t) {
+  for (; t > 0 && k > 0; --t) k = lower[k - 1];
+  return k;
+}
+
+std::vector<std::vector<int>> lower_body_table(const std::vector<int>& lower) {
+  std::vector<std::vector<int>> table;
+  std::vector<int> row(lower.size());
+  for (size_t i = 0; i < row.size(); ++i) row[i] = static_cast<int>(i) + 1;
+  for (;;) {
+    table.push_back(row);
+    bool all_zero = true;
+    for (int v : row) all_zero = all_zero && v == 0;
+    if (all_zero) break;
+    for (int& v : row) v = v > 0 ? lower[v - 1] : 0;
+  }
+  return table;
+}
+
+bool is_ancestor_or_self(const std::vector<int>& lower, int j, int k) {
+  for (; k > j; k = lower[k - 1]) {
+  }
+  return k == j;
+}
+
+}  // namespace mbk

@@ -1,0 +1,123 @@
+#include "mb_kinematics/core/model.h"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "mb_kinematics/core/lower_body_array.h"
+
+namespace mbk {
+namespace {
+
+[[noreturn]] void fail(const Body& body, int k, const std::string& what) {
+  throw std::invalid_argument("body " + std::to_string(k) + " '" + body.name + "': " + what);
+}
+
+bool all_finite(const Eigen::MatrixXd& m) { return m.allFinite(); }
+
+void validate_body(Body& body, int k) {
+  if (body.name.empty()) fail(body, k, "has no name");
+  Joint& joint = body.joint;
+  if (!all_finite(joint.axis)) fail(body, k, "joint axis is not finite");
+  if (!all_finite(joint.offset)) fail(body, k, "joint origin (q_k) is not finite");
+  if (!all_finite(joint.rotation)) fail(body, k, "joint rotation (C_k) is not finite");
+  if (!all_finite(body.mass_center)) fail(body, k, "mass_center is not finite");
+  if (!std::isfinite(body.mass) || body.mass < 0) fail(body, k, "mass must be finite and >= 0");
+  const Mat3<double> c = joint.rotation;
+  if ((c.transpose() * c - Mat3<double>::Identity()).norm() > 1e-9 || c.determinant() < 0)
+    fail(body, k, "joint rotation (C_k) is not a proper rotation");
+  const bool uses_axis = joint.type == JointType::kRevolute ||
+                         joint.type == JointType::kPrismatic || joint.type == JointType::kPlanar;
+  if (uses_axis) {
+    if (joint.axis.norm() < 1e-12) fail(body, k, "joint axis is zero");
+    joint.axis.normalize();
+  }
+}
+
+}  // namespace
+
+std::vector<int> Model::lower_body_array() const {
+  std::vector<int> lower;
+  for (int k = 1; k <= body_count(); ++k) lower.push_back(bodies[k].lower);
+  return lower;
+}
+
+int Model::body_index(const std::string& name) const {
+  for (int k = 1; k <= body_count(); ++k)
+    if (bodies[k].name == name) return k;
+  return -1;
+}
+
+int Model::coordinate_index(const std::string& name) const {
+  for (int i = 0; i < nq; ++i)
+    if (coordinate_names[i] == name) return i;
+  return -1;
+}
+
+int Model::speed_index(const std::string& name) const {
+  for (int i = 0; i < nv; ++i)
+    if (speed_names[i] == name) return i;
+  return -1;
+}
+
+void finalize_model(Model& model) {
+  if (model.bodies.size() < 2) throw std::invalid_argument("model has no bodies");
+  model.bodies[0] = Body();
+  model.bodies[0].name = model.frame;
+  validate_lower_body_array(model.lower_body_array());
+  std::set<std::string> body_names = {model.frame}, joint_names;
+  model.nq = model.nv = 0;
+  model.coordinate_names.clear();
+  model.speed_names.clear();
+  for (int k = 1; k <= model.body_count(); ++k) {
+    Body& body = model.bodies[k];
+    validate_body(body, k);
+    if (!body_names.insert(body.name).second) fail(body, k, "name is used twice (or is R's)");
+    if (body.joint.name.empty()) body.joint.name = body.name + "_joint";
+    if (!joint_names.insert(body.joint.name).second)
+      fail(body, k, "joint name '" + body.joint.name + "' is used twice");
+    body.q_index = model.nq;
+    body.v_index = model.nv;
+    const JointType type = body.joint.type;
+    for (const std::string& suffix : coordinate_suffixes(type))
+      model.coordinate_names.push_back(body.joint.name + (suffix.empty() ? "" : "/" + suffix));
+    const int ns = speed_count(type, model.speeds);
+    if (ns == coordinate_count(type)) {
+      for (int i = 0; i < ns; ++i) model.speed_names.push_back(model.coordinate_names[model.nq + i]);
+    } else {  // Euler joint with angular velocity speeds: translations keep their names
+      for (int i = 0; i < ns - 3; ++i)
+        model.speed_names.push_back(model.coordinate_names[model.nq + i]);
+      for (const char* w : {"wx", "wy", "wz"}) model.speed_names.push_back(body.joint.name + "/" + w);
+    }
+    model.nq += coordinate_count(type);
+    model.nv += ns;
+  }
+  for (const Mimic& m : model.mimics) {
+    const bool ok = m.coordinate >= 0 && m.coordinate < model.nq && m.source >= 0 &&
+                    m.source < model.nq && m.source != m.coordinate &&
+                    std::isfinite(m.multiplier) && std::isfinite(m.offset);
+    if (!ok) throw std::invalid_argument("mimic: bad coordinate, source or factor");
+    if (model.nq != model.nv)
+      throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
+  }
+}
+
+Model make_bare_model(const std::vector<int>& lower, JointType type) {
+  validate_lower_body_array(lower);
+  Model model;
+  model.bodies.resize(lower.size() + 1);
+  for (size_t i = 0; i < lower.size(); ++i) {
+    Body& body = model.bodies[i + 1];
+    body.name = "B" + std::to_string(i + 1);
+    body.lower = lower[i];
+    body.joint.name = "J" + std::to_string(i + 1);
+    body.joint.type = type;
+    if (body.lower != 0) body.joint.offset = Vec3<double>(1.0, 0.0, 0.0);
+    body.mass_center = Vec3<double>(0.5, 0.0, 0.0);
+    body.mass = 1.0;
+  }
+  finalize_model(model);
+  return model;
+}
+
+}  // namespace mbk

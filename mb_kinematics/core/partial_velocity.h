@@ -1,0 +1,121 @@
+// Absolute kinematics through the partial velocity arrays omega_krm, v_krm and their time
+// derivatives (method.md 5, eq. 4.4.20-4.4.32, 4.7.7-4.7.12, 4.8). Stored sparse: body k keeps
+// only the columns of the speeds of its own joint and its ancestors' joints.
+#pragma once
+
+#include <vector>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/joint_motion.h"
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+
+namespace mbk {
+
+// Body k's columns are begin[k] .. begin[k] + count[k] - 1 in the flat arrays below: first its
+// lower body's columns (same order), then its own joint's. speed[i] is the generalized speed
+// index r of flat column i. All vectors in R components.
+template <typename S>
+struct PartialVelocities {
+  std::vector<int> begin, count, speed;
+  std::vector<Vec3<S>> omega;                // omega_kr
+  std::vector<Vec3<S>> origin_velocity;      // partial velocity of O_k
+  std::vector<Vec3<S>> velocity;             // v_kr, of the mass center G_k
+  std::vector<Vec3<S>> omega_dot;            // d/dt omega_kr
+  std::vector<Vec3<S>> origin_velocity_dot;  // d/dt of the O_k partial velocity
+  std::vector<Vec3<S>> velocity_dot;         // d/dt v_kr
+
+  explicit PartialVelocities(const Model& model) {
+    const int n = model.body_count();
+    begin.assign(n + 1, 0);
+    count.assign(n + 1, 0);
+    int total = 0;
+    for (int k = 1; k <= n; ++k) {
+      const Body& body = model.bodies[k];
+      begin[k] = total;
+      count[k] = count[body.lower] + speed_count(body.joint.type, model.speeds);
+      for (int i = 0; i < count[body.lower]; ++i) speed.push_back(speed[begin[body.lower] + i]);
+      for (int i = count[body.lower]; i < count[k]; ++i)
+        speed.push_back(body.v_index + i - count[body.lower]);
+      total += count[k];
+    }
+    for (auto* v : {&omega, &origin_velocity, &velocity, &omega_dot, &origin_velocity_dot,
+                    &velocity_dot})
+      v->assign(total, Vec3<S>::Zero());
+  }
+};
+
+// Same outputs as forward_kinematics, through the partial velocity arrays: omega_k = sum_r
+// omega_kr y_r, v_k = sum_r v_kr y_r, alpha_k = sum_r (omega_kr y_r' + omega_kr' y_r),
+// a_k = sum_r (v_kr y_r' + v_kr' y_r). No allocation.
+template <typename S>
+void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
+                                 PartialVelocities<S>& pv, Data<S>& data,
+                                 Level level = Level::kAcceleration) {
+  JointMotion<S> m;
+  const bool velocities = level != Level::kPose;
+  const bool accelerations = level == Level::kAcceleration;
+  const S* y = state.velocity.data();
+  const S* yd = state.acceleration.data();
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Body& body = model.bodies[k];
+    const int j = body.lower;
+    joint_motion(body.joint, model.speeds, state.position.data() + body.q_index,
+                 velocities ? y + body.v_index : nullptr, m);
+    Vec3<S> d, rho;
+    detail::pose_step(body, k, m, data, d, rho);
+    if (!velocities) continue;
+
+    const Mat3<S>& s0j = data.rotation[j];
+    const Vec3<S>& omega_j = data.omega[j];
+    const int bj = pv.begin[j], nj = pv.count[j], bk = pv.begin[k], nk = pv.count[k];
+    Vec3<S> sd = Vec3<S>::Zero();  // s_k' in Bj
+    for (int c = 0; c < m.speeds; ++c) sd += m.linear[c] * y[body.v_index + c];
+    const Vec3<S> d_dot = omega_j.cross(d) + s0j * sd;
+    for (int i = 0; i < nj; ++i) {  // ancestors' columns (eq. 4.4.25-4.4.32)
+      pv.omega[bk + i] = pv.omega[bj + i];
+      pv.origin_velocity[bk + i] = pv.origin_velocity[bj + i] + pv.omega[bj + i].cross(d);
+      if (!accelerations) continue;
+      pv.omega_dot[bk + i] = pv.omega_dot[bj + i];
+      pv.origin_velocity_dot[bk + i] = pv.origin_velocity_dot[bj + i] +
+                                       pv.omega_dot[bj + i].cross(d) +
+                                       pv.omega[bj + i].cross(d_dot);
+    }
+    for (int c = 0; c < m.speeds; ++c) {  // the joint's own columns
+      const int i = bk + nj + c;
+      pv.omega[i] = s0j * m.angular[c];
+      pv.origin_velocity[i] = s0j * m.linear[c];
+      if (!accelerations) continue;
+      pv.omega_dot[i] = omega_j.cross(pv.omega[i]) + s0j * m.angular_dot[c];
+      pv.origin_velocity_dot[i] = omega_j.cross(pv.origin_velocity[i]);
+    }
+    Vec3<S> omega = Vec3<S>::Zero(), v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
+    for (int i = bk; i < bk + nk; ++i) {
+      pv.velocity[i] = pv.origin_velocity[i] + pv.omega[i].cross(rho);
+      const S yr = y[pv.speed[i]];
+      omega += pv.omega[i] * yr;
+      v += pv.velocity[i] * yr;
+      vo += pv.origin_velocity[i] * yr;
+    }
+    data.omega[k] = omega;
+    data.velocity[k] = v;
+    data.origin_velocity[k] = vo;
+    if (!accelerations) continue;
+
+    Vec3<S> alpha = Vec3<S>::Zero(), a = Vec3<S>::Zero(), ao = Vec3<S>::Zero();
+    for (int i = bk; i < bk + nk; ++i) {
+      pv.velocity_dot[i] = pv.origin_velocity_dot[i] + pv.omega_dot[i].cross(rho) +
+                           pv.omega[i].cross(omega.cross(rho));
+      const S yr = y[pv.speed[i]], ydr = yd[pv.speed[i]];
+      alpha += pv.omega[i] * ydr + pv.omega_dot[i] * yr;
+      a += pv.velocity[i] * ydr + pv.velocity_dot[i] * yr;
+      ao += pv.origin_velocity[i] * ydr + pv.origin_velocity_dot[i] * yr;
+    }
+    data.alpha[k] = alpha;
+    data.acceleration[k] = a;
+    data.origin_acceleration[k] = ao;
+  }
+}
+
+}  // namespace mbk

@@ -1,0 +1,38 @@
+// Joint state (q, q', q'') sized by a model; the generalized speeds are the model's.
+#pragma once
+
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/types.h"
+
+namespace mbk {
+
+template <typename S>
+struct JointState {
+  VecX<S> position;      // q: model.nq coordinates
+  VecX<S> velocity;      // y: model.nv generalized speeds
+  VecX<S> acceleration;  // y': model.nv
+
+  explicit JointState(const Model& model)
+      : position(VecX<S>::Zero(model.nq)),
+        velocity(VecX<S>::Zero(model.nv)),
+        acceleration(VecX<S>::Zero(model.nv)) {
+    for (int k = 1; k <= model.body_count(); ++k) {
+      const Body& body = model.bodies[k];
+      if (uses_euler_parameters(body.joint.type))  // identity: e4 = 1
+        position[body.q_index + coordinate_count(body.joint.type) - 1] = S(1);
+    }
+  }
+};
+
+// Fills mimic coordinates from their sources (q = multiplier * q_source + offset; the
+// derivatives scale by multiplier).
+template <typename S>
+void apply_mimics(const Model& model, JointState<S>& state) {
+  for (const Mimic& m : model.mimics) {
+    state.position[m.coordinate] = S(m.multiplier) * state.position[m.source] + S(m.offset);
+    state.velocity[m.coordinate] = S(m.multiplier) * state.velocity[m.source];
+    state.acceleration[m.coordinate] = S(m.multiplier) * state.acceleration[m.source];
+  }
+}
+
+}  // namespace mbk

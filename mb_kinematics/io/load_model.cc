@@ -1,0 +1,23 @@
+#include "mb_kinematics/io/load_model.h"
+
+#include <stdexcept>
+
+#include "mb_kinematics/io/urdf_model.h"
+#include "mb_kinematics/io/yaml_scene.h"
+
+namespace mbk {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+}  // namespace
+
+Model load_model_file(const std::string& path) {
+  if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);
+  if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
+  throw std::invalid_argument(path + ": unknown model file type (expected .urdf, .xml, .yaml)");
+}
+
+}  // namespace mbk

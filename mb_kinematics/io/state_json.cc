@@ -1,0 +1,71 @@
+#include "mb_kinematics/io/state_json.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace mbk {
+namespace {
+
+// Reads one section {name: value} into `out`, where index_of maps a name to its slot.
+template <typename IndexOf>
+void read_section(const YAML::Node& root, const char* key, IndexOf index_of, VecX<double>& out) {
+  const YAML::Node section = root[key];
+  if (!section) return;
+  if (!section.IsMap()) throw std::invalid_argument(std::string(key) + " must be an object");
+  for (const auto& entry : section) {
+    const std::string name = entry.first.Scalar();
+    const int i = index_of(name);
+    if (i < 0) throw std::invalid_argument(std::string(key) + ": unknown coordinate '" + name + "'");
+    double value = 0;
+    try {
+      value = entry.second.as<double>();
+    } catch (const YAML::Exception&) {
+      throw std::invalid_argument(std::string(key) + "." + name + " is not a number");
+    }
+    if (!std::isfinite(value))
+      throw std::invalid_argument(std::string(key) + "." + name + " is not finite");
+    out[i] = value;
+  }
+}
+
+}  // namespace
+
+JointState<double> read_state_string(const Model& model, const std::string& text,
+                                     const std::string& source) {
+  JointState<double> state(model);
+  try {
+    const YAML::Node root = YAML::Load(text);
+    if (!root.IsMap()) throw std::invalid_argument("the state must be a JSON object");
+    for (const auto& entry : root) {
+      const std::string key = entry.first.Scalar();
+      if (key != "position" && key != "velocity" && key != "acceleration")
+        throw std::invalid_argument("unknown key '" + key +
+                                    "' (expected position, velocity, acceleration)");
+    }
+    auto coordinate = [&](const std::string& n) { return model.coordinate_index(n); };
+    auto speed = [&](const std::string& n) { return model.speed_index(n); };
+    read_section(root, "position", coordinate, state.position);
+    read_section(root, "velocity", speed, state.velocity);
+    read_section(root, "acceleration", speed, state.acceleration);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(source + ": malformed JSON: " + e.msg);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ": " + e.what());
+  }
+  apply_mimics(model, state);
+  return state;
+}
+
+JointState<double> read_state_file(const Model& model, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open state file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return read_state_string(model, text.str(), path);
+}
+
+}  // namespace mbk

@@ -1,0 +1,18 @@
+// STATE.json for `mbk eval`: {"position": {coord: value}, "velocity": {...},
+// "acceleration": {...}} (design.md). Missing coordinates are 0, except that a missing Euler
+// parameter set is the identity (e4 = 1). Mimic coordinates are computed from their sources.
+#pragma once
+
+#include <string>
+
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+
+namespace mbk {
+
+// Throws std::invalid_argument naming the file and the bad key or value.
+JointState<double> read_state_string(const Model& model, const std::string& text,
+                                     const std::string& source = "<state>");
+JointState<double> read_state_file(const Model& model, const std::string& path);
+
+}  // namespace mbk

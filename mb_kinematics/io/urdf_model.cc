@@ -1,0 +1,131 @@
+#include "mb_kinematics/io/urdf_model.h"
+
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace mbk {
+namespace {
+
+JointType joint_type(const urdf::Joint& joint) {
+  switch (joint.type) {
+    case urdf::Joint::REVOLUTE:
+    case urdf::Joint::CONTINUOUS: return JointType::kRevolute;
+    case urdf::Joint::PRISMATIC: return JointType::kPrismatic;
+    case urdf::Joint::FIXED: return JointType::kFixed;
+    case urdf::Joint::FLOATING: return JointType::kFree123;
+    case urdf::Joint::PLANAR: return JointType::kPlanar;
+    default: throw std::invalid_argument("joint '" + joint.name + "' has an unknown type");
+  }
+}
+
+// Joint names in the order the file lists them (urdfdom keeps them in a name-sorted map).
+std::map<std::string, int> joint_file_order(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  std::map<std::string, int> order;
+  if (doc.Parse(xml.c_str()) != tinyxml2::XML_SUCCESS || !doc.FirstChildElement("robot"))
+    return order;
+  int i = 0;
+  for (auto* e = doc.FirstChildElement("robot")->FirstChildElement("joint"); e;
+       e = e->NextSiblingElement("joint"))
+    if (e->Attribute("name")) order[e->Attribute("name")] = i++;
+  return order;
+}
+
+Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
+  Body body;
+  body.name = link.name;
+  body.lower = lower;
+  body.joint.name = joint.name;
+  body.joint.type = joint_type(joint);
+  const urdf::Pose& origin = joint.parent_to_joint_origin_transform;
+  body.joint.offset = Vec3<double>(origin.position.x, origin.position.y, origin.position.z);
+  const urdf::Rotation& r = origin.rotation;
+  body.joint.rotation = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
+  if (body.joint.type != JointType::kFixed && body.joint.type != JointType::kFree123)
+    body.joint.axis = Vec3<double>(joint.axis.x, joint.axis.y, joint.axis.z);
+  if (link.inertial) {
+    const urdf::Vector3& c = link.inertial->origin.position;
+    body.mass_center = Vec3<double>(c.x, c.y, c.z);
+    body.mass = link.inertial->mass;
+  }
+  return body;
+}
+
+Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
+  const std::map<std::string, int> order = joint_file_order(xml);
+  auto file_position = [&](const urdf::JointSharedPtr& j) {
+    auto it = order.find(j->name);
+    return it == order.end() ? -1 : it->second;
+  };
+  Model model;
+  const urdf::LinkConstSharedPtr root = urdf.getRoot();
+  model.frame = root->name;
+  model.bodies.resize(1);
+  std::vector<std::pair<urdf::LinkConstSharedPtr, int>> queue = {{root, 0}};  // link, its k
+  std::map<std::string, int> index_of_joint;
+  for (size_t head = 0; head < queue.size(); ++head) {
+    std::vector<urdf::JointSharedPtr> joints = queue[head].first->child_joints;
+    std::stable_sort(joints.begin(), joints.end(), [&](const auto& a, const auto& b) {
+      return file_position(a) < file_position(b);
+    });
+    for (const urdf::JointSharedPtr& joint : joints) {
+      const urdf::LinkConstSharedPtr child = urdf.getLink(joint->child_link_name);
+      model.bodies.push_back(make_body(*child, *joint, queue[head].second));
+      index_of_joint[joint->name] = static_cast<int>(model.bodies.size()) - 1;
+      queue.push_back({child, static_cast<int>(model.bodies.size()) - 1});
+    }
+  }
+  finalize_model(model);
+  for (const auto& [name, k] : index_of_joint) {
+    const urdf::Joint& joint = *urdf.getJoint(name);
+    if (!joint.mimic) continue;
+    auto source = index_of_joint.find(joint.mimic->joint_name);
+    const Body& body = model.bodies[k];
+    if (source == index_of_joint.end())
+      throw std::invalid_argument("joint '" + name + "' mimics unknown joint '" +
+                                  joint.mimic->joint_name + "'");
+    const Body& source_body = model.bodies[source->second];
+    if (coordinate_count(body.joint.type) != 1 || coordinate_count(source_body.joint.type) != 1)
+      throw std::invalid_argument("mimic joint '" + name + "': both joints need one coordinate");
+    model.mimics.push_back(
+        {body.q_index, source_body.q_index, joint.mimic->multiplier, joint.mimic->offset});
+  }
+  finalize_model(model);  // validates the mimics
+  return model;
+}
+
+}  // namespace
+
+Model load_urdf_string(const std::string& xml, const std::string& source) {
+  urdf::ModelInterfaceSharedPtr urdf;
+  try {
+    urdf = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(source + ": URDF does not parse: " + e.what());
+  }
+  if (!urdf)
+    throw std::invalid_argument(source +
+                                ": URDF does not parse (malformed XML, a missing or cyclic "
+                                "parent link, or a bad attribute; urdfdom's message is above)");
+  try {
+    return build_model(*urdf, xml);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ": " + e.what());
+  }
+}
+
+Model load_urdf_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open URDF file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_urdf_string(text.str(), path);
+}
+
+}  // namespace mbk

@@ -1,0 +1,148 @@
+#include "mb_kinematics/io/yaml_scene.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/io/rpy.h"
+
+namespace mbk {
+namespace {
+
+struct SceneError : std::invalid_argument {
+  SceneError(const YAML::Node& node, const std::string& what)
+      : std::invalid_argument(std::to_string(node.Mark().line + 1) + ": " + what) {}
+};
+
+double read_number(const YAML::Node& node, const std::string& field) {
+  if (!node.IsScalar()) throw SceneError(node, field + " must be a number");
+  double value = 0;
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw SceneError(node, field + " must be a number, not '" + node.Scalar() + "'");
+  }
+  if (!std::isfinite(value)) throw SceneError(node, field + " is not finite");
+  return value;
+}
+
+Vec3<double> read_vec3(const YAML::Node& node, const std::string& field) {
+  if (!node.IsSequence() || node.size() != 3)
+    throw SceneError(node, field + " must be a list of 3 numbers");
+  return Vec3<double>(read_number(node[0], field), read_number(node[1], field),
+                      read_number(node[2], field));
+}
+
+int read_lower(const YAML::Node& node, const Model& model, int k) {
+  const std::string field = "body " + std::to_string(k) + " lower";
+  if (!node) throw SceneError(node, field + " is missing");
+  int lower = model.body_index(node.Scalar());  // by name of an earlier body, or R's
+  if (node.Scalar() == model.frame) lower = 0;
+  if (lower >= 0 && lower < k) return lower;
+  try {
+    lower = node.as<int>();
+  } catch (const YAML::Exception&) {
+    throw SceneError(node, field + " '" + node.Scalar() +
+                               "' is neither an earlier body's name nor a number below " +
+                               std::to_string(k));
+  }
+  if (lower < 0 || lower >= k)
+    throw SceneError(node, field + " = " + std::to_string(lower) + ", must be 0 <= L(k) < k");
+  return lower;
+}
+
+void read_joint(const YAML::Node& node, Body& body, int k) {
+  const std::string where = "body " + std::to_string(k) + " joint";
+  if (!node || !node.IsMap()) throw SceneError(node, where + " must be a map with a type");
+  if (node["name"]) body.joint.name = node["name"].Scalar();
+  if (!node["type"]) throw SceneError(node, where + " has no type");
+  try {
+    body.joint.type = joint_type_from_string(node["type"].Scalar());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(node["type"], where + ": " + e.what());
+  }
+  if (node["origin"]) body.joint.offset = read_vec3(node["origin"], where + " origin");
+  if (node["rpy"]) {
+    const Vec3<double> rpy = read_vec3(node["rpy"], where + " rpy");
+    body.joint.rotation = rotation_from_rpy(rpy.x(), rpy.y(), rpy.z());
+  }
+  if (node["axis"]) {
+    body.joint.axis = read_vec3(node["axis"], where + " axis");
+    if (body.joint.axis.norm() == 0) throw SceneError(node["axis"], where + " axis is zero");
+  }
+}
+
+Model read_scene(const YAML::Node& root) {
+  if (!root.IsMap()) throw SceneError(root, "a scene is a map with 'bodies' (see README.md)");
+  Model model;
+  if (root["frame"]) model.frame = root["frame"].Scalar();
+  if (root["speeds"]) {
+    const std::string speeds = root["speeds"].Scalar();
+    if (speeds == "angular_velocity") model.speeds = SpeedKind::kAngularVelocity;
+    else if (speeds != "coordinate_derivatives")
+      throw SceneError(root["speeds"],
+                       "speeds must be coordinate_derivatives or angular_velocity, not '" +
+                           speeds + "'");
+  }
+  if (root["lower_body_array"] && !root["bodies"]) {  // a bare scene
+    std::vector<int> lower;
+    for (const YAML::Node& entry : root["lower_body_array"])
+      lower.push_back(static_cast<int>(read_number(entry, "lower_body_array")));
+    const std::string type = root["joint_type"] ? root["joint_type"].Scalar() : "ball_123";
+    try {
+      return make_bare_model(lower, joint_type_from_string(type));
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(root["lower_body_array"], e.what());
+    }
+  }
+  const YAML::Node bodies = root["bodies"];
+  if (!bodies || !bodies.IsSequence() || bodies.size() == 0)
+    throw SceneError(root, "scene has no 'bodies' list");
+  model.bodies.resize(1);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const YAML::Node node = bodies[i];
+    const int k = static_cast<int>(i) + 1;
+    if (!node.IsMap()) throw SceneError(node, "body " + std::to_string(k) + " must be a map");
+    Body body;
+    if (!node["name"]) throw SceneError(node, "body " + std::to_string(k) + " has no name");
+    body.name = node["name"].Scalar();
+    body.lower = read_lower(node["lower"], model, k);
+    read_joint(node["joint"], body, k);
+    if (node["mass_center"]) body.mass_center = read_vec3(node["mass_center"], body.name + " mass_center");
+    if (node["mass"]) body.mass = read_number(node["mass"], body.name + " mass");
+    model.bodies.push_back(body);
+  }
+  try {
+    finalize_model(model);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(bodies, e.what());
+  }
+  return model;
+}
+
+}  // namespace
+
+Model load_yaml_scene_string(const std::string& text, const std::string& source) {
+  try {
+    return read_scene(YAML::Load(text));
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) +
+                                ": malformed YAML: " + e.msg);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source + ":" + e.what());
+  }
+}
+
+Model load_yaml_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(path + ": cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return load_yaml_scene_string(text.str(), path);
+}
+
+}  // namespace mbk

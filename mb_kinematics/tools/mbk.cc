@@ -1,0 +1,96 @@
+// mbk: the command-line tool (design.md "Contracts").
+//   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
+//   mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]
+#include <cstdio>
+#include <cstring>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/report.h"
+#include "mb_kinematics/io/state_json.h"
+
+namespace {
+
+const char kUsage[] =
+    "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
+    "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n";
+
+// Options of the form --name value, and the flag --csv.
+std::map<std::string, std::string> parse_options(int argc, char** argv) {
+  std::map<std::string, std::string> options;
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--csv") {
+      options[arg] = "1";
+    } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method") &&
+               i + 1 < argc) {
+      options[arg] = argv[++i];
+    } else {
+      throw std::invalid_argument("unknown or incomplete option '" + arg + "'");
+    }
+  }
+  return options;
+}
+
+int tables(const std::map<std::string, std::string>& options) {
+  std::vector<int> lower;
+  std::vector<std::string> names;
+  if (options.count("--lower") == options.count("--model"))
+    throw std::invalid_argument("tables needs exactly one of --lower and --model");
+  if (options.count("--lower")) {
+    lower = mbk::parse_lower_body_array(options.at("--lower"));
+    mbk::validate_lower_body_array(lower);
+  } else {
+    const mbk::Model model = mbk::load_model_file(options.at("--model"));
+    lower = model.lower_body_array();
+    for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
+  }
+  std::cout << (options.count("--csv") ? mbk::format_lower_body_csv(lower)
+                                       : mbk::format_lower_body_table(lower, names));
+  return 0;
+}
+
+int eval(const std::map<std::string, std::string>& options) {
+  if (!options.count("--model")) throw std::invalid_argument("eval needs --model FILE");
+  const mbk::Model model = mbk::load_model_file(options.at("--model"));
+  const mbk::JointState<double> state = options.count("--state")
+                                            ? mbk::read_state_file(model, options.at("--state"))
+                                            : mbk::JointState<double>(model);
+  mbk::Data<double> data(model);
+  const std::string method = options.count("--method") ? options.at("--method") : "recursive";
+  if (method == "recursive") {
+    mbk::forward_kinematics(model, state, data);
+  } else if (method == "partial_velocity") {
+    mbk::PartialVelocities<double> pv(model);
+    mbk::partial_velocity_kinematics(model, state, pv, data);
+  } else {
+    throw std::invalid_argument("unknown --method '" + method + "'");
+  }
+  std::cout << mbk::format_eval_json(model, data);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
+    std::fputs(kUsage, argc < 2 ? stderr : stdout);
+    return argc < 2 ? 2 : 0;
+  }
+  try {
+    const std::string command = argv[1];
+    const auto options = parse_options(argc, argv);
+    if (command == "tables") return tables(options);
+    if (command == "eval") return eval(options);
+    throw std::invalid_argument("unknown command '" + command + "'");
+  } catch (const std::exception& e) {
+    std::cerr << "mbk: error: " << e.what() << "\n" << kUsage;
+    return 1;
+  }
+}

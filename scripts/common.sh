@@ -1,0 +1,47 @@
+# Shared by scripts/demo.sh and scripts/test.sh: install what is missing, set up the catkin
+# workspace (MBK_WS, default .ws/ in the repo, git-ignored) and build. Sourced, not run.
+set -euo pipefail
+
+MBK_SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+MBK_WS=${MBK_WS:-$MBK_SRC/.ws}
+# catkin needs Debian's python3 (with catkin_pkg), not a pyenv build earlier on PATH.
+export PATH=/usr/bin:$PATH
+export PYTHONNOUSERSITE=1
+
+MBK_PACKAGES=(
+  build-essential cmake catkin libroscpp-dev libtf2-ros-dev ros-sensor-msgs ros-geometry-msgs
+  ros-std-msgs ros-visualization-msgs ros-message-generation ros-message-runtime liburdf-dev
+  liburdfdom-dev libtinyxml2-dev libeigen3-dev libyaml-cpp-dev python3-rostest
+  python3-roslaunch python3-rostopic python3-rosmsg rosbash ros-robot-state-publisher
+  libkdl-parser-dev liborocos-kdl-dev libbenchmark-dev googletest libboost-dev
+  libdiagnostic-updater-dev
+)
+
+mbk_install_deps() {
+  local missing=()
+  for p in "${MBK_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "== installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+mbk_build() {
+  mkdir -p "$MBK_WS/src"
+  ln -sfn "$MBK_SRC" "$MBK_WS/src/mb_kinematics"
+  echo "== building in $MBK_WS"
+  (cd "$MBK_WS" && catkin_make -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
+     -DCATKIN_ENABLE_TESTING=ON "$@" >"$MBK_WS/build.log" 2>&1) || {
+    tail -n 60 "$MBK_WS/build.log"
+    echo "build failed: full log in $MBK_WS/build.log" >&2
+    return 1
+  }
+  set +u
+  # shellcheck disable=SC1091
+  source "$MBK_WS/devel/setup.bash"
+  set -u
+}
