@@ -3,8 +3,8 @@
 find_package(orocos_kdl REQUIRED)
 find_package(kdl_parser REQUIRED)
 
-file(GLOB MBK_UNIT_TESTS test/core/*_test.cc test/io/*_test.cc)
-file(GLOB MBK_PEER_TESTS test/peers/*_test.cc)
+file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/io/*_test.cc)
+file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
   catkin_add_gtest(${name} ${source} test/support/test_models.cc WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
