@@ -1,9 +1,11 @@
 # Shared by scripts/demo.sh and scripts/test.sh: install what is missing, set up the catkin
-# workspace (MBK_WS, default .ws/ in the repo, git-ignored) and build. Sourced, not run.
+# workspace and build. Sourced, not run. The workspace (MBK_WS) is outside the git tree, by
+# default one per checkout under ~/.cache/mb_kinematics/ (inside the tree, its src/ link back
+# to the repo would make a loop that rosrun's search runs into).
 set -euo pipefail
 
 MBK_SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-MBK_WS=${MBK_WS:-$MBK_SRC/.ws}
+MBK_WS=${MBK_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/mb_kinematics/ws-$(echo "$MBK_SRC" | md5sum | cut -c1-8)}
 # catkin needs Debian's python3 (with catkin_pkg), not a pyenv build earlier on PATH.
 export PATH=/usr/bin:$PATH
 export PYTHONNOUSERSITE=1

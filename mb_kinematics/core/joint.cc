@@ -30,27 +30,31 @@ std::string to_string(JointType type) {
 }
 
 const std::vector<std::string>& coordinate_suffixes(JointType type) {
-  static const std::vector<std::string> none, one = {""}, angles = {"alpha", "beta", "gamma"},
-                                              euler = {"e1", "e2", "e3", "e4"},
-                                              free123 = {"x", "y", "z", "alpha", "beta", "gamma"},
-                                              free_euler = {"x", "y", "z", "e1", "e2", "e3", "e4"},
-                                              planar = {"x", "y", "gamma"};
+  static const std::vector<std::string> none,
+      one = {""}, angles = {"alpha", "beta", "gamma"}, euler = {"e1", "e2", "e3", "e4"},
+      free123 = {"x", "y", "z", "alpha", "beta", "gamma"},
+      free_euler = {"x", "y", "z", "e1", "e2", "e3", "e4"}, planar = {"x", "y", "gamma"};
   switch (type) {
-    case JointType::kFixed: return none;
+    case JointType::kFixed:
+      return none;
     case JointType::kRevolute:
-    case JointType::kPrismatic: return one;
-    case JointType::kBall123: return angles;
-    case JointType::kBallEuler: return euler;
-    case JointType::kFree123: return free123;
-    case JointType::kFreeEuler: return free_euler;
-    case JointType::kPlanar: return planar;
+    case JointType::kPrismatic:
+      return one;
+    case JointType::kBall123:
+      return angles;
+    case JointType::kBallEuler:
+      return euler;
+    case JointType::kFree123:
+      return free123;
+    case JointType::kFreeEuler:
+      return free_euler;
+    case JointType::kPlanar:
+      return planar;
   }
   return none;
 }
 
-int coordinate_count(JointType type) {
-  return static_cast<int>(coordinate_suffixes(type).size());
-}
+int coordinate_count(JointType type) { return static_cast<int>(coordinate_suffixes(type).size()); }
 
 bool uses_euler_parameters(JointType type) {
   return type == JointType::kBallEuler || type == JointType::kFreeEuler;

@@ -71,7 +71,8 @@ void angles_123_columns(const S* q, const S* qd, Vec3<S>* angular, Vec3<S>* angu
   if (!qd) return;
   angular_dot[0].setZero();
   angular_dot[1] = qd[0] * Vec3<S>(S(0), -sa, ca);
-  angular_dot[2] = qd[0] * Vec3<S>(S(0), -ca * cb, -sa * cb) + qd[1] * Vec3<S>(cb, sa * sb, -ca * sb);
+  angular_dot[2] =
+      qd[0] * Vec3<S>(S(0), -ca * cb, -sa * cb) + qd[1] * Vec3<S>(cb, sa * sb, -ca * sb);
 }
 
 // Euler-parameter columns: w = 2 (e4 e' - e4' e + e x e') / |e|^2, with coordinate-derivative
@@ -88,7 +89,8 @@ int euler_columns(const S* e, const S* ed, SpeedKind speeds, Vec3<S>* angular,
   }
   const Vec3<S> v(e[0], e[1], e[2]);
   const S n2 = v.squaredNorm() + e[3] * e[3];
-  for (int i = 0; i < 3; ++i) angular[i] = S(2) / n2 * (e[3] * Vec3<S>::Unit(i) + v.cross(Vec3<S>::Unit(i)));
+  for (int i = 0; i < 3; ++i)
+    angular[i] = S(2) / n2 * (e[3] * Vec3<S>::Unit(i) + v.cross(Vec3<S>::Unit(i)));
   angular[3] = S(-2) / n2 * v;
   if (!ed) return 4;
   const Vec3<S> vd(ed[0], ed[1], ed[2]);
@@ -132,7 +134,8 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
     }
   };
   switch (joint.type) {
-    case JointType::kFixed: break;
+    case JointType::kFixed:
+      break;
     case JointType::kRevolute:
       motion = rotation_axis(axis, q[0]);
       n = 1;
@@ -168,7 +171,8 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
         translation_columns(3);
       }
       motion = rotation_euler(q + t);
-      const int r = detail::euler_columns(q + t, qd ? qd + t : nullptr, speeds, ang + t, ang_dot + t);
+      const int r =
+          detail::euler_columns(q + t, qd ? qd + t : nullptr, speeds, ang + t, ang_dot + t);
       for (int i = t; i < t + r; ++i) lin[i].setZero();
       n = t + r;
       break;

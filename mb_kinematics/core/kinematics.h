@@ -15,10 +15,10 @@ template <typename S>
 void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d,
                Vec3<S>& rho) {
   const int j = body.lower;
-  data.rotation[k] = data.rotation[j] * m.rotation;                         // S0K = S0J SJK
-  d = data.rotation[j] * (body.joint.offset.cast<S>() + m.translation);    // S0J (q_k + s_k)
-  data.origin[k] = data.origin[j] + d;                                      // eq. 4.6.2
-  rho = data.rotation[k] * body.mass_center.cast<S>();                     // S0K r_k
+  data.rotation[k] = data.rotation[j] * m.rotation;                      // S0K = S0J SJK
+  d = data.rotation[j] * (body.joint.offset.cast<S>() + m.translation);  // S0J (q_k + s_k)
+  data.origin[k] = data.origin[j] + d;                                   // eq. 4.6.2
+  rho = data.rotation[k] * body.mass_center.cast<S>();                   // S0K r_k
   data.mass_center[k] = data.origin[k] + rho;
 }
 
@@ -50,7 +50,7 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
     }
     const Vec3<S> w0 = s0j * w, sd0 = s0j * sd;
     const Vec3<S>& omega_j = data.omega[j];
-    data.omega[k] = omega_j + w0;                                                 // eq. 4.4.6
+    data.omega[k] = omega_j + w0;                                                // eq. 4.4.6
     data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // method.md 4
     data.velocity[k] = data.origin_velocity[k] + data.omega[k].cross(rho);
     if (!accelerations) continue;

@@ -83,11 +83,13 @@ void finalize_model(Model& model) {
       model.coordinate_names.push_back(body.joint.name + (suffix.empty() ? "" : "/" + suffix));
     const int ns = speed_count(type, model.speeds);
     if (ns == coordinate_count(type)) {
-      for (int i = 0; i < ns; ++i) model.speed_names.push_back(model.coordinate_names[model.nq + i]);
+      for (int i = 0; i < ns; ++i)
+        model.speed_names.push_back(model.coordinate_names[model.nq + i]);
     } else {  // Euler joint with angular velocity speeds: translations keep their names
       for (int i = 0; i < ns - 3; ++i)
         model.speed_names.push_back(model.coordinate_names[model.nq + i]);
-      for (const char* w : {"wx", "wy", "wz"}) model.speed_names.push_back(body.joint.name + "/" + w);
+      for (const char* w : {"wx", "wy", "wz"})
+        model.speed_names.push_back(body.joint.name + "/" + w);
     }
     model.nq += coordinate_count(type);
     model.nv += ns;

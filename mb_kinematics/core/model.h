@@ -11,8 +11,8 @@ namespace mbk {
 
 struct Body {
   std::string name;
-  int lower = 0;  // L(k); 0 = the inertial frame R
-  Joint joint;    // connection to the lower body
+  int lower = 0;                                    // L(k); 0 = the inertial frame R
+  Joint joint;                                      // connection to the lower body
   Vec3<double> mass_center = Vec3<double>::Zero();  // r_k: O_k -> G_k, components in Bk
   double mass = 0.0;
   int q_index = 0;  // first coordinate of the joint in the state's position vector
@@ -32,14 +32,14 @@ struct Model {
   SpeedKind speeds = SpeedKind::kCoordinateDerivatives;
   std::vector<Body> bodies;  // bodies[k] is Bk for k = 1..N; bodies[0] stands for R
   std::vector<Mimic> mimics;
-  int nq = 0;                                // number of coordinates
-  int nv = 0;                                // number of generalized speeds
+  int nq = 0;                                 // number of coordinates
+  int nv = 0;                                 // number of generalized speeds
   std::vector<std::string> coordinate_names;  // nq names (design.md "Coordinate names")
   std::vector<std::string> speed_names;       // nv names; equal to coordinate_names unless
                                               // Euler joints use angular velocity speeds
 
   int body_count() const { return static_cast<int>(bodies.size()) - 1; }
-  std::vector<int> lower_body_array() const;  // L(1..N)
+  std::vector<int> lower_body_array() const;            // L(1..N)
   int body_index(const std::string& name) const;        // -1 if absent
   int coordinate_index(const std::string& name) const;  // -1 if absent
   int speed_index(const std::string& name) const;       // -1 if absent

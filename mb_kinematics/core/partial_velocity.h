@@ -40,8 +40,8 @@ struct PartialVelocities {
         speed.push_back(body.v_index + i - count[body.lower]);
       total += count[k];
     }
-    for (auto* v : {&omega, &origin_velocity, &velocity, &omega_dot, &origin_velocity_dot,
-                    &velocity_dot})
+    for (auto* v :
+         {&omega, &origin_velocity, &velocity, &omega_dot, &origin_velocity_dot, &velocity_dot})
       v->assign(total, Vec3<S>::Zero());
   }
 };

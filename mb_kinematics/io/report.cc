@@ -5,15 +5,12 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 namespace {
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
+std::string number(double x) { return format_double(x); }
 
 template <typename Matrix>
 std::string json_array(const Matrix& m) {  // row-major

@@ -19,7 +19,8 @@ void read_section(const YAML::Node& root, const char* key, IndexOf index_of, Vec
   for (const auto& entry : section) {
     const std::string name = entry.first.Scalar();
     const int i = index_of(name);
-    if (i < 0) throw std::invalid_argument(std::string(key) + ": unknown coordinate '" + name + "'");
+    if (i < 0)
+      throw std::invalid_argument(std::string(key) + ": unknown coordinate '" + name + "'");
     double value = 0;
     try {
       value = entry.second.as<double>();

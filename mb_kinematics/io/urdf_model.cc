@@ -15,12 +15,18 @@ namespace {
 JointType joint_type(const urdf::Joint& joint) {
   switch (joint.type) {
     case urdf::Joint::REVOLUTE:
-    case urdf::Joint::CONTINUOUS: return JointType::kRevolute;
-    case urdf::Joint::PRISMATIC: return JointType::kPrismatic;
-    case urdf::Joint::FIXED: return JointType::kFixed;
-    case urdf::Joint::FLOATING: return JointType::kFree123;
-    case urdf::Joint::PLANAR: return JointType::kPlanar;
-    default: throw std::invalid_argument("joint '" + joint.name + "' has an unknown type");
+    case urdf::Joint::CONTINUOUS:
+      return JointType::kRevolute;
+    case urdf::Joint::PRISMATIC:
+      return JointType::kPrismatic;
+    case urdf::Joint::FIXED:
+      return JointType::kFixed;
+    case urdf::Joint::FLOATING:
+      return JointType::kFree123;
+    case urdf::Joint::PLANAR:
+      return JointType::kPlanar;
+    default:
+      throw std::invalid_argument("joint '" + joint.name + "' has an unknown type");
   }
 }
 

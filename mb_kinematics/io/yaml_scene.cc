@@ -82,11 +82,12 @@ Model read_scene(const YAML::Node& root) {
   if (root["frame"]) model.frame = root["frame"].Scalar();
   if (root["speeds"]) {
     const std::string speeds = root["speeds"].Scalar();
-    if (speeds == "angular_velocity") model.speeds = SpeedKind::kAngularVelocity;
+    if (speeds == "angular_velocity")
+      model.speeds = SpeedKind::kAngularVelocity;
     else if (speeds != "coordinate_derivatives")
-      throw SceneError(root["speeds"],
-                       "speeds must be coordinate_derivatives or angular_velocity, not '" +
-                           speeds + "'");
+      throw SceneError(
+          root["speeds"],
+          "speeds must be coordinate_derivatives or angular_velocity, not '" + speeds + "'");
   }
   if (root["lower_body_array"] && !root["bodies"]) {  // a bare scene
     std::vector<int> lower;
@@ -112,7 +113,8 @@ Model read_scene(const YAML::Node& root) {
     body.name = node["name"].Scalar();
     body.lower = read_lower(node["lower"], model, k);
     read_joint(node["joint"], body, k);
-    if (node["mass_center"]) body.mass_center = read_vec3(node["mass_center"], body.name + " mass_center");
+    if (node["mass_center"])
+      body.mass_center = read_vec3(node["mass_center"], body.name + " mass_center");
     if (node["mass"]) body.mass = read_number(node["mass"], body.name + " mass");
     model.bodies.push_back(body);
   }

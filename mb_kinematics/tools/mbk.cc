@@ -1,6 +1,7 @@
 // mbk: the command-line tool (design.md "Contracts").
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
 //   mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]
+//   mbk urdf --model SCENE.yaml [--name ROBOT]   (a scene as URDF, for RobotModel and KDL)
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -14,12 +15,14 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/state_json.h"
+#include "mb_kinematics/io/urdf_writer.h"
 
 namespace {
 
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
-    "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n";
+    "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
+    "       mbk urdf --model SCENE.yaml [--name ROBOT]\n";
 
 // Options of the form --name value, and the flag --csv.
 std::map<std::string, std::string> parse_options(int argc, char** argv) {
@@ -28,7 +31,8 @@ std::map<std::string, std::string> parse_options(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--csv") {
       options[arg] = "1";
-    } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method") &&
+    } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method" ||
+                arg == "--name") &&
                i + 1 < argc) {
       options[arg] = argv[++i];
     } else {
@@ -76,6 +80,13 @@ int eval(const std::map<std::string, std::string>& options) {
   return 0;
 }
 
+int urdf(const std::map<std::string, std::string>& options) {
+  if (!options.count("--model")) throw std::invalid_argument("urdf needs --model FILE");
+  const mbk::Model model = mbk::load_model_file(options.at("--model"));
+  std::cout << mbk::write_urdf(model, options.count("--name") ? options.at("--name") : "scene");
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,6 +99,7 @@ int main(int argc, char** argv) {
     const auto options = parse_options(argc, argv);
     if (command == "tables") return tables(options);
     if (command == "eval") return eval(options);
+    if (command == "urdf") return urdf(options);
     throw std::invalid_argument("unknown command '" + command + "'");
   } catch (const std::exception& e) {
     std::cerr << "mbk: error: " << e.what() << "\n" << kUsage;

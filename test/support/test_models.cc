@@ -14,10 +14,10 @@ std::string source_path(const std::string& relative) {
 mbk::Model random_tree(int n, unsigned seed, mbk::SpeedKind speeds) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const mbk::JointType types[] = {
-      mbk::JointType::kFixed,     mbk::JointType::kRevolute,  mbk::JointType::kPrismatic,
-      mbk::JointType::kBall123,   mbk::JointType::kBallEuler, mbk::JointType::kFree123,
-      mbk::JointType::kFreeEuler, mbk::JointType::kPlanar};
+  const mbk::JointType types[] = {mbk::JointType::kFixed,     mbk::JointType::kRevolute,
+                                  mbk::JointType::kPrismatic, mbk::JointType::kBall123,
+                                  mbk::JointType::kBallEuler, mbk::JointType::kFree123,
+                                  mbk::JointType::kFreeEuler, mbk::JointType::kPlanar};
   mbk::Model model;
   model.speeds = speeds;
   model.bodies.resize(n + 1);

@@ -1,0 +1,19 @@
+// A Model as URDF text, so that robot_state_publisher, KDL and rviz's RobotModel can use
+// YAML scenes. Joints URDF lacks are expanded into chains of URDF joints with the same
+// coordinate names: ball_123 into revolutes `<joint>/alpha` (x), `/beta` (new y), `/gamma`
+// (new z) (method.md 2: "three hinges about x, then the new y, then the new z"); free_123 into
+// prismatics `<joint>/x`, `/y`, `/z` then the same three revolutes. The intermediate links,
+// `<body>__<coordinate>`, are massless. Simple visuals: a sphere at each mass center and a
+// capsule from each joint point to the next.
+#pragma once
+
+#include <string>
+
+#include "mb_kinematics/core/model.h"
+
+namespace mbk {
+
+// Throws std::invalid_argument for Euler-parameter joints, which no URDF joint chain matches.
+std::string write_urdf(const Model& model, const std::string& robot_name);
+
+}  // namespace mbk
