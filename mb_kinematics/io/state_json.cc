@@ -53,7 +53,8 @@ JointState<double> read_state_string(const Model& model, const std::string& text
     read_section(root, "velocity", speed, state.velocity);
     read_section(root, "acceleration", speed, state.acceleration);
   } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(source + ": malformed JSON: " + e.msg);
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw std::invalid_argument(source + line + ": malformed JSON: " + e.msg);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(source + ": " + e.what());
   }

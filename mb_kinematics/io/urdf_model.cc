@@ -1,16 +1,44 @@
 #include "mb_kinematics/io/urdf_model.h"
 
+#include <console_bridge/console.h>
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
 namespace mbk {
 namespace {
+
+// urdfdom reports what is wrong only through console_bridge. While it parses, this handler
+// collects the error messages (one line) and passes everything on to the previous handler.
+class UrdfdomErrors : public console_bridge::OutputHandler {
+ public:
+  UrdfdomErrors() : previous_(console_bridge::getOutputHandler()) {
+    console_bridge::useOutputHandler(this);
+  }
+  ~UrdfdomErrors() override {
+    console_bridge::restorePreviousOutputHandler();
+    console_bridge::useOutputHandler(previous_);  // leaves no pointer to this behind
+  }
+  void log(const std::string& text, console_bridge::LogLevel level, const char* file,
+           int line) override {
+    if (previous_) previous_->log(text, level, file, line);
+    if (level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) return;
+    std::string one_line = text;
+    std::replace(one_line.begin(), one_line.end(), '\n', ' ');
+    messages_ += (messages_.empty() ? "" : "; ") + one_line;
+  }
+  const std::string& messages() const { return messages_; }
+
+ private:
+  console_bridge::OutputHandler* previous_;
+  std::string messages_;
+};
 
 JointType joint_type(const urdf::Joint& joint) {
   switch (joint.type) {
@@ -75,18 +103,29 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
   model.bodies.resize(1);
   std::vector<std::pair<urdf::LinkConstSharedPtr, int>> queue = {{root, 0}};  // link, its k
   std::map<std::string, int> index_of_joint;
+  std::map<std::string, std::string> parent_joint = {{root->name, ""}};  // of each link reached
   for (size_t head = 0; head < queue.size(); ++head) {
     std::vector<urdf::JointSharedPtr> joints = queue[head].first->child_joints;
     std::stable_sort(joints.begin(), joints.end(), [&](const auto& a, const auto& b) {
       return file_position(a) < file_position(b);
     });
     for (const urdf::JointSharedPtr& joint : joints) {
+      // urdfdom accepts a link that is the child of two joints (a closed loop).
+      const auto [seen, first] = parent_joint.insert({joint->child_link_name, joint->name});
+      if (!first)
+        throw std::invalid_argument("link '" + joint->child_link_name +
+                                    "' is reached through two joints ('" + seen->second +
+                                    "' and '" + joint->name + "'): a closed loop, not a tree");
       const urdf::LinkConstSharedPtr child = urdf.getLink(joint->child_link_name);
       model.bodies.push_back(make_body(*child, *joint, queue[head].second));
       index_of_joint[joint->name] = static_cast<int>(model.bodies.size()) - 1;
       queue.push_back({child, static_cast<int>(model.bodies.size()) - 1});
     }
   }
+  for (const auto& [name, link] : urdf.links_)
+    if (!parent_joint.count(name))
+      throw std::invalid_argument("link '" + name + "' is not connected to the root link '" +
+                                  root->name + "' (its joints form a loop)");
   finalize_model(model);
   for (const auto& [name, k] : index_of_joint) {
     const urdf::Joint& joint = *urdf.getJoint(name);
@@ -109,16 +148,27 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
 }  // namespace
 
 Model load_urdf_string(const std::string& xml, const std::string& source) {
+  tinyxml2::XMLDocument doc;  // for the line of a syntax error, which urdfdom does not give
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
+    throw std::invalid_argument(source + ":" + std::to_string(doc.ErrorLineNum()) +
+                                ": URDF does not parse: malformed XML: " + doc.ErrorStr());
   urdf::ModelInterfaceSharedPtr urdf;
-  try {
-    urdf = urdf::parseURDF(xml);
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(source + ": URDF does not parse: " + e.what());
+  std::string errors;
+  {
+    static std::mutex console_bridge_handler;  // one collector installed at a time
+    std::lock_guard<std::mutex> lock(console_bridge_handler);
+    UrdfdomErrors collector;
+    try {
+      urdf = urdf::parseURDF(xml);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(source + ": URDF does not parse: " + e.what());
+    }
+    errors = collector.messages();
   }
-  if (!urdf)
-    throw std::invalid_argument(source +
-                                ": URDF does not parse (malformed XML, a missing or cyclic "
-                                "parent link, or a bad attribute; urdfdom's message is above)");
+  // urdfdom returns a model despite some errors (e.g. a mass that is not a number): reject it.
+  if (!urdf || !errors.empty())
+    throw std::invalid_argument(
+        source + ": URDF does not parse: " + (errors.empty() ? "urdfdom gave no reason" : errors));
   try {
     return build_model(*urdf, xml);
   } catch (const std::invalid_argument& e) {

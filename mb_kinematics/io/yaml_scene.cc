@@ -37,9 +37,11 @@ Vec3<double> read_vec3(const YAML::Node& node, const std::string& field) {
                       read_number(node[2], field));
 }
 
-int read_lower(const YAML::Node& node, const Model& model, int k) {
+// `body_node` gives the line when the field is missing (a missing key's node has no line).
+int read_lower(const YAML::Node& body_node, const Model& model, int k) {
   const std::string field = "body " + std::to_string(k) + " lower";
-  if (!node) throw SceneError(node, field + " is missing");
+  const YAML::Node node = body_node["lower"];
+  if (!node) throw SceneError(body_node, field + " is missing");
   int lower = model.body_index(node.Scalar());  // by name of an earlier body, or R's
   if (node.Scalar() == model.frame) lower = 0;
   if (lower >= 0 && lower < k) return lower;
@@ -55,9 +57,11 @@ int read_lower(const YAML::Node& node, const Model& model, int k) {
   return lower;
 }
 
-void read_joint(const YAML::Node& node, Body& body, int k) {
+void read_joint(const YAML::Node& body_node, Body& body, int k) {
   const std::string where = "body " + std::to_string(k) + " joint";
-  if (!node || !node.IsMap()) throw SceneError(node, where + " must be a map with a type");
+  const YAML::Node node = body_node["joint"];
+  if (!node || !node.IsMap())
+    throw SceneError(node ? node : body_node, where + " must be a map with a type");
   if (node["name"]) body.joint.name = node["name"].Scalar();
   if (!node["type"]) throw SceneError(node, where + " has no type");
   try {
@@ -79,7 +83,10 @@ void read_joint(const YAML::Node& node, Body& body, int k) {
 Model read_scene(const YAML::Node& root) {
   if (!root.IsMap()) throw SceneError(root, "a scene is a map with 'bodies' (see README.md)");
   Model model;
-  if (root["frame"]) model.frame = root["frame"].Scalar();
+  if (root["frame"]) {
+    model.frame = root["frame"].Scalar();
+    if (model.frame.empty()) throw SceneError(root["frame"], "frame must be a name");
+  }
   if (root["speeds"]) {
     const std::string speeds = root["speeds"].Scalar();
     if (speeds == "angular_velocity")
@@ -90,9 +97,16 @@ Model read_scene(const YAML::Node& root) {
           "speeds must be coordinate_derivatives or angular_velocity, not '" + speeds + "'");
   }
   if (root["lower_body_array"] && !root["bodies"]) {  // a bare scene
+    const YAML::Node array = root["lower_body_array"];
+    if (!array.IsSequence()) throw SceneError(array, "lower_body_array must be a list");
     std::vector<int> lower;
-    for (const YAML::Node& entry : root["lower_body_array"])
-      lower.push_back(static_cast<int>(read_number(entry, "lower_body_array")));
+    for (const YAML::Node& entry : array) {
+      const double value = read_number(entry, "lower_body_array");
+      if (value != std::floor(value) || std::abs(value) > 1e9)
+        throw SceneError(entry,
+                         "lower_body_array entry '" + entry.Scalar() + "' is not an integer");
+      lower.push_back(static_cast<int>(value));
+    }
     const std::string type = root["joint_type"] ? root["joint_type"].Scalar() : "ball_123";
     try {
       return make_bare_model(lower, joint_type_from_string(type));
@@ -111,8 +125,8 @@ Model read_scene(const YAML::Node& root) {
     Body body;
     if (!node["name"]) throw SceneError(node, "body " + std::to_string(k) + " has no name");
     body.name = node["name"].Scalar();
-    body.lower = read_lower(node["lower"], model, k);
-    read_joint(node["joint"], body, k);
+    body.lower = read_lower(node, model, k);
+    read_joint(node, body, k);
     if (node["mass_center"])
       body.mass_center = read_vec3(node["mass_center"], body.name + " mass_center");
     if (node["mass"]) body.mass = read_number(node["mass"], body.name + " mass");

@@ -24,6 +24,11 @@ const char kUsage[] =
     "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
     "       mbk urdf --model SCENE.yaml [--name ROBOT]\n";
 
+// A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
+struct UsageError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
 // Options of the form --name value, and the flag --csv.
 std::map<std::string, std::string> parse_options(int argc, char** argv) {
   std::map<std::string, std::string> options;
@@ -36,7 +41,7 @@ std::map<std::string, std::string> parse_options(int argc, char** argv) {
                i + 1 < argc) {
       options[arg] = argv[++i];
     } else {
-      throw std::invalid_argument("unknown or incomplete option '" + arg + "'");
+      throw UsageError("unknown or incomplete option '" + arg + "'");
     }
   }
   return options;
@@ -46,7 +51,7 @@ int tables(const std::map<std::string, std::string>& options) {
   std::vector<int> lower;
   std::vector<std::string> names;
   if (options.count("--lower") == options.count("--model"))
-    throw std::invalid_argument("tables needs exactly one of --lower and --model");
+    throw UsageError("tables needs exactly one of --lower and --model");
   if (options.count("--lower")) {
     lower = mbk::parse_lower_body_array(options.at("--lower"));
     mbk::validate_lower_body_array(lower);
@@ -61,7 +66,7 @@ int tables(const std::map<std::string, std::string>& options) {
 }
 
 int eval(const std::map<std::string, std::string>& options) {
-  if (!options.count("--model")) throw std::invalid_argument("eval needs --model FILE");
+  if (!options.count("--model")) throw UsageError("eval needs --model FILE");
   const mbk::Model model = mbk::load_model_file(options.at("--model"));
   const mbk::JointState<double> state = options.count("--state")
                                             ? mbk::read_state_file(model, options.at("--state"))
@@ -74,14 +79,14 @@ int eval(const std::map<std::string, std::string>& options) {
     mbk::PartialVelocities<double> pv(model);
     mbk::partial_velocity_kinematics(model, state, pv, data);
   } else {
-    throw std::invalid_argument("unknown --method '" + method + "'");
+    throw UsageError("unknown --method '" + method + "'");
   }
   std::cout << mbk::format_eval_json(model, data);
   return 0;
 }
 
 int urdf(const std::map<std::string, std::string>& options) {
-  if (!options.count("--model")) throw std::invalid_argument("urdf needs --model FILE");
+  if (!options.count("--model")) throw UsageError("urdf needs --model FILE");
   const mbk::Model model = mbk::load_model_file(options.at("--model"));
   std::cout << mbk::write_urdf(model, options.count("--name") ? options.at("--name") : "scene");
   return 0;
@@ -100,9 +105,12 @@ int main(int argc, char** argv) {
     if (command == "tables") return tables(options);
     if (command == "eval") return eval(options);
     if (command == "urdf") return urdf(options);
-    throw std::invalid_argument("unknown command '" + command + "'");
-  } catch (const std::exception& e) {
+    throw UsageError("unknown command '" + command + "'");
+  } catch (const UsageError& e) {
     std::cerr << "mbk: error: " << e.what() << "\n" << kUsage;
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "mbk: error: " << e.what() << "\n";
     return 1;
   }
 }

@@ -1,0 +1,451 @@
+// The `mbk` command line as users run it (design.md "Contracts"): the built executable, from
+// the source directory, its stdout, stderr and exit code.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/state_json.h"
+#include "test/support/test_models.h"
+
+namespace {
+
+using mbk_test::source_path;
+
+// mbk is built into the same catkin devel lib directory as this test.
+std::string mbk_path() {
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return "mbk";
+  const std::string exe(self, n);
+  return exe.substr(0, exe.rfind('/')) + "/mbk";
+}
+
+struct Output {
+  int status = -1;  // exit code
+  std::string out, err;
+};
+
+// Runs `mbk <args>` in the source directory (args are shell words, as a user types them).
+Output mbk(const std::string& args) {
+  char err_path[] = "/tmp/mbk_cli_test_XXXXXX";
+  const int fd = mkstemp(err_path);
+  if (fd < 0) throw std::runtime_error("mkstemp failed");
+  close(fd);
+  const std::string command =
+      "cd '" + source_path("") + "' && '" + mbk_path() + "' " + args + " 2>'" + err_path + "'";
+  Output run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("popen failed: " + command);
+  char buffer[4096];
+  size_t got;
+  while ((got = fread(buffer, 1, sizeof buffer, pipe)) > 0) run.out.append(buffer, got);
+  const int status = pclose(pipe);
+  run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(err_path);
+  std::stringstream err;
+  err << in.rdbuf();
+  run.err = err.str();
+  std::remove(err_path);
+  return run;
+}
+
+TEST(MbkCli, ExecutableIsThere) {
+  ASSERT_EQ(access(mbk_path().c_str(), X_OK), 0) << mbk_path() << " missing: build target mbk";
+  const Output help = mbk("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_EQ(help.out.rfind("usage: mbk tables", 0), 0u) << help.out;
+  const Output bare = mbk("");
+  EXPECT_NE(bare.status, 0);
+  EXPECT_EQ(bare.out, "");
+  EXPECT_EQ(bare.err.rfind("usage: mbk", 0), 0u) << bare.err;
+}
+
+TEST(MbkCli, TablesCsvIsTable421) {
+  const Output run = mbk("tables --lower 0,1,2,1,1,5,2,7,8,9 --csv");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_EQ(run.err, "");
+  // Table 4.2.1, its blanks (chain already at R) written as 0; the last row is all zeros.
+  EXPECT_EQ(run.out,
+            "1,2,3,4,5,6,7,8,9,10\n"
+            "0,1,2,1,1,5,2,7,8,9\n"
+            "0,0,1,0,0,1,1,2,7,8\n"
+            "0,0,0,0,0,0,0,1,2,7\n"
+            "0,0,0,0,0,0,0,0,1,2\n"
+            "0,0,0,0,0,0,0,0,0,1\n"
+            "0,0,0,0,0,0,0,0,0,0\n");
+}
+
+TEST(MbkCli, TablesTextIsTable421) {
+  const Output run = mbk("tables --lower '0, 1, 2, 1, 1, 5, 2, 7, 8, 9'");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_EQ(run.err, "");
+  // As printed in the chapter: an entry is blank once its chain has reached 0.
+  EXPECT_EQ(run.out,
+            "Lower body arrays, N = 10 (method.md 1)\n"
+            "L^0(k)     1   2   3   4   5   6   7   8   9  10\n"
+            "L^1(k)     0   1   2   1   1   5   2   7   8   9\n"
+            "L^2(k)         0   1   0   0   1   1   2   7   8\n"
+            "L^3(k)             0           0   0   1   2   7\n"
+            "L^4(k)                                 0   1   2\n"
+            "L^5(k)                                     0   1\n"
+            "L^6(k)                                         0\n");
+}
+
+// Whitespace-separated words of a line.
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> w;
+  for (std::string s; in >> s;) w.push_back(s);
+  return w;
+}
+
+TEST(MbkCli, TablesOfTheHumanBodyModel) {
+  const Output run = mbk("tables --model config/human_body.yaml");
+  EXPECT_EQ(run.status, 0);
+  EXPECT_EQ(run.err, "");
+  std::istringstream out(run.out);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(out, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 9u) << run.out;  // header, t = 0..6 (Table 4.2.2), legend
+  EXPECT_EQ(lines[0], "Lower body arrays, N = 16 (method.md 1)");
+  std::vector<std::string> k, lower;
+  for (int i = 1; i <= 16; ++i) k.push_back(std::to_string(i));
+  for (int l : {0, 1, 2, 3, 4, 5, 4, 7, 4, 9, 2, 11, 12, 2, 14, 15})
+    lower.push_back(std::to_string(l));
+  k.insert(k.begin(), "L^0(k)");
+  lower.insert(lower.begin(), "L^1(k)");
+  EXPECT_EQ(words(lines[1]), k);
+  EXPECT_EQ(words(lines[2]), lower);
+  EXPECT_EQ(words(lines[7]), (std::vector<std::string>{"L^6(k)", "0", "0", "0"}));  // 6, 8, 10
+  EXPECT_EQ(lines[8].rfind("bodies: 1=pelvis 2=lower_torso ", 0), 0u) << lines[8];
+  EXPECT_NE(lines[8].find(" 16=left_foot"), std::string::npos) << lines[8];
+}
+
+// A minimal strict JSON reader, enough for `mbk eval`'s output.
+struct Json {
+  enum Type { kNull, kBool, kNumber, kString, kArray, kObject } type = kNull;
+  double number = 0;
+  std::string string;
+  std::vector<Json> array;
+  std::vector<std::pair<std::string, Json>> object;  // in order
+
+  const Json& at(const std::string& key) const {
+    for (const auto& [k, v] : object)
+      if (k == key) return v;
+    throw std::runtime_error("no key '" + key + "'");
+  }
+  std::vector<std::string> keys() const {
+    std::vector<std::string> k;
+    for (const auto& entry : object) k.push_back(entry.first);
+    return k;
+  }
+};
+
+class JsonReader {
+ public:
+  explicit JsonReader(const std::string& text) : s_(text) {}
+
+  Json document() {
+    Json v = value();
+    skip();
+    if (i_ != s_.size()) fail("trailing text");
+    return v;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) {
+    throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
+  }
+  void skip() {
+    while (i_ < s_.size() && std::string(" \t\r\n").find(s_[i_]) != std::string::npos) ++i_;
+  }
+  bool take(char c) {
+    skip();
+    if (i_ < s_.size() && s_[i_] == c) return ++i_, true;
+    return false;
+  }
+  void expect(char c) {
+    if (!take(c)) fail(std::string("expected '") + c + "'");
+  }
+  std::string string_literal() {
+    expect('"');
+    std::string out;
+    while (i_ < s_.size() && s_[i_] != '"') {
+      if (s_[i_] == '\\') {
+        if (++i_ >= s_.size() || std::string("\"\\/").find(s_[i_]) == std::string::npos)
+          fail("unsupported escape");
+      } else if (static_cast<unsigned char>(s_[i_]) < 0x20) {
+        fail("control character in string");
+      }
+      out += s_[i_++];
+    }
+    expect('"');
+    return out;
+  }
+  Json value() {
+    skip();
+    Json v;
+    if (i_ >= s_.size()) fail("unexpected end");
+    const char c = s_[i_];
+    if (c == '{') {
+      v.type = Json::kObject;
+      ++i_;
+      if (take('}')) return v;
+      do {
+        skip();
+        std::string key = string_literal();
+        expect(':');
+        v.object.emplace_back(key, value());
+      } while (take(','));
+      expect('}');
+    } else if (c == '[') {
+      v.type = Json::kArray;
+      ++i_;
+      if (take(']')) return v;
+      do v.array.push_back(value());
+      while (take(','));
+      expect(']');
+    } else if (c == '"') {
+      v.type = Json::kString;
+      v.string = string_literal();
+    } else if (c == '-' || (c >= '0' && c <= '9')) {  // JSON's grammar: no nan, inf, +, .5
+      const size_t start = i_;
+      if (s_[i_] == '-') ++i_;
+      auto digits = [&] {
+        const size_t from = i_;
+        while (i_ < s_.size() && s_[i_] >= '0' && s_[i_] <= '9') ++i_;
+        if (i_ == from) fail("digit expected");
+      };
+      digits();
+      if (i_ < s_.size() && s_[i_] == '.') ++i_, digits();
+      if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
+        ++i_;
+        if (i_ < s_.size() && (s_[i_] == '+' || s_[i_] == '-')) ++i_;
+        digits();
+      }
+      v.type = Json::kNumber;
+      v.number = std::strtod(s_.substr(start, i_ - start).c_str(), nullptr);
+    } else {
+      for (const char* word : {"null", "true", "false"})
+        if (s_.compare(i_, std::string(word).size(), word) == 0) {
+          i_ += std::string(word).size();
+          v.type = word[0] == 'n' ? Json::kNull : Json::kBool;
+          return v;
+        }
+      fail("unexpected character");
+    }
+    return v;
+  }
+
+  const std::string& s_;
+  size_t i_ = 0;
+};
+
+const std::vector<std::string> kBodyFields = {"index",    "name",        "lower", "origin",
+                                              "rotation", "mass_center", "omega", "alpha",
+                                              "velocity", "acceleration"};
+
+// Numbers of one array field, checked to be `size` numbers.
+std::vector<double> numbers(const Json& body, const std::string& field, size_t size) {
+  const Json& a = body.at(field);
+  EXPECT_EQ(a.type, Json::kArray) << field;
+  EXPECT_EQ(a.array.size(), size) << field;
+  std::vector<double> out;
+  for (const Json& x : a.array) {
+    EXPECT_EQ(x.type, Json::kNumber) << field;
+    out.push_back(x.number);
+  }
+  return out;
+}
+
+template <typename M>
+std::vector<double> row_major(const M& m) {
+  std::vector<double> out;
+  for (int r = 0; r < m.rows(); ++r)
+    for (int c = 0; c < m.cols(); ++c) out.push_back(m(r, c));
+  return out;
+}
+
+// The per-field scale of the bodies' values: max |component| over all bodies (1 if all zero).
+std::map<std::string, double> field_scales(const Json& bodies) {
+  std::map<std::string, double> scale;
+  for (const Json& body : bodies.array)
+    for (const auto& [field, value] : body.object)
+      for (const Json& x : value.array) scale[field] = std::max(scale[field], std::abs(x.number));
+  for (auto& entry : scale)
+    if (entry.second == 0) entry.second = 1;
+  return scale;
+}
+
+// Both are the same double computations printed with round-trip precision, in two binaries;
+// 1e-12 of the field's scale allows for a compiler contracting or reordering differently.
+void expect_near_all(const std::vector<double>& a, const std::vector<double>& b, double scale,
+                     const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (size_t i = 0; i < a.size(); ++i)
+    EXPECT_LE(std::abs(a[i] - b[i]), 1e-12 * scale)
+        << what << "[" << i << "]: " << a[i] << " vs " << b[i];
+}
+
+class MbkEval : public ::testing::Test {
+ protected:
+  const std::string args =
+      "eval --model config/human_body.yaml --state config/human_body_state.json";
+
+  static Json parse(const Output& run) {
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    try {
+      return JsonReader(run.out).document();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what() << " in:\n" << run.out;
+      return Json();
+    }
+  }
+};
+
+TEST_F(MbkEval, JsonHasTheContractFieldsAndTheKinematics) {
+  const Json doc = parse(mbk(args));
+  ASSERT_EQ(doc.type, Json::kObject);
+  EXPECT_EQ(doc.keys(), (std::vector<std::string>{"frame", "bodies"}));
+  EXPECT_EQ(doc.at("frame").string, "world");
+  const Json& bodies = doc.at("bodies");
+  ASSERT_EQ(bodies.array.size(), 16u);
+
+  const mbk::Model model = mbk::load_model_file(source_path("config/human_body.yaml"));
+  const mbk::JointState<double> state =
+      mbk::read_state_file(model, source_path("config/human_body_state.json"));
+  mbk::Data<double> data(model);
+  mbk::forward_kinematics(model, state, data);
+  const std::map<std::string, double> scale = field_scales(bodies);
+  for (int k = 1; k <= 16; ++k) {
+    const Json& body = bodies.array[k - 1];
+    SCOPED_TRACE("body " + std::to_string(k));
+    ASSERT_EQ(body.type, Json::kObject);
+    EXPECT_EQ(body.keys(), kBodyFields);
+    EXPECT_EQ(body.at("index").number, k);
+    EXPECT_EQ(body.at("name").string, model.bodies[k].name);
+    EXPECT_EQ(body.at("lower").number, model.bodies[k].lower);
+    auto check = [&](const std::string& field, const std::vector<double>& expected) {
+      expect_near_all(numbers(body, field, expected.size()), expected, scale.at(field), field);
+    };
+    check("origin", row_major(data.origin[k]));
+    check("rotation", row_major(data.rotation[k]));  // S0K row by row
+    check("mass_center", row_major(data.mass_center[k]));
+    check("omega", row_major(data.omega[k]));
+    check("alpha", row_major(data.alpha[k]));
+    check("velocity", row_major(data.velocity[k]));
+    check("acceleration", row_major(data.acceleration[k]));
+  }
+  // Not a trivial state: the bodies move and accelerate.
+  EXPECT_GT(scale.at("velocity"), 0.5);
+  EXPECT_GT(scale.at("acceleration"), 1.0);
+  EXPECT_EQ(bodies.array[15].at("name").string, "left_foot");
+  EXPECT_EQ(bodies.array[15].at("lower").number, 15);
+}
+
+TEST_F(MbkEval, PartialVelocityMethodGivesTheSameNumbers) {
+  const Json a = parse(mbk(args));
+  const Json b = parse(mbk(args + " --method partial_velocity"));
+  ASSERT_EQ(a.at("bodies").array.size(), 16u);
+  ASSERT_EQ(b.at("bodies").array.size(), 16u);
+  const std::map<std::string, double> scale = field_scales(a.at("bodies"));
+  for (size_t k = 0; k < 16; ++k) {
+    const Json& ba = a.at("bodies").array[k];
+    const Json& bb = b.at("bodies").array[k];
+    EXPECT_EQ(ba.at("name").string, bb.at("name").string);
+    for (const std::string& field : kBodyFields) {
+      if (ba.at(field).type != Json::kArray) continue;
+      const size_t n = field == "rotation" ? 9 : 3;
+      expect_near_all(numbers(bb, field, n), numbers(ba, field, n), scale.at(field),
+                      ba.at("name").string + " " + field);
+    }
+  }
+  EXPECT_EQ(mbk(args + " --method recursive").out, mbk(args).out);  // the default
+}
+
+struct BadInput {
+  const char* args;
+  std::vector<std::string> fragments;  // in the error line
+  bool usage;                          // a command-line mistake: the usage follows
+};
+
+TEST(MbkCli, BadInputIsAOneLineErrorAndNonZeroExit) {
+  const BadInput cases[] = {
+      {"tables --lower 0,1,3", {"body 3 has L(3) = 3"}, false},
+      {"tables --lower 0,x,1", {"entry 2 ('x') is not an integer"}, false},
+      {"tables --lower 1 --csv", {"body 1 has L(1) = 1"}, false},
+      {"tables --lower ''", {"lower body array is empty"}, false},
+      {"eval --model config/no_such_scene.yaml",
+       {"config/no_such_scene.yaml", "cannot open"},
+       false},
+      {"tables --model config/no_such_robot.urdf",
+       {"config/no_such_robot.urdf", "cannot open"},
+       false},
+      {"eval --model config/human_body.json",
+       {"config/human_body.json", "unknown model file type"},
+       false},
+      {"eval --model test/io/data/bad_scene.yaml",
+       {"test/io/data/bad_scene.yaml:6: malformed YAML"},
+       false},
+      {"eval --model config/human_body.yaml --state test/io/data/unknown_coordinate_state.json",
+       {"test/io/data/unknown_coordinate_state.json", "unknown coordinate 'ghost'"},
+       false},
+      {"eval --model config/human_body.yaml --state test/io/data/no_such_state.json",
+       {"test/io/data/no_such_state.json", "cannot open state file"},
+       false},
+      {"eval --model test/io/data/ball_euler.yaml --state test/io/data/zero_euler_state.json",
+       {"body 2 'arm'", "not finite", "Euler parameters of zero norm"},
+       false},
+      {"eval --model test/io/data/ball_euler.yaml --state test/io/data/zero_euler_state.json "
+       "--method partial_velocity",
+       {"body 2 'arm'", "not finite"},
+       false},
+      {"urdf --model test/io/data/ball_euler.yaml", {"'shoulder'", "no URDF equivalent"}, false},
+      {"tables --lower 0,1 --colour", {"unknown or incomplete option '--colour'"}, true},
+      {"tables --lower", {"unknown or incomplete option '--lower'"}, true},
+      {"tables", {"exactly one of --lower and --model"}, true},
+      {"tables --lower 0 --model config/human_body.yaml", {"exactly one of"}, true},
+      {"eval --state config/human_body_state.json", {"eval needs --model"}, true},
+      {"eval --model config/human_body.yaml --method magic", {"unknown --method 'magic'"}, true},
+      {"draw --model config/human_body.yaml", {"unknown command 'draw'"}, true},
+  };
+  for (const BadInput& c : cases) {
+    SCOPED_TRACE(std::string("mbk ") + c.args);
+    const Output run = mbk(c.args);
+    EXPECT_NE(run.status, 0);
+    EXPECT_EQ(run.out, "") << "stdout must stay empty";
+    const size_t eol = run.err.find('\n');
+    ASSERT_NE(eol, std::string::npos) << run.err;
+    const std::string line = run.err.substr(0, eol);
+    EXPECT_EQ(line.rfind("mbk: error: ", 0), 0u) << line;
+    for (const std::string& fragment : c.fragments)
+      EXPECT_NE(line.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << line;
+    const std::string rest = run.err.substr(eol + 1);
+    if (c.usage)
+      EXPECT_EQ(rest.rfind("usage: mbk", 0), 0u) << rest;
+    else
+      EXPECT_EQ(rest, "") << "more than one line";
+  }
+}
+
+TEST(MbkCli, EulerSceneWithAValidStateWorks) {  // the zero-norm failure above is the state's
+  const Output run = mbk("eval --model test/io/data/ball_euler.yaml");
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(JsonReader(run.out).document().at("bodies").array.size(), 2u);
+}
+
+}  // namespace
