@@ -1,0 +1,273 @@
+// finalize_model (design.md "Architecture": validated once, errors name the body and the field),
+// coordinate and speed names (design.md "Coordinate names"), the initial state and mimics.
+#include "mb_kinematics/core/model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/state.h"
+
+namespace {
+
+using V = mbk::Vec3<double>;
+using M = mbk::Mat3<double>;
+using mbk::JointType;
+using Names = std::vector<std::string>;
+
+mbk::Body body(const std::string& name, int lower, JointType type,
+               const std::string& joint_name = "") {
+  mbk::Body b;
+  b.name = name;
+  b.lower = lower;
+  b.joint.name = joint_name;
+  b.joint.type = type;
+  b.mass = 1.0;
+  return b;
+}
+
+// A valid three-body model (base on R, arm on base, hand on arm); `edit` breaks it.
+mbk::Model three_bodies() {
+  mbk::Model model;
+  model.bodies = {mbk::Body(), body("base", 0, JointType::kFree123),
+                  body("arm", 1, JointType::kRevolute), body("hand", 2, JointType::kBall123)};
+  return model;
+}
+
+// Expects finalize_model to throw std::invalid_argument whose message contains every fragment.
+void expect_error(mbk::Model model, const Names& fragments) {
+  try {
+    mbk::finalize_model(model);
+    ADD_FAILURE() << "accepted an invalid model; expected: " << fragments.front();
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    for (const std::string& f : fragments)
+      EXPECT_NE(what.find(f), std::string::npos) << "'" << f << "' not in: " << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "not one line: " << what;
+  }
+}
+
+TEST(FinalizeModel, AcceptsTheValidModel) {
+  mbk::Model model = three_bodies();
+  EXPECT_NO_THROW(mbk::finalize_model(model));
+  EXPECT_EQ(model.body_count(), 3);
+  EXPECT_EQ(model.bodies[0].name, "R");
+  EXPECT_EQ(model.lower_body_array(), (std::vector<int>{0, 1, 2}));
+}
+
+TEST(FinalizeModel, BadLowerBodyNamesBodyAndL) {
+  mbk::Model model = three_bodies();
+  model.bodies[3].lower = 3;  // L(k) must be < k (method.md 1)
+  expect_error(model, {"body 3", "L(3) = 3"});
+  model.bodies[3].lower = -1;
+  expect_error(model, {"body 3", "L(3) = -1"});
+}
+
+TEST(FinalizeModel, DuplicateNames) {
+  mbk::Model model = three_bodies();
+  model.bodies[3].name = "arm";
+  expect_error(model, {"body 3 'arm'", "name"});
+  model = three_bodies();
+  model.bodies[2].name = "R";  // the inertial frame's name
+  expect_error(model, {"body 2 'R'", "name"});
+  model = three_bodies();
+  model.bodies[2].joint.name = "shoulder";
+  model.bodies[3].joint.name = "shoulder";
+  expect_error(model, {"body 3 'hand'", "joint name 'shoulder'"});
+}
+
+TEST(FinalizeModel, ZeroAxis) {
+  for (JointType type : {JointType::kRevolute, JointType::kPrismatic, JointType::kPlanar}) {
+    mbk::Model model = three_bodies();
+    model.bodies[2].joint.type = type;
+    model.bodies[2].joint.axis = V::Zero();
+    expect_error(model, {"body 2 'arm'", "axis"});
+  }
+}
+
+TEST(FinalizeModel, NonFiniteFields) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  mbk::Model model = three_bodies();
+  model.bodies[2].joint.offset = V(0, nan, 0);
+  expect_error(model, {"body 2 'arm'", "origin (q_k)", "not finite"});
+  model = three_bodies();
+  model.bodies[3].mass_center = V(inf, 0, 0);
+  expect_error(model, {"body 3 'hand'", "mass_center"});
+  model = three_bodies();
+  model.bodies[2].joint.axis = V(0, 0, nan);
+  expect_error(model, {"body 2 'arm'", "axis"});
+  model = three_bodies();
+  model.bodies[1].joint.rotation(1, 1) = nan;
+  expect_error(model, {"body 1 'base'", "C_k"});
+  model = three_bodies();
+  model.bodies[1].mass = nan;
+  expect_error(model, {"body 1 'base'", "mass"});
+}
+
+TEST(FinalizeModel, NonRotationOffsetOrientation) {
+  mbk::Model model = three_bodies();
+  model.bodies[2].joint.rotation = M::Identity() * 1.01;  // not orthogonal
+  expect_error(model, {"body 2 'arm'", "C_k", "rotation"});
+  model.bodies[2].joint.rotation = V(1, 1, -1).asDiagonal();  // orthogonal, a reflection
+  expect_error(model, {"body 2 'arm'", "C_k", "rotation"});
+  model.bodies[2].joint.rotation = Eigen::AngleAxisd(2.0, V(1, -2, 0.5).normalized()).matrix();
+  EXPECT_NO_THROW(mbk::finalize_model(model));
+}
+
+TEST(FinalizeModel, NegativeMass) {
+  mbk::Model model = three_bodies();
+  model.bodies[3].mass = -0.5;
+  expect_error(model, {"body 3 'hand'", "mass"});
+  model.bodies[3].mass = 0.0;  // massless frames are allowed
+  EXPECT_NO_THROW(mbk::finalize_model(model));
+}
+
+TEST(FinalizeModel, EmptyNameAndNoBodies) {
+  mbk::Model model = three_bodies();
+  model.bodies[2].name = "";
+  expect_error(model, {"body 2", "name"});
+  mbk::Model empty;
+  EXPECT_THROW(mbk::finalize_model(empty), std::invalid_argument);
+}
+
+TEST(FinalizeModel, NormalizesAxes) {
+  mbk::Model model = three_bodies();
+  model.bodies[2].joint.axis = V(0, 0, 2.5);
+  mbk::finalize_model(model);
+  EXPECT_EQ(model.bodies[2].joint.axis, V(0, 0, 1));
+}
+
+// ---- Coordinate and speed names (design.md "Coordinate names").
+
+mbk::Model every_joint_type(mbk::SpeedKind speeds) {
+  mbk::Model model;
+  model.speeds = speeds;
+  model.bodies = {mbk::Body(),
+                  body("b1", 0, JointType::kFreeEuler, "float"),
+                  body("b2", 1, JointType::kRevolute, "hinge"),
+                  body("b3", 2, JointType::kFixed, "weld"),
+                  body("b4", 3, JointType::kPrismatic, "slide"),
+                  body("b5", 4, JointType::kBall123, "shoulder"),
+                  body("b6", 1, JointType::kBallEuler, "hip"),
+                  body("b7", 6, JointType::kFree123, "free"),
+                  body("b8", 7, JointType::kPlanar, "plane"),
+                  body("b9", 8, JointType::kRevolute)};  // joint named after the body
+  mbk::finalize_model(model);
+  return model;
+}
+
+const Names kCoordinates = {
+    "float/x",     "float/y",    "float/z",   "float/e1",       "float/e2",      "float/e3",
+    "float/e4",    "hinge",      "slide",     "shoulder/alpha", "shoulder/beta", "shoulder/gamma",
+    "hip/e1",      "hip/e2",     "hip/e3",    "hip/e4",         "free/x",        "free/y",
+    "free/z",      "free/alpha", "free/beta", "free/gamma",     "plane/x",       "plane/y",
+    "plane/gamma", "b9_joint"};
+
+TEST(CoordinateNames, CoordinateDerivativeSpeeds) {
+  const mbk::Model model = every_joint_type(mbk::SpeedKind::kCoordinateDerivatives);
+  EXPECT_EQ(model.coordinate_names, kCoordinates);
+  EXPECT_EQ(model.speed_names, kCoordinates);
+  EXPECT_EQ(model.nq, 26);
+  EXPECT_EQ(model.nv, 26);
+  // Index bookkeeping: each joint's coordinates start at q_index, its speeds at v_index.
+  const int q_index[] = {0, 0, 7, 8, 8, 9, 12, 16, 22, 25};
+  for (int k = 1; k <= 9; ++k) {
+    EXPECT_EQ(model.bodies[k].q_index, q_index[k]) << "body " << k;
+    EXPECT_EQ(model.bodies[k].v_index, q_index[k]) << "body " << k;
+  }
+  EXPECT_EQ(model.coordinate_index("shoulder/beta"), 10);
+  EXPECT_EQ(model.speed_index("plane/gamma"), 24);
+  EXPECT_EQ(model.coordinate_index("weld"), -1);
+  EXPECT_EQ(model.body_index("b8"), 8);
+  EXPECT_EQ(model.body_index("R"), -1);
+}
+
+// Euler joints with angular velocity speeds: translations keep their names, the rotation speeds
+// are "<joint>/wx", "/wy", "/wz"; every other joint's speeds are its coordinates' derivatives.
+TEST(CoordinateNames, AngularVelocitySpeeds) {
+  const mbk::Model model = every_joint_type(mbk::SpeedKind::kAngularVelocity);
+  EXPECT_EQ(model.coordinate_names, kCoordinates);
+  const Names speeds = {
+      "float/x",   "float/y",    "float/z",        "float/wx",      "float/wy",       "float/wz",
+      "hinge",     "slide",      "shoulder/alpha", "shoulder/beta", "shoulder/gamma", "hip/wx",
+      "hip/wy",    "hip/wz",     "free/x",         "free/y",        "free/z",         "free/alpha",
+      "free/beta", "free/gamma", "plane/x",        "plane/y",       "plane/gamma",    "b9_joint"};
+  EXPECT_EQ(model.speed_names, speeds);
+  EXPECT_EQ(model.nq, 26);
+  EXPECT_EQ(model.nv, 24);
+  const int v_index[] = {0, 0, 6, 7, 7, 8, 11, 14, 20, 23};
+  for (int k = 1; k <= 9; ++k) EXPECT_EQ(model.bodies[k].v_index, v_index[k]) << "body " << k;
+  EXPECT_EQ(model.speed_index("hip/wy"), 12);
+  EXPECT_EQ(model.speed_index("hip/e2"), -1);
+}
+
+TEST(CoordinateNames, BareModel) {
+  const mbk::Model model = mbk::make_bare_model({0, 1, 1}, JointType::kBall123);
+  EXPECT_EQ(model.coordinate_names, (Names{"J1/alpha", "J1/beta", "J1/gamma", "J2/alpha", "J2/beta",
+                                           "J2/gamma", "J3/alpha", "J3/beta", "J3/gamma"}));
+  EXPECT_EQ(model.bodies[2].name, "B2");
+  EXPECT_EQ(model.bodies[1].joint.offset, V::Zero());  // on R: no offset
+  EXPECT_EQ(model.bodies[3].joint.offset, V(1, 0, 0));
+}
+
+// ---- The initial state: zero everywhere except e4 = 1 (identity) for Euler parameters.
+TEST(JointState, StartsAtTheIdentity) {
+  const mbk::Model model = every_joint_type(mbk::SpeedKind::kCoordinateDerivatives);
+  const mbk::JointState<double> state(model);
+  ASSERT_EQ(state.position.size(), model.nq);
+  ASSERT_EQ(state.velocity.size(), model.nv);
+  ASSERT_EQ(state.acceleration.size(), model.nv);
+  for (int i = 0; i < model.nq; ++i) {
+    const std::string& name = model.coordinate_names[i];
+    const bool e4 = name.size() >= 3 && name.compare(name.size() - 3, 3, "/e4") == 0;
+    EXPECT_EQ(state.position[i], e4 ? 1.0 : 0.0) << name;
+  }
+  EXPECT_TRUE(state.velocity.isZero());
+  EXPECT_TRUE(state.acceleration.isZero());
+}
+
+// ---- Mimics: q = multiplier * q_source + offset; speeds and accelerations scale by multiplier.
+mbk::Model two_hinges_and_a_mimic() {
+  mbk::Model model;
+  model.bodies = {mbk::Body(), body("a", 0, JointType::kRevolute),
+                  body("b", 1, JointType::kPrismatic), body("c", 2, JointType::kRevolute)};
+  model.mimics.push_back({2, 0, -2.0, 0.25});  // c follows a
+  mbk::finalize_model(model);
+  return model;
+}
+
+TEST(Mimics, ApplyMimics) {
+  const mbk::Model model = two_hinges_and_a_mimic();
+  mbk::JointState<double> state(model);
+  state.position << 0.5, 0.7, 99.0;
+  state.velocity << -1.5, 0.3, 99.0;
+  state.acceleration << 4.0, -0.2, 99.0;
+  mbk::apply_mimics(model, state);
+  EXPECT_EQ(state.position, Eigen::Vector3d(0.5, 0.7, -2.0 * 0.5 + 0.25));
+  EXPECT_EQ(state.velocity, Eigen::Vector3d(-1.5, 0.3, 3.0));
+  EXPECT_EQ(state.acceleration, Eigen::Vector3d(4.0, -0.2, -8.0));
+}
+
+TEST(Mimics, Validation) {
+  mbk::Model model = two_hinges_and_a_mimic();
+  model.mimics[0].source = 3;  // out of range
+  expect_error(model, {"mimic"});
+  model.mimics[0] = {2, 2, 1.0, 0.0};  // follows itself
+  expect_error(model, {"mimic"});
+  model.mimics[0] = {2, 0, std::numeric_limits<double>::infinity(), 0.0};
+  expect_error(model, {"mimic"});
+  model.mimics[0] = {-1, 0, 1.0, 0.0};
+  expect_error(model, {"mimic"});
+  // A mimic needs speeds that are coordinate derivatives.
+  model.mimics[0] = {2, 0, 1.0, 0.0};
+  model.bodies.push_back(body("d", 3, JointType::kBallEuler));
+  model.speeds = mbk::SpeedKind::kAngularVelocity;
+  expect_error(model, {"mimic", "coordinate-derivative speeds"});
+}
+
+}  // namespace
