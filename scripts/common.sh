@@ -16,7 +16,8 @@ MBK_PACKAGES=(
   liburdfdom-dev libtinyxml2-dev libeigen3-dev libyaml-cpp-dev python3-rostest
   python3-roslaunch python3-rostopic python3-rosmsg rosbash ros-robot-state-publisher
   libkdl-parser-dev liborocos-kdl-dev libbenchmark-dev googletest libboost-dev
-  libdiagnostic-updater-dev
+  libdiagnostic-updater-dev libsensor-msgs-dev python3-sensor-msgs python3-geometry-msgs
+  python3-tf2-msgs python3-diagnostic-msgs
 )
 
 mbk_install_deps() {

@@ -1,0 +1,69 @@
+#include "mb_kinematics/core/derivative_estimator.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace mbk {
+namespace {
+
+// Keeps the last three samples; t[2] is the newest.
+class BackwardDifference : public DerivativeEstimator {
+ public:
+  std::unique_ptr<DerivativeEstimator> clone() const override {
+    return std::make_unique<BackwardDifference>();
+  }
+
+  void reset() override { count_ = 0; }
+
+  bool add(double t, double x) override {
+    if (!std::isfinite(t) || !std::isfinite(x)) return false;
+    if (count_ > 0 && t == t_[2]) {
+      x_[2] = x;
+      return true;
+    }
+    const bool forward = count_ == 0 || t > t_[2];
+    if (!forward) reset();
+    for (int i = 0; i < 2; ++i) {
+      t_[i] = t_[i + 1];
+      x_[i] = x_[i + 1];
+    }
+    t_[2] = t;
+    x_[2] = x;
+    if (count_ < 3) ++count_;
+    return forward;
+  }
+
+  int estimate(double& first, double& second) const override {
+    if (count_ < 2) return 0;
+    const double h2 = t_[2] - t_[1];
+    if (count_ == 2) {
+      first = (x_[2] - x_[1]) / h2;
+      return 1;
+    }
+    const double h1 = t_[1] - t_[0], h = h1 + h2;
+    first = x_[0] * h2 / (h1 * h) - x_[1] * h / (h1 * h2) + x_[2] * (h1 + 2 * h2) / (h2 * h);
+    second = 2 * (x_[0] / (h1 * h) - x_[1] / (h1 * h2) + x_[2] / (h2 * h));
+    return 2;
+  }
+
+ private:
+  double t_[3] = {0, 0, 0}, x_[3] = {0, 0, 0};
+  int count_ = 0;
+};
+
+}  // namespace
+
+const std::vector<std::string>& derivative_estimator_names() {
+  static const std::vector<std::string> names = {"backward_difference"};
+  return names;
+}
+
+std::unique_ptr<DerivativeEstimator> make_derivative_estimator(const std::string& name) {
+  if (name == "backward_difference") return std::make_unique<BackwardDifference>();
+  std::string known;
+  for (const std::string& n : derivative_estimator_names())
+    known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown derivative estimator '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace mbk

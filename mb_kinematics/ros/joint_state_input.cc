@@ -1,0 +1,147 @@
+#include "mb_kinematics/ros/joint_state_input.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace mbk_ros {
+namespace {
+
+std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
+
+}  // namespace
+
+JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeEstimator& prototype,
+                                 double max_gap)
+    : model_(model), max_gap_(max_gap), coordinates_(model.nq), seen_(model.nq, -1) {
+  if (model.nq != model.nv)
+    throw std::invalid_argument("JointStateInput needs coordinate-derivative speeds");
+  for (int i = 0; i < model.nq; ++i) {
+    index_[model.coordinate_names[i]] = i;
+    coordinates_[i].position_history = prototype.clone();
+    coordinates_[i].velocity_history = prototype.clone();
+  }
+  for (const mbk::Mimic& m : model.mimics) coordinates_[m.coordinate].mimic = true;
+}
+
+std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update& update) {
+  const size_t n = msg.name.size();
+  if (msg.position.size() != n)
+    return std::to_string(n) + " names but " + std::to_string(msg.position.size()) + " positions";
+  if (!msg.velocity.empty() && msg.velocity.size() != n)
+    return std::to_string(n) + " names but " + std::to_string(msg.velocity.size()) + " velocities";
+  ++generation_;
+  for (size_t i = 0; i < n; ++i) {
+    auto it = index_.find(msg.name[i]);
+    if (it == index_.end()) {
+      update.unknown.push_back(msg.name[i]);
+      continue;
+    }
+    if (seen_[it->second] == generation_) return "joint '" + msg.name[i] + "' is named twice";
+    seen_[it->second] = generation_;
+    if (!std::isfinite(msg.position[i]))
+      return "joint '" + msg.name[i] + "': position is " + describe(msg.position[i]);
+    if (!msg.velocity.empty() && !std::isfinite(msg.velocity[i]))
+      return "joint '" + msg.name[i] + "': velocity is " + describe(msg.velocity[i]);
+  }
+  return "";
+}
+
+JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg, double t) {
+  Update update;
+  update.error = validate(msg, update);
+  if (!update.error.empty()) return update;
+  for (size_t i = 0; i < msg.name.size(); ++i) {
+    auto it = index_.find(msg.name[i]);
+    if (it == index_.end() || coordinates_[it->second].mimic) continue;  // mimics: computed
+    Coordinate& c = coordinates_[it->second];
+    if (c.has_value && t < c.stamp) {  // e.g. a bag looping: the old history means nothing
+      c.position_history->reset();
+      c.velocity_history->reset();
+      update.reset.push_back(msg.name[i]);
+    } else if (c.has_value && max_gap_ > 0 && t - c.stamp > max_gap_) {  // a pause
+      c.position_history->reset();
+      c.velocity_history->reset();
+    }
+    c.has_value = true;
+    c.stamp = t;
+    c.position = msg.position[i];
+    c.position_history->add(t, c.position);
+    c.velocity_given = !msg.velocity.empty();
+    if (c.velocity_given) {
+      c.velocity = msg.velocity[i];
+      c.velocity_history->add(t, c.velocity);
+    } else {
+      c.velocity_history->reset();  // a gap in the given velocities: start again
+    }
+    ++update.used;
+  }
+  return update;
+}
+
+std::string JointStateInput::convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
+                                     AccelerationSample& out) const {
+  if (msg.acceleration.size() != msg.name.size())
+    return std::to_string(msg.name.size()) + " names but " +
+           std::to_string(msg.acceleration.size()) + " accelerations";
+  out.stamp = t;
+  out.value.assign(model_.nq, 0.0);
+  out.given.assign(model_.nq, 0);
+  for (size_t i = 0; i < msg.name.size(); ++i) {
+    auto it = index_.find(msg.name[i]);
+    if (it == index_.end()) return "joint '" + msg.name[i] + "' is not in the model";
+    if (out.given[it->second]) return "joint '" + msg.name[i] + "' is named twice";
+    if (!std::isfinite(msg.acceleration[i]))
+      return "joint '" + msg.name[i] + "': acceleration is " + describe(msg.acceleration[i]);
+    out.given[it->second] = 1;
+    out.value[it->second] = msg.acceleration[i];
+  }
+  return "";
+}
+
+std::vector<std::string> JointStateInput::missing() const {
+  std::vector<std::string> names;
+  for (int i = 0; i < model_.nq; ++i)
+    if (!coordinates_[i].mimic && !coordinates_[i].has_value)
+      names.push_back(model_.coordinate_names[i]);
+  return names;
+}
+
+mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* accelerations,
+                                 mbk::JointState<double>& state) const {
+  bool velocities = level != mbk::Level::kPose;
+  bool accels = level == mbk::Level::kAcceleration;
+  for (int i = 0; i < model_.nq; ++i) {
+    const Coordinate& c = coordinates_[i];
+    if (c.mimic) continue;
+    state.position[i] = c.position;
+    double first = 0, second = 0;
+    const int n = c.position_history->estimate(first, second);
+    if (velocities) {
+      state.velocity[i] = c.velocity_given ? c.velocity : first;
+      velocities = c.velocity_given || n >= 1;
+    }
+    if (!accels) continue;
+    if (accelerations && accelerations->given[i]) {
+      state.acceleration[i] = accelerations->value[i];
+    } else if (c.velocity_given) {
+      double v_second = 0;
+      accels = c.velocity_history->estimate(state.acceleration[i], v_second) >= 1;
+    } else {
+      state.acceleration[i] = second;
+      accels = n >= 2;
+    }
+  }
+  mbk::apply_mimics(model_, state);
+  if (!velocities) return mbk::Level::kPose;
+  return accels ? mbk::Level::kAcceleration : mbk::Level::kVelocity;
+}
+
+void JointStateInput::reset() {
+  for (Coordinate& c : coordinates_) {
+    c.has_value = c.velocity_given = false;
+    c.position_history->reset();
+    c.velocity_history->reset();
+  }
+}
+
+}  // namespace mbk_ros

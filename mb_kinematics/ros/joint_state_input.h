@@ -1,0 +1,80 @@
+// sensor_msgs/JointState into the core's JointState (design.md, "Topics of the node"): names
+// matched to coordinates, partial messages from several publishers merged per coordinate,
+// mimic coordinates filled by mbk::apply_mimics, and velocities and accelerations that the
+// messages do not carry estimated per coordinate from its own successive samples.
+#pragma once
+
+#include <mb_kinematics_msgs/JointAccelerations.h>
+#include <sensor_msgs/JointState.h>
+
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+
+namespace mbk_ros {
+
+// Accelerations of one joint_accelerations message, by coordinate index.
+struct AccelerationSample {
+  double stamp = 0;
+  std::vector<double> value;  // model.nq entries
+  std::vector<char> given;    // 1 where the message named the coordinate
+};
+
+class JointStateInput {
+ public:
+  // `model` must use coordinate-derivative speeds (nq == nv); it must outlive this object.
+  // A coordinate's history restarts when its samples are more than `max_gap` seconds apart
+  // (0: never), so that derivatives are never taken across a pause.
+  JointStateInput(const mbk::Model& model, const mbk::DerivativeEstimator& prototype,
+                  double max_gap = 0);
+
+  struct Update {
+    std::string error;                 // why the message was rejected; empty if merged
+    std::vector<std::string> unknown;  // names that are no coordinate of the model (ignored)
+    std::vector<std::string> reset;    // coordinates whose stamp went backwards (history reset)
+    int used = 0;                      // coordinates the message set
+  };
+  // Validates the whole message (lengths, duplicate names, NaN/Inf), then merges it at time t
+  // (seconds). A rejected message changes nothing.
+  Update add(const sensor_msgs::JointState& msg, double t);
+
+  // Converts a joint_accelerations message; returns an error (and leaves `out` unspecified) for
+  // unequal lengths, duplicate or unknown names, NaN/Inf.
+  std::string convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
+                      AccelerationSample& out) const;
+
+  // Names of the coordinates (mimics aside) that no accepted message has set yet.
+  std::vector<std::string> missing() const;
+
+  // Fills `state` up to `level`: positions; velocities as given, else estimated; accelerations
+  // from `accelerations` (may be null), else estimated from the given velocities, else from
+  // the positions; then the mimic coordinates. Returns the level reached: lower than `level`
+  // while some coordinate has too few samples for an estimate.
+  mbk::Level fill(mbk::Level level, const AccelerationSample* accelerations,
+                  mbk::JointState<double>& state) const;
+
+  void reset();
+
+ private:
+  struct Coordinate {
+    bool mimic = false, has_value = false, velocity_given = false;
+    double position = 0, velocity = 0, stamp = 0;
+    std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
+  };
+  std::string validate(const sensor_msgs::JointState& msg, Update& update);
+
+  const mbk::Model& model_;
+  double max_gap_;
+  std::unordered_map<std::string, int> index_;
+  std::vector<Coordinate> coordinates_;
+  std::vector<int> seen_;  // message generation that last named each coordinate (duplicates)
+  int generation_ = 0;
+};
+
+}  // namespace mbk_ros

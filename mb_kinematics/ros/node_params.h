@@ -1,0 +1,27 @@
+// Every parameter of mb_kinematics_node, read in one place (read_node_params). The README's
+// parameter table lists the same names and defaults.
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+#include <vector>
+
+namespace mbk_ros {
+
+struct NodeParams {
+  std::string robot_description;        // robot_description (URDF text), if set
+  std::string model;                    // ~model: a .urdf or .yaml scene path; wins over it
+  std::vector<int> lower_body_array;    // ~lower_body_array: a bare scene; wins over both
+  std::string joint_type = "ball_123";  // ~joint_type: the bare scene's joints
+  std::string frame_id;                 // ~frame_id: R's frame; "" = URDF root link / scene frame
+  bool per_body_topics = false;         // ~per_body_topics: body/<name>/twist and .../accel
+  bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs
+  std::string acceleration_estimator = "backward_difference";          // ~acceleration_estimator
+  double max_sample_gap = 1.0;  // ~max_sample_gap (s): no derivative across a longer pause
+};
+
+// Reads the parameters; throws std::invalid_argument naming a bad one.
+NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+
+}  // namespace mbk_ros

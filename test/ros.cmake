@@ -1,0 +1,17 @@
+# The node's tests (test/ros/): a unit test of the input layer (no ROS master) and rostest
+# integration tests (each .test starts its own master and the nodes it needs).
+find_package(rostest REQUIRED)
+
+catkin_add_gtest(joint_state_input_test test/ros/joint_state_input_test.cc)
+add_dependencies(joint_state_input_test mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(joint_state_input_test mbk_ros mbk_io mbk_core gtest_main)
+target_compile_definitions(joint_state_input_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+foreach(name node pairing rsp_compare)
+  add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)
+  add_dependencies(${name}_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
+  target_link_libraries(${name}_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES})
+  target_compile_definitions(${name}_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
+endforeach()
+add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)

@@ -1,0 +1,124 @@
+// JointStateInput without a ROS master: name matching, validation, merging, mimics, estimates.
+#include "mb_kinematics/ros/joint_state_input.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "mb_kinematics/io/urdf_model.h"
+
+namespace {
+
+using mbk::Level;
+
+mbk::Model model() {
+  return mbk::load_urdf_file(std::string(MBK_SOURCE_DIR) + "/test/ros/test_robot.urdf");
+}
+
+const std::vector<std::string> kAll = {"slider_joint",      "float_joint/x",     "float_joint/y",
+                                       "float_joint/z",     "float_joint/alpha", "float_joint/beta",
+                                       "float_joint/gamma", "arm1_joint",        "arm2_joint"};
+
+sensor_msgs::JointState msg(const std::vector<std::string>& names, double value,
+                            bool velocities = false) {
+  sensor_msgs::JointState m;
+  m.name = names;
+  m.position.assign(names.size(), value);
+  if (velocities) m.velocity.assign(names.size(), 2 * value);
+  return m;
+}
+
+class JointStateInputTest : public ::testing::Test {
+ protected:
+  mbk::Model model_ = model();
+  std::unique_ptr<mbk::DerivativeEstimator> estimator_ =
+      mbk::make_derivative_estimator("backward_difference");
+  mbk_ros::JointStateInput input_{model_, *estimator_, 1.0};
+  mbk::JointState<double> state_{model_};
+};
+
+TEST_F(JointStateInputTest, RejectsBadMessagesWhole) {
+  sensor_msgs::JointState m = msg(kAll, 0.1);
+  m.position.pop_back();
+  EXPECT_NE(input_.add(m, 1).error.find("positions"), std::string::npos);
+  m = msg(kAll, 0.1, true);
+  m.velocity.pop_back();
+  EXPECT_NE(input_.add(m, 1).error.find("velocities"), std::string::npos);
+  m = msg(kAll, 0.1);
+  m.name[2] = m.name[0];
+  EXPECT_NE(input_.add(m, 1).error.find("named twice"), std::string::npos);
+  m = msg(kAll, 0.1);
+  m.position[3] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(input_.add(m, 1).error.find("NaN"), std::string::npos);
+  m = msg(kAll, 0.1, true);
+  m.velocity[4] = -std::numeric_limits<double>::infinity();
+  EXPECT_NE(input_.add(m, 1).error.find("Inf"), std::string::npos);
+  EXPECT_EQ(input_.missing().size(), kAll.size()) << "a rejected message changed the state";
+}
+
+TEST_F(JointStateInputTest, UnknownNamesIgnoredMimicsComputed) {
+  sensor_msgs::JointState m = msg(kAll, 0.25);
+  m.name.push_back("gripper");
+  m.position.push_back(std::numeric_limits<double>::quiet_NaN());
+  m.name.push_back("finger_joint");  // a mimic: computed, never taken from the message
+  m.position.push_back(9.0);
+  const auto update = input_.add(m, 1);
+  EXPECT_EQ(update.error, "");
+  EXPECT_EQ(update.unknown, std::vector<std::string>({"gripper"}));
+  EXPECT_EQ(update.used, static_cast<int>(kAll.size()));
+  EXPECT_TRUE(input_.missing().empty());
+  EXPECT_EQ(input_.fill(Level::kPose, nullptr, state_), Level::kPose);
+  EXPECT_DOUBLE_EQ(state_.position[model_.coordinate_index("finger_joint")], 2 * 0.25 + 0.1);
+}
+
+TEST_F(JointStateInputTest, MergesPartialMessages) {
+  const std::vector<std::string> arm = {"arm1_joint", "arm2_joint"};
+  input_.add(msg(arm, 0.5), 1);
+  EXPECT_EQ(input_.missing().size(), kAll.size() - 2);
+  std::vector<std::string> rest(kAll.begin(), kAll.end() - 2);
+  input_.add(msg(rest, -0.5), 2);
+  EXPECT_TRUE(input_.missing().empty());
+  input_.fill(Level::kPose, nullptr, state_);
+  EXPECT_EQ(state_.position[model_.coordinate_index("arm2_joint")], 0.5);
+  EXPECT_EQ(state_.position[model_.coordinate_index("slider_joint")], -0.5);
+}
+
+// q = t^2 sampled at irregular times: the 3-point estimates are exact.
+TEST_F(JointStateInputTest, EstimatesDerivativesAndRestartsOnBackwardsStamps) {
+  const double times[] = {10.0, 10.03, 10.04};
+  const Level reached[] = {Level::kPose, Level::kVelocity, Level::kAcceleration};
+  for (int i = 0; i < 3; ++i) {
+    input_.add(msg(kAll, times[i] * times[i]), times[i]);
+    EXPECT_EQ(input_.fill(Level::kAcceleration, nullptr, state_), reached[i]) << i;
+  }
+  EXPECT_NEAR(state_.velocity[0], 2 * 10.04, 1e-8);
+  EXPECT_NEAR(state_.acceleration[0], 2.0, 1e-6);
+  const auto update = input_.add(msg(kAll, 1.0), 5.0);  // a bag looping
+  EXPECT_EQ(update.reset.size(), kAll.size());
+  EXPECT_EQ(input_.fill(Level::kVelocity, nullptr, state_), Level::kPose);
+  input_.add(msg(kAll, 1.1), 5.1);
+  input_.add(msg(kAll, 1.2), 6.5);  // a pause longer than max_gap: no difference across it
+  EXPECT_EQ(input_.fill(Level::kVelocity, nullptr, state_), Level::kPose);
+}
+
+TEST_F(JointStateInputTest, GivenVelocitiesAndPairedAccelerations) {
+  input_.add(msg(kAll, 1.0, true), 1.0);  // velocity 2
+  EXPECT_EQ(input_.fill(Level::kAcceleration, nullptr, state_), Level::kVelocity);
+  EXPECT_EQ(state_.velocity[0], 2.0);
+  mb_kinematics_msgs::JointAccelerations a;
+  a.name = kAll;
+  a.acceleration.assign(kAll.size(), 7.0);
+  mbk_ros::AccelerationSample sample;
+  EXPECT_EQ(input_.convert(a, 1.0, sample), "");
+  EXPECT_EQ(input_.fill(Level::kAcceleration, &sample, state_), Level::kAcceleration);
+  EXPECT_EQ(state_.acceleration[0], 7.0);
+  EXPECT_EQ(state_.acceleration[model_.coordinate_index("finger_joint")], 14.0);  // mimic
+  input_.add(msg(kAll, 1.5, true), 1.5);  // velocity 3: acceleration 2 from the velocities
+  EXPECT_EQ(input_.fill(Level::kAcceleration, nullptr, state_), Level::kAcceleration);
+  EXPECT_NEAR(state_.acceleration[0], 2.0, 1e-12);
+  a.name[0] = "nope";
+  EXPECT_NE(input_.convert(a, 1.0, sample).find("not in the model"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,167 @@
+// Shared by the node's integration tests (test/ros/*.test): the test robot, a quadratic joint
+// trajectory (which the default 3-point estimator differentiates exactly), the expected
+// kinematics from the core's other formulation (partial velocities, method.md 5; the node uses
+// the recursion of method.md 4), and a recorder of body_kinematics messages.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/io/urdf_model.h"
+
+namespace mbk_ros_test {
+
+inline std::string source_path(const std::string& relative) {
+  return std::string(MBK_SOURCE_DIR) + "/" + relative;
+}
+
+inline mbk::Model test_model() {
+  return mbk::load_urdf_file(source_path("test/ros/test_robot.urdf"));
+}
+
+// q_i(tau) = c0_i + c1_i tau + c2_i tau^2 in every coordinate (mimics: apply_mimics).
+struct Quadratic {
+  explicit Quadratic(const mbk::Model& model, double phase = 0) : model(&model) {
+    c0 = c1 = c2 = Eigen::VectorXd::Zero(model.nq);
+    for (int i = 0; i < model.nq; ++i) {
+      c0[i] = 0.3 * std::sin(i + 1 + phase);
+      c1[i] = 0.5 * std::cos(2 * i + 1 + phase);
+      c2[i] = 0.4 * std::sin(3 * i + 2 + phase);
+    }
+  }
+  mbk::JointState<double> at(double tau) const {
+    mbk::JointState<double> s(*model);
+    s.position = c0 + c1 * tau + c2 * tau * tau;
+    s.velocity = c1 + 2 * c2 * tau;
+    s.acceleration = 2 * c2;
+    mbk::apply_mimics(*model, s);
+    return s;
+  }
+  const mbk::Model* model;
+  Eigen::VectorXd c0, c1, c2;
+};
+
+// A JointState message of `state` for the coordinates `names` (empty: every non-mimic one).
+inline sensor_msgs::JointState joint_state_msg(const mbk::Model& model,
+                                               const mbk::JointState<double>& state,
+                                               const ros::Time& stamp, bool velocities,
+                                               std::vector<std::string> names = {}) {
+  if (names.empty()) {
+    std::vector<bool> mimic(model.nq, false);
+    for (const mbk::Mimic& m : model.mimics) mimic[m.coordinate] = true;
+    for (int i = 0; i < model.nq; ++i)
+      if (!mimic[i]) names.push_back(model.coordinate_names[i]);
+  }
+  sensor_msgs::JointState msg;
+  msg.header.stamp = stamp;
+  for (const std::string& n : names) {
+    const int i = model.coordinate_index(n);
+    msg.name.push_back(n);
+    msg.position.push_back(state.position[i]);
+    if (velocities) msg.velocity.push_back(state.velocity[i]);
+  }
+  return msg;
+}
+
+inline mbk::Data<double> expected_kinematics(const mbk::Model& model,
+                                             const mbk::JointState<double>& state) {
+  mbk::Data<double> data(model);
+  mbk::PartialVelocities<double> pv(model);
+  mbk::partial_velocity_kinematics(model, state, pv, data);
+  return data;
+}
+
+template <typename V>
+mbk::Vec3<double> vec(const V& v) {
+  return mbk::Vec3<double>(v.x, v.y, v.z);
+}
+
+inline void expect_near(const mbk::Vec3<double>& a, const mbk::Vec3<double>& b, double tol,
+                        const std::string& what) {
+  EXPECT_LT((a - b).norm(), tol) << what << ": got " << a.transpose() << ", expected "
+                                 << b.transpose();
+}
+
+inline void expect_kinematics(const mb_kinematics_msgs::BodyKinematicsArray& msg,
+                              const mbk::Model& model, const mbk::Data<double>& d, double tol) {
+  ASSERT_EQ(msg.bodies.size(), static_cast<size_t>(model.body_count()));
+  EXPECT_EQ(msg.header.frame_id, model.frame);
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const auto& b = msg.bodies[k - 1];
+    const std::string name = model.bodies[k].name;
+    EXPECT_EQ(b.name, name);
+    EXPECT_EQ(b.index, static_cast<uint32_t>(k));
+    EXPECT_EQ(b.lower_body, static_cast<uint32_t>(model.bodies[k].lower));
+    expect_near(vec(b.pose.position), d.origin[k], tol, name + " origin");
+    const Eigen::Quaterniond q(b.pose.orientation.w, b.pose.orientation.x, b.pose.orientation.y,
+                               b.pose.orientation.z);
+    EXPECT_LT((q.toRotationMatrix() - d.rotation[k]).norm(), tol) << name << " rotation";
+    expect_near(vec(b.mass_center), d.mass_center[k], tol, name + " mass center");
+    expect_near(vec(b.twist.angular), d.omega[k], tol, name + " omega");
+    expect_near(vec(b.twist.linear), d.velocity[k], tol, name + " velocity");
+    expect_near(vec(b.accel.angular), d.alpha[k], tol, name + " alpha");
+    expect_near(vec(b.accel.linear), d.acceleration[k], tol, name + " acceleration");
+  }
+}
+
+inline bool wait_until(const std::function<bool()>& done, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return done();
+}
+
+// Records every body_kinematics message (callbacks on an AsyncSpinner).
+class KinematicsRecorder {
+ public:
+  KinematicsRecorder(ros::NodeHandle& nh, const std::string& topic)
+      : sub_(nh.subscribe(topic, 100, &KinematicsRecorder::on_message, this)) {}
+  bool connected() const { return sub_.getNumPublishers() > 0; }
+  // The messages with this stamp, in arrival order.
+  std::vector<mb_kinematics_msgs::BodyKinematicsArray> at(const ros::Time& stamp) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<mb_kinematics_msgs::BodyKinematicsArray> out;
+    for (const auto& m : messages_)
+      if (m.header.stamp == stamp) out.push_back(m);
+    return out;
+  }
+  size_t count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_.size();
+  }
+  bool wait_for(const ros::Time& stamp, double seconds = 2.0) const {
+    return wait_until([&] { return !at(stamp).empty(); }, seconds);
+  }
+
+ private:
+  void on_message(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    messages_.push_back(msg);
+  }
+  mutable std::mutex mutex_;
+  std::vector<mb_kinematics_msgs::BodyKinematicsArray> messages_;
+  ros::Subscriber sub_;
+};
+
+// Waits until `pub` reaches its subscriber and `recorder` its publisher, then lets the
+// node see the new subscriber too.
+inline void connect(const ros::Publisher& pub, const KinematicsRecorder& recorder) {
+  ASSERT_TRUE(wait_until([&] { return pub.getNumSubscribers() > 0 && recorder.connected(); }, 10))
+      << "the node did not connect";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+}
+
+}  // namespace mbk_ros_test
