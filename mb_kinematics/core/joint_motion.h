@@ -23,18 +23,26 @@ struct JointMotion {
   Vec3<S> angular_dot[kMaxJointSpeeds];
 };
 
+namespace detail {
+
+// A(alpha) B(beta) C(gamma) multiplied out, from the sines and cosines.
+template <typename S>
+Mat3<S> rotation_123(S ca, S sa, S cb, S sb, S cg, S sg) {
+  Mat3<S> r;
+  r << cb * cg, -cb * sg, sb,                                    //
+      sa * sb * cg + ca * sg, ca * cg - sa * sb * sg, -sa * cb,  //
+      sa * sg - ca * sb * cg, ca * sb * sg + sa * cg, ca * cb;
+  return r;
+}
+
+}  // namespace detail
+
 // 1-2-3 rotation A(alpha) B(beta) C(gamma) (eq. 4.4.9-4.4.12, with the erratum of method.md 7).
 template <typename S>
 Mat3<S> rotation_123(S alpha, S beta, S gamma) {
   using std::cos;
   using std::sin;
-  const S ca = cos(alpha), sa = sin(alpha), cb = cos(beta), sb = sin(beta), cg = cos(gamma),
-          sg = sin(gamma);
-  Mat3<S> a, b, c;
-  a << S(1), S(0), S(0), S(0), ca, -sa, S(0), sa, ca;
-  b << cb, S(0), sb, S(0), S(1), S(0), -sb, S(0), cb;
-  c << cg, -sg, S(0), sg, cg, S(0), S(0), S(0), S(1);
-  return a * b * c;
+  return detail::rotation_123(cos(alpha), sin(alpha), cos(beta), sin(beta), cos(gamma), sin(gamma));
 }
 
 // Rotation of Euler parameters e = (e1, e2, e3, e4), e4 scalar, divided by |e|^2 so that an
@@ -48,27 +56,27 @@ Mat3<S> rotation_euler(const S* e) {
   return r / n2;
 }
 
-// Rotation by angle theta about a unit axis (Rodrigues).
+// Rotation by angle theta about a unit axis (Rodrigues): c I + s [a]x + (1 - c) a a^T.
 template <typename S>
 Mat3<S> rotation_axis(const Vec3<S>& axis, S theta) {
   using std::cos;
   using std::sin;
-  const Mat3<S> k = skew(axis);
-  return Mat3<S>::Identity() + sin(theta) * k + (S(1) - cos(theta)) * (k * k);
+  const S c = cos(theta), s = sin(theta);
+  Mat3<S> r = (S(1) - c) * axis * axis.transpose() + s * skew(axis);
+  r.diagonal().array() += c;
+  return r;
 }
 
 namespace detail {
 
-// 1-2-3 angle columns [e1, A e2, A B e3] and their time derivatives (eq. 4.4.13-4.4.16, 4.5).
+// 1-2-3 angle columns [e1, A e2, A B e3] and their time derivatives (eq. 4.4.13-4.4.16, 4.5),
+// from the sines and cosines of alpha and beta.
 template <typename S>
-void angles_123_columns(const S* q, const S* qd, Vec3<S>* angular, Vec3<S>* angular_dot) {
-  using std::cos;
-  using std::sin;
-  const S ca = cos(q[0]), sa = sin(q[0]), cb = cos(q[1]), sb = sin(q[1]);
+void angles_123_columns(S ca, S sa, S cb, S sb, const S* qd, Vec3<S>* angular,
+                        Vec3<S>* angular_dot) {
   angular[0] = Vec3<S>(S(1), S(0), S(0));
   angular[1] = Vec3<S>(S(0), ca, sa);
   angular[2] = Vec3<S>(sb, -sa * cb, ca * cb);
-  if (!qd) return;
   angular_dot[0].setZero();
   angular_dot[1] = qd[0] * Vec3<S>(S(0), -sa, ca);
   angular_dot[2] =
@@ -118,7 +126,6 @@ void plane_basis(const Vec3<S>& normal, Vec3<S>& u1, Vec3<S>& u2) {
 template <typename S>
 void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
                   JointMotion<S>& out) {
-  const Mat3<S> c = joint.rotation.cast<S>();
   const Vec3<S> axis = joint.axis.cast<S>();
   Mat3<S> motion = Mat3<S>::Identity();
   Vec3<S> s = Vec3<S>::Zero();
@@ -157,8 +164,11 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
         s = Vec3<S>(q[0], q[1], q[2]);
         translation_columns(3);
       }
-      motion = rotation_123(q[t], q[t + 1], q[t + 2]);
-      detail::angles_123_columns(q + t, qd ? qd + t : nullptr, ang + t, ang_dot + t);
+      using std::cos;
+      using std::sin;
+      const S ca = cos(q[t]), sa = sin(q[t]), cb = cos(q[t + 1]), sb = sin(q[t + 1]);
+      motion = detail::rotation_123(ca, sa, cb, sb, cos(q[t + 2]), sin(q[t + 2]));
+      if (qd) detail::angles_123_columns(ca, sa, cb, sb, qd + t, ang + t, ang_dot + t);
       for (int i = t; i < t + 3; ++i) lin[i].setZero();
       n = t + 3;
       break;
@@ -192,9 +202,15 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
       break;
     }
   }
+  out.speeds = n;
+  if (joint.rotation == Mat3<double>::Identity()) {  // no offset rotation: joint frame = Bj
+    out.rotation = motion;
+    out.translation = s;
+    return;
+  }
+  const Mat3<S> c = joint.rotation.cast<S>();
   out.rotation = c * motion;
   out.translation = c * s;
-  out.speeds = n;
   if (!qd) return;
   for (int i = 0; i < n; ++i) {  // columns are in the joint frame; C_k takes them to Bj
     ang[i] = c * ang[i];
