@@ -1,7 +1,11 @@
 #include "mb_kinematics/core/derivative_estimator.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+
+#include "mb_kinematics/core/kalman_estimator.h"
+#include "mb_kinematics/core/polynomial_fit_estimator.h"
 
 namespace mbk {
 namespace {
@@ -54,16 +58,32 @@ class BackwardDifference : public DerivativeEstimator {
 }  // namespace
 
 const std::vector<std::string>& derivative_estimator_names() {
-  static const std::vector<std::string> names = {"backward_difference"};
+  static const std::vector<std::string> names = {
+      "backward_difference",    "central_difference",      "savitzky_golay_5_2",
+      "savitzky_golay_9_2",     "savitzky_golay_9_4",      "savitzky_golay_15_3",
+      "savitzky_golay_end_7_2", "savitzky_golay_end_15_3", "kalman",
+      "kalman_smooth"};
   return names;
 }
 
 std::unique_ptr<DerivativeEstimator> make_derivative_estimator(const std::string& name) {
   if (name == "backward_difference") return std::make_unique<BackwardDifference>();
+  if (name == "central_difference") return std::make_unique<PolynomialFitEstimator>(3, 2, 1);
+  if (name == "kalman") return std::make_unique<KalmanEstimator>(1e3, 1e-5);
+  if (name == "kalman_smooth") return std::make_unique<KalmanEstimator>(10.0, 1e-4);
+  // savitzky_golay_<window>_<order>: evaluated at the window's center (latency (window-1)/2);
+  // savitzky_golay_end_<window>_<order>: at its newest sample (no latency).
+  int window = 0, order = 0, used = 0;
+  const bool end =
+      std::sscanf(name.c_str(), "savitzky_golay_end_%d_%d%n", &window, &order, &used) == 2;
+  if ((end || std::sscanf(name.c_str(), "savitzky_golay_%d_%d%n", &window, &order, &used) == 2) &&
+      used == static_cast<int>(name.size()))
+    return std::make_unique<PolynomialFitEstimator>(window, order, end ? 0 : (window - 1) / 2);
   std::string known;
   for (const std::string& n : derivative_estimator_names())
     known += (known.empty() ? "" : ", ") + n;
-  throw std::invalid_argument("unknown derivative estimator '" + name + "' (known: " + known + ")");
+  throw std::invalid_argument("unknown derivative estimator '" + name + "' (known: " + known +
+                              "; savitzky_golay[_end]_<window>_<order> for other windows)");
 }
 
 }  // namespace mbk
