@@ -11,15 +11,18 @@ namespace mbk {
 
 constexpr int kMaxJointSpeeds = 7;
 
-// All vectors in Bj components. w_k = sum_c angular[c] y_c, s_k' = sum_c linear[c] y_c,
-// w_k' = sum_c (angular[c] y_c' + angular_dot[c] y_c); linear columns are constant in Bj.
+// Every speed of a joint is either a translation rate or a rotation rate: speeds c <
+// linear_speeds move O_k along linear[c], the others turn Bk about angular[c]. All vectors in Bj
+// components: s_k' = sum_{c < linear_speeds} linear[c] y_c (constant in Bj), and
+// w_k = sum_{c >= linear_speeds} angular[c] y_c, w_k' = sum (angular[c] y_c' + angular_dot[c] y_c).
 template <typename S>
 struct JointMotion {
   Mat3<S> rotation;     // SJK = C_k R_motion
   Vec3<S> translation;  // s_k
+  int linear_speeds = 0;
   int speeds = 0;
-  Vec3<S> angular[kMaxJointSpeeds];
   Vec3<S> linear[kMaxJointSpeeds];
+  Vec3<S> angular[kMaxJointSpeeds];
   Vec3<S> angular_dot[kMaxJointSpeeds];
 };
 
@@ -122,86 +125,66 @@ void plane_basis(const Vec3<S>& normal, Vec3<S>& u1, Vec3<S>& u2) {
 }  // namespace detail
 
 // Fills `out` for one joint. q: the joint's coordinates; qd: its speeds, or nullptr when only
-// the pose is wanted (then no columns are computed). With qd, angular_dot is filled as well.
+// the pose is wanted (then the columns are left unset).
 template <typename S>
 void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
                   JointMotion<S>& out) {
+  using std::cos;
+  using std::sin;
   const Vec3<S> axis = joint.axis.cast<S>();
   Mat3<S> motion = Mat3<S>::Identity();
   Vec3<S> s = Vec3<S>::Zero();
-  int n = 0;  // number of columns
-  Vec3<S>* ang = out.angular;
-  Vec3<S>* lin = out.linear;
-  Vec3<S>* ang_dot = out.angular_dot;
-  auto translation_columns = [&](int count) {
-    for (int i = 0; i < count; ++i) {
-      lin[i] = Vec3<S>::Unit(i);
-      ang[i].setZero();
-      ang_dot[i].setZero();
-    }
-  };
+  int t = 0, n = 0;  // linear speeds, all speeds
   switch (joint.type) {
     case JointType::kFixed:
       break;
     case JointType::kRevolute:
       motion = rotation_axis(axis, q[0]);
       n = 1;
-      ang[0] = axis;
-      lin[0].setZero();
-      ang_dot[0].setZero();
+      out.angular[0] = axis;
+      out.angular_dot[0].setZero();
       break;
     case JointType::kPrismatic:
       s = axis * q[0];
-      n = 1;
-      ang[0].setZero();
-      lin[0] = axis;
-      ang_dot[0].setZero();
+      t = n = 1;
+      out.linear[0] = axis;
       break;
     case JointType::kBall123:
     case JointType::kFree123: {
-      const int t = joint.type == JointType::kFree123 ? 3 : 0;
-      if (t) {
-        s = Vec3<S>(q[0], q[1], q[2]);
-        translation_columns(3);
-      }
-      using std::cos;
-      using std::sin;
+      t = joint.type == JointType::kFree123 ? 3 : 0;
       const S ca = cos(q[t]), sa = sin(q[t]), cb = cos(q[t + 1]), sb = sin(q[t + 1]);
       motion = detail::rotation_123(ca, sa, cb, sb, cos(q[t + 2]), sin(q[t + 2]));
-      if (qd) detail::angles_123_columns(ca, sa, cb, sb, qd + t, ang + t, ang_dot + t);
-      for (int i = t; i < t + 3; ++i) lin[i].setZero();
+      if (qd)
+        detail::angles_123_columns(ca, sa, cb, sb, qd + t, out.angular + t, out.angular_dot + t);
       n = t + 3;
       break;
     }
     case JointType::kBallEuler:
-    case JointType::kFreeEuler: {
-      const int t = joint.type == JointType::kFreeEuler ? 3 : 0;
-      if (t) {
-        s = Vec3<S>(q[0], q[1], q[2]);
-        translation_columns(3);
-      }
+    case JointType::kFreeEuler:
+      t = joint.type == JointType::kFreeEuler ? 3 : 0;
       motion = rotation_euler(q + t);
-      const int r =
-          detail::euler_columns(q + t, qd ? qd + t : nullptr, speeds, ang + t, ang_dot + t);
-      for (int i = t; i < t + r; ++i) lin[i].setZero();
-      n = t + r;
+      n = t + detail::euler_columns(q + t, qd ? qd + t : nullptr, speeds, out.angular + t,
+                                    out.angular_dot + t);
       break;
-    }
     case JointType::kPlanar: {
       Vec3<S> u1, u2;
       detail::plane_basis(axis, u1, u2);
       s = q[0] * u1 + q[1] * u2;
       motion = rotation_axis(axis, q[2]);
+      t = 2;
       n = 3;
-      lin[0] = u1;
-      lin[1] = u2;
-      lin[2].setZero();
-      for (int i = 0; i < 2; ++i) ang[i].setZero();
-      ang[2] = axis;
-      for (int i = 0; i < 3; ++i) ang_dot[i].setZero();
+      out.linear[0] = u1;
+      out.linear[1] = u2;
+      out.angular[2] = axis;
+      out.angular_dot[2].setZero();
       break;
     }
   }
+  if (t == 3) {  // free joints: translations along the joint frame's axes
+    s = Vec3<S>(q[0], q[1], q[2]);
+    for (int i = 0; i < 3; ++i) out.linear[i] = Vec3<S>::Unit(i);
+  }
+  out.linear_speeds = t;
   out.speeds = n;
   if (joint.rotation == Mat3<double>::Identity()) {  // no offset rotation: joint frame = Bj
     out.rotation = motion;
@@ -212,10 +195,10 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
   out.rotation = c * motion;
   out.translation = c * s;
   if (!qd) return;
-  for (int i = 0; i < n; ++i) {  // columns are in the joint frame; C_k takes them to Bj
-    ang[i] = c * ang[i];
-    lin[i] = c * lin[i];
-    ang_dot[i] = c * ang_dot[i];
+  for (int i = 0; i < t; ++i) out.linear[i] = c * out.linear[i];  // joint frame to Bj
+  for (int i = t; i < n; ++i) {
+    out.angular[i] = c * out.angular[i];
+    out.angular_dot[i] = c * out.angular_dot[i];
   }
 }
 

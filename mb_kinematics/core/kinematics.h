@@ -44,10 +44,8 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
     const Mat3<S>& s0j = data.rotation[j];
 
     Vec3<S> w = Vec3<S>::Zero(), sd = Vec3<S>::Zero();  // w_k, s_k' in Bj
-    for (int c = 0; c < m.speeds; ++c) {
-      w += m.angular[c] * y[c];
-      sd += m.linear[c] * y[c];
-    }
+    for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
+    for (int c = m.linear_speeds; c < m.speeds; ++c) w += m.angular[c] * y[c];
     const Vec3<S> w0 = s0j * w, sd0 = s0j * sd;
     const Vec3<S>& omega_j = data.omega[j];
     data.omega[k] = omega_j + w0;                                                // eq. 4.4.6
@@ -57,10 +55,9 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
 
     const S* yd = state.acceleration.data() + body.v_index;
     Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // w_k', s_k'' in Bj
-    for (int c = 0; c < m.speeds; ++c) {
+    for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
+    for (int c = m.linear_speeds; c < m.speeds; ++c)
       wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
-      sdd += m.linear[c] * yd[c];
-    }
     const Vec3<S>& alpha_j = data.alpha[j];
     data.alpha[k] = alpha_j + s0j * wd + omega_j.cross(w0);  // eq. 4.5.1
     data.origin_acceleration[k] = data.origin_acceleration[j] + alpha_j.cross(d) +

@@ -71,7 +71,7 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
     const Vec3<S>& omega_j = data.omega[j];
     const int bj = pv.begin[j], nj = pv.count[j], bk = pv.begin[k], nk = pv.count[k];
     Vec3<S> sd = Vec3<S>::Zero();  // s_k' in Bj
-    for (int c = 0; c < m.speeds; ++c) sd += m.linear[c] * y[body.v_index + c];
+    for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[body.v_index + c];
     const Vec3<S> d_dot = omega_j.cross(d) + s0j * sd;
     for (int i = 0; i < nj; ++i) {  // ancestors' columns (eq. 4.4.25-4.4.32)
       pv.omega[bk + i] = pv.omega[bj + i];
@@ -84,10 +84,12 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
     }
     for (int c = 0; c < m.speeds; ++c) {  // the joint's own columns
       const int i = bk + nj + c;
-      pv.omega[i] = s0j * m.angular[c];
-      pv.origin_velocity[i] = s0j * m.linear[c];
+      const bool linear = c < m.linear_speeds;
+      pv.omega[i] = linear ? Vec3<S>::Zero() : Vec3<S>(s0j * m.angular[c]);
+      pv.origin_velocity[i] = linear ? Vec3<S>(s0j * m.linear[c]) : Vec3<S>::Zero();
       if (!accelerations) continue;
-      pv.omega_dot[i] = omega_j.cross(pv.omega[i]) + s0j * m.angular_dot[c];
+      pv.omega_dot[i] =
+          linear ? Vec3<S>::Zero() : Vec3<S>(omega_j.cross(pv.omega[i]) + s0j * m.angular_dot[c]);
       pv.origin_velocity_dot[i] = omega_j.cross(pv.origin_velocity[i]);
     }
     Vec3<S> omega = Vec3<S>::Zero(), v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
