@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/core/error_indicators.h"
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/io/load_model.h"
@@ -86,13 +87,31 @@ mbk::Model load_node_model(const NodeParams& p) {
   return model;
 }
 
+namespace {
+
+// The node pairs estimates with the newest sample, so it takes only estimators without latency
+// (the centered Savitzky-Golay fits and the central difference lag: see the README's
+// work-precision report).
+std::unique_ptr<mbk::DerivativeEstimator> zero_latency_estimator(const std::string& name) {
+  std::unique_ptr<mbk::DerivativeEstimator> estimator = mbk::make_derivative_estimator(name);
+  if (estimator->latency() > 0)
+    throw std::invalid_argument("~acceleration_estimator '" + name + "' estimates " +
+                                std::to_string(estimator->latency()) +
+                                " samples back; the node needs one without latency (kalman, "
+                                "kalman_smooth, backward_difference, savitzky_golay_end_<w>_<o>)");
+  return estimator;
+}
+
+}  // namespace
+
 KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : params_(read_node_params(nh, pnh)),
       model_(load_node_model(params_)),
       frame_(params_.frame_id.empty() ? model_.frame : params_.frame_id),
-      input_(model_, *mbk::make_derivative_estimator(params_.acceleration_estimator),
+      input_(model_, *zero_latency_estimator(params_.acceleration_estimator),
              params_.max_sample_gap),
       state_(model_),
+      previous_state_(model_),
       data_(model_),
       nh_(nh),
       pnh_(pnh),
@@ -270,6 +289,13 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
     ++window_.dropped;
     return;
   }
+  if (level == mbk::Level::kAcceleration && previous_stamp_ >= 0) {
+    const double residual =
+        mbk::prediction_residual(previous_state_, state_, stamp.toSec() - previous_stamp_);
+    for (Counters* c : {&total_, &window_}) c->max_residual = std::max(c->max_residual, residual);
+  }
+  previous_state_ = state_;
+  previous_stamp_ = level == mbk::Level::kAcceleration ? stamp.toSec() : -1;
   if (params_.tf) publish_tf(stamp);
   if (level != mbk::Level::kPose && !publish_kinematics(stamp, level)) return;
   if (level < wanted)
@@ -366,6 +392,11 @@ void KinematicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& statu
   status.add("samples dropped (bad input)", total_.dropped);
   status.add("samples waiting for joints", total_.incomplete);
   status.add("last problem", last_problem_.empty() ? "none" : last_problem_);
+  // Cheap error indicators (mb_kinematics/core/error_indicators.h; README, work-precision).
+  status.add("rotation orthonormality drift", mbk::orthonormality_drift(data_));
+  status.add("Euler parameter norm error", mbk::euler_norm_error(model_, state_));
+  status.add("estimator residual, max (rad or m)", window_.max_residual);
+  status.add("acceleration estimator", params_.acceleration_estimator);
   if (window_.dropped > 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "dropping samples: " + last_problem_);
   else if (window_.received == 0)

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/ros/joint_state_input.h"
@@ -54,6 +55,8 @@ class KinematicsNode {
   std::string frame_;  // R
   JointStateInput input_;
   mbk::JointState<double> state_;
+  mbk::JointState<double> previous_state_;  // the last published sample, for the residual
+  double previous_stamp_ = -1;              // its stamp; < 0: none
   mbk::Data<double> data_;
 
   ros::NodeHandle nh_, pnh_;
@@ -75,6 +78,7 @@ class KinematicsNode {
   struct Counters {
     long received = 0, dropped = 0, incomplete = 0, published = 0;
     double update_seconds = 0, max_update_seconds = 0;
+    double max_residual = 0;  // mbk::prediction_residual, over the samples
   } total_, window_;
   std::chrono::steady_clock::time_point window_start_;
   std::string last_problem_;
