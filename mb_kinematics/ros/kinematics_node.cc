@@ -289,7 +289,8 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
     ++window_.dropped;
     return;
   }
-  if (level == mbk::Level::kAcceleration && previous_stamp_ >= 0) {
+  if (level == mbk::Level::kAcceleration && previous_stamp_ >= 0 &&
+      stamp.toSec() > previous_stamp_) {  // no prediction across a backwards jump
     const double residual =
         mbk::prediction_residual(previous_state_, state_, stamp.toSec() - previous_stamp_);
     for (Counters* c : {&total_, &window_}) c->max_residual = std::max(c->max_residual, residual);

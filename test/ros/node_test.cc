@@ -1,5 +1,6 @@
 // mb_kinematics_node against values computed here independently: closed forms of the test
 // robot's joints for /tf, the partial-velocity formulation for body_kinematics (node.test).
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <mb_kinematics_msgs/LowerBodyArray.h>
 #include <sys/wait.h>
@@ -8,6 +9,8 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <mutex>
 #include <set>
 
 #include "test/ros/ros_test_support.h"
@@ -124,6 +127,41 @@ TEST_F(NodeTest, KinematicsFromPositionsOnly) {
     ASSERT_EQ(msgs.size(), 1u) << "sample " << i;
     expect_kinematics(msgs[0], model_, expected_kinematics(model_, trajectory.at(i * kDt)), kTol);
   }
+}
+
+// /diagnostics carries the cheap error indicators; on a quadratic trajectory the prediction
+// residual of the 3-point difference (exact for quadratics) is rounding only.
+TEST_F(NodeTest, DiagnosticsReportErrorIndicators) {
+  std::vector<std::pair<ros::WallTime, std::map<std::string, std::string>>> received;
+  std::mutex mutex;
+  ros::Subscriber sub = nh_.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& status : m->status) {
+          if (status.name.find("Joint state input") == std::string::npos) continue;
+          std::map<std::string, std::string> values;
+          for (const auto& kv : status.values) values[kv.key] = kv.value;
+          if (values.count("samples received") == 0) continue;
+          std::lock_guard<std::mutex> lock(mutex);
+          received.push_back({ros::WallTime::now(), values});
+        }
+      });
+  const Quadratic trajectory(model_, 0.5);
+  const ros::Time start(400.0);
+  const ros::WallTime run_start = ros::WallTime::now();
+  publish_run(trajectory, start, 400, false);  // >= 4 s at 10 ms per sample
+  const ros::WallTime run_end = ros::WallTime::now();
+  std::lock_guard<std::mutex> lock(mutex);
+  int checked = 0;
+  for (const auto& [when, values] : received) {
+    // Windows that lie wholly inside the run (diagnostics every 1 s; margin 0.2 s).
+    if (when < run_start + ros::WallDuration(1.2) || when > run_end) continue;
+    ++checked;
+    EXPECT_EQ(values.at("acceleration estimator"), "backward_difference");
+    EXPECT_LT(std::stod(values.at("estimator residual, max (rad or m)")), 1e-9);
+    EXPECT_LT(std::stod(values.at("rotation orthonormality drift")), 1e-12);
+    EXPECT_EQ(std::stod(values.at("Euler parameter norm error")), 0.0);  // no Euler joints
+  }
+  EXPECT_GT(checked, 0) << received.size() << " diagnostics received in all";
 }
 
 // With velocities: accelerations from the given velocities, from the second sample on.
@@ -247,6 +285,28 @@ TEST(StartupTest, BadRobotDescriptionExitsNonZero) {
   EXPECT_NE(WEXITSTATUS(status), 0);
   EXPECT_NE(output.find("robot_description"), std::string::npos) << output;
   EXPECT_NE(output.find("does not parse"), std::string::npos) << output;
+}
+
+// A centered estimator lags the newest sample; the node pairs estimates with it, so it must
+// refuse such an estimator at start instead of publishing misaligned accelerations.
+TEST(StartupTest, EstimatorWithLatencyExitsNonZero) {
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("/robot_description", urdf));
+  nh.setParam("/lagging/robot_description", urdf);
+  const std::string command = std::string(MBK_NODE_PATH) +
+                              " __ns:=/lagging __name:=lagging_node"
+                              " _acceleration_estimator:=savitzky_golay_9_2 2>&1 > /dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  EXPECT_NE(output.find("savitzky_golay_9_2"), std::string::npos) << output;
+  EXPECT_NE(output.find("4 samples back"), std::string::npos) << output;
 }
 
 }  // namespace
