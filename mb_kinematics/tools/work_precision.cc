@@ -5,6 +5,7 @@
 //   mbk_work_precision [--out DIR] [--quick]
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -141,22 +142,80 @@ std::vector<Scene> scenes(bool quick) {
   return out;
 }
 
-void write_outputs(const std::vector<Row>& rows, const std::string& dir) {
+// Values of rows in first-seen order, e.g. the methods or the scenes.
+std::vector<std::string> distinct(const std::vector<Row>& rows, std::string Row::*field) {
+  std::vector<std::string> out;
+  for (const Row& r : rows)
+    if (std::find(out.begin(), out.end(), r.*field) == out.end()) out.push_back(r.*field);
+  return out;
+}
+
+const Row* find_row(const std::vector<Row>& rows, const std::string& method,
+                    const std::string& scene) {
+  for (const Row& r : rows)
+    if (r.method == method && r.scene == scene) return &r;
+  return nullptr;
+}
+
+// Formulations: a row per method, a column per scene, "error (median time)".
+void write_formulation_table(std::ostream& md, const std::vector<Row>& rows) {
+  const auto scenes = distinct(rows, &Row::scene);
+  md << "| method |";
+  for (const auto& s : scenes) md << " " << s << " |";
+  md << "\n|---|";
+  for (size_t i = 0; i < scenes.size(); ++i) md << "---:|";
+  md << "\n";
+  char cell[64];
+  for (const auto& method : distinct(rows, &Row::method)) {
+    md << "| " << method << " |";
+    for (const auto& scene : scenes) {
+      const Row* r = find_row(rows, method, scene);
+      if (r) std::snprintf(cell, sizeof cell, " %.1e (%.3g us) |", r->error, r->median_ns / 1e3);
+      md << (r ? cell : " - |");
+    }
+    md << "\n";
+  }
+}
+
+// Estimators: a row per estimator, a column per stream, the acceleration error.
+void write_estimator_table(std::ostream& md, const std::vector<Row>& rows) {
+  const auto streams = distinct(rows, &Row::scene);
+  md << "| estimator | latency | ns per sample |";
+  for (const auto& s : streams) md << " " << s << " |";
+  md << "\n|---|---:|---:|";
+  for (size_t i = 0; i < streams.size(); ++i) md << "---:|";
+  md << "\n";
+  char cell[64];
+  for (const auto& method : distinct(rows, &Row::method)) {
+    const Row* first = find_row(rows, method, streams.front());
+    const std::string latency = first->note.substr(first->note.find("latency ") + 8);
+    std::snprintf(cell, sizeof cell, " %.3g |", first->median_ns);
+    md << "| " << method << " | " << latency.substr(0, latency.find(' ')) << " |" << cell;
+    for (const auto& stream : streams) {
+      const Row* r = find_row(rows, method, stream);
+      std::snprintf(cell, sizeof cell, " %.1e |", r ? r->error : NAN);
+      md << cell;
+    }
+    md << "\n";
+  }
+}
+
+void write_outputs(const std::vector<Row>& formulations, const std::vector<Row>& estimators,
+                   const std::string& dir) {
   std::ofstream csv(dir + "/work_precision.csv");
   csv << "method,scene,median_ns,min_ns,max_ns,error,note\n";
-  for (const Row& r : rows)
-    csv << r.method << "," << r.scene << "," << r.median_ns << "," << r.min_ns << "," << r.max_ns
-        << "," << r.error << "," << r.note << "\n";
+  for (const auto* rows : {&formulations, &estimators})
+    for (const Row& r : *rows)
+      csv << r.method << "," << r.scene << "," << r.median_ns << "," << r.min_ns << "," << r.max_ns
+          << "," << r.error << "," << r.note << "\n";
   std::ofstream md(dir + "/work_precision.md");
-  md << "| method | scene | median time per update | (min - max) | error | note |\n"
-     << "|---|---|---:|---|---:|---|\n";
-  char line[512];
-  for (const Row& r : rows) {
-    std::snprintf(line, sizeof line, "| %s | %s | %.4g us | %.3g - %.3g | %.2e | %s |\n",
-                  r.method.c_str(), r.scene.c_str(), r.median_ns / 1e3, r.min_ns / 1e3,
-                  r.max_ns / 1e3, r.error, r.note.c_str());
-    md << line;
-  }
+  md << "Kinematics: largest relative error over bodies and quantities against the quad-precision "
+        "reference, and (median run time per update):\n\n";
+  write_formulation_table(md, formulations);
+  md << "\nJoint accelerations estimated from positions only: largest error relative to the "
+        "signal's largest acceleration, per stream (rate, timestamp jitter, position noise in "
+        "rad); latency in samples; run time per sample and coordinate:\n\n";
+  write_estimator_table(md, estimators);
 }
 
 }  // namespace
@@ -177,15 +236,16 @@ int main(int argc, char** argv) {
     }
   }
   try {
-    std::vector<mbk::Row> rows;
+    std::vector<mbk::Row> formulations, estimators;
     for (const mbk::Scene& scene : mbk::scenes(quick)) {
       std::cerr << "scene " << scene.name << "\n";
-      mbk::formulation_rows(scene, quick, rows);
+      mbk::formulation_rows(scene, quick, formulations);
     }
+    std::cerr << "estimators\n";
     for (const mbk::EstimatorResult& r : mbk::estimator_study(quick))
-      rows.push_back({r.method, r.stream, r.median_ns, r.min_ns, r.max_ns, r.error, r.note});
-    mbk::write_outputs(rows, out);
-    std::cerr << "wrote " << out << "/work_precision.csv and .md (" << rows.size() << " rows)\n";
+      estimators.push_back({r.method, r.stream, r.median_ns, r.min_ns, r.max_ns, r.error, r.note});
+    mbk::write_outputs(formulations, estimators, out);
+    std::cerr << "wrote " << out << "/work_precision.csv and .md\n";
   } catch (const std::exception& e) {
     std::cerr << "mbk_work_precision: error: " << e.what() << "\n";
     return 1;
