@@ -18,7 +18,15 @@ std::unique_ptr<DerivativeEstimator> KalmanEstimator::clone() const {
 
 bool KalmanEstimator::add(double t, double x) {
   if (!std::isfinite(t) || !std::isfinite(x)) return false;
-  const bool forward = count_ == 0 || t >= t_;
+  if (count_ > 0 && t == t_) {  // a repeated stamp replaces the sample (derivative_estimator.h)
+    if (count_ == 1) {
+      s_[0] = x;
+      return true;
+    }
+    s_ = s_before_, p_ = p_before_, t_ = t_before_;  // undo the last update, redo it with x
+    --count_;
+  }
+  const bool forward = count_ == 0 || t > t_;
   if (!forward) reset();  // stamps went back (a bag looping): start over
   if (count_ == 0) {
     s_ << x, 0, 0;
@@ -27,6 +35,7 @@ bool KalmanEstimator::add(double t, double x) {
     count_ = 1;
     return forward;
   }
+  s_before_ = s_, p_before_ = p_, t_before_ = t_;
   const double dt = t - t_;
   Eigen::Matrix3d f;  // constant acceleration over dt
   f << 1, dt, dt * dt / 2, 0, 1, dt, 0, 0, 1;

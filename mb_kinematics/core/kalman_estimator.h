@@ -26,6 +26,10 @@ class KalmanEstimator : public DerivativeEstimator {
   double t_ = 0;
   Eigen::Vector3d s_;  // x, x', x''
   Eigen::Matrix3d p_;  // covariance
+  // Before the latest update, so that a repeated stamp can replace the latest sample.
+  double t_before_ = 0;
+  Eigen::Vector3d s_before_;
+  Eigen::Matrix3d p_before_;
 };
 
 }  // namespace mbk

@@ -12,6 +12,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/state_json.h"
@@ -71,6 +72,10 @@ int eval(const std::map<std::string, std::string>& options) {
   const mbk::JointState<double> state = options.count("--state")
                                             ? mbk::read_state_file(model, options.at("--state"))
                                             : mbk::JointState<double>(model);
+  const std::string problem = mbk::check_state(model, state);  // NaN/Inf, |e| ~ 0, overflow
+  if (!problem.empty())
+    throw std::invalid_argument((options.count("--state") ? options.at("--state") : "state") +
+                                ": " + problem);
   mbk::Data<double> data(model);
   const std::string method = options.count("--method") ? options.at("--method") : "recursive";
   if (method == "recursive") {

@@ -1,0 +1,82 @@
+#include "mb_kinematics/core/state_check.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace mbk {
+namespace {
+
+std::string number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
+std::string where(const Model& model, int k, const std::string& kind, const std::string& name) {
+  return "body " + std::to_string(k) + " '" + model.bodies[k].name + "', " + kind + " '" + name +
+         "': ";
+}
+
+// True for the coordinates that are angles: unbounded finite values are fine.
+bool is_angle(JointType type, int i) {
+  switch (type) {
+    case JointType::kRevolute:
+      return true;
+    case JointType::kBall123:
+      return true;
+    case JointType::kFree123:
+      return i >= 3;
+    case JointType::kPlanar:
+      return i == 2;
+    default:
+      return false;
+  }
+}
+
+// Message for one value, "" if fine.
+std::string check_value(double x, bool bounded) {
+  if (!std::isfinite(x)) return "not finite (" + number(x) + ")";
+  if (bounded && std::abs(x) > kMaxStateMagnitude)
+    return "magnitude " + number(x) + " above the limit 1e50 (the kinematics would overflow)";
+  return "";
+}
+
+}  // namespace
+
+std::string check_state(const Model& model, const JointState<double>& state) {
+  if (state.position.size() != model.nq || state.velocity.size() != model.nv ||
+      state.acceleration.size() != model.nv)
+    return "state sized for another model (" + std::to_string(state.position.size()) +
+           " coordinates, " + std::to_string(state.velocity.size()) + " speeds; the model has " +
+           std::to_string(model.nq) + " and " + std::to_string(model.nv) + ")";
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Body& body = model.bodies[k];
+    const JointType type = body.joint.type;
+    const int nq = coordinate_count(type), nv = speed_count(type, model.speeds);
+    for (int i = 0; i < nq; ++i) {
+      const std::string problem = check_value(state.position[body.q_index + i], !is_angle(type, i));
+      if (!problem.empty())
+        return where(model, k, "coordinate", model.coordinate_names[body.q_index + i]) + problem;
+    }
+    for (int i = 0; i < nv; ++i) {
+      const std::string name = model.speed_names[body.v_index + i];
+      std::string problem = check_value(state.velocity[body.v_index + i], true);
+      if (!problem.empty()) return where(model, k, "speed", name) + problem;
+      problem = check_value(state.acceleration[body.v_index + i], true);
+      if (!problem.empty()) return where(model, k, "acceleration of", name) + problem;
+    }
+    if (uses_euler_parameters(type)) {
+      const int e = body.q_index + nq - 4;
+      const double n2 = state.position.segment<4>(e).squaredNorm();
+      if (!(n2 >= kMinEulerNormSquared)) {
+        const std::string& first = model.coordinate_names[e];
+        const std::string name = first.substr(0, first.size() - 2) + "e1..e4";
+        return where(model, k, "coordinates", name) + "Euler parameters of |e|^2 = " + number(n2) +
+               ", below 1e-12 (not a rotation)";
+      }
+    }
+  }
+  return "";
+}
+
+}  // namespace mbk
