@@ -2,16 +2,9 @@
 
 #include <cmath>
 
+#include "mb_kinematics/io/rpy.h"
+
 namespace mbk {
-namespace {
-
-Mat3<double> random_rotation(std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
-}
-
-}  // namespace
-
 Model make_chain(int n, JointType type) {
   Model model;
   model.bodies.resize(n + 1);
@@ -47,7 +40,7 @@ Model make_random_tree(int n, unsigned seed, SpeedKind speeds) {
     body.joint.type = types[rng() % 8];
     body.joint.axis = Vec3<double>(u(rng), u(rng), u(rng)).normalized();
     body.joint.offset = Vec3<double>(u(rng), u(rng), u(rng));
-    body.joint.rotation = random_rotation(rng);
+    body.joint.rotation = rotation_from_rpy(3 * u(rng), 1.5 * u(rng), 3 * u(rng));
     body.mass_center = Vec3<double>(u(rng), u(rng), u(rng));
     body.mass = 1.0 + 0.5 * u(rng);
   }

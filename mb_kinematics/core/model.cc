@@ -1,6 +1,7 @@
 #include "mb_kinematics/core/model.h"
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -30,7 +31,9 @@ void validate_body(Body& body, int k) {
                          joint.type == JointType::kPrismatic || joint.type == JointType::kPlanar;
   if (uses_axis) {
     if (joint.axis.norm() < 1e-12) fail(body, k, "joint axis is zero");
-    joint.axis.normalize();
+    // Normalize unless already unit to rounding, so that finalizing twice changes nothing.
+    if (std::abs(joint.axis.squaredNorm() - 1.0) > 4 * std::numeric_limits<double>::epsilon())
+      joint.axis.normalize();
   }
 }
 

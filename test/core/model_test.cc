@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/state.h"
+#include "test/support/test_models.h"
 
 namespace {
 
@@ -271,3 +272,13 @@ TEST(Mimics, Validation) {
 }
 
 }  // namespace
+
+// Finalizing a finalized model changes nothing (model variants such as Euler-parameter twins
+// are finalized again): unit axes are kept bit for bit, others normalized.
+TEST(ModelTest, FinalizeIsIdempotentOnAxes) {
+  mbk::Model model = mbk_test::random_tree(30, 2);
+  const mbk::Model once = model;
+  mbk::finalize_model(model);
+  for (int k = 1; k <= model.body_count(); ++k)
+    EXPECT_EQ(model.bodies[k].joint.axis, once.bodies[k].joint.axis) << "body " << k;
+}
