@@ -11,6 +11,7 @@
 #include "mb_kinematics/core/error_indicators.h"
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/urdf_model.h"
@@ -281,9 +282,9 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   if (!report(input_.add(msg, stamp.toSec()))) return;
   const mbk::Level wanted = wanted_level();
   const mbk::Level level = input_.fill(wanted, accelerations_at(stamp.toSec()), state_);
-  if (!state_.position.allFinite() || !state_.velocity.allFinite() ||
-      !state_.acceleration.allFinite()) {
-    last_problem_ = "joint state not finite after estimation; sample dropped";
+  const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
+  if (!bad.empty()) {
+    last_problem_ = bad + "; sample dropped";
     ROS_WARN_STREAM_THROTTLE(kThrottle, last_problem_);
     ++total_.dropped;
     ++window_.dropped;

@@ -204,9 +204,10 @@ TEST_F(NodeTest, BadInputPublishesNothing) {
   bad.push_back(good(8)), bad.back().name = {"elbow"};              // only unknown names
   bad.back().position = {0.1};
   bad.back().velocity = {0.1};
+  bad.push_back(good(9)), bad.back().position[0] = 1e60;  // beyond mbk::kMaxStateMagnitude
   for (const auto& m : bad) states_.publish(m);
   // A good sample with an unknown name as well: accepted, the unknown name ignored.
-  sensor_msgs::JointState extra = good(9);
+  sensor_msgs::JointState extra = good(10);
   extra.name.push_back("not_in_the_model");
   extra.position.push_back(nan);  // its value does not matter
   extra.velocity.push_back(0);
@@ -217,10 +218,10 @@ TEST_F(NodeTest, BadInputPublishesNothing) {
     std::lock_guard<std::mutex> lock(mutex);
     EXPECT_EQ(tf_stamps.count(m.header.stamp.toSec()), 0u) << "tf at " << m.header.stamp;
   }
-  // Accelerations are estimated from the velocities of the accepted samples (0, 1, 2 and 9).
+  // Accelerations are estimated from the velocities of the accepted samples (0, 1, 2 and 10).
   const auto msgs = recorder_.at(extra.header.stamp);
   ASSERT_EQ(msgs.size(), 1u);
-  expect_kinematics(msgs[0], model_, expected_kinematics(model_, trajectory.at(9 * kDt)), kTol);
+  expect_kinematics(msgs[0], model_, expected_kinematics(model_, trajectory.at(10 * kDt)), kTol);
 }
 
 // A bag looping: stamps jump back; the estimates restart instead of differencing across the
