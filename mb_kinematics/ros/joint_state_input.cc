@@ -12,7 +12,12 @@ std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
 
 JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeEstimator& prototype,
                                  double max_gap)
-    : model_(model), max_gap_(max_gap), coordinates_(model.nq), seen_(model.nq, -1) {
+    : model_(model),
+      max_gap_(max_gap),
+      coordinates_(model.nq),
+      seen_(model.nq, -1),
+      message_index_(model.nq, 0),
+      sign_(model.nq, 1.0) {
   if (model.nq != model.nv)
     throw std::invalid_argument("JointStateInput needs coordinate-derivative speeds");
   for (int i = 0; i < model.nq; ++i) {
@@ -38,6 +43,7 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
     }
     if (seen_[it->second] == generation_) return "joint '" + msg.name[i] + "' is named twice";
     seen_[it->second] = generation_;
+    message_index_[it->second] = i;
     if (!std::isfinite(msg.position[i]))
       return "joint '" + msg.name[i] + "': position is " + describe(msg.position[i]);
     if (!msg.velocity.empty() && !std::isfinite(msg.velocity[i]))
@@ -46,10 +52,30 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
   return "";
 }
 
+// Euler parameters e and -e are the same rotation; a publisher may flip between them (e.g. to
+// keep e4 >= 0). A message that sets all four of a joint's parameters with a negative dot
+// product against the previous ones is negated, so that e, and its estimated derivatives, stay
+// continuous.
+void JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
+  for (int k = 1; k <= model_.body_count(); ++k) {
+    const mbk::Body& body = model_.bodies[k];
+    if (!mbk::uses_euler_parameters(body.joint.type)) continue;
+    const int e = body.q_index + mbk::coordinate_count(body.joint.type) - 4;
+    double dot = 0;
+    bool all = true;
+    for (int i = e; i < e + 4; ++i) {
+      all = all && seen_[i] == generation_ && coordinates_[i].has_value;
+      if (all) dot += msg.position[message_index_[i]] * coordinates_[i].position;
+    }
+    for (int i = e; i < e + 4; ++i) sign_[i] = all && dot < 0 ? -1.0 : 1.0;
+  }
+}
+
 JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg, double t) {
   Update update;
   update.error = validate(msg, update);
   if (!update.error.empty()) return update;
+  align_euler_signs(msg);
   for (size_t i = 0; i < msg.name.size(); ++i) {
     auto it = index_.find(msg.name[i]);
     if (it == index_.end() || coordinates_[it->second].mimic) continue;  // mimics: computed
@@ -64,11 +90,11 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
     }
     c.has_value = true;
     c.stamp = t;
-    c.position = msg.position[i];
+    c.position = sign_[it->second] * msg.position[i];
     c.position_history->add(t, c.position);
     c.velocity_given = !msg.velocity.empty();
     if (c.velocity_given) {
-      c.velocity = msg.velocity[i];
+      c.velocity = sign_[it->second] * msg.velocity[i];
       c.velocity_history->add(t, c.velocity);
     } else {
       c.velocity_history->reset();  // a gap in the given velocities: start again

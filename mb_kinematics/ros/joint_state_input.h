@@ -68,12 +68,15 @@ class JointStateInput {
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
+  void align_euler_signs(const sensor_msgs::JointState& msg);
 
   const mbk::Model& model_;
   double max_gap_;
   std::unordered_map<std::string, int> index_;
   std::vector<Coordinate> coordinates_;
   std::vector<int> seen_;  // message generation that last named each coordinate (duplicates)
+  std::vector<size_t> message_index_;  // where the current message names each coordinate
+  std::vector<double> sign_;           // +-1: e and -e are one rotation; keep e continuous
   int generation_ = 0;
 };
 

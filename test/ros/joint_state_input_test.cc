@@ -121,4 +121,26 @@ TEST_F(JointStateInputTest, GivenVelocitiesAndPairedAccelerations) {
   EXPECT_NE(input_.convert(a, 1.0, sample).find("not in the model"), std::string::npos);
 }
 
+// A publisher that flips the sign of its Euler parameters between samples (same rotation):
+// the input keeps e continuous, so the estimated derivatives stay those of the motion.
+TEST(JointStateInputEuler, SignFlipsKeepEContinuous) {
+  const mbk::Model model = mbk::make_bare_model({0}, mbk::JointType::kBallEuler);
+  const auto estimator = mbk::make_derivative_estimator("backward_difference");
+  mbk_ros::JointStateInput input(model, *estimator, 1.0);
+  const std::vector<std::string> names = {"J1/e1", "J1/e2", "J1/e3", "J1/e4"};
+  for (int i = 0; i < 4; ++i) {  // rotation about z at 1 rad/s; every other sample negated
+    const double t = 0.01 * i, sign = i % 2 ? -1.0 : 1.0;
+    sensor_msgs::JointState m;
+    m.name = names;
+    m.position = {0.0, 0.0, sign * std::sin(t / 2), sign * std::cos(t / 2)};
+    ASSERT_TRUE(input.add(m, t).error.empty());
+  }
+  mbk::JointState<double> state(model);
+  ASSERT_EQ(input.fill(Level::kVelocity, nullptr, state), Level::kVelocity);
+  // e3' = cos(t/2) / 2 at t = 0.03, to the 3-point difference's O(h^2) error (~1e-6 here).
+  EXPECT_NEAR(state.velocity[2], std::cos(0.015) / 2, 1e-5);
+  EXPECT_NEAR(state.velocity[3], -std::sin(0.015) / 2, 1e-5);
+  EXPECT_GT(state.position[3], 0.0);  // the last sample was negated back: continuous with e4 > 0
+}
+
 }  // namespace
