@@ -14,7 +14,7 @@
 // Models: human = config/human_body.yaml (16 bodies, ball joints as such); human_urdf =
 // config/human_body.urdf loaded by our URDF loader (37 links: ball and free joints expanded into
 // one-axis joints, the same links KDL computes); chainN = N revolute bodies, axes alternating z, y,
-// links of 1 m along x (like test_models' revolute_chain), given to KDL as URDF by write_urdf.
+// links of 1 m along x (mbk::make_chain), given to KDL as URDF by write_urdf.
 // Each iteration nudges one coordinate and speed so that nothing is computed once and reused.
 #include <benchmark/benchmark.h>
 
@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/model.h"
@@ -63,34 +64,9 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-mbk::Model revolute_chain(int n) {
-  mbk::Model model;
-  model.bodies.resize(n + 1);
-  for (int k = 1; k <= n; ++k) {
-    mbk::Body& body = model.bodies[k];
-    body.name = "link" + std::to_string(k);
-    body.lower = k - 1;
-    body.joint.name = "joint" + std::to_string(k);
-    body.joint.type = mbk::JointType::kRevolute;
-    body.joint.axis = k % 2 ? mbk::Vec3<double>::UnitZ() : mbk::Vec3<double>::UnitY();
-    if (k > 1) body.joint.offset = mbk::Vec3<double>(1.0, 0.0, 0.0);
-    body.mass_center = mbk::Vec3<double>(0.5, 0.0, 0.0);
-    body.mass = 1.0;
-  }
-  mbk::finalize_model(model);
-  return model;
-}
-
 mbk::JointState<double> random_state(const mbk::Model& model, unsigned seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  mbk::JointState<double> state(model);
-  for (int i = 0; i < model.nq; ++i) state.position[i] = u(rng);
-  for (int i = 0; i < model.nv; ++i) {
-    state.velocity[i] = u(rng);
-    state.acceleration[i] = u(rng);
-  }
-  return state;
+  return mbk::random_state(model, rng);
 }
 
 // Nudges coordinate i % n by a tiny amount: the state differs every iteration at no real cost.
@@ -265,7 +241,7 @@ int main(int argc, char** argv) {
   scenes.push_back(std::make_unique<Scene>(Scene{
       "human_urdf", mbk::load_model_file(source_path("config/human_body.urdf")), human_urdf}));
   for (int n : {10, 100, 1000}) {
-    mbk::Model chain = revolute_chain(n);
+    mbk::Model chain = mbk::make_chain(n, mbk::JointType::kRevolute);
     const std::string urdf = mbk::write_urdf(chain, "chain");
     scenes.push_back(
         std::make_unique<Scene>(Scene{"chain" + std::to_string(n), std::move(chain), urdf}));

@@ -270,20 +270,24 @@ TEST(FreshNodeTest, MergesTwoPublishersAndWaitsForMissingJoints) {
   expect_kinematics(msgs[0], model, expected_kinematics(model, trajectory.at(2 * kDt)), kTol);
 }
 
+// Runs the node with `arguments` until it exits; returns its exit code (-1 if it did not exit
+// normally) and puts what it printed to stderr into `output`.
+int run_node(const std::string& arguments, std::string& output) {
+  const std::string command = std::string(MBK_NODE_PATH) + " " + arguments + " 2>&1 > /dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 // A robot_description that does not parse: a clear error and a non-zero exit.
 TEST(StartupTest, BadRobotDescriptionExitsNonZero) {
   ros::NodeHandle nh;
   nh.setParam("/broken/robot_description", "<robot name='x'><link name='a'/><joint");
-  const std::string command =
-      std::string(MBK_NODE_PATH) + " __ns:=/broken __name:=broken_node 2>&1 > /dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
   std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_NE(WEXITSTATUS(status), 0);
+  EXPECT_GT(run_node("__ns:=/broken __name:=broken_node", output), 0);
   EXPECT_NE(output.find("robot_description"), std::string::npos) << output;
   EXPECT_NE(output.find("does not parse"), std::string::npos) << output;
 }
@@ -295,17 +299,11 @@ TEST(StartupTest, EstimatorWithLatencyExitsNonZero) {
   std::string urdf;
   ASSERT_TRUE(nh.getParam("/robot_description", urdf));
   nh.setParam("/lagging/robot_description", urdf);
-  const std::string command = std::string(MBK_NODE_PATH) +
-                              " __ns:=/lagging __name:=lagging_node"
-                              " _acceleration_estimator:=savitzky_golay_9_2 2>&1 > /dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
   std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_NE(WEXITSTATUS(status), 0);
+  EXPECT_GT(run_node("__ns:=/lagging __name:=lagging_node"
+                     " _acceleration_estimator:=savitzky_golay_9_2",
+                     output),
+            0);
   EXPECT_NE(output.find("savitzky_golay_9_2"), std::string::npos) << output;
   EXPECT_NE(output.find("4 samples back"), std::string::npos) << output;
 }
