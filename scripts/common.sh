@@ -18,6 +18,8 @@ MBK_PACKAGES=(
   libkdl-parser-dev liborocos-kdl-dev libbenchmark-dev googletest libboost-dev
   libdiagnostic-updater-dev libsensor-msgs-dev python3-sensor-msgs python3-geometry-msgs
   python3-tf2-msgs python3-diagnostic-msgs
+  librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
+  pluginlib-dev libogre-1.12-dev
 )
 
 mbk_install_deps() {

@@ -7,7 +7,11 @@ add_dependencies(joint_state_input_test mb_kinematics_msgs_generate_messages_cpp
 target_link_libraries(joint_state_input_test mbk_ros mbk_io mbk_core gtest_main)
 target_compile_definitions(joint_state_input_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
-foreach(name node pairing rsp_compare)
+# The picture shared by the rviz display and ~publish_markers (no master needed).
+catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
+target_link_libraries(kinematics_markers_test mbk_markers gtest_main)
+
+foreach(name node pairing rsp_compare markers)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)
   add_dependencies(${name}_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
   target_link_libraries(${name}_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES})

@@ -156,6 +156,8 @@ void KinematicsNode::advertise() {
   lower_body_pub_.publish(topology);
   if (params_.body_kinematics)
     kinematics_pub_ = nh_.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics", 10);
+  if (params_.publish_markers)
+    markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("body_kinematics/markers", 10);
   kinematics_msg_.header.frame_id = frame_;
   kinematics_msg_.bodies.resize(model_.body_count());
   for (int k = 1; k <= model_.body_count(); ++k) {
@@ -197,7 +199,8 @@ void KinematicsNode::publish_static_tf() {
 // What the subscribed outputs need: no subscriber, no velocity or acceleration work.
 mbk::Level KinematicsNode::wanted_level() const {
   bool velocity = false;
-  bool acceleration = kinematics_pub_ && kinematics_pub_.getNumSubscribers() > 0;
+  bool acceleration = (kinematics_pub_ && kinematics_pub_.getNumSubscribers() > 0) ||
+                      (markers_pub_ && markers_pub_.getNumSubscribers() > 0);
   for (size_t k = 1; k < twist_pubs_.size() && !acceleration; ++k) {
     velocity = velocity || (twist_pubs_[k] && twist_pubs_[k].getNumSubscribers() > 0);
     acceleration = accel_pubs_[k] && accel_pubs_[k].getNumSubscribers() > 0;
@@ -340,24 +343,11 @@ bool KinematicsNode::publish_kinematics(const ros::Time& stamp, mbk::Level level
     return false;
   }
   const bool full = level == mbk::Level::kAcceleration;
-  if (full && kinematics_pub_ && kinematics_pub_.getNumSubscribers() > 0) {
-    kinematics_msg_.header.stamp = stamp;
-    for (int k = 1; k <= model_.body_count(); ++k) {
-      auto& b = kinematics_msg_.bodies[k - 1];
-      set_vector(data_.origin[k], b.pose.position);
-      const Eigen::Quaterniond q(data_.rotation[k]);
-      b.pose.orientation.x = q.x();
-      b.pose.orientation.y = q.y();
-      b.pose.orientation.z = q.z();
-      b.pose.orientation.w = q.w();
-      set_vector(data_.mass_center[k], b.mass_center);
-      set_vector(data_.omega[k], b.twist.angular);
-      set_vector(data_.velocity[k], b.twist.linear);
-      set_vector(data_.alpha[k], b.accel.angular);
-      set_vector(data_.acceleration[k], b.accel.linear);
-    }
-    kinematics_pub_.publish(kinematics_msg_);
-  }
+  const bool kinematics = kinematics_pub_ && kinematics_pub_.getNumSubscribers() > 0;
+  const bool markers = markers_pub_ && markers_pub_.getNumSubscribers() > 0;
+  if (full && (kinematics || markers)) fill_kinematics_msg(stamp);
+  if (full && kinematics) kinematics_pub_.publish(kinematics_msg_);
+  if (full && markers) publish_markers();
   // Per-body topics: in the body's own frame (so rviz draws them at the body), of its origin O_k.
   for (size_t k = 1; k < twist_pubs_.size(); ++k) {
     const mbk::Mat3<double> s_k0 = data_.rotation[k].transpose();
@@ -379,6 +369,33 @@ bool KinematicsNode::publish_kinematics(const ros::Time& stamp, mbk::Level level
     }
   }
   return true;
+}
+
+void KinematicsNode::fill_kinematics_msg(const ros::Time& stamp) {
+  kinematics_msg_.header.stamp = stamp;
+  for (int k = 1; k <= model_.body_count(); ++k) {
+    auto& b = kinematics_msg_.bodies[k - 1];
+    set_vector(data_.origin[k], b.pose.position);
+    const Eigen::Quaterniond q(data_.rotation[k]);
+    b.pose.orientation.x = q.x();
+    b.pose.orientation.y = q.y();
+    b.pose.orientation.z = q.z();
+    b.pose.orientation.w = q.w();
+    set_vector(data_.mass_center[k], b.mass_center);
+    set_vector(data_.omega[k], b.twist.angular);
+    set_vector(data_.velocity[k], b.twist.linear);
+    set_vector(data_.alpha[k], b.accel.angular);
+    set_vector(data_.acceleration[k], b.accel.linear);
+  }
+}
+
+// The rviz display's picture as markers, each quantity auto-scaled (largest arrow 0.3 m).
+void KinematicsNode::publish_markers() {
+  GlyphStyle& style = marker_style_;
+  for (int q = 0; q < kQuantities; ++q)
+    style.scale[q] = marker_scales_[q].update(max_norm(kinematics_msg_, style, q), 0.3);
+  markers_pub_.publish(
+      make_marker_array(make_glyphs(kinematics_msg_, style), style, kinematics_msg_.header));
 }
 
 void KinematicsNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {

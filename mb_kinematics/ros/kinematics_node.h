@@ -12,6 +12,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <array>
 #include <chrono>
 #include <deque>
 #include <memory>
@@ -23,6 +24,7 @@
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/ros/joint_state_input.h"
+#include "mb_kinematics/ros/kinematics_markers.h"
 #include "mb_kinematics/ros/node_params.h"
 
 namespace mbk_ros {
@@ -47,6 +49,8 @@ class KinematicsNode {
   void publish_static_tf();
   void publish_tf(const ros::Time& stamp);
   bool publish_kinematics(const ros::Time& stamp, mbk::Level level);
+  void fill_kinematics_msg(const ros::Time& stamp);
+  void publish_markers();
   void advertise();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
 
@@ -61,7 +65,7 @@ class KinematicsNode {
 
   ros::NodeHandle nh_, pnh_;
   ros::Subscriber joint_states_sub_, accelerations_sub_;
-  ros::Publisher lower_body_pub_, kinematics_pub_;
+  ros::Publisher lower_body_pub_, kinematics_pub_, markers_pub_;
   std::vector<ros::Publisher> twist_pubs_, accel_pubs_;  // index k; empty without per-body topics
   tf2_ros::TransformBroadcaster tf_broadcaster_;
   tf2_ros::StaticTransformBroadcaster static_broadcaster_;
@@ -69,6 +73,8 @@ class KinematicsNode {
   std::vector<geometry_msgs::TransformStamped> transforms_;  // one per moving body
   std::vector<ros::Time> last_tf_stamp_;                     // per moving body
   mb_kinematics_msgs::BodyKinematicsArray kinematics_msg_;
+  GlyphStyle marker_style_;                           // ~publish_markers: the picture's style
+  std::array<AutoScale, kQuantities> marker_scales_;  // and its arrows' auto-scales
 
   sensor_msgs::JointStateConstPtr pending_;       // waits for its joint_accelerations
   std::deque<AccelerationSample> accelerations_;  // the latest few, by stamp

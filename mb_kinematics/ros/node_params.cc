@@ -22,6 +22,7 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "joint_type", p.joint_type, "a string");
   get(pnh, "frame_id", p.frame_id, "a string");
   get(pnh, "per_body_topics", p.per_body_topics, "true or false");
+  get(pnh, "publish_markers", p.publish_markers, "true or false");
   get(pnh, "acceleration_estimator", p.acceleration_estimator, "a string");
   get(pnh, "max_sample_gap", p.max_sample_gap, "a number of seconds");
   if (!(p.max_sample_gap >= 0))

@@ -16,6 +16,7 @@ struct NodeParams {
   std::string joint_type = "ball_123";  // ~joint_type: the bare scene's joints
   std::string frame_id;                 // ~frame_id: R's frame; "" = URDF root link / scene frame
   bool per_body_topics = false;         // ~per_body_topics: body/<name>/twist and .../accel
+  bool publish_markers = false;         // ~publish_markers: body_kinematics/markers (MarkerArray)
   bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs
   // ~acceleration_estimator: the best zero-latency tradeoff of the work-precision report
   std::string acceleration_estimator = "kalman";

@@ -1,0 +1,203 @@
+#include "mb_kinematics/rviz/body_kinematics_display.h"
+
+#include <OgreSceneNode.h>
+#include <rviz/frame_manager.h>
+#include <rviz/properties/bool_property.h>
+#include <rviz/properties/color_property.h>
+#include <rviz/properties/float_property.h>
+#include <rviz/properties/int_property.h>
+#include <rviz/properties/string_property.h>
+
+#include <algorithm>
+#include <pluginlib/class_list_macros.hpp>
+
+#include "mb_kinematics/rviz/body_kinematics_visual.h"
+
+namespace mbk_rviz {
+namespace {
+
+QColor qcolor(const mbk_ros::Rgba& c) { return QColor::fromRgbF(c.r, c.g, c.b); }
+
+mbk_ros::Rgba rgba(const QColor& c) {
+  return {static_cast<float>(c.redF()), static_cast<float>(c.greenF()),
+          static_cast<float>(c.blueF()), 1.0f};
+}
+
+const char* const kTitles[mbk_ros::kQuantities] = {"Velocity", "Acceleration", "Angular Velocity",
+                                                   "Angular Acceleration"};
+const char* const kWhat[mbk_ros::kQuantities] = {
+    "velocity of each mass center G_k", "acceleration of each mass center G_k",
+    "angular velocity omega_k of each body (arrow and arc)",
+    "angular acceleration alpha_k of each body (arrow and arc)"};
+
+}  // namespace
+
+BodyKinematicsDisplay::BodyKinematicsDisplay() {
+  const mbk_ros::GlyphStyle d;
+  const char* units[mbk_ros::kQuantities] = {"m per m/s", "m per m/s^2", "m per rad/s",
+                                             "m per rad/s^2"};
+  for (int q = 0; q < mbk_ros::kQuantities; ++q)
+    makeQuantityProperties(q, qcolor(d.color[q]), d.scale[q], units[q]);
+  auto_scale_ = new rviz::BoolProperty(
+      "Auto Scale", true,
+      "Scale each quantity so that its largest vector is Auto Length long (the Scale "
+      "properties are then not used).",
+      this, SLOT(updateStyle()));
+  auto_length_ = new rviz::FloatProperty("Auto Length", 0.3, "Length (m) of the largest vector.",
+                                         auto_scale_, SLOT(updateStyle()), this);
+  auto_length_->setMin(0);
+  mass_centers_ = new rviz::BoolProperty("Mass Centers", true, "A sphere at each mass center.",
+                                         this, SLOT(updateStyle()));
+  mass_center_color_ =
+      new rviz::ColorProperty("Color", qcolor(d.mass_center_color), "Color of the spheres.",
+                              mass_centers_, SLOT(updateStyle()), this);
+  sphere_radius_ = new rviz::FloatProperty("Radius", d.sphere_radius, "Sphere radius (m).",
+                                           mass_centers_, SLOT(updateStyle()), this);
+  skeleton_ = new rviz::BoolProperty(
+      "Skeleton", false, "Lines between the joint points O_k of each body and its lower body.",
+      this, SLOT(updateStyle()));
+  skeleton_color_ =
+      new rviz::ColorProperty("Color", qcolor(d.skeleton_color), "Color of the lines.", skeleton_,
+                              SLOT(updateStyle()), this);
+  width_ = new rviz::FloatProperty("Width", d.width, "Arrow shaft diameter (m).", this,
+                                   SLOT(updateStyle()));
+  arc_radius_ = new rviz::FloatProperty("Arc Radius", d.arc_radius,
+                                        "Radius (m) of the arcs of omega and alpha.", this,
+                                        SLOT(updateStyle()));
+  alpha_ = new rviz::FloatProperty("Alpha", 1.0, "0 is fully transparent, 1.0 is fully opaque.",
+                                   this, SLOT(updateStyle()));
+  alpha_->setMin(0);
+  alpha_->setMax(1);
+  filter_ = new rviz::StringProperty(
+      "Body Filter", mbk_ros::kDefaultBodyFilter,
+      "Regular expression (ECMAScript); bodies whose name it matches are drawn. The default "
+      "leaves out the massless links <body>__<coord> of expanded ball and free joints.",
+      this, SLOT(updateFilter()));
+  history_length_ = new rviz::IntProperty("History Length", 1, "Number of messages drawn.", this,
+                                          SLOT(updateHistoryLength()));
+  history_length_->setMin(1);
+  history_length_->setMax(100);
+}
+
+BodyKinematicsDisplay::~BodyKinematicsDisplay() = default;
+
+void BodyKinematicsDisplay::makeQuantityProperties(int q, const QColor& color, double scale,
+                                                   const QString& unit) {
+  QuantityProperties& p = quantity_[q];
+  p.show = new rviz::BoolProperty(kTitles[q], true, QString("Show the ") + kWhat[q] + ".", this,
+                                  SLOT(updateStyle()));
+  p.scale = new rviz::FloatProperty("Scale", scale, "Arrow length (" + unit + ").", p.show,
+                                    SLOT(updateStyle()), this);
+  p.scale->setMin(0);
+  p.color = new rviz::ColorProperty("Color", color, "Color of the arrows.", p.show,
+                                    SLOT(updateStyle()), this);
+}
+
+void BodyKinematicsDisplay::onInitialize() {
+  MFDClass::onInitialize();
+  updateHistoryLength();
+  updateStyle();
+  updateFilter();
+}
+
+void BodyKinematicsDisplay::reset() {
+  MFDClass::reset();
+  visuals_.clear();
+  pending_.clear();
+}
+
+void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
+  const size_t n = std::min(pending_.size(), visuals_.capacity());
+  for (size_t i = pending_.size() - n; i < pending_.size(); ++i) draw(*pending_[i]);
+  pending_.clear();
+}
+
+void BodyKinematicsDisplay::updateStyle() {
+  for (int q = 0; q < mbk_ros::kQuantities; ++q) {
+    style_.show[q] = quantity_[q].show->getBool();
+    style_.scale[q] = quantity_[q].scale->getFloat();
+    style_.color[q] = rgba(quantity_[q].color->getColor());
+  }
+  style_.mass_centers = mass_centers_->getBool();
+  style_.mass_center_color = rgba(mass_center_color_->getColor());
+  style_.sphere_radius = sphere_radius_->getFloat();
+  style_.skeleton = skeleton_->getBool();
+  style_.skeleton_color = rgba(skeleton_color_->getColor());
+  style_.width = width_->getFloat();
+  style_.arc_radius = arc_radius_->getFloat();
+}
+
+void BodyKinematicsDisplay::updateFilter() {
+  try {
+    style_.filter = std::regex(filter_->getStdString());
+    filter_ok_ = true;
+    deleteStatus("Body Filter");
+  } catch (const std::regex_error& e) {
+    filter_ok_ = false;
+    setStatus(rviz::StatusProperty::Error, "Body Filter",
+              QString("not a regular expression: ") + e.what());
+  }
+}
+
+void BodyKinematicsDisplay::updateHistoryLength() {
+  visuals_.rset_capacity(history_length_->getInt());
+}
+
+void BodyKinematicsDisplay::autoScale(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  if (!auto_scale_->getBool()) return;
+  for (int q = 0; q < mbk_ros::kQuantities; ++q)
+    style_.scale[q] =
+        auto_scales_[q].update(mbk_ros::max_norm(msg, style_, q), auto_length_->getFloat());
+}
+
+void BodyKinematicsDisplay::reportSkipped(const mbk_ros::Glyphs& glyphs) {
+  if (glyphs.skipped.empty()) {
+    deleteStatus("Invalid values");
+    return;
+  }
+  QString names;
+  for (size_t i = 0; i < glyphs.skipped.size() && i < 5; ++i)
+    names += (i ? ", " : "") + QString::fromStdString(glyphs.skipped[i]);
+  if (glyphs.skipped.size() > 5) names += ", ...";
+  setStatus(rviz::StatusProperty::Warn, "Invalid values",
+            QString::number(glyphs.skipped.size()) +
+                " bodies with NaN or infinite values skipped: " + names);
+}
+
+std::shared_ptr<BodyKinematicsVisual> BodyKinematicsDisplay::nextVisual() {
+  if (visuals_.full() && !visuals_.empty()) {  // reuse the oldest
+    std::shared_ptr<BodyKinematicsVisual> v = visuals_.front();
+    visuals_.pop_front();
+    return v;
+  }
+  return std::make_shared<BodyKinematicsVisual>(context_->getSceneManager(), scene_node_);
+}
+
+void BodyKinematicsDisplay::processMessage(
+    const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) {
+  pending_.push_back(msg);
+}
+
+void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  Ogre::Quaternion orientation;
+  Ogre::Vector3 position;
+  if (!context_->getFrameManager()->getTransform(msg.header, position, orientation)) {
+    setStatus(rviz::StatusProperty::Error, "Transform",
+              QString("no transform from '") + msg.header.frame_id.c_str() + "' to '" +
+                  fixed_frame_ + "'");
+    return;
+  }
+  deleteStatus("Transform");
+  if (!filter_ok_) return;
+  autoScale(msg);
+  const mbk_ros::Glyphs glyphs = mbk_ros::make_glyphs(msg, style_);
+  reportSkipped(glyphs);
+  std::shared_ptr<BodyKinematicsVisual> visual = nextVisual();
+  visual->setFramePose(position, orientation);
+  visual->set(glyphs, style_, alpha_->getFloat());
+  visuals_.push_back(visual);
+}
+
+}  // namespace mbk_rviz
+
+PLUGINLIB_EXPORT_CLASS(mbk_rviz::BodyKinematicsDisplay, rviz::Display)

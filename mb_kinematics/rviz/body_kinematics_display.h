@@ -1,0 +1,78 @@
+// rviz display `mb_kinematics/BodyKinematics` for mb_kinematics_msgs/BodyKinematicsArray (in the
+// manner of rviz's own screw_display): per body arrows for the mass-center velocity and
+// acceleration at G_k, omega and alpha as arrows with a circular arc for the sense of rotation,
+// a sphere at each mass center, optionally the skeleton. Bodies with invalid floats are skipped
+// with a status warning.
+#pragma once
+
+#ifndef Q_MOC_RUN
+#include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <rviz/message_filter_display.h>
+
+#include <array>
+#include <boost/circular_buffer.hpp>
+#include <memory>
+#include <vector>
+
+#include "mb_kinematics/ros/kinematics_markers.h"
+#endif
+
+namespace rviz {
+class BoolProperty;
+class ColorProperty;
+class FloatProperty;
+class IntProperty;
+class StringProperty;
+}  // namespace rviz
+
+namespace mbk_rviz {
+
+class BodyKinematicsVisual;
+
+class BodyKinematicsDisplay
+    : public rviz::MessageFilterDisplay<mb_kinematics_msgs::BodyKinematicsArray> {
+  Q_OBJECT
+ public:
+  BodyKinematicsDisplay();
+  ~BodyKinematicsDisplay() override;
+
+ protected:
+  void onInitialize() override;
+  void reset() override;
+  void update(float wall_dt, float ros_dt) override;
+
+ private Q_SLOTS:
+  void updateStyle();
+  void updateFilter();
+  void updateHistoryLength();
+
+ private:
+  struct QuantityProperties {
+    rviz::BoolProperty* show;
+    rviz::FloatProperty* scale;
+    rviz::ColorProperty* color;
+  };
+  // Messages are kept as they come and drawn once per frame (only the newest History Length
+  // of them), so a fast topic does not queue up drawing work and lag behind tf.
+  void processMessage(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) override;
+  void draw(const mb_kinematics_msgs::BodyKinematicsArray& msg);
+  void makeQuantityProperties(int q, const QColor& color, double scale, const QString& unit);
+  void autoScale(const mb_kinematics_msgs::BodyKinematicsArray& msg);
+  void reportSkipped(const mbk_ros::Glyphs& glyphs);
+  std::shared_ptr<BodyKinematicsVisual> nextVisual();
+
+  std::array<QuantityProperties, mbk_ros::kQuantities> quantity_;
+  rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
+  rviz::FloatProperty *auto_length_, *alpha_, *width_, *arc_radius_, *sphere_radius_;
+  rviz::ColorProperty *mass_center_color_, *skeleton_color_;
+  rviz::StringProperty* filter_;
+  rviz::IntProperty* history_length_;
+
+  mbk_ros::GlyphStyle style_;
+  bool filter_ok_ = true;
+  std::array<mbk_ros::AutoScale, mbk_ros::kQuantities> auto_scales_;
+  boost::circular_buffer<std::shared_ptr<BodyKinematicsVisual>> visuals_;
+  std::vector<mb_kinematics_msgs::BodyKinematicsArray::ConstPtr> pending_;
+};
+
+}  // namespace mbk_rviz

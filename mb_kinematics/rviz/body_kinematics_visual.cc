@@ -1,0 +1,125 @@
+#include "mb_kinematics/rviz/body_kinematics_visual.h"
+
+#include <OgreSceneManager.h>
+#include <OgreSceneNode.h>
+#include <rviz/ogre_helpers/arrow.h>
+#include <rviz/ogre_helpers/billboard_line.h>
+#include <rviz/ogre_helpers/shape.h>
+
+#include <algorithm>
+
+namespace mbk_rviz {
+namespace {
+
+using mbk_ros::Glyphs;
+using mbk_ros::GlyphStyle;
+
+Ogre::Vector3 ogre(const mbk::Vec3<double>& v) { return Ogre::Vector3(v.x(), v.y(), v.z()); }
+
+Ogre::ColourValue colour(const mbk_ros::Rgba& c, float alpha) {
+  return Ogre::ColourValue(c.r, c.g, c.b, c.a * alpha);
+}
+
+// An arrow from `from` to `to`: the head 3 shaft widths long (at most half the arrow).
+void placeArrow(rviz::Arrow& arrow, const Ogre::Vector3& from, const Ogre::Vector3& to, float width,
+                const Ogre::ColourValue& c) {
+  const Ogre::Vector3 d = to - from;
+  const float length = d.length();
+  const float head = std::min(3 * width, 0.5f * length);
+  arrow.set(std::max(length - head, 1e-4f), width, head, 2 * width);
+  arrow.setPosition(from);
+  arrow.setDirection(d / length);
+  arrow.setColor(c);
+}
+
+}  // namespace
+
+BodyKinematicsVisual::BodyKinematicsVisual(Ogre::SceneManager* scene_manager,
+                                           Ogre::SceneNode* parent)
+    : scene_manager_(scene_manager), node_(parent->createChildSceneNode()) {
+  arcs_.reset(new rviz::BillboardLine(scene_manager_, node_));
+  skeleton_.reset(new rviz::BillboardLine(scene_manager_, node_));
+}
+
+BodyKinematicsVisual::~BodyKinematicsVisual() {
+  arrows_.clear();
+  arc_heads_.clear();
+  spheres_.clear();
+  arcs_.reset();
+  skeleton_.reset();
+  scene_manager_->destroySceneNode(node_);
+}
+
+void BodyKinematicsVisual::setFramePose(const Ogre::Vector3& position,
+                                        const Ogre::Quaternion& orientation) {
+  node_->setPosition(position);
+  node_->setOrientation(orientation);
+}
+
+void BodyKinematicsVisual::set(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
+  setArrows(glyphs, style, alpha);
+  setArcs(glyphs, style, alpha);
+  setSpheres(glyphs, style, alpha);
+  setSkeleton(glyphs, style, alpha);
+}
+
+void BodyKinematicsVisual::resizeArrows(std::vector<std::unique_ptr<rviz::Arrow>>& arrows,
+                                        size_t n) {
+  if (arrows.size() > n) arrows.resize(n);
+  while (arrows.size() < n) arrows.emplace_back(new rviz::Arrow(scene_manager_, node_));
+}
+
+void BodyKinematicsVisual::setArrows(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
+  resizeArrows(arrows_, glyphs.arrows.size());
+  for (size_t i = 0; i < glyphs.arrows.size(); ++i) {
+    const mbk_ros::GlyphArrow& a = glyphs.arrows[i];
+    placeArrow(*arrows_[i], ogre(a.start), ogre(a.end), style.width,
+               colour(style.color[a.quantity], alpha));
+  }
+}
+
+void BodyKinematicsVisual::setArcs(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
+  resizeArrows(arc_heads_, glyphs.arcs.size());
+  arcs_->clear();
+  arcs_->setLineWidth(0.5 * style.width);
+  if (glyphs.arcs.empty()) return;
+  arcs_->setMaxPointsPerLine(glyphs.arcs.front().points.size());
+  arcs_->setNumLines(glyphs.arcs.size());
+  for (size_t i = 0; i < glyphs.arcs.size(); ++i) {
+    const mbk_ros::GlyphArc& arc = glyphs.arcs[i];
+    const Ogre::ColourValue c = colour(style.color[arc.quantity], alpha);
+    if (i > 0) arcs_->newLine();
+    for (const mbk::Vec3<double>& p : arc.points) arcs_->addPoint(ogre(p), c);
+    placeArrow(*arc_heads_[i], ogre(arc.head_start), ogre(arc.head_start + arc.head_dir),
+               0.5 * style.width, c);
+  }
+}
+
+void BodyKinematicsVisual::setSpheres(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
+  const size_t n = glyphs.mass_centers.size();
+  if (spheres_.size() > n) spheres_.resize(n);
+  while (spheres_.size() < n)
+    spheres_.emplace_back(new rviz::Shape(rviz::Shape::Sphere, scene_manager_, node_));
+  const float d = 2 * style.sphere_radius;
+  for (size_t i = 0; i < n; ++i) {
+    spheres_[i]->setPosition(ogre(glyphs.mass_centers[i]));
+    spheres_[i]->setScale(Ogre::Vector3(d, d, d));
+    spheres_[i]->setColor(colour(style.mass_center_color, alpha));
+  }
+}
+
+void BodyKinematicsVisual::setSkeleton(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
+  skeleton_->clear();
+  skeleton_->setLineWidth(0.5 * style.width);
+  if (glyphs.skeleton.empty()) return;
+  skeleton_->setMaxPointsPerLine(2);
+  skeleton_->setNumLines(glyphs.skeleton.size());
+  const Ogre::ColourValue c = colour(style.skeleton_color, alpha);
+  for (size_t i = 0; i < glyphs.skeleton.size(); ++i) {
+    if (i > 0) skeleton_->newLine();
+    skeleton_->addPoint(ogre(glyphs.skeleton[i].first), c);
+    skeleton_->addPoint(ogre(glyphs.skeleton[i].second), c);
+  }
+}
+
+}  // namespace mbk_rviz

@@ -1,0 +1,153 @@
+// The picture of body_kinematics shared by the rviz display and the node's MarkerArray
+// (mb_kinematics/ros/kinematics_markers.h): arrows where and as long as they should be, arcs
+// that turn the right-hand way, the body filter, the skeleton, and invalid floats skipped.
+#include "mb_kinematics/ros/kinematics_markers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace {
+
+using mbk::Vec3;
+using mbk_ros::Glyphs;
+using mbk_ros::GlyphStyle;
+
+template <typename V>
+Vec3<double> vec(const V& v) {
+  return Vec3<double>(v.x, v.y, v.z);
+}
+template <typename V>
+void set(V& out, double x, double y, double z) {
+  out.x = x, out.y = y, out.z = z;
+}
+
+mb_kinematics_msgs::BodyKinematics body(const std::string& name, uint32_t k, uint32_t lower,
+                                        double offset) {
+  mb_kinematics_msgs::BodyKinematics b;
+  b.name = name;
+  b.index = k;
+  b.lower_body = lower;
+  set(b.pose.position, 0, 0, offset);
+  b.pose.orientation.w = 1;
+  set(b.mass_center, 0.1, 0, offset);
+  set(b.twist.linear, 1, 0, 0);
+  set(b.accel.linear, 0, 2, 0);
+  set(b.twist.angular, 0, 0, 3);
+  set(b.accel.angular, 4, 0, 0);
+  return b;
+}
+
+// Bodies a (on R), a__alpha (an intermediate link of a ball joint), b (on a__alpha).
+mb_kinematics_msgs::BodyKinematicsArray message() {
+  mb_kinematics_msgs::BodyKinematicsArray msg;
+  msg.header.frame_id = "world";
+  msg.bodies = {body("a", 1, 0, 0.0), body("a__alpha", 2, 1, 0.5), body("b", 3, 2, 0.5)};
+  return msg;
+}
+
+TEST(KinematicsMarkers, ArrowsAtMassCentersScaledPerQuantity) {
+  GlyphStyle style;
+  style.scale = {{0.1, 0.2, 0.3, 0.4}};
+  const Glyphs g = mbk_ros::make_glyphs(message(), style);
+  ASSERT_EQ(g.arrows.size(), 8u);  // 4 per drawn body; a__alpha left out
+  const Vec3<double> expected[4] = {{0.1, 0, 0}, {0, 0.4, 0}, {0, 0, 0.9}, {1.6, 0, 0}};
+  for (size_t i = 0; i < g.arrows.size(); ++i) {
+    const auto& a = g.arrows[i];
+    const Vec3<double> g_k(0.1, 0, i < 4 ? 0.0 : 0.5);
+    EXPECT_LT((a.start - g_k).norm(), 1e-12) << i;
+    EXPECT_LT((a.end - a.start - expected[a.quantity]).norm(), 1e-12) << i;
+  }
+  EXPECT_EQ(g.arcs.size(), 4u);  // omega and alpha of both
+  EXPECT_EQ(g.mass_centers.size(), 2u);
+  EXPECT_TRUE(g.skipped.empty());
+}
+
+TEST(KinematicsMarkers, ArcsTurnTheRightHandWay) {
+  GlyphStyle style;
+  const Glyphs g = mbk_ros::make_glyphs(message(), style);
+  for (const auto& arc : g.arcs) {
+    const mbk_ros::GlyphArrow* arrow = nullptr;  // the arrow the arc is centred on
+    for (const auto& a : g.arrows) {
+      const Vec3<double> d = arc.points[0] - 0.5 * (a.start + a.end);
+      if (a.quantity == arc.quantity && std::abs(d.norm() - style.arc_radius) < 1e-12 &&
+          std::abs(d.dot((a.end - a.start).normalized())) < 1e-12)
+        arrow = &a;
+    }
+    ASSERT_NE(arrow, nullptr);
+    const Vec3<double> n = (arrow->end - arrow->start).normalized();
+    const Vec3<double> c = 0.5 * (arrow->start + arrow->end);
+    ASSERT_GT(arc.points.size(), 10u);
+    for (size_t i = 0; i + 1 < arc.points.size(); ++i) {
+      const Vec3<double> p = arc.points[i] - c, q = arc.points[i + 1] - c;
+      EXPECT_NEAR(p.norm(), style.arc_radius, 1e-12);
+      EXPECT_NEAR(p.dot(n), 0, 1e-12);
+      EXPECT_GT(p.cross(q).dot(n), 0) << "arc " << arc.quantity << " turns the wrong way";
+    }
+    const Vec3<double> last = arc.points.back() - c;
+    EXPECT_GT(last.cross(arc.head_dir).dot(n), 0) << "head of arc " << arc.quantity;
+  }
+}
+
+TEST(KinematicsMarkers, FilterAndSkeletonSkipIntermediateLinks) {
+  GlyphStyle style;
+  style.skeleton = true;
+  Glyphs g = mbk_ros::make_glyphs(message(), style);
+  ASSERT_EQ(g.skeleton.size(), 1u);  // O_a to O_b, across a__alpha
+  EXPECT_LT((g.skeleton[0].first - Vec3<double>(0, 0, 0)).norm(), 1e-12);
+  EXPECT_LT((g.skeleton[0].second - Vec3<double>(0, 0, 0.5)).norm(), 1e-12);
+  style.filter = std::regex("^b$");
+  g = mbk_ros::make_glyphs(message(), style);
+  EXPECT_EQ(g.arrows.size(), 4u);
+  EXPECT_TRUE(g.skeleton.empty());
+  style.show[mbk_ros::kOmega] = false;
+  EXPECT_EQ(mbk_ros::make_glyphs(message(), style).arrows.size(), 3u);
+}
+
+TEST(KinematicsMarkers, InvalidFloatsSkippedAndNamed) {
+  auto msg = message();
+  msg.bodies[0].accel.angular.y = std::numeric_limits<double>::quiet_NaN();
+  msg.bodies[2].pose.orientation.w = std::numeric_limits<double>::infinity();
+  msg.bodies.push_back(body("c", 4, 1, 1.0));
+  const GlyphStyle style;
+  const Glyphs g = mbk_ros::make_glyphs(msg, style);
+  EXPECT_EQ(g.skipped, std::vector<std::string>({"a", "b"}));
+  EXPECT_EQ(g.arrows.size(), 4u);  // c only
+  EXPECT_NEAR(mbk_ros::max_norm(msg, style, mbk_ros::kAlpha), 4, 1e-12);
+  const auto markers = mbk_ros::make_marker_array(g, style, msg.header);
+  for (const auto& m : markers.markers)
+    for (const auto& p : m.points) EXPECT_TRUE(vec(p).allFinite()) << m.ns;
+}
+
+TEST(KinematicsMarkers, MarkerArrayHasArrowsPerQuantity) {
+  const GlyphStyle style;
+  const auto msg = message();
+  const auto markers =
+      mbk_ros::make_marker_array(mbk_ros::make_glyphs(msg, style), style, msg.header);
+  ASSERT_FALSE(markers.markers.empty());
+  EXPECT_EQ(markers.markers[0].action, visualization_msgs::Marker::DELETEALL);
+  std::map<std::string, int> arrows;
+  for (const auto& m : markers.markers) {
+    if (m.action == visualization_msgs::Marker::DELETEALL) continue;
+    EXPECT_EQ(m.header.frame_id, "world");
+    if (m.type == visualization_msgs::Marker::ARROW) {
+      ++arrows[m.ns];
+      ASSERT_EQ(m.points.size(), 2u);
+      EXPECT_GT(m.scale.x, 0);
+    }
+  }
+  for (const char* ns : {"velocity", "acceleration", "omega", "alpha"}) EXPECT_EQ(arrows[ns], 2);
+  EXPECT_EQ(arrows["omega_arc"], 2);  // the heads of the arcs
+}
+
+TEST(KinematicsMarkers, AutoScaleFollowsTheLargestVector) {
+  mbk_ros::AutoScale s;
+  EXPECT_DOUBLE_EQ(s.update(2.0, 0.3), 0.15);
+  EXPECT_DOUBLE_EQ(s.update(4.0, 0.3), 0.075);       // rises at once
+  EXPECT_DOUBLE_EQ(s.update(1.0, 0.3), 0.3 / 3.92);  // falls slowly
+}
+
+}  // namespace

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# The rviz display on the demo, headless: its own ROS master (a free port), demo.launch on the
+# human body model, rviz with config/mb_kinematics.rviz on an Xvfb screen of its own; screenshots
+# (`import -window root`) until each arrow color of the display shows on more than MIN_PIXELS
+# pixels (up to TIMEOUT s). Fails if the plugin does not load, rviz reports a plugin or display
+# error, or nothing is drawn. Keeps the last screenshot and rviz's output in OUT_DIR.
+#   test/rviz/screenshot_test.sh OUT_DIR    (in a sourced catkin workspace: devel/env.sh ...)
+set -uo pipefail
+out_dir=${1:?usage: screenshot_test.sh OUT_DIR}
+src=$(cd "$(dirname "$0")/../.." && pwd)
+MIN_PIXELS=${MIN_PIXELS:-50}
+TIMEOUT=${TIMEOUT:-60}
+mkdir -p "$out_dir"
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
+export ROS_HOME=$tmp/ros HOME=$tmp/home
+mkdir -p "$HOME"
+pids=()
+
+stop() {  # the processes started here, newest first: SIGINT, then SIGKILL after 5 s
+  local i p
+  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
+    p=${pids[i]}
+    kill -INT "$p" 2>/dev/null || continue
+    for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL "$p" 2>/dev/null
+    wait "$p" 2>/dev/null
+  done
+  cp "$tmp/rviz.log" "$out_dir/rviz_screenshot_rviz.log" 2>/dev/null
+  rm -rf "$tmp"
+}
+trap stop EXIT
+trap 'exit 130' INT TERM
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# A screen of its own: Xvfb picks a free display number and writes it to fd 3.
+Xvfb -displayfd 3 -screen 0 1280x900x24 -nolisten tcp 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
+pids+=($!)
+for _ in $(seq 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
+[ -s "$tmp/display" ] || fail "Xvfb did not start: $(cat "$tmp/xvfb.log")"
+export DISPLAY=:$(head -n1 "$tmp/display")
+
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI=http://localhost:$port
+stdbuf -oL roslaunch -p "$port" mb_kinematics demo.launch ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
+pids+=($!)
+for _ in $(seq 300); do grep -q "Lower body arrays" "$tmp/launch.log" && break; sleep 0.1; done
+grep -q "Lower body arrays" "$tmp/launch.log" || fail "demo.launch did not start: $(tail "$tmp/launch.log")"
+
+rviz -d "$src/config/mb_kinematics.rviz" >"$tmp/rviz.log" 2>&1 &
+rviz_pid=$!
+pids+=($rviz_pid)
+
+passed=false
+start=$SECONDS
+while [ $((SECONDS - start)) -lt "$TIMEOUT" ]; do
+  sleep 3
+  kill -0 "$rviz_pid" 2>/dev/null || fail "rviz exited: $(tail -n 20 "$tmp/rviz.log")"
+  import -window root "$tmp/shot.png" 2>/dev/null || continue
+  python3 "$src/test/rviz/count_colors.py" "$tmp/shot.png" >"$tmp/counts" || continue
+  cp "$tmp/shot.png" "$out_dir/rviz_screenshot.png"
+  if awk -v min="$MIN_PIXELS" '$2 <= min { low = 1 } END { exit low }' "$tmp/counts"; then
+    passed=true
+    break
+  fi
+done
+echo "pixels per arrow color after $((SECONDS - start)) s (more than $MIN_PIXELS needed):"
+sed 's/^/  /' "$tmp/counts" 2>/dev/null
+echo "screenshot: $out_dir/rviz_screenshot.png"
+
+# Plugin or display errors (Debian's rviz always logs the harmless media_export one).
+errors=$(grep -iE 'error|failed|exception' "$tmp/rviz.log" | grep -v -e 'no such package media_export' -e '\[librospack\]: error while executing command')
+[ -z "$errors" ] || fail "rviz reported errors:
+$errors"
+$passed || fail "the display's arrow colors did not show within $TIMEOUT s"
+echo "PASS"
