@@ -13,7 +13,18 @@
 
 namespace mbk {
 
-// Throws std::invalid_argument for Euler-parameter joints, which no URDF joint chain matches.
-std::string write_urdf(const Model& model, const std::string& robot_name);
+enum class UrdfStyle {
+  // The same kinematics and coordinates under URDF's joints (for KDL, robot_state_publisher
+  // and our URDF loader). Throws std::invalid_argument for Euler-parameter joints, which no
+  // URDF joint chain matches.
+  kEquivalent,
+  // For rviz's RobotModel beside a node that runs the scene itself (and so publishes tf for the
+  // scene's bodies only): one link per body, ball and free joints as URDF `floating` joints,
+  // no intermediate links. Not for kinematics: the coordinates differ.
+  kDisplay,
+};
+
+std::string write_urdf(const Model& model, const std::string& robot_name,
+                       UrdfStyle style = UrdfStyle::kEquivalent);
 
 }  // namespace mbk

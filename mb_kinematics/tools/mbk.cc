@@ -1,7 +1,9 @@
 // mbk: the command-line tool (design.md "Contracts").
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
 //   mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]
-//   mbk urdf --model SCENE.yaml [--name ROBOT]   (a scene as URDF, for RobotModel and KDL)
+//   mbk urdf --model SCENE.yaml [--name ROBOT] [--display]   (a scene as URDF: the equivalent
+//       kinematics for KDL and robot_state_publisher, or with --display a link per body for
+//       rviz's RobotModel beside a node that runs the scene)
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -23,19 +25,19 @@ namespace {
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
     "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
-    "       mbk urdf --model SCENE.yaml [--name ROBOT]\n";
+    "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Options of the form --name value, and the flag --csv.
+// Options of the form --name value, and the flags --csv and --display.
 std::map<std::string, std::string> parse_options(int argc, char** argv) {
   std::map<std::string, std::string> options;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--csv") {
+    if (arg == "--csv" || arg == "--display") {
       options[arg] = "1";
     } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method" ||
                 arg == "--name") &&
@@ -93,7 +95,9 @@ int eval(const std::map<std::string, std::string>& options) {
 int urdf(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("urdf needs --model FILE");
   const mbk::Model model = mbk::load_model_file(options.at("--model"));
-  std::cout << mbk::write_urdf(model, options.count("--name") ? options.at("--name") : "scene");
+  std::cout << mbk::write_urdf(
+      model, options.count("--name") ? options.at("--name") : "scene",
+      options.count("--display") ? mbk::UrdfStyle::kDisplay : mbk::UrdfStyle::kEquivalent);
   return 0;
 }
 
