@@ -43,10 +43,15 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
 
     const Mat3<S>& s0j = data.rotation[j];
 
-    Vec3<S> w = Vec3<S>::Zero(), sd = Vec3<S>::Zero();  // w_k, s_k' in Bj
-    for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
+    const bool translates = m.linear_speeds > 0;         // the s_k' terms vanish otherwise
+    Vec3<S> w = Vec3<S>::Zero(), sd0 = Vec3<S>::Zero();  // w_k in Bj; S0J s_k'
     for (int c = m.linear_speeds; c < m.speeds; ++c) w += m.angular[c] * y[c];
-    const Vec3<S> w0 = s0j * w, sd0 = s0j * sd;
+    if (translates) {
+      Vec3<S> sd = Vec3<S>::Zero();
+      for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
+      sd0 = s0j * sd;
+    }
+    const Vec3<S> w0 = s0j * w;
     const Vec3<S>& omega_j = data.omega[j];
     data.omega[k] = omega_j + w0;                                                // eq. 4.4.6
     data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // method.md 4
@@ -54,15 +59,18 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
     if (!accelerations) continue;
 
     const S* yd = state.acceleration.data() + body.v_index;
-    Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // w_k', s_k'' in Bj
-    for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
+    Vec3<S> wd = Vec3<S>::Zero();  // w_k' in Bj
     for (int c = m.linear_speeds; c < m.speeds; ++c)
       wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
     const Vec3<S>& alpha_j = data.alpha[j];
     data.alpha[k] = alpha_j + s0j * wd + omega_j.cross(w0);  // eq. 4.5.1
-    data.origin_acceleration[k] = data.origin_acceleration[j] + alpha_j.cross(d) +
-                                  omega_j.cross(omega_j.cross(d)) + S(2) * omega_j.cross(sd0) +
-                                  s0j * sdd;
+    Vec3<S>& a_o = data.origin_acceleration[k];              // method.md 4
+    a_o = data.origin_acceleration[j] + alpha_j.cross(d) + omega_j.cross(omega_j.cross(d));
+    if (translates) {
+      Vec3<S> sdd = Vec3<S>::Zero();  // s_k'' in Bj
+      for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
+      a_o += S(2) * omega_j.cross(sd0) + s0j * sdd;
+    }
     const Vec3<S>& omega_k = data.omega[k];
     data.acceleration[k] =
         data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k.cross(rho));
