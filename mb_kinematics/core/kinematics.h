@@ -9,13 +9,27 @@
 namespace mbk {
 namespace detail {
 
+// Every this many joints of depth, S0K gets one Newton-Schulz step back to orthonormal:
+// R <- R (3 I - R^T R) / 2. Rounding makes S0K = S0J SJK drift from orthonormal by about eps
+// per joint, linearly with depth (README, "Numerical stability"); one step squares the drift
+// away at the cost of two 3x3 products, here once per 32 levels (cheap on long chains, and
+// never on the human model, whose depth is at most 6).
+constexpr int kReorthonormalizeEvery = 32;
+
+template <typename S>
+void reorthonormalize(Mat3<S>& r) {
+  const Mat3<S> rtr = r.transpose() * r;
+  r = r * (S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
+}
+
 // Orientation, origin and mass center of body k from its lower body's (method.md 4); also
 // returns d = S0J (q_k + s_k) and rho = S0K r_k, which the velocity terms reuse.
 template <typename S>
 void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d,
                Vec3<S>& rho) {
   const int j = body.lower;
-  data.rotation[k] = data.rotation[j] * m.rotation;                      // S0K = S0J SJK
+  data.rotation[k] = data.rotation[j] * m.rotation;  // S0K = S0J SJK
+  if (body.depth % kReorthonormalizeEvery == 0) reorthonormalize(data.rotation[k]);
   d = data.rotation[j] * (body.joint.offset.cast<S>() + m.translation);  // S0J (q_k + s_k)
   data.origin[k] = data.origin[j] + d;                                   // eq. 4.6.2
   rho = data.rotation[k] * body.mass_center.cast<S>();                   // S0K r_k

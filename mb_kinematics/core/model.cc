@@ -79,6 +79,7 @@ void finalize_model(Model& model) {
     if (body.joint.name.empty()) body.joint.name = body.name + "_joint";
     if (!joint_names.insert(body.joint.name).second)
       fail(body, k, "joint name '" + body.joint.name + "' is used twice");
+    body.depth = model.bodies[body.lower].depth + 1;
     body.q_index = model.nq;
     body.v_index = model.nv;
     const JointType type = body.joint.type;

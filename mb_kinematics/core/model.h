@@ -17,6 +17,7 @@ struct Body {
   double mass = 0.0;
   int q_index = 0;  // first coordinate of the joint in the state's position vector
   int v_index = 0;  // first generalized speed of the joint
+  int depth = 0;    // number of joints from R to Bk (set by finalize_model)
 };
 
 // A coordinate that follows another: q[coordinate] = multiplier * q[source] + offset (URDF mimic).
