@@ -19,7 +19,7 @@ struct NodeParams {
   bool publish_markers = false;         // ~publish_markers: body_kinematics/markers (MarkerArray)
   bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs
   // ~acceleration_estimator: the best zero-latency tradeoff of the work-precision report
-  std::string acceleration_estimator = "kalman";
+  std::string acceleration_estimator = "kalman_smooth";
   double max_sample_gap = 1.0;  // ~max_sample_gap (s): no derivative across a longer pause
 };
 

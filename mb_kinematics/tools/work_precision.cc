@@ -242,7 +242,9 @@ int main(int argc, char** argv) {
       mbk::formulation_rows(scene, quick, formulations);
     }
     std::cerr << "estimators\n";
-    for (const mbk::EstimatorResult& r : mbk::estimator_study(quick))
+    const mbk::Model human =
+        mbk::load_model_file(std::string(MBK_SOURCE_DIR) + "/config/human_body.yaml");
+    for (const mbk::EstimatorResult& r : mbk::estimator_study(mbk::demo_waves(human), quick))
       estimators.push_back({r.method, r.stream, r.median_ns, r.min_ns, r.max_ns, r.error, r.note});
     mbk::write_outputs(formulations, estimators, out);
     std::cerr << "wrote " << out << "/work_precision.csv and .md\n";
