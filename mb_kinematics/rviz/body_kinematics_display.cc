@@ -176,6 +176,10 @@ std::shared_ptr<BodyKinematicsVisual> BodyKinematicsDisplay::nextVisual() {
 void BodyKinematicsDisplay::processMessage(
     const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) {
   pending_.push_back(msg);
+  // With the Time panel's sync mode "Exact" on this display (config/mb_kinematics.rviz),
+  // RobotModel and TF look tf up at this message's stamp, so the robot is drawn at the same
+  // instant as the arrows even though messages reach a display a frame or two after tf does.
+  emitTimeSignal(msg->header.stamp);
 }
 
 void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
