@@ -54,15 +54,6 @@ struct StabilityError {
   double max_per_link() const;
 };
 
-template <typename R>
-JointState<R> cast_state(const Model& model, const JointState<double>& state) {
-  JointState<R> out(model);
-  out.position = state.position.template cast<R>();
-  out.velocity = state.velocity.template cast<R>();
-  out.acceleration = state.acceleration.template cast<R>();
-  return out;
-}
-
 // Runs the recursion in double and in R on the same inputs and measures the error. R: Quad
 // (mb_kinematics/analysis/quad.h) or long double.
 template <typename R>

@@ -24,6 +24,17 @@ struct JointState {
   }
 };
 
+// The same state in scalar S (exact when S is at least as wide as T): for a reference build of
+// the same code in long double or quad precision, on exactly the inputs a double run got.
+template <typename S, typename T>
+JointState<S> cast_state(const Model& model, const JointState<T>& state) {
+  JointState<S> out(model);
+  out.position = state.position.template cast<S>();
+  out.velocity = state.velocity.template cast<S>();
+  out.acceleration = state.acceleration.template cast<S>();
+  return out;
+}
+
 // Fills mimic coordinates from their sources (q = multiplier * q_source + offset; the
 // derivatives scale by multiplier).
 template <typename S>

@@ -60,15 +60,6 @@ struct Scene {
   Model model;
 };
 
-template <typename S>
-JointState<S> cast_state(const Model& model, const JointState<double>& state) {
-  JointState<S> out(model);
-  out.position = state.position.cast<S>();
-  out.velocity = state.velocity.cast<S>();
-  out.acceleration = state.acceleration.cast<S>();
-  return out;
-}
-
 // Error of one formulation in scalar S on a few random states (the largest), and its time.
 template <typename S, bool kPartial>
 Row formulation_row(const std::string& method, const Scene& scene, int states, int repetitions) {
@@ -86,11 +77,8 @@ Row formulation_row(const std::string& method, const Scene& scene, int states, i
       partial_velocity_kinematics(model, state, *pv, data);
     else
       forward_kinematics(model, state, data);
-    JointState<Quad> exact(model);  // the method's own inputs, exactly
-    exact.position = state.position.template cast<Quad>();
-    exact.velocity = state.velocity.template cast<Quad>();
-    exact.acceleration = state.acceleration.template cast<Quad>();
-    forward_kinematics(model, exact, reference);
+    // The reference: the method's own inputs, exactly.
+    forward_kinematics(model, cast_state<Quad>(model, state), reference);
     error = std::max(error, kinematics_error(data, reference).max());
   }
   const Timing t = time_per_update(

@@ -71,10 +71,7 @@ TEST(Reference, EulerStateDescribesTheSameMotion) {
     const mbk::Model model = mbk::make_random_tree(30, seed);
     std::mt19937 rng(seed);
     const mbk::JointState<double> state = mbk::random_state(model, rng);
-    mbk::JointState<Quad> exact(model);
-    exact.position = state.position.cast<Quad>();
-    exact.velocity = state.velocity.cast<Quad>();
-    exact.acceleration = state.acceleration.cast<Quad>();
+    const mbk::JointState<Quad> exact = mbk::cast_state<Quad>(model, state);
     mbk::Data<Quad> reference(model), converted(model);
     mbk::forward_kinematics(model, exact, reference);
     for (mbk::SpeedKind speeds :
