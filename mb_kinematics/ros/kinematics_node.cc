@@ -58,10 +58,10 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 bool finite(const mbk::Data<double>& d, int k, mbk::Level level) {
   bool ok = d.rotation[k].allFinite() && d.origin[k].allFinite() && d.mass_center[k].allFinite();
   if (level != mbk::Level::kPose)
-    ok = ok && d.omega[k].allFinite() && d.velocity[k].allFinite() &&
+    ok = ok && d.omega[k].allFinite() && d.mass_center_velocity[k].allFinite() &&
          d.origin_velocity[k].allFinite();
   if (level == mbk::Level::kAcceleration)
-    ok = ok && d.alpha[k].allFinite() && d.acceleration[k].allFinite() &&
+    ok = ok && d.alpha[k].allFinite() && d.mass_center_acceleration[k].allFinite() &&
          d.origin_acceleration[k].allFinite();
   return ok;
 }
@@ -383,16 +383,16 @@ void KinematicsNode::fill_kinematics_msg(const ros::Time& stamp) {
     b.pose.orientation.w = q.w();
     set_vector(data_.mass_center[k], b.mass_center);
     set_vector(data_.omega[k], b.twist.angular);
-    set_vector(data_.velocity[k], b.twist.linear);
+    set_vector(data_.mass_center_velocity[k], b.twist.linear);
     set_vector(data_.alpha[k], b.accel.angular);
-    set_vector(data_.acceleration[k], b.accel.linear);
+    set_vector(data_.mass_center_acceleration[k], b.accel.linear);
   }
 }
 
 // The rviz display's picture as markers, each quantity auto-scaled (largest arrow 0.3 m).
 void KinematicsNode::publish_markers() {
   GlyphStyle& style = marker_style_;
-  for (int q = 0; q < kQuantities; ++q)
+  for (int q = 0; q < GlyphQuantity::kCount; ++q)
     style.scale[q] = marker_scales_[q].update(max_norm(kinematics_msg_, style, q), 0.3);
   markers_pub_.publish(
       make_marker_array(make_glyphs(kinematics_msg_, style), style, kinematics_msg_.header));

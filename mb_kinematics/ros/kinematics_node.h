@@ -73,8 +73,8 @@ class KinematicsNode {
   std::vector<geometry_msgs::TransformStamped> transforms_;  // one per moving body
   std::vector<ros::Time> last_tf_stamp_;                     // per moving body
   mb_kinematics_msgs::BodyKinematicsArray kinematics_msg_;
-  GlyphStyle marker_style_;                           // ~publish_markers: the picture's style
-  std::array<AutoScale, kQuantities> marker_scales_;  // and its arrows' auto-scales
+  GlyphStyle marker_style_;  // ~publish_markers: the picture's style
+  std::array<AutoScale, GlyphQuantity::kCount> marker_scales_;  // and its arrows' auto-scales
 
   sensor_msgs::JointStateConstPtr pending_;       // waits for its joint_accelerations
   std::deque<AccelerationSample> accelerations_;  // the latest few, by stamp
