@@ -14,11 +14,15 @@
 
 namespace mbk {
 
-enum Quantity { kOrientation, kOmega, kAlpha, kPosition, kVelocity, kAcceleration, kQuantities };
+// The quantities compared, an index into KinematicsError::relative; scoped (ErrorQuantity::kOmega)
+// so they cannot be mistaken for the glyphs' GlyphQuantity. Velocity and acceleration: of G_k.
+struct ErrorQuantity {
+  enum Index { kOrientation, kOmega, kAlpha, kPosition, kVelocity, kAcceleration, kCount };
+};
 const char* quantity_name(int q);
 
 struct KinematicsError {
-  std::array<double, kQuantities> relative{};  // per quantity, as above
+  std::array<double, ErrorQuantity::kCount> relative{};  // per quantity, as above
   double max() const { return *std::max_element(relative.begin(), relative.end()); }
 };
 
@@ -27,23 +31,24 @@ namespace detail {
 template <typename S>
 const std::vector<Vec3<S>>& quantity_vectors(const Data<S>& d, int q) {
   switch (q) {
-    case kOmega:
+    case ErrorQuantity::kOmega:
       return d.omega;
-    case kAlpha:
+    case ErrorQuantity::kAlpha:
       return d.alpha;
-    case kPosition:
+    case ErrorQuantity::kPosition:
       return d.mass_center;
-    case kVelocity:
-      return d.velocity;
+    case ErrorQuantity::kVelocity:
+      return d.mass_center_velocity;
     default:
-      return d.acceleration;
+      return d.mass_center_acceleration;
   }
 }
 
 }  // namespace detail
 
-// `levels` limits the comparison: kPose compares orientation and position only, kVelocity adds
-// omega and v. Both Data are converted to long double before subtracting.
+// `levels` limits the comparison: kPose compares orientation and position only,
+// ErrorQuantity::kVelocity adds omega and v. Both Data are converted to long double before
+// subtracting.
 template <typename S, typename R>
 KinematicsError kinematics_error(const Data<S>& data, const Data<R>& reference,
                                  Level level = Level::kAcceleration) {
@@ -53,12 +58,14 @@ KinematicsError kinematics_error(const Data<S>& data, const Data<R>& reference,
   for (size_t k = 1; k < n; ++k) {
     const Mat3<L> dr =
         data.rotation[k].template cast<L>() - reference.rotation[k].template cast<L>();
-    e.relative[kOrientation] = std::max(e.relative[kOrientation], double(dr.norm()));
+    e.relative[ErrorQuantity::kOrientation] =
+        std::max(e.relative[ErrorQuantity::kOrientation], double(dr.norm()));
   }
-  for (int q = kOmega; q < kQuantities; ++q) {
-    const bool wanted =
-        q == kPosition ||
-        (q == kOmega || q == kVelocity ? level != Level::kPose : level == Level::kAcceleration);
+  for (int q = ErrorQuantity::kOmega; q < ErrorQuantity::kCount; ++q) {
+    const bool wanted = q == ErrorQuantity::kPosition ||
+                        (q == ErrorQuantity::kOmega || q == ErrorQuantity::kVelocity
+                             ? level != Level::kPose
+                             : level == Level::kAcceleration);
     if (!wanted) continue;
     const auto& got = detail::quantity_vectors(data, q);
     const auto& ref = detail::quantity_vectors(reference, q);

@@ -22,8 +22,8 @@ TermScales term_scales(const Model& model, const JointState<double>& state) {
   t.depth.assign(n + 1, 0);
   std::vector<double> origin(n + 1, 0.0), origin_velocity(n + 1, 0.0),
       origin_acceleration(n + 1, 0.0);
-  auto& omega = t.scale[kOmega];
-  auto& alpha = t.scale[kAlpha];
+  auto& omega = t.scale[ErrorQuantity::kOmega];
+  auto& alpha = t.scale[ErrorQuantity::kAlpha];
   JointMotion<double> m;
   for (int k = 1; k <= n; ++k) {
     const Body& body = model.bodies[k];
@@ -55,10 +55,11 @@ TermScales term_scales(const Model& model, const JointState<double>& state) {
     origin_velocity[k] = origin_velocity[j] + omega[j] * d + sd;
     origin_acceleration[k] =
         origin_acceleration[j] + alpha[j] * d + omega[j] * omega[j] * d + 2 * omega[j] * sd + sdd;
-    t.scale[kOrientation][k] = 1;
-    t.scale[kPosition][k] = origin[k] + r;
-    t.scale[kVelocity][k] = origin_velocity[k] + omega[k] * r;
-    t.scale[kAcceleration][k] = origin_acceleration[k] + alpha[k] * r + omega[k] * omega[k] * r;
+    t.scale[ErrorQuantity::kOrientation][k] = 1;
+    t.scale[ErrorQuantity::kPosition][k] = origin[k] + r;
+    t.scale[ErrorQuantity::kVelocity][k] = origin_velocity[k] + omega[k] * r;
+    t.scale[ErrorQuantity::kAcceleration][k] =
+        origin_acceleration[k] + alpha[k] * r + omega[k] * omega[k] * r;
   }
   return t;
 }
@@ -78,14 +79,15 @@ StabilityError stability_error(const Model& model, const JointState<double>& sta
   StabilityError e;
   const KinematicsError relative = kinematics_error(data, reference, level);
   e.relative = relative.relative;
-  for (int q = 0; q < kQuantities; ++q) {
-    const bool wanted =
-        q == kOrientation || q == kPosition ||
-        (q == kOmega || q == kVelocity ? level != Level::kPose : level == Level::kAcceleration);
+  for (int q = 0; q < ErrorQuantity::kCount; ++q) {
+    const bool wanted = q == ErrorQuantity::kOrientation || q == ErrorQuantity::kPosition ||
+                        (q == ErrorQuantity::kOmega || q == ErrorQuantity::kVelocity
+                             ? level != Level::kPose
+                             : level == Level::kAcceleration);
     if (!wanted) continue;
     for (int k = 1; k <= model.body_count(); ++k) {
       L err;
-      if (q == kOrientation) {
+      if (q == ErrorQuantity::kOrientation) {
         err =
             (data.rotation[k].template cast<L>() - reference.rotation[k].template cast<L>()).norm();
       } else {
@@ -115,7 +117,7 @@ std::string fmt(const char* format, double x) {
   return text;
 }
 
-int worst(const std::array<double, kQuantities>& a) {
+int worst(const std::array<double, ErrorQuantity::kCount>& a) {
   return static_cast<int>(std::max_element(a.begin(), a.end()) - a.begin());
 }
 
@@ -242,7 +244,7 @@ std::vector<StabilityRow> euler_parameters() {
     double diff = 0;
     for (int k = 1; k <= model.body_count(); ++k) {
       diff = std::max(diff, (a.rotation[k] - b.rotation[k]).cwiseAbs().maxCoeff());
-      for (int q = kOmega; q < kQuantities; ++q)
+      for (int q = ErrorQuantity::kOmega; q < ErrorQuantity::kCount; ++q)
         diff =
             std::max(diff, (detail::quantity_vectors(a, q)[k] - detail::quantity_vectors(b, q)[k])
                                .cwiseAbs()
@@ -327,7 +329,7 @@ std::vector<StabilityRow> mixed_scales() {
   forward_kinematics(heavy, s, b);
   double diff = 0;
   for (int k = 1; k <= model.body_count(); ++k)
-    for (int q = kOmega; q < kQuantities; ++q)
+    for (int q = ErrorQuantity::kOmega; q < ErrorQuantity::kCount; ++q)
       diff = std::max(diff, (detail::quantity_vectors(a, q)[k] - detail::quantity_vectors(b, q)[k])
                                 .cwiseAbs()
                                 .maxCoeff());
@@ -373,9 +375,9 @@ std::vector<StabilityRow> stiff_motion() {
     Data<Quad> r(model);
     forward_kinematics(model, s, d);
     forward_kinematics(model, cast_state<Quad>(model, s), r);
-    const Vec3<Quad> a2 = r.acceleration[2];
-    const double own = double((d.acceleration[2].cast<Quad>() - a2).norm() / a2.norm());
-    const double terms = term_scales(model, s).scale[kAcceleration][2];
+    const Vec3<Quad> a2 = r.mass_center_acceleration[2];
+    const double own = double((d.mass_center_acceleration[2].cast<Quad>() - a2).norm() / a2.norm());
+    const double terms = term_scales(model, s).scale[ErrorQuantity::kAcceleration][2];
     rows.push_back(kinematics_row("stiff_motion", "near-cancelling acceleration", e,
                                   "rel. to |a_2| itself: " + fmt("%.1e", own) +
                                       " (terms/|a_2| = " + fmt("%.1e", terms / double(a2.norm())) +
@@ -521,7 +523,7 @@ std::vector<StabilityRow> input_extremes() {
     for (int k = 1; k <= model.body_count(); ++k)
       bad += !(d.rotation[k].allFinite() && d.origin[k].allFinite() &&
                d.mass_center[k].allFinite() && d.omega[k].allFinite() && d.alpha[k].allFinite() &&
-               d.velocity[k].allFinite() && d.acceleration[k].allFinite());
+               d.mass_center_velocity[k].allFinite() && d.mass_center_acceleration[k].allFinite());
     return bad;
   };
   {

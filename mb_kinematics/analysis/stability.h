@@ -40,7 +40,7 @@ constexpr double kLinkBound = kSafety * kRoundingsPerLink * kEps;  // ~1.8e-14
 // Sums of the magnitudes of the terms of each quantity, per body (index k; 0 is R), and the
 // depth of each body (1 for a body on R).
 struct TermScales {
-  std::array<std::vector<double>, kQuantities> scale;
+  std::array<std::vector<double>, ErrorQuantity::kCount> scale;
   std::vector<int> depth;
 };
 TermScales term_scales(const Model& model, const JointState<double>& state);
@@ -50,7 +50,7 @@ TermScales term_scales(const Model& model, const JointState<double>& state);
 // (against the largest |ref| over the bodies). Orientation: Frobenius norm, T = 1. A quantity
 // with T_k = 0 and an error is infinite; a non-finite value is infinite.
 struct StabilityError {
-  std::array<double, kQuantities> per_link{}, scaled{}, relative{};
+  std::array<double, ErrorQuantity::kCount> per_link{}, scaled{}, relative{};
   double max_per_link() const;
 };
 

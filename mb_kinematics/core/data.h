@@ -15,21 +15,21 @@ enum class Level { kPose, kVelocity, kAcceleration };
 
 template <typename S>
 struct Data {
-  std::vector<Mat3<S>> rotation;             // S0K
-  std::vector<Vec3<S>> origin;               // O_k
-  std::vector<Vec3<S>> mass_center;          // p_k: position of G_k
-  std::vector<Vec3<S>> omega;                // angular velocity omega_k
-  std::vector<Vec3<S>> alpha;                // angular acceleration alpha_k
-  std::vector<Vec3<S>> velocity;             // v_k: velocity of G_k
-  std::vector<Vec3<S>> acceleration;         // a_k: acceleration of G_k
-  std::vector<Vec3<S>> origin_velocity;      // velocity of O_k
-  std::vector<Vec3<S>> origin_acceleration;  // acceleration of O_k
+  std::vector<Mat3<S>> rotation;                  // S0K
+  std::vector<Vec3<S>> origin;                    // O_k
+  std::vector<Vec3<S>> mass_center;               // p_k: position of G_k
+  std::vector<Vec3<S>> omega;                     // angular velocity omega_k
+  std::vector<Vec3<S>> alpha;                     // angular acceleration alpha_k
+  std::vector<Vec3<S>> mass_center_velocity;      // v_k: velocity of G_k
+  std::vector<Vec3<S>> mass_center_acceleration;  // a_k: acceleration of G_k
+  std::vector<Vec3<S>> origin_velocity;           // velocity of O_k
+  std::vector<Vec3<S>> origin_acceleration;       // acceleration of O_k
 
   explicit Data(const Model& model) {
     const size_t n = model.bodies.size();
     rotation.assign(n, Mat3<S>::Identity());
-    for (auto* v : {&origin, &mass_center, &omega, &alpha, &velocity, &acceleration,
-                    &origin_velocity, &origin_acceleration})
+    for (auto* v : {&origin, &mass_center, &omega, &alpha, &mass_center_velocity,
+                    &mass_center_acceleration, &origin_velocity, &origin_acceleration})
       v->assign(n, Vec3<S>::Zero());
   }
 };

@@ -69,7 +69,7 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
     const Vec3<S>& omega_j = data.omega[j];
     data.omega[k] = omega_j + w0;                                                // eq. 4.4.6
     data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // method.md 4
-    data.velocity[k] = data.origin_velocity[k] + data.omega[k].cross(rho);
+    data.mass_center_velocity[k] = data.origin_velocity[k] + data.omega[k].cross(rho);
     if (!accelerations) continue;
 
     const S* yd = state.acceleration.data() + body.v_index;
@@ -86,7 +86,7 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
       a_o += S(2) * omega_j.cross(sd0) + s0j * sdd;
     }
     const Vec3<S>& omega_k = data.omega[k];
-    data.acceleration[k] =
+    data.mass_center_acceleration[k] =
         data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k.cross(rho));
   }
 }

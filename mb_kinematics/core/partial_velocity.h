@@ -101,7 +101,7 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
       vo += pv.origin_velocity[i] * yr;
     }
     data.omega[k] = omega;
-    data.velocity[k] = v;
+    data.mass_center_velocity[k] = v;
     data.origin_velocity[k] = vo;
     if (!accelerations) continue;
 
@@ -115,7 +115,7 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
       ao += pv.origin_velocity[i] * ydr + pv.origin_velocity_dot[i] * yr;
     }
     data.alpha[k] = alpha;
-    data.acceleration[k] = a;
+    data.mass_center_acceleration[k] = a;
     data.origin_acceleration[k] = ao;
   }
 }

@@ -71,8 +71,8 @@ std::string format_eval_json(const Model& model, const Data<double>& data) {
   for (int k = 1; k <= model.body_count(); ++k) {
     const bool finite = data.rotation[k].allFinite() && data.origin[k].allFinite() &&
                         data.mass_center[k].allFinite() && data.omega[k].allFinite() &&
-                        data.alpha[k].allFinite() && data.velocity[k].allFinite() &&
-                        data.acceleration[k].allFinite();
+                        data.alpha[k].allFinite() && data.mass_center_velocity[k].allFinite() &&
+                        data.mass_center_acceleration[k].allFinite();
     if (!finite)
       throw std::runtime_error("body " + std::to_string(k) + " '" + model.bodies[k].name +
                                "': kinematics not finite (check the state, e.g. Euler "
@@ -85,8 +85,9 @@ std::string format_eval_json(const Model& model, const Data<double>& data) {
         << ", \"mass_center\": " << json_array(data.mass_center[k].transpose())
         << ", \"omega\": " << json_array(data.omega[k].transpose())
         << ", \"alpha\": " << json_array(data.alpha[k].transpose())
-        << ", \"velocity\": " << json_array(data.velocity[k].transpose())
-        << ", \"acceleration\": " << json_array(data.acceleration[k].transpose()) << "}";
+        << ", \"velocity\": " << json_array(data.mass_center_velocity[k].transpose())
+        << ", \"acceleration\": " << json_array(data.mass_center_acceleration[k].transpose())
+        << "}";
   }
   out << "\n]}\n";
   return out.str();

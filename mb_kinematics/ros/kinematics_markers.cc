@@ -20,11 +20,11 @@ Vec3<double> vec(const V& v) {
 
 Vec3<double> quantity(const BodyKinematics& b, int q) {
   switch (q) {
-    case kVelocity:
+    case GlyphQuantity::kVelocity:
       return vec(b.twist.linear);
-    case kAcceleration:
+    case GlyphQuantity::kAcceleration:
       return vec(b.accel.linear);
-    case kOmega:
+    case GlyphQuantity::kOmega:
       return vec(b.twist.angular);
     default:
       return vec(b.accel.angular);
@@ -35,7 +35,7 @@ bool finite(const BodyKinematics& b) {
   const auto& o = b.pose.orientation;
   bool ok = vec(b.pose.position).allFinite() && vec(b.mass_center).allFinite() &&
             std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && std::isfinite(o.w);
-  for (int q = 0; q < kQuantities; ++q) ok = ok && quantity(b, q).allFinite();
+  for (int q = 0; q < GlyphQuantity::kCount; ++q) ok = ok && quantity(b, q).allFinite();
   return ok;
 }
 
@@ -64,13 +64,14 @@ GlyphArc make_arc(int q, const Vec3<double>& start, const Vec3<double>& v, doubl
 
 void add_vectors(const BodyKinematics& b, const GlyphStyle& style, Glyphs& out) {
   const Vec3<double> g = vec(b.mass_center);
-  for (int q = 0; q < kQuantities; ++q) {
+  for (int q = 0; q < GlyphQuantity::kCount; ++q) {
     if (!style.show[q]) continue;
     const Vec3<double> v = quantity(b, q);
     const double length = style.scale[q] * v.norm();
     if (!std::isfinite(length) || length < style.min_length) continue;
     out.arrows.push_back({q, g, g + length * v.normalized()});
-    if (q == kOmega || q == kAlpha) out.arcs.push_back(make_arc(q, g, v, length, style));
+    if (q == GlyphQuantity::kOmega || q == GlyphQuantity::kAlpha)
+      out.arcs.push_back(make_arc(q, g, v, length, style));
   }
 }
 
@@ -133,7 +134,8 @@ visualization_msgs::Marker arrow_marker(const std_msgs::Header& header, const st
 }  // namespace
 
 const char* quantity_name(int q) {
-  static const char* const names[kQuantities] = {"velocity", "acceleration", "omega", "alpha"};
+  static const char* const names[GlyphQuantity::kCount] = {"velocity", "acceleration", "omega",
+                                                           "alpha"};
   return names[q];
 }
 

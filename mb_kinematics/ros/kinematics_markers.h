@@ -17,8 +17,11 @@
 
 namespace mbk_ros {
 
-enum Quantity { kVelocity = 0, kAcceleration = 1, kOmega = 2, kAlpha = 3 };
-constexpr int kQuantities = 4;
+// The vectors drawn, an index into GlyphStyle's arrays; scoped (GlyphQuantity::kOmega) so they
+// cannot be mistaken for the analysis' ErrorQuantity. Velocity and acceleration: of G_k.
+struct GlyphQuantity {
+  enum Index { kVelocity, kAcceleration, kOmega, kAlpha, kCount };
+};
 const char* quantity_name(int q);  // "velocity", "acceleration", "omega", "alpha"
 
 // The default body filter: leaves out the massless links `<body>__<coord>` of ball and free
@@ -32,12 +35,12 @@ struct Rgba {
 // The defaults are distinct hues (the rviz screenshot test counts their pixels): velocity
 // cyan, acceleration orange, omega magenta, alpha yellow; mass centers white.
 struct GlyphStyle {
-  std::array<bool, kQuantities> show{{true, true, true, true}};
-  std::array<double, kQuantities> scale{{0.1, 0.02, 0.05, 0.005}};  // m per unit of each
-  std::array<Rgba, kQuantities> color{{{0.0f, 0.8f, 1.0f, 1.0f},
-                                       {1.0f, 0.5f, 0.0f, 1.0f},
-                                       {0.9f, 0.0f, 0.9f, 1.0f},
-                                       {1.0f, 0.9f, 0.0f, 1.0f}}};
+  std::array<bool, GlyphQuantity::kCount> show{{true, true, true, true}};
+  std::array<double, GlyphQuantity::kCount> scale{{0.1, 0.02, 0.05, 0.005}};  // m per unit of each
+  std::array<Rgba, GlyphQuantity::kCount> color{{{0.0f, 0.8f, 1.0f, 1.0f},
+                                                 {1.0f, 0.5f, 0.0f, 1.0f},
+                                                 {0.9f, 0.0f, 0.9f, 1.0f},
+                                                 {1.0f, 0.9f, 0.0f, 1.0f}}};
   Rgba mass_center_color{1.0f, 1.0f, 1.0f, 1.0f};
   Rgba skeleton_color{0.85f, 0.85f, 0.85f, 1.0f};
   bool mass_centers = true, skeleton = false;

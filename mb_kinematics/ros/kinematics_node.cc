@@ -25,10 +25,10 @@ std::string join(const std::vector<std::string>& names, size_t max = 8) {
 bool finite(const mbk::Data<double>& d, int k, mbk::Level level) {
   bool ok = d.rotation[k].allFinite() && d.origin[k].allFinite() && d.mass_center[k].allFinite();
   if (level != mbk::Level::kPose)
-    ok = ok && d.omega[k].allFinite() && d.velocity[k].allFinite() &&
+    ok = ok && d.omega[k].allFinite() && d.mass_center_velocity[k].allFinite() &&
          d.origin_velocity[k].allFinite();
   if (level == mbk::Level::kAcceleration)
-    ok = ok && d.alpha[k].allFinite() && d.acceleration[k].allFinite() &&
+    ok = ok && d.alpha[k].allFinite() && d.mass_center_acceleration[k].allFinite() &&
          d.origin_acceleration[k].allFinite();
   return ok;
 }

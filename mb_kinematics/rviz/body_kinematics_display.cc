@@ -23,9 +23,9 @@ mbk_ros::Rgba rgba(const QColor& c) {
           static_cast<float>(c.blueF()), 1.0f};
 }
 
-const char* const kTitles[mbk_ros::kQuantities] = {"Velocity", "Acceleration", "Angular Velocity",
-                                                   "Angular Acceleration"};
-const char* const kWhat[mbk_ros::kQuantities] = {
+const char* const kTitles[mbk_ros::GlyphQuantity::kCount] = {
+    "Velocity", "Acceleration", "Angular Velocity", "Angular Acceleration"};
+const char* const kWhat[mbk_ros::GlyphQuantity::kCount] = {
     "velocity of each mass center G_k", "acceleration of each mass center G_k",
     "angular velocity omega_k of each body (arrow and arc)",
     "angular acceleration alpha_k of each body (arrow and arc)"};
@@ -34,9 +34,9 @@ const char* const kWhat[mbk_ros::kQuantities] = {
 
 BodyKinematicsDisplay::BodyKinematicsDisplay() {
   const mbk_ros::GlyphStyle d;
-  const char* units[mbk_ros::kQuantities] = {"m per m/s", "m per m/s^2", "m per rad/s",
-                                             "m per rad/s^2"};
-  for (int q = 0; q < mbk_ros::kQuantities; ++q)
+  const char* units[mbk_ros::GlyphQuantity::kCount] = {"m per m/s", "m per m/s^2", "m per rad/s",
+                                                       "m per rad/s^2"};
+  for (int q = 0; q < mbk_ros::GlyphQuantity::kCount; ++q)
     makeQuantityProperties(q, qcolor(d.color[q]), d.scale[q], units[q]);
   auto_scale_ = new rviz::BoolProperty(
       "Auto Scale", true,
@@ -113,7 +113,7 @@ void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
 }
 
 void BodyKinematicsDisplay::updateStyle() {
-  for (int q = 0; q < mbk_ros::kQuantities; ++q) {
+  for (int q = 0; q < mbk_ros::GlyphQuantity::kCount; ++q) {
     style_.show[q] = quantity_[q].show->getBool();
     style_.scale[q] = quantity_[q].scale->getFloat();
     style_.color[q] = rgba(quantity_[q].color->getColor());
@@ -145,7 +145,7 @@ void BodyKinematicsDisplay::updateHistoryLength() {
 
 void BodyKinematicsDisplay::autoScale(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
   if (!auto_scale_->getBool()) return;
-  for (int q = 0; q < mbk_ros::kQuantities; ++q)
+  for (int q = 0; q < mbk_ros::GlyphQuantity::kCount; ++q)
     style_.scale[q] =
         auto_scales_[q].update(mbk_ros::max_norm(msg, style_, q), auto_length_->getFloat());
 }

@@ -61,7 +61,7 @@ class BodyKinematicsDisplay
   void reportSkipped(const mbk_ros::Glyphs& glyphs);
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
 
-  std::array<QuantityProperties, mbk_ros::kQuantities> quantity_;
+  std::array<QuantityProperties, mbk_ros::GlyphQuantity::kCount> quantity_;
   rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
   rviz::FloatProperty *auto_length_, *alpha_, *width_, *arc_radius_, *sphere_radius_;
   rviz::ColorProperty *mass_center_color_, *skeleton_color_;
@@ -70,7 +70,7 @@ class BodyKinematicsDisplay
 
   mbk_ros::GlyphStyle style_;
   bool filter_ok_ = true;
-  std::array<mbk_ros::AutoScale, mbk_ros::kQuantities> auto_scales_;
+  std::array<mbk_ros::AutoScale, mbk_ros::GlyphQuantity::kCount> auto_scales_;
   boost::circular_buffer<std::shared_ptr<BodyKinematicsVisual>> visuals_;
   std::vector<mb_kinematics_msgs::BodyKinematicsArray::ConstPtr> pending_;
 };

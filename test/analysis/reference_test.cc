@@ -51,17 +51,17 @@ TEST(Reference, ErrorIsRelativeToEachQuantitysScale) {
   const mbk::Model model = mbk::make_chain(3, mbk::JointType::kRevolute);
   mbk::Data<double> a(model), b(model);
   for (int k = 1; k <= 3; ++k) {
-    b.omega[k] = mbk::Vec3<double>(k, 0, 0);                 // scale of omega: 3
-    b.acceleration[k] = mbk::Vec3<double>(0, 100.0 * k, 0);  // scale: 300
+    b.omega[k] = mbk::Vec3<double>(k, 0, 0);                             // scale of omega: 3
+    b.mass_center_acceleration[k] = mbk::Vec3<double>(0, 100.0 * k, 0);  // scale: 300
   }
   a = b;
-  a.omega[1].x() += 3e-10;         // 1e-10 relative (1 + 3e-10 rounds by up to 1.1e-16)
-  a.acceleration[2].z() += 6e-12;  // 2e-14 relative (0 + 6e-12 is exact)
+  a.omega[1].x() += 3e-10;                     // 1e-10 relative (1 + 3e-10 rounds by up to 1.1e-16)
+  a.mass_center_acceleration[2].z() += 6e-12;  // 2e-14 relative (0 + 6e-12 is exact)
   const mbk::KinematicsError e = mbk::kinematics_error(a, b);
-  EXPECT_NEAR(e.relative[mbk::kOmega], 1e-10, 1.1e-16 / 3);
-  EXPECT_NEAR(e.relative[mbk::kAcceleration], 2e-14, 1e-26);
-  EXPECT_EQ(e.relative[mbk::kPosition], 0.0);
-  EXPECT_EQ(e.max(), e.relative[mbk::kOmega]);
+  EXPECT_NEAR(e.relative[mbk::ErrorQuantity::kOmega], 1e-10, 1.1e-16 / 3);
+  EXPECT_NEAR(e.relative[mbk::ErrorQuantity::kAcceleration], 2e-14, 1e-26);
+  EXPECT_EQ(e.relative[mbk::ErrorQuantity::kPosition], 0.0);
+  EXPECT_EQ(e.max(), e.relative[mbk::ErrorQuantity::kOmega]);
 }
 
 // euler_state (used for the "Euler" rows of the report) converts 1-2-3 angle joints of a state

@@ -67,17 +67,18 @@ TEST(BodyVelocity, AtOriginAndMassCenterMatchesForwardKinematics) {
   mbk::forward_kinematics(model, trajectory.at<double>(1.3), data);
   for (int k = 1; k <= model.body_count(); ++k) {
     const V zero = V::Zero(), r_k = model.bodies[k].mass_center;
-    const double scale = 1 + data.velocity[k].norm() + data.acceleration[k].norm();
+    const double scale =
+        1 + data.mass_center_velocity[k].norm() + data.mass_center_acceleration[k].norm();
     EXPECT_EQ(mbk::point_velocity(data, k, zero, ReferenceFrame::kInertial).linear,
               data.origin_velocity[k]);
     EXPECT_EQ(mbk::point_acceleration(data, k, zero, ReferenceFrame::kInertial).linear,
               data.origin_acceleration[k]);
-    EXPECT_LT(
-        (mbk::point_velocity(data, k, r_k, ReferenceFrame::kInertial).linear - data.velocity[k])
-            .norm(),
-        kTol * scale);
+    EXPECT_LT((mbk::point_velocity(data, k, r_k, ReferenceFrame::kInertial).linear -
+               data.mass_center_velocity[k])
+                  .norm(),
+              kTol * scale);
     EXPECT_LT((mbk::point_acceleration(data, k, r_k, ReferenceFrame::kInertial).linear -
-               data.acceleration[k])
+               data.mass_center_acceleration[k])
                   .norm(),
               kTol * scale);
   }

@@ -47,10 +47,10 @@ void expect_body(const mbk::Data<double>& data, int k, const Expected& e, const 
   expect_close(data.omega[k], e.omega, e.spin, at + "omega");
   expect_close(data.alpha[k], e.alpha, e.spin_accel, at + "alpha");
   expect_close(data.origin_velocity[k], e.origin_velocity, e.rate, at + "origin velocity");
-  expect_close(data.velocity[k], e.velocity, e.rate, at + "velocity");
+  expect_close(data.mass_center_velocity[k], e.velocity, e.rate, at + "velocity");
   expect_close(data.origin_acceleration[k], e.origin_acceleration, e.accel,
                at + "origin acceleration");
-  expect_close(data.acceleration[k], e.acceleration, e.accel, at + "acceleration");
+  expect_close(data.mass_center_acceleration[k], e.acceleration, e.accel, at + "acceleration");
 }
 
 // Runs both formulations on `state` and checks body k of each against `e`.
@@ -261,8 +261,8 @@ TEST(ClosedForm, Ball123EqualsThreeHinges) {
     e.mass_center = h.mass_center[3];
     e.omega = h.omega[3];
     e.alpha = h.alpha[3];
-    e.velocity = h.velocity[3];
-    e.acceleration = h.acceleration[3];
+    e.velocity = h.mass_center_velocity[3];
+    e.acceleration = h.mass_center_acceleration[3];
     e.origin_velocity = h.origin_velocity[3];
     e.origin_acceleration = h.origin_acceleration[3];
     const double rates = s.velocity.cwiseAbs().sum();

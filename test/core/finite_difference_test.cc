@@ -90,8 +90,9 @@ void expect_derivatives(const mbk::Model& model, const StateAt& state_at, double
   using D = mbk::Data<double>;
   for (int k = 1; k <= model.body_count(); ++k) {
     const std::string w = tag + " body " + std::to_string(k) + ": ";
-    expect_derivative(samples, at, &D::mass_center, &D::velocity, k, w + "v = dp/dt");
-    expect_derivative(samples, at, &D::velocity, &D::acceleration, k, w + "a = dv/dt");
+    expect_derivative(samples, at, &D::mass_center, &D::mass_center_velocity, k, w + "v = dp/dt");
+    expect_derivative(samples, at, &D::mass_center_velocity, &D::mass_center_acceleration, k,
+                      w + "a = dv/dt");
     expect_derivative(samples, at, &D::origin, &D::origin_velocity, k, w + "vO = dO/dt");
     expect_derivative(samples, at, &D::origin_velocity, &D::origin_acceleration, k,
                       w + "aO = dvO/dt");
@@ -161,12 +162,13 @@ void expect_formulations_agree(const mbk::Model& model, const mbk::JointState<do
     if (level == mbk::Level::kPose) continue;
     const mbk_test::SumScales s = mbk_test::sum_scales(full.pv, state, k);
     expect_agree(a.omega[k], b.omega[k], s.omega, w + "omega");
-    expect_agree(a.velocity[k], b.velocity[k], s.velocity, w + "velocity");
+    expect_agree(a.mass_center_velocity[k], b.mass_center_velocity[k], s.velocity, w + "velocity");
     expect_agree(a.origin_velocity[k], b.origin_velocity[k], s.origin_velocity,
                  w + "origin velocity");
     if (level == mbk::Level::kVelocity) continue;
     expect_agree(a.alpha[k], b.alpha[k], s.alpha, w + "alpha");
-    expect_agree(a.acceleration[k], b.acceleration[k], s.acceleration, w + "acceleration");
+    expect_agree(a.mass_center_acceleration[k], b.mass_center_acceleration[k], s.acceleration,
+                 w + "acceleration");
     expect_agree(a.origin_acceleration[k], b.origin_acceleration[k], s.origin_acceleration,
                  w + "origin acceleration");
   }
@@ -215,9 +217,9 @@ TEST(Formulations, LowerLevelsMatchFullUpdate) {
     EXPECT_EQ(d->mass_center, full.recursive.mass_center);
   }
   EXPECT_EQ(vel.recursive.omega, full.recursive.omega);
-  EXPECT_EQ(vel.recursive.velocity, full.recursive.velocity);
+  EXPECT_EQ(vel.recursive.mass_center_velocity, full.recursive.mass_center_velocity);
   EXPECT_EQ(vel.partial.omega, full.partial.omega);
-  EXPECT_EQ(vel.partial.velocity, full.partial.velocity);
+  EXPECT_EQ(vel.partial.mass_center_velocity, full.partial.mass_center_velocity);
 }
 
 // ---- The scalar template: double against long double, both formulations.
@@ -257,11 +259,12 @@ void expect_long_double_agrees(const mbk::Model& model, const mbk_test::Trajecto
         {"mass center", d.recursive.mass_center[k], d.partial.mass_center[k],
          to_double(rl.mass_center[k]), len},
         {"omega", d.recursive.omega[k], d.partial.omega[k], to_double(rl.omega[k]), s.omega},
-        {"velocity", d.recursive.velocity[k], d.partial.velocity[k], to_double(rl.velocity[k]),
-         s.velocity},
+        {"velocity", d.recursive.mass_center_velocity[k], d.partial.mass_center_velocity[k],
+         to_double(rl.mass_center_velocity[k]), s.velocity},
         {"alpha", d.recursive.alpha[k], d.partial.alpha[k], to_double(rl.alpha[k]), s.alpha},
-        {"acceleration", d.recursive.acceleration[k], d.partial.acceleration[k],
-         to_double(rl.acceleration[k]), s.acceleration},
+        {"acceleration", d.recursive.mass_center_acceleration[k],
+         d.partial.mass_center_acceleration[k], to_double(rl.mass_center_acceleration[k]),
+         s.acceleration},
     };
     for (const Item& it : items) {
       EXPECT_LE((it.dr - it.l).norm(), kLongDoubleTol * it.scale) << w << it.name << " recursive";
@@ -269,8 +272,10 @@ void expect_long_double_agrees(const mbk::Model& model, const mbk_test::Trajecto
     }
     // The long double formulations agree with each other below double rounding (measured
     // 2e-17; in double they differ by up to 4e-16): the template really computes in long double.
-    EXPECT_LE((to_double(pl.acceleration[k]) - to_double(rl.acceleration[k])).norm(),
-              1e-16 * s.acceleration)
+    EXPECT_LE(
+        (to_double(pl.mass_center_acceleration[k]) - to_double(rl.mass_center_acceleration[k]))
+            .norm(),
+        1e-16 * s.acceleration)
         << w << "long double formulations";
     EXPECT_LE((d.recursive.rotation[k] - rl.rotation[k].cast<double>()).norm(), kLongDoubleTol)
         << w << "S0K";

@@ -145,7 +145,7 @@ void expect_jacobian_columns(const mbk::Model& model, const mbk::JointState<doub
         }
       const std::string w = tag + " speed " + std::to_string(r) + " body " + std::to_string(k);
       EXPECT_EQ(unit.omega[k], omega) << w << " omega";
-      EXPECT_EQ(unit.velocity[k], v) << w << " mass center velocity";
+      EXPECT_EQ(unit.mass_center_velocity[k], v) << w << " mass center velocity";
       EXPECT_EQ(unit.origin_velocity[k], vo) << w << " origin velocity";
     }
   }
@@ -187,7 +187,9 @@ TEST(PartialVelocities, PerturbingOneSpeedAddsItsColumn) {
       const double so = s.omega + 2 * pv.omega[i].norm(),
                    sv = s.velocity + 2 * pv.velocity[i].norm();
       EXPECT_LE((moved.omega[k] - base.omega[k] - pv.omega[i]).norm(), 1e-14 * so);
-      EXPECT_LE((moved.velocity[k] - base.velocity[k] - pv.velocity[i]).norm(), 1e-14 * sv);
+      EXPECT_LE(
+          (moved.mass_center_velocity[k] - base.mass_center_velocity[k] - pv.velocity[i]).norm(),
+          1e-14 * sv);
     }
   }
 }

@@ -347,8 +347,8 @@ TEST_F(MbkEval, JsonHasTheContractFieldsAndTheKinematics) {
     check("mass_center", row_major(data.mass_center[k]));
     check("omega", row_major(data.omega[k]));
     check("alpha", row_major(data.alpha[k]));
-    check("velocity", row_major(data.velocity[k]));
-    check("acceleration", row_major(data.acceleration[k]));
+    check("velocity", row_major(data.mass_center_velocity[k]));
+    check("acceleration", row_major(data.mass_center_acceleration[k]));
   }
   // Not a trivial state: the bodies move and accelerate.
   EXPECT_GT(scale.at("velocity"), 0.5);

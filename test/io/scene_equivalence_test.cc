@@ -79,7 +79,8 @@ void expect_same_kinematics(const mbk::Model& yaml, const mbk::Data<double>& a,
   const double tol = 1e-13;
   const double s_pos = std::max(max_norm(a.origin), max_norm(a.mass_center));
   const double s_omega = max_norm(a.omega), s_alpha = max_norm(a.alpha);
-  const double s_vel = max_norm(a.velocity), s_acc = max_norm(a.acceleration);
+  const double s_vel = max_norm(a.mass_center_velocity),
+               s_acc = max_norm(a.mass_center_acceleration);
   for (int k = 1; k <= yaml.body_count(); ++k) {
     const std::string& name = yaml.bodies[k].name;
     const int u = urdf.body_index(name);
@@ -90,8 +91,10 @@ void expect_same_kinematics(const mbk::Model& yaml, const mbk::Data<double>& a,
     EXPECT_LE((a.mass_center[k] - b.mass_center[u]).norm(), tol * s_pos) << "mass center";
     EXPECT_LE((a.omega[k] - b.omega[u]).norm(), tol * s_omega) << "omega";
     EXPECT_LE((a.alpha[k] - b.alpha[u]).norm(), tol * s_alpha) << "alpha";
-    EXPECT_LE((a.velocity[k] - b.velocity[u]).norm(), tol * s_vel) << "velocity";
-    EXPECT_LE((a.acceleration[k] - b.acceleration[u]).norm(), tol * s_acc) << "acceleration";
+    EXPECT_LE((a.mass_center_velocity[k] - b.mass_center_velocity[u]).norm(), tol * s_vel)
+        << "velocity";
+    EXPECT_LE((a.mass_center_acceleration[k] - b.mass_center_acceleration[u]).norm(), tol * s_acc)
+        << "acceleration";
   }
 }
 

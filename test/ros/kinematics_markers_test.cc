@@ -103,7 +103,7 @@ TEST(KinematicsMarkers, FilterAndSkeletonSkipIntermediateLinks) {
   g = mbk_ros::make_glyphs(message(), style);
   EXPECT_EQ(g.arrows.size(), 4u);
   EXPECT_TRUE(g.skeleton.empty());
-  style.show[mbk_ros::kOmega] = false;
+  style.show[mbk_ros::GlyphQuantity::kOmega] = false;
   EXPECT_EQ(mbk_ros::make_glyphs(message(), style).arrows.size(), 3u);
 }
 
@@ -116,7 +116,7 @@ TEST(KinematicsMarkers, InvalidFloatsSkippedAndNamed) {
   const Glyphs g = mbk_ros::make_glyphs(msg, style);
   EXPECT_EQ(g.skipped, std::vector<std::string>({"a", "b"}));
   EXPECT_EQ(g.arrows.size(), 4u);  // c only
-  EXPECT_NEAR(mbk_ros::max_norm(msg, style, mbk_ros::kAlpha), 4, 1e-12);
+  EXPECT_NEAR(mbk_ros::max_norm(msg, style, mbk_ros::GlyphQuantity::kAlpha), 4, 1e-12);
   const auto markers = mbk_ros::make_marker_array(g, style, msg.header);
   for (const auto& m : markers.markers)
     for (const auto& p : m.points) EXPECT_TRUE(vec(p).allFinite()) << m.ns;

@@ -110,9 +110,9 @@ inline void expect_kinematics(const mb_kinematics_msgs::BodyKinematicsArray& msg
     EXPECT_LT((q.toRotationMatrix() - d.rotation[k]).norm(), tol) << name << " rotation";
     expect_near(vec(b.mass_center), d.mass_center[k], tol, name + " mass center");
     expect_near(vec(b.twist.angular), d.omega[k], tol, name + " omega");
-    expect_near(vec(b.twist.linear), d.velocity[k], tol, name + " velocity");
+    expect_near(vec(b.twist.linear), d.mass_center_velocity[k], tol, name + " velocity");
     expect_near(vec(b.accel.angular), d.alpha[k], tol, name + " alpha");
-    expect_near(vec(b.accel.linear), d.acceleration[k], tol, name + " acceleration");
+    expect_near(vec(b.accel.linear), d.mass_center_acceleration[k], tol, name + " acceleration");
   }
 }
 

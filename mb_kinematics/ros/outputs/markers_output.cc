@@ -12,7 +12,7 @@ MarkersOutput::MarkersOutput(const OutputSetup& setup)
 
 void MarkersOutput::publish(const ros::Time& stamp, const Sample& sample) {
   fill_body_kinematics(stamp, sample.data, kinematics_);
-  for (int q = 0; q < kQuantities; ++q)
+  for (int q = 0; q < GlyphQuantity::kCount; ++q)
     style_.scale[q] = scales_[q].update(max_norm(kinematics_, style_, q), 0.3);
   publisher_.publish(
       make_marker_array(make_glyphs(kinematics_, style_), style_, kinematics_.header));

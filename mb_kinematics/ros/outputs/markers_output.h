@@ -25,7 +25,7 @@ class MarkersOutput : public Output {
   ros::Publisher publisher_;
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;  // what the picture shows
   GlyphStyle style_;
-  std::array<AutoScale, kQuantities> scales_;
+  std::array<AutoScale, GlyphQuantity::kCount> scales_;
 };
 
 }  // namespace mbk_ros
