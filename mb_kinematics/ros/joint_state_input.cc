@@ -1,12 +1,25 @@
 #include "mb_kinematics/ros/joint_state_input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "mb_kinematics/core/state_check.h"
 
 namespace mbk_ros {
 namespace {
 
 std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
+
+// True if the first `used` derivatives an estimator gives are finite and within what
+// mbk::check_state accepts for speeds and accelerations.
+bool sound(const mbk::DerivativeEstimator& estimator, int used) {
+  double d[2] = {0, 0};
+  const int n = std::min(estimator.estimate(d[0], d[1]), used);
+  for (int i = 0; i < n; ++i)
+    if (!(std::abs(d[i]) <= mbk::kMaxStateMagnitude)) return false;  // NaN too
+  return true;
+}
 
 }  // namespace
 
@@ -17,7 +30,9 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
       coordinates_(model.nq),
       seen_(model.nq, -1),
       message_index_(model.nq, 0),
-      sign_(model.nq, 1.0) {
+      sign_(model.nq, 1.0),
+      initial_(model),
+      trial_(model) {
   if (model.nq != model.nv)
     throw std::invalid_argument("JointStateInput needs coordinate-derivative speeds");
   for (int i = 0; i < model.nq; ++i) {
@@ -30,6 +45,7 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
 
 std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update& update) {
   const size_t n = msg.name.size();
+  update.problem = InputProblem::kUnequalLengths;
   if (msg.position.size() != n)
     return std::to_string(n) + " names but " + std::to_string(msg.position.size()) + " positions";
   if (!msg.velocity.empty() && msg.velocity.size() != n)
@@ -41,22 +57,50 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
       update.unknown.push_back(msg.name[i]);
       continue;
     }
+    update.problem = InputProblem::kDuplicateName;
     if (seen_[it->second] == generation_) return "joint '" + msg.name[i] + "' is named twice";
     seen_[it->second] = generation_;
     message_index_[it->second] = i;
+    update.problem = InputProblem::kNonFinite;
     if (!std::isfinite(msg.position[i]))
       return "joint '" + msg.name[i] + "': position is " + describe(msg.position[i]);
     if (!msg.velocity.empty() && !std::isfinite(msg.velocity[i]))
       return "joint '" + msg.name[i] + "': velocity is " + describe(msg.velocity[i]);
   }
-  return "";
+  return check_values(msg, update);
+}
+
+// What mbk::check_state would refuse, before any estimator sees it: the message's values over
+// the coordinates known so far (mimics applied).
+std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Update& update) {
+  for (int i = 0; i < model_.nq; ++i)
+    trial_.position[i] =
+        coordinates_[i].has_value ? coordinates_[i].position : initial_.position[i];
+  trial_.velocity.setZero();
+  trial_.acceleration.setZero();
+  for (size_t i = 0; i < msg.name.size(); ++i) {
+    auto it = index_.find(msg.name[i]);
+    if (it == index_.end() || coordinates_[it->second].mimic) continue;
+    trial_.position[it->second] = msg.position[i];
+    if (!msg.velocity.empty()) trial_.velocity[it->second] = msg.velocity[i];
+  }
+  mbk::apply_mimics(model_, trial_);
+  const std::string error = mbk::check_state(model_, trial_);
+  if (error.find("Euler parameters") != std::string::npos)
+    update.problem = InputProblem::kNotARotation;
+  else if (error.find("not finite") != std::string::npos)
+    update.problem = InputProblem::kNonFinite;  // e.g. a mimic's multiplier overflowing
+  else
+    update.problem = InputProblem::kTooLarge;
+  return error;
 }
 
 // Euler parameters e and -e are the same rotation; a publisher may flip between them (e.g. to
 // keep e4 >= 0). A message that sets all four of a joint's parameters with a negative dot
 // product against the previous ones is negated, so that e, and its estimated derivatives, stay
 // continuous.
-void JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
+int JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
+  int flipped = 0;
   for (int k = 1; k <= model_.body_count(); ++k) {
     const mbk::Body& body = model_.bodies[k];
     if (!mbk::uses_euler_parameters(body.joint.type)) continue;
@@ -68,14 +112,16 @@ void JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
       if (all) dot += msg.position[message_index_[i]] * coordinates_[i].position;
     }
     for (int i = e; i < e + 4; ++i) sign_[i] = all && dot < 0 ? -1.0 : 1.0;
+    flipped += all && dot < 0;
   }
+  return flipped;
 }
 
 JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg, double t) {
   Update update;
   update.error = validate(msg, update);
   if (!update.error.empty()) return update;
-  align_euler_signs(msg);
+  update.flipped = align_euler_signs(msg);
   for (size_t i = 0; i < msg.name.size(); ++i) {
     auto it = index_.find(msg.name[i]);
     if (it == index_.end() || coordinates_[it->second].mimic) continue;  // mimics: computed
@@ -89,19 +135,38 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
       c.velocity_history->reset();
     }
     c.has_value = true;
-    c.stamp = t;
     c.position = sign_[it->second] * msg.position[i];
-    c.position_history->add(t, c.position);
     c.velocity_given = !msg.velocity.empty();
-    if (c.velocity_given) {
-      c.velocity = sign_[it->second] * msg.velocity[i];
-      c.velocity_history->add(t, c.velocity);
-    } else {
-      c.velocity_history->reset();  // a gap in the given velocities: start again
-    }
+    if (c.velocity_given) c.velocity = sign_[it->second] * msg.velocity[i];
+    if (!take(c, t)) update.estimator_reset.push_back(msg.name[i]);
     ++update.used;
   }
   return update;
+}
+
+// Adds the coordinate's new sample at t to its estimators. An estimator whose estimates go
+// non-finite or beyond what check_state accepts (an angle of 1e300 rad, say, is a valid angle
+// but no motion) restarts from this sample: false then.
+bool JointStateInput::take(Coordinate& c, double t) {
+  c.stamp = t;
+  bool sound_history = true;
+  c.position_history->add(t, c.position);
+  if (!sound(*c.position_history, 2)) {
+    c.position_history->reset();
+    c.position_history->add(t, c.position);
+    sound_history = false;
+  }
+  if (!c.velocity_given) {
+    c.velocity_history->reset();  // a gap in the given velocities: start again
+    return sound_history;
+  }
+  c.velocity_history->add(t, c.velocity);
+  if (!sound(*c.velocity_history, 1)) {
+    c.velocity_history->reset();
+    c.velocity_history->add(t, c.velocity);
+    sound_history = false;
+  }
+  return sound_history;
 }
 
 std::string JointStateInput::convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,

@@ -16,6 +16,7 @@
 #include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/ros/input_problem.h"
 
 namespace mbk_ros {
 
@@ -35,13 +36,19 @@ class JointStateInput {
                   double max_gap = 0);
 
   struct Update {
-    std::string error;                 // why the message was rejected; empty if merged
+    std::string error;                            // why the message was rejected; empty if merged
+    InputProblem problem = InputProblem::kCount;  // the class of `error`
     std::vector<std::string> unknown;  // names that are no coordinate of the model (ignored)
     std::vector<std::string> reset;    // coordinates whose stamp went backwards (history reset)
-    int used = 0;                      // coordinates the message set
+    // Coordinates whose estimates went non-finite or beyond mbk::kMaxStateMagnitude with this
+    // sample: their history restarted from it.
+    std::vector<std::string> estimator_reset;
+    int flipped = 0;  // Euler-parameter joints negated to stay continuous
+    int used = 0;     // coordinates the message set
   };
-  // Validates the whole message (lengths, duplicate names, NaN/Inf), then merges it at time t
-  // (seconds). A rejected message changes nothing.
+  // Validates the whole message (lengths, duplicate names, NaN/Inf, and whatever
+  // mbk::check_state refuses, such as magnitudes beyond 1e50), then merges it at time t
+  // (seconds). A rejected message changes nothing: no estimator ever sees its values.
   Update add(const sensor_msgs::JointState& msg, double t);
 
   // Converts a joint_accelerations message; returns an error (and leaves `out` unspecified) for
@@ -66,15 +73,18 @@ class JointStateInput {
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
-  void align_euler_signs(const sensor_msgs::JointState& msg);
+  std::string check_values(const sensor_msgs::JointState& msg, Update& update);
+  int align_euler_signs(const sensor_msgs::JointState& msg);
+  bool take(Coordinate& c, double t);
 
   const mbk::Model& model_;
   double max_gap_;
   std::unordered_map<std::string, int> index_;
   std::vector<Coordinate> coordinates_;
   std::vector<int> seen_;  // message generation that last named each coordinate (duplicates)
-  std::vector<size_t> message_index_;  // where the current message names each coordinate
-  std::vector<double> sign_;           // +-1: e and -e are one rotation; keep e continuous
+  std::vector<size_t> message_index_;        // where the current message names each coordinate
+  std::vector<double> sign_;                 // +-1: e and -e are one rotation; keep e continuous
+  mbk::JointState<double> initial_, trial_;  // the state before any sample; a message's values
   int generation_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/core/derivative_estimator.h"
@@ -53,13 +54,26 @@ std::unique_ptr<mbk::DerivativeEstimator> zero_latency_estimator(const std::stri
   return estimator;
 }
 
+// The lower body arrays table has N columns and (max depth + 1) rows: logged whole up to this
+// many cells (e.g. 100 bodies of depth up to 99), else a summary (README, "The node").
+constexpr long kMaxLoggedTableCells = 10000;
+
 void log_model(const mbk::Model& model, const std::string& frame) {
-  std::vector<std::string> names;
-  for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
-  ROS_INFO_STREAM("mb_kinematics: "
-                  << model.body_count() << " bodies, " << model.nq << " coordinates, R = '" << frame
-                  << "'\n"
-                  << mbk::format_lower_body_table(model.lower_body_array(), names));
+  int depth = 0;
+  for (int k = 1; k <= model.body_count(); ++k) depth = std::max(depth, model.bodies[k].depth);
+  const long cells = static_cast<long>(model.body_count()) * (depth + 1);
+  std::ostringstream out;
+  out << "mb_kinematics: " << model.body_count() << " bodies, " << model.nq
+      << " coordinates, max depth " << depth << ", R = '" << frame << "'";
+  if (cells <= kMaxLoggedTableCells) {
+    std::vector<std::string> names;
+    for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
+    out << "\n" << mbk::format_lower_body_table(model.lower_body_array(), names);
+  } else {
+    out << "; the lower body arrays table (" << cells << " cells) is not logged above "
+        << kMaxLoggedTableCells << " (mbk tables prints it)";
+  }
+  ROS_INFO_STREAM(out.str());
 }
 
 }  // namespace
@@ -95,37 +109,61 @@ void KinematicsNode::on_joint_accelerations(
   AccelerationSample sample;
   const std::string error = input_.convert(*msg, msg->header.stamp.toSec(), sample);
   if (!error.empty()) {
-    diagnostics_->problem("joint_accelerations ignored: " + error);
-    ROS_WARN_STREAM_THROTTLE(kThrottle, "joint_accelerations ignored: " << error);
+    warn(InputProblem::kBadAccelerations, "joint_accelerations ignored: " + error);
     return;
   }
   process(pairing_.add(std::move(sample)));
 }
 
 void KinematicsNode::process(const std::vector<AccelerationPairing::Ready>& ready) {
-  for (const AccelerationPairing::Ready& r : ready) process(*r.sample);
+  for (const AccelerationPairing::Ready& r : ready) {
+    if (r.unpaired)
+      diagnostics_->count(InputProblem::kUnpaired,
+                          "joint_accelerations missing; accelerations estimated");
+    process(*r.sample);
+  }
+}
+
+// Counts the problem and logs it, at most once per kThrottle seconds per class.
+void KinematicsNode::warn(InputProblem problem, const std::string& message) {
+  diagnostics_->count(problem, message);
+  const auto now = std::chrono::steady_clock::now();
+  auto& last = last_warned_[static_cast<size_t>(problem)];
+  if (last != std::chrono::steady_clock::time_point() &&
+      now - last < std::chrono::duration<double>(kThrottle))
+    return;
+  last = now;
+  ROS_WARN_STREAM(message);
 }
 
 // Logs what was wrong with a message; true if the sample may go on.
 bool KinematicsNode::report(const JointStateInput::Update& update) {
   if (!update.error.empty()) {
-    diagnostics_->dropped("joint_states sample dropped: " + update.error);
-    ROS_WARN_STREAM_THROTTLE(kThrottle, "joint_states sample dropped: " << update.error);
+    warn(update.problem, "joint_states sample dropped: " + update.error);
     return false;
   }
   if (!update.unknown.empty())
-    ROS_WARN_STREAM_THROTTLE(
-        kThrottle, "joint_states: ignoring names not in the model: " << join(update.unknown));
+    warn(InputProblem::kUnknownName,
+         "joint_states: ignoring names not in the model: " + join(update.unknown));
   if (!update.reset.empty())
-    ROS_WARN_STREAM_THROTTLE(kThrottle, "joint_states: stamp went backwards for "
-                                            << join(update.reset)
-                                            << "; derivative estimates restarted");
-  if (update.used == 0) return false;
+    warn(InputProblem::kStampBackwards, "joint_states: stamp went backwards for " +
+                                            join(update.reset) +
+                                            "; derivative estimates restarted");
+  if (!update.estimator_reset.empty())
+    warn(InputProblem::kEstimatorReset,
+         "joint_states: estimates of " + join(update.estimator_reset) +
+             " went beyond 1e50 or not finite; their estimators restarted from this sample");
+  if (update.flipped > 0)
+    diagnostics_->count(InputProblem::kEulerSignFlip,
+                        "joint_states: Euler parameters negated to stay continuous");
+  if (update.used == 0) {
+    warn(InputProblem::kNoKnownName, "joint_states: a message without any coordinate of the model");
+    return false;
+  }
   const std::vector<std::string> missing = input_.missing();
   if (!missing.empty()) {
-    const std::string problem = "waiting for joints: " + join(missing);
-    diagnostics_->waiting(problem);
-    ROS_WARN_STREAM_THROTTLE(kThrottle, "joint_states: nothing published yet, " << problem);
+    warn(InputProblem::kMissingJoints,
+         "joint_states: nothing published yet, waiting for joints: " + join(missing));
     return false;
   }
   return true;
@@ -149,10 +187,8 @@ bool KinematicsNode::compute(mbk::Level level) {
   mbk::forward_kinematics(model_, state_, data_, level);
   for (int k = 1; k <= model_.body_count(); ++k) {
     if (finite(data_, k, level)) continue;
-    const std::string problem =
-        "kinematics of body '" + model_.bodies[k].name + "' not finite; dropped";
-    diagnostics_->problem(problem);
-    ROS_WARN_STREAM_THROTTLE(kThrottle, problem);
+    warn(InputProblem::kKinematicsNotFinite,
+         "kinematics of body '" + model_.bodies[k].name + "' not finite; dropped");
     return false;
   }
   return true;
@@ -168,13 +204,16 @@ void KinematicsNode::publish(const ros::Time& stamp, const Sample& sample, bool 
 void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   const auto start = std::chrono::steady_clock::now();
   const ros::Time stamp = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;
+  if (msg.header.stamp.isZero())
+    diagnostics_->count(InputProblem::kZeroStamp, "joint_states: stamp 0, time of arrival used");
   if (!report(input_.add(msg, stamp.toSec()))) return;
   const mbk::Level wanted = wanted_level();
   const mbk::Level level = input_.fill(wanted, pairing_.at(stamp.toSec()), state_);
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
-  if (!bad.empty()) {
-    diagnostics_->dropped(bad + "; sample dropped");
-    ROS_WARN_STREAM_THROTTLE(kThrottle, bad << "; sample dropped");
+  if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest
+    warn(bad.find("not finite") != std::string::npos ? InputProblem::kNonFinite
+                                                     : InputProblem::kTooLarge,
+         bad + "; sample dropped");
     return;
   }
   const Sample sample{model_, state_, data_, level};

@@ -9,13 +9,17 @@
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 
+#include <array>
+#include <chrono>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/ros/acceleration_pairing.h"
+#include "mb_kinematics/ros/input_problem.h"
 #include "mb_kinematics/ros/joint_state_input.h"
 #include "mb_kinematics/ros/node_params.h"
 #include "mb_kinematics/ros/outputs/diagnostics_output.h"
@@ -35,6 +39,7 @@ class KinematicsNode {
   void process(const std::vector<AccelerationPairing::Ready>& ready);
   void process(const sensor_msgs::JointState& msg);  // one sample: merge, compute, publish
   bool report(const JointStateInput::Update& update);
+  void warn(InputProblem problem, const std::string& message);
   mbk::Level wanted_level();  // asks each output once whether it is listened to
   bool compute(mbk::Level level);
   void publish(const ros::Time& stamp, const Sample& sample, bool uses_data);
@@ -51,6 +56,8 @@ class KinematicsNode {
   std::vector<char> active_;        // per output: listened to for the current sample
   DiagnosticsOutput* diagnostics_;  // one of outputs_
   ros::Subscriber joint_states_sub_, accelerations_sub_;
+  std::array<std::chrono::steady_clock::time_point, static_cast<size_t>(InputProblem::kCount)>
+      last_warned_{};  // per class, for throttling
 };
 
 }  // namespace mbk_ros

@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/urdf_model.h"
 
 namespace {
@@ -144,3 +146,105 @@ TEST(JointStateInputEuler, SignFlipsKeepEContinuous) {
 }
 
 }  // namespace
+
+// Issue 14, item 10: one finite sample must not poison the estimators. A positions-only stream
+// of the quadratic q_i = c_i + 0.5 t + 0.2 t^2 at 100 Hz through kalman_smooth (the node's
+// default); `clean` sees the stream, `hit` the same stream and the hostile samples.
+class PoisonTest : public ::testing::Test {
+ protected:
+  static double q(int i, double t) { return 0.1 * i + 0.5 * t + 0.2 * t * t; }
+  static sensor_msgs::JointState sample(double t) {
+    sensor_msgs::JointState m;
+    m.name = kAll;
+    for (size_t i = 0; i < kAll.size(); ++i) m.position.push_back(q(i, t));
+    return m;
+  }
+  // Feeds samples n0..n1-1 (t = n / 100) to both inputs.
+  void feed(int n0, int n1) {
+    for (int n = n0; n < n1; ++n) {
+      ASSERT_EQ(clean_.add(sample(n / 100.0), n / 100.0).error, "");
+      ASSERT_EQ(hit_.add(sample(n / 100.0), n / 100.0).error, "");
+    }
+  }
+  int index(const std::string& name) const { return model_.coordinate_index(name); }
+  static size_t slot(const std::string& name) {  // in sample()'s message
+    return std::find(kAll.begin(), kAll.end(), name) - kAll.begin();
+  }
+
+  mbk::Model model_ = model();
+  std::unique_ptr<mbk::DerivativeEstimator> estimator_ =
+      mbk::make_derivative_estimator("kalman_smooth");
+  mbk_ros::JointStateInput clean_{model_, *estimator_, 1.0}, hit_{model_, *estimator_, 1.0};
+  mbk::JointState<double> clean_state_{model_}, hit_state_{model_};
+};
+
+// A value mbk::check_state refuses (a translation beyond 1e50) is refused before it reaches an
+// estimator: the message changes nothing, and every later estimate is bit for bit the one of
+// the stream without it.
+TEST_F(PoisonTest, RefusedSampleNeverReachesTheEstimators) {
+  feed(0, 10);
+  int n = 10;
+  for (double huge : {1.7e308, 1e300, 1e51}) {
+    for (const char* name : {"slider_joint", "float_joint/x"}) {
+      sensor_msgs::JointState m = sample(n / 100.0);
+      m.position[slot(name)] = huge;
+      const auto update = hit_.add(m, n / 100.0);
+      EXPECT_NE(update.error.find("above the limit"), std::string::npos) << update.error;
+      EXPECT_NE(update.error.find(name), std::string::npos) << update.error;
+      n += 1;  // neither input gets a valid sample at the refused one's stamp
+      feed(n, n + 1);
+      ++n;
+      ASSERT_EQ(clean_.fill(Level::kAcceleration, nullptr, clean_state_), Level::kAcceleration);
+      ASSERT_EQ(hit_.fill(Level::kAcceleration, nullptr, hit_state_), Level::kAcceleration);
+      EXPECT_EQ(hit_state_.position, clean_state_.position) << name << " " << huge;
+      EXPECT_EQ(hit_state_.velocity, clean_state_.velocity) << name << " " << huge;
+      EXPECT_EQ(hit_state_.acceleration, clean_state_.acceleration) << name << " " << huge;
+    }
+  }
+  // A speed beyond the limit, given with the positions: refused the same way.
+  sensor_msgs::JointState m = sample(n / 100.0);
+  m.velocity.assign(kAll.size(), 0.0);
+  m.velocity[slot("arm1_joint")] = 1e60;
+  EXPECT_NE(hit_.add(m, n / 100.0).error.find("arm1_joint"), std::string::npos);
+}
+
+// An angle may be any finite value (check_state accepts it), but its estimates then overflow
+// or exceed 1e50: that coordinate's estimator restarts (named in the update) instead of
+// stopping every later sample. Within a few samples the estimates are back, at the motion's
+// own scale, and the other coordinates never noticed.
+TEST_F(PoisonTest, AngleSpikeRestartsThatCoordinateOnly) {
+  const int arm = index("arm1_joint");
+  feed(0, 10);
+  int n = 10;
+  for (double huge : {1.7e308, 1e300, 1e60}) {
+    sensor_msgs::JointState m = sample(n / 100.0);
+    m.position[slot("arm1_joint")] = huge;
+    ASSERT_EQ(clean_.add(sample(n / 100.0), n / 100.0).error, "");
+    const auto update = hit_.add(m, n / 100.0);
+    ASSERT_EQ(update.error, "") << "an angle of " << huge << " is a valid angle";
+    EXPECT_EQ(update.estimator_reset, std::vector<std::string>{"arm1_joint"}) << huge;
+    ++n;
+    int back = 0;  // samples until full estimates again
+    for (int i = 1; i <= 10; ++i, ++n) {
+      feed(n, n + 1);
+      // What the node would publish passes check_state: no Inf, nothing beyond 1e50.
+      const Level level = hit_.fill(Level::kAcceleration, nullptr, hit_state_);
+      EXPECT_EQ(mbk::check_state(model_, hit_state_), "") << huge << ", sample " << i;
+      if (level == Level::kAcceleration && back == 0) back = i;
+    }
+    ASSERT_GT(back, 0) << "no estimates within 10 samples after an angle of " << huge;
+    EXPECT_LE(back, 6) << huge;
+    // Back on the motion: 10 samples after the spike the restarted estimator has the quadratic's
+    // own q' and q'' (measured: 3e-12 and 3e-10 off; a poisoned one gives NaN or 1e95).
+    const double t = (n - 1) / 100.0;
+    EXPECT_NEAR(hit_state_.velocity[arm], 0.5 + 0.4 * t, 1e-6) << huge;
+    EXPECT_NEAR(hit_state_.acceleration[arm], 0.4, 1e-6) << huge;
+    ASSERT_EQ(clean_.fill(Level::kAcceleration, nullptr, clean_state_), Level::kAcceleration);
+    for (int i = 0; i < model_.nq; ++i) {
+      if (i == arm) continue;
+      EXPECT_EQ(hit_state_.velocity[i], clean_state_.velocity[i]) << model_.coordinate_names[i];
+      EXPECT_EQ(hit_state_.acceleration[i], clean_state_.acceleration[i])
+          << model_.coordinate_names[i];
+    }
+  }
+}

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <set>
 
 #include "test/ros/ros_test_support.h"
@@ -306,6 +307,29 @@ TEST(StartupTest, EstimatorWithLatencyExitsNonZero) {
             0);
   EXPECT_NE(output.find("savitzky_golay_9_2"), std::string::npos) << output;
   EXPECT_NE(output.find("4 samples back"), std::string::npos) << output;
+}
+
+// Above 10,000 cells (N x (max depth + 1)) the lower body arrays table is not logged at start,
+// a summary is: a chain of 1000 bodies (1e6 cells) starts and says so in a few lines.
+TEST(StartupTest, LargeModelLogsASummaryNotTheTable) {
+  std::vector<int> chain(1000);
+  std::iota(chain.begin(), chain.end(), 0);  // L(k) = k - 1
+  ros::NodeHandle nh;
+  nh.setParam("/chain/chain_node/lower_body_array", chain);
+  const std::string command =
+      "timeout -s INT 5 " + std::string(MBK_NODE_PATH) + " __ns:=/chain __name:=chain_node 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 124) << "the node ended before the timeout:\n" << output;
+  EXPECT_NE(output.find("1000 bodies, 3000 coordinates, max depth 1000"), std::string::npos)
+      << output;
+  EXPECT_NE(output.find("(1001000 cells) is not logged above 10000"), std::string::npos) << output;
+  EXPECT_LT(output.size(), 2000u) << "the table was logged";
 }
 
 }  // namespace

@@ -37,19 +37,14 @@ void DiagnosticsOutput::received() {
   ++window_.received;
 }
 
-void DiagnosticsOutput::dropped(const std::string& problem) {
-  ++total_.dropped;
-  ++window_.dropped;
-  last_problem_ = problem;
+void DiagnosticsOutput::count(InputProblem problem, const std::string& message) {
+  ++problems_[static_cast<size_t>(problem)];
+  last_problem_ = message;
+  for (Counters* c : {&total_, &window_}) {
+    if (drops_sample(problem)) ++c->dropped;
+    if (problem == InputProblem::kMissingJoints) ++c->incomplete;
+  }
 }
-
-void DiagnosticsOutput::waiting(const std::string& problem) {
-  ++total_.incomplete;
-  ++window_.incomplete;
-  last_problem_ = problem;
-}
-
-void DiagnosticsOutput::problem(const std::string& problem) { last_problem_ = problem; }
 
 void DiagnosticsOutput::published(double seconds) {
   for (Counters* c : {&total_, &window_}) {
@@ -72,6 +67,8 @@ void DiagnosticsOutput::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("samples dropped (bad input)", total_.dropped);
   status.add("samples waiting for joints", total_.incomplete);
   status.add("last problem", last_problem_.empty() ? "none" : last_problem_);
+  for (size_t p = 0; p < problems_.size(); ++p)
+    status.add(diagnostic_key(static_cast<InputProblem>(p)), problems_[p]);
   // Cheap error indicators (mb_kinematics/core/error_indicators.h; README, work-precision).
   status.add("rotation orthonormality drift", data_ ? mbk::orthonormality_drift(*data_) : 0.0);
   status.add("Euler parameter norm error", state_ ? mbk::euler_norm_error(model_, *state_) : 0.0);

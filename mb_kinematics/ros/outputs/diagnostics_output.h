@@ -1,14 +1,17 @@
 // /diagnostics (diagnostic_updater, every ~diagnostic_period): the input rate, the update time
 // per sample, what was received, published and dropped, the last problem, and the cheap error
-// indicators of the README's "Error against run time" (error_indicators.h). The node reports
-// its input's fate here; publish() takes each computed sample's estimator residual.
+// indicators of the README's "Error against run time" (error_indicators.h), and a count per
+// class of dropped, ignored, repaired or waiting input (input_problem.h). The node reports its
+// input's fate here; publish() takes each computed sample's estimator residual.
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
 
+#include <array>
 #include <chrono>
 #include <string>
 
+#include "mb_kinematics/ros/input_problem.h"
 #include "mb_kinematics/ros/outputs/output.h"
 
 namespace mbk_ros {
@@ -21,11 +24,10 @@ class DiagnosticsOutput : public Output {
   bool active() override { return true; }
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
-  void received();                           // a joint_states message came in
-  void dropped(const std::string& problem);  // a sample was refused
-  void waiting(const std::string& problem);  // a sample waits for joints never received
-  void problem(const std::string& problem);  // something else went wrong (no sample lost)
-  void published(double seconds);            // a sample went out, after `seconds` of work
+  void received();  // a joint_states message came in
+  // A sample (or a joint_accelerations message) of this class; `message` says what and where.
+  void count(InputProblem problem, const std::string& message);
+  void published(double seconds);  // a sample went out, after `seconds` of work
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -43,6 +45,7 @@ class DiagnosticsOutput : public Output {
     double update_seconds = 0, max_update_seconds = 0;
     double max_residual = 0;  // mbk::prediction_residual, over the samples
   } total_, window_;
+  std::array<long, static_cast<size_t>(InputProblem::kCount)> problems_{};  // since start
   std::chrono::steady_clock::time_point window_start_;
   std::string last_problem_;
 };
