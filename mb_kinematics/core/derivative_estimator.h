@@ -28,7 +28,7 @@ class DerivativeEstimator {
 };
 
 // Estimators by name (derivative_estimator_names() lists the studied ones; README's
-// work-precision report compares them). "backward_difference" (the default): the derivatives at the
+// work-precision report compares them). "backward_difference": the derivatives at the
 // newest sample of the quadratic through the last three samples (non-uniform 3-point backward
 // difference; exact for quadratics, first derivative O(h^2), second O(h)); with two samples, the
 // first derivative of the line through them. Throws std::invalid_argument naming the known

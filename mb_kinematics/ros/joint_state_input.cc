@@ -162,12 +162,4 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
   return accels ? mbk::Level::kAcceleration : mbk::Level::kVelocity;
 }
 
-void JointStateInput::reset() {
-  for (Coordinate& c : coordinates_) {
-    c.has_value = c.velocity_given = false;
-    c.position_history->reset();
-    c.velocity_history->reset();
-  }
-}
-
 }  // namespace mbk_ros

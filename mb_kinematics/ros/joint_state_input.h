@@ -59,8 +59,6 @@ class JointStateInput {
   mbk::Level fill(mbk::Level level, const AccelerationSample* accelerations,
                   mbk::JointState<double>& state) const;
 
-  void reset();
-
  private:
   struct Coordinate {
     bool mimic = false, has_value = false, velocity_given = false;

@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/urdf_model.h"
+
 namespace mbk_ros {
 namespace {
 
@@ -46,6 +49,26 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
     }
   }
   return p;
+}
+
+mbk::Model load_node_model(const NodeParams& p) {
+  mbk::Model model;
+  if (!p.lower_body_array.empty()) {
+    model = mbk::make_bare_model(p.lower_body_array, mbk::joint_type_from_string(p.joint_type));
+  } else if (!p.model.empty()) {
+    model = mbk::load_model_file(p.model);
+  } else if (!p.robot_description.empty()) {
+    model = mbk::load_urdf_string(p.robot_description, "robot_description");
+  } else {
+    throw std::invalid_argument(
+        "no model: set the robot_description parameter (URDF), ~model (a .urdf or .yaml "
+        "path) or ~lower_body_array");
+  }
+  if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {  // the node's speeds: q'
+    model.speeds = mbk::SpeedKind::kCoordinateDerivatives;
+    mbk::finalize_model(model);
+  }
+  return model;
 }
 
 }  // namespace mbk_ros

@@ -1,11 +1,13 @@
-// Every parameter of mb_kinematics_node, read in one place (read_node_params). The README's
-// parameter table lists the same names and defaults.
+// Every parameter of mb_kinematics_node, read in one place (read_node_params), and the model
+// they name (load_node_model). The README's parameter table lists the same names and defaults.
 #pragma once
 
 #include <ros/node_handle.h>
 
 #include <string>
 #include <vector>
+
+#include "mb_kinematics/core/model.h"
 
 namespace mbk_ros {
 
@@ -25,5 +27,9 @@ struct NodeParams {
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.
 NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+
+// The model the parameters name: ~lower_body_array, else ~model, else robot_description (URDF).
+// Euler-parameter joints get coordinate-derivative speeds. Throws std::invalid_argument.
+mbk::Model load_node_model(const NodeParams& params);
 
 }  // namespace mbk_ros

@@ -1,0 +1,55 @@
+// The motion of a point fixed in body Bk, from the Data of forward_kinematics, with its
+// components in R or in Bk (as Pinocchio's getVelocity(..., ReferenceFrame)): a change of
+// reference point and of frame, for outputs that want them in the body's own frame.
+#pragma once
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/types.h"
+
+namespace mbk {
+
+// The frame whose components a vector is given in.
+enum class ReferenceFrame { kInertial, kBody };  // R, or Bk itself
+
+// The angular part (omega_k or alpha_k) and the linear part (of the point) of a body's motion.
+template <typename S>
+struct BodyMotion {
+  Vec3<S> angular, linear;
+};
+
+namespace detail {
+
+template <typename S>
+BodyMotion<S> in_frame(const Data<S>& data, int k, ReferenceFrame frame, BodyMotion<S> m) {
+  if (frame == ReferenceFrame::kBody) {  // S0K^T: components in Bk
+    m.angular = data.rotation[k].transpose() * m.angular;
+    m.linear = data.rotation[k].transpose() * m.linear;
+  }
+  return m;
+}
+
+}  // namespace detail
+
+// omega_k and the velocity of the point P at r from O_k (components in Bk; r = 0: O_k itself,
+// r = r_k: G_k): v_P = vO_k + omega_k x (S0K r) (method.md 4, as v_k). Needs Level kVelocity.
+template <typename S>
+BodyMotion<S> point_velocity(const Data<S>& data, int k, const Vec3<S>& r, ReferenceFrame frame) {
+  const Vec3<S> rho = data.rotation[k] * r;  // S0K r
+  const BodyMotion<S> m{data.omega[k], data.origin_velocity[k] + data.omega[k].cross(rho)};
+  return detail::in_frame(data, k, frame, m);
+}
+
+// alpha_k and the acceleration of the same point:
+// a_P = aO_k + alpha_k x (S0K r) + omega_k x (omega_k x (S0K r)) (method.md 4, as a_k).
+// Needs Level kAcceleration.
+template <typename S>
+BodyMotion<S> point_acceleration(const Data<S>& data, int k, const Vec3<S>& r,
+                                 ReferenceFrame frame) {
+  const Vec3<S> rho = data.rotation[k] * r;
+  const Vec3<S>& omega = data.omega[k];
+  const BodyMotion<S> m{data.alpha[k], data.origin_acceleration[k] + data.alpha[k].cross(rho) +
+                                           omega.cross(omega.cross(rho))};
+  return detail::in_frame(data, k, frame, m);
+}
+
+}  // namespace mbk

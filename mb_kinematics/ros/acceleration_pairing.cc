@@ -1,0 +1,40 @@
+#include "mb_kinematics/ros/acceleration_pairing.h"
+
+#include <utility>
+
+namespace mbk_ros {
+
+std::vector<AccelerationPairing::Ready> AccelerationPairing::add(
+    const sensor_msgs::JointStateConstPtr& msg, bool pairing) {
+  std::vector<Ready> ready;
+  if (pending_) {  // its accelerations did not come in time: estimate them
+    ready.push_back({pending_, true});
+    pending_.reset();
+  }
+  if (pairing && !at(msg->header.stamp.toSec()))
+    pending_ = msg;  // wait for joint_accelerations of the same stamp (or the next sample)
+  else
+    ready.push_back({msg, false});
+  return ready;
+}
+
+std::vector<AccelerationPairing::Ready> AccelerationPairing::add(AccelerationSample accelerations) {
+  if (!kept_.empty() && accelerations.stamp < kept_.back().stamp)
+    kept_.clear();  // stamps went backwards (a bag looping)
+  kept_.push_back(std::move(accelerations));
+  if (kept_.size() > kKept) kept_.pop_front();
+  std::vector<Ready> ready;
+  if (pending_ && pending_->header.stamp.toSec() == kept_.back().stamp) {
+    ready.push_back({pending_, false});
+    pending_.reset();
+  }
+  return ready;
+}
+
+const AccelerationSample* AccelerationPairing::at(double t) const {
+  for (const AccelerationSample& a : kept_)
+    if (a.stamp == t) return &a;
+  return nullptr;
+}
+
+}  // namespace mbk_ros

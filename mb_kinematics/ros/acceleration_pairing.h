@@ -1,0 +1,39 @@
+// joint_accelerations paired with the joint_states sample of the same stamp, whichever of the
+// two arrives first (design.md, "Topics of the node"): a sample waits for its accelerations
+// until they come or the next sample does; then it goes on with estimated accelerations.
+#pragma once
+
+#include <sensor_msgs/JointState.h>
+
+#include <deque>
+#include <vector>
+
+#include "mb_kinematics/ros/joint_state_input.h"
+
+namespace mbk_ros {
+
+class AccelerationPairing {
+ public:
+  struct Ready {  // a sample that can be computed now
+    sensor_msgs::JointStateConstPtr sample;
+    bool unpaired;  // true: its accelerations did not come (they are estimated)
+  };
+
+  // A joint_states sample. `pairing`: some joint_accelerations publisher is there. Returns the
+  // samples to compute now, oldest first: the pending one (unpaired), then `msg` unless it waits
+  // for its own accelerations.
+  std::vector<Ready> add(const sensor_msgs::JointStateConstPtr& msg, bool pairing);
+
+  // A converted joint_accelerations message; returns the pending sample it completes, if any.
+  std::vector<Ready> add(AccelerationSample accelerations);
+
+  // The kept accelerations of stamp t (seconds), or null.
+  const AccelerationSample* at(double t) const;
+
+ private:
+  static constexpr size_t kKept = 16;  // the latest few, by stamp
+  sensor_msgs::JointStateConstPtr pending_;
+  std::deque<AccelerationSample> kept_;
+};
+
+}  // namespace mbk_ros

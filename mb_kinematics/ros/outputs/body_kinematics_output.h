@@ -1,0 +1,46 @@
+// body_kinematics (mb_kinematics_msgs/BodyKinematicsArray): every body's pose, mass center,
+// twist (omega_k, velocity of G_k) and accel (alpha_k, acceleration of G_k), all in R; and
+// lower_body_array (latched mb_kinematics_msgs/LowerBodyArray), the topology, once.
+#pragma once
+
+#include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <ros/publisher.h>
+
+#include "mb_kinematics/ros/outputs/output.h"
+
+namespace mbk_ros {
+
+// Names, indices and lower bodies of `msg`, once: the per-sample fill leaves them.
+void init_body_kinematics(const mbk::Model& model, const std::string& frame,
+                          mb_kinematics_msgs::BodyKinematicsArray& msg);
+// The sample's values (forward_kinematics at Level kAcceleration) into `msg`.
+void fill_body_kinematics(const ros::Time& stamp, const mbk::Data<double>& data,
+                          mb_kinematics_msgs::BodyKinematicsArray& msg);
+
+class BodyKinematicsOutput : public Output {
+ public:
+  static bool enabled(const NodeParams& p) { return p.body_kinematics; }
+  explicit BodyKinematicsOutput(const OutputSetup& setup);
+  mbk::Level level() const override { return mbk::Level::kAcceleration; }
+  bool active() override { return publisher_.getNumSubscribers() > 0; }
+  void publish(const ros::Time& stamp, const Sample& sample) override;
+
+ private:
+  ros::Publisher publisher_;
+  mb_kinematics_msgs::BodyKinematicsArray msg_;
+};
+
+class LowerBodyArrayOutput : public Output {
+ public:
+  static bool enabled(const NodeParams&) { return true; }
+  explicit LowerBodyArrayOutput(const OutputSetup& setup);
+  mbk::Level level() const override { return mbk::Level::kPose; }
+  bool uses_data() const override { return false; }
+  bool active() override { return false; }  // latched: nothing per sample
+  void publish(const ros::Time&, const Sample&) override {}
+
+ private:
+  ros::Publisher publisher_;
+};
+
+}  // namespace mbk_ros

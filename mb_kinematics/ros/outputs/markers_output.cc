@@ -1,0 +1,21 @@
+#include "mb_kinematics/ros/outputs/markers_output.h"
+
+#include "mb_kinematics/ros/outputs/body_kinematics_output.h"
+
+namespace mbk_ros {
+
+MarkersOutput::MarkersOutput(const OutputSetup& setup)
+    : publisher_(
+          setup.nh.advertise<visualization_msgs::MarkerArray>("body_kinematics/markers", 10)) {
+  init_body_kinematics(setup.model, setup.frame, kinematics_);
+}
+
+void MarkersOutput::publish(const ros::Time& stamp, const Sample& sample) {
+  fill_body_kinematics(stamp, sample.data, kinematics_);
+  for (int q = 0; q < kQuantities; ++q)
+    style_.scale[q] = scales_[q].update(max_norm(kinematics_, style_, q), 0.3);
+  publisher_.publish(
+      make_marker_array(make_glyphs(kinematics_, style_), style_, kinematics_.header));
+}
+
+}  // namespace mbk_ros

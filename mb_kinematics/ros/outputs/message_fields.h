@@ -1,0 +1,27 @@
+// Eigen values into geometry_msgs fields, shared by the outputs.
+#pragma once
+
+#include <Eigen/Geometry>
+
+#include "mb_kinematics/core/types.h"
+
+namespace mbk_ros {
+
+// x, y, z of a Vector3, Point or the like.
+template <typename T>
+void set_vector(const mbk::Vec3<double>& v, T& out) {
+  out.x = v.x();
+  out.y = v.y();
+  out.z = v.z();
+}
+
+template <typename T>
+void set_quaternion(const mbk::Mat3<double>& rotation, T& out) {
+  const Eigen::Quaterniond q(rotation);
+  out.x = q.x();
+  out.y = q.y();
+  out.z = q.z();
+  out.w = q.w();
+}
+
+}  // namespace mbk_ros

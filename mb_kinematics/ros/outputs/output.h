@@ -1,0 +1,48 @@
+// One output of the node (a topic or a family of topics): what it needs computed, whether
+// anybody listens, and how it publishes a sample. KinematicsNode keeps only input, pairing and
+// dispatch; the outputs it runs are listed in output_table.cc (adding a topic: a new Output
+// and one line there).
+#pragma once
+
+#include <ros/node_handle.h>
+#include <ros/time.h>
+
+#include <string>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+#include "mb_kinematics/ros/node_params.h"
+
+namespace mbk_ros {
+
+// What an output may use when it is made: it advertises its topics here.
+struct OutputSetup {
+  ros::NodeHandle& nh;
+  const NodeParams& params;
+  const mbk::Model& model;
+  const std::string& frame;  // R
+};
+
+// One computed sample.
+struct Sample {
+  const mbk::Model& model;
+  const mbk::JointState<double>& state;  // checked by mbk::check_state
+  const mbk::Data<double>& data;         // forward_kinematics up to `level`, if uses_data()
+  mbk::Level level;                      // what the state holds: estimates may lag behind
+};
+
+class Output {
+ public:
+  virtual ~Output() = default;
+  // The computation it needs: publish() is called only for samples of at least this level.
+  virtual mbk::Level level() const = 0;
+  // False if it reads the joint state only (then no forward_kinematics is run for it).
+  virtual bool uses_data() const { return true; }
+  // Whether anybody listens now; asked once per sample, before the computation.
+  virtual bool active() = 0;
+  // Called after active() returned true, when the sample reached level().
+  virtual void publish(const ros::Time& stamp, const Sample& sample) = 0;
+};
+
+}  // namespace mbk_ros
