@@ -77,4 +77,20 @@ JointState<double> random_state(const Model& model, std::mt19937& rng, double sp
   return state;
 }
 
+Model with_random_inertias(Model model, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> moment(0.1, 1.0), angle(-3.0, 3.0), t(0.0, 1.0);
+  for (int k = 1; k <= model.body_count(); ++k) {
+    Body& body = model.bodies[k];
+    if (body.has_inertia) continue;
+    const double a = moment(rng), b = moment(rng);
+    const double c = std::abs(a - b) + t(rng) * (a + b - std::abs(a - b));  // triangle inequality
+    const Mat3<double> r = rotation_123(angle(rng), angle(rng), angle(rng));
+    body.inertia = r * Vec3<double>(a, b, c).asDiagonal() * r.transpose();
+    body.has_inertia = true;
+  }
+  finalize_model(model);
+  return model;
+}
+
 }  // namespace mbk

@@ -22,6 +22,11 @@ Model make_random_tree(int n, unsigned seed, SpeedKind speeds = SpeedKind::kCoor
 // (ball_123 -> ball_euler, free_123 -> free_euler), with the given speeds.
 Model with_euler_parameters(const Model& model, SpeedKind speeds);
 
+// The same model where every body without an inertia gets a random physical one about G_k
+// (R diag(a, b, c) R^T, a and b in [0.1, 1], c between |a - b| and a + b, R random), for
+// reports and tests of the system quantities; bodies with an inertia keep theirs.
+Model with_random_inertias(Model model, unsigned seed);
+
 // Uniform random positions in [-pi, pi] (Euler parameters: a random unit quaternion), speeds
 // in [-1, 1] * speed_scale, accelerations in [-1, 1] * speed_scale^2.
 JointState<double> random_state(const Model& model, std::mt19937& rng, double speed_scale = 1.0);

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/core/lower_body_array.h"
 
 namespace mbk {
@@ -24,6 +25,8 @@ void validate_body(Body& body, int k) {
   if (!all_finite(joint.rotation)) fail(body, k, "joint rotation (C_k) is not finite");
   if (!all_finite(body.mass_center)) fail(body, k, "mass_center is not finite");
   if (!std::isfinite(body.mass) || body.mass < 0) fail(body, k, "mass must be finite and >= 0");
+  const std::string inertia = body.has_inertia ? inertia_problem(body.inertia) : "";
+  if (!inertia.empty()) fail(body, k, "inertia " + inertia);
   const Mat3<double> c = joint.rotation;
   if ((c.transpose() * c - Mat3<double>::Identity()).norm() > 1e-9 || c.determinant() < 0)
     fail(body, k, "joint rotation (C_k) is not a proper rotation");

@@ -15,6 +15,8 @@ struct Body {
   Joint joint;                                      // connection to the lower body
   Vec3<double> mass_center = Vec3<double>::Zero();  // r_k: O_k -> G_k, components in Bk
   double mass = 0.0;
+  Mat3<double> inertia = Mat3<double>::Zero();  // I_k: about G_k, in Bk's axes, if has_inertia
+  bool has_inertia = false;                     // the scene or URDF gave I_k
   int q_index = 0;  // first coordinate of the joint in the state's position vector
   int v_index = 0;  // first generalized speed of the joint
   int depth = 0;    // number of joints from R to Bk (set by finalize_model)

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/io/number_format.h"
 
@@ -65,7 +66,60 @@ std::string format_lower_body_csv(const std::vector<int>& lower) {
   return out.str();
 }
 
-std::string format_eval_json(const Model& model, const Data<double>& data) {
+namespace {  // issue 10: the system quantities and the partial velocities
+
+std::string json_vector(const Vec3<double>& v, bool known) {
+  return known ? json_array(v.transpose()) : "null";
+}
+
+std::string system_json(const Model& model, const SystemKinematics<double>& s) {
+  if (!(s.mass_center.allFinite() && s.velocity.allFinite() && s.acceleration.allFinite() &&
+        s.angular_momentum.allFinite()))
+    throw std::runtime_error("system quantities not finite (check the state and the masses)");
+  const bool g = s.mass > 0;  // no mass center without mass
+  std::string out =
+      "{\"mass\": " + number(s.mass) + ", \"mass_center\": " + json_vector(s.mass_center, g) +
+      ", \"velocity\": " + json_vector(s.velocity, g) +
+      ", \"acceleration\": " + json_vector(s.acceleration, g) +
+      ", \"linear_momentum\": " + json_vector(s.linear_momentum, g) +
+      ", \"angular_momentum\": " + json_vector(s.angular_momentum, g && s.angular_momentum_known);
+  if (!s.angular_momentum_known) {
+    out += ", \"missing_inertia\": [";
+    const std::vector<std::string> names = bodies_without_inertia(model);
+    for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + json_string(names[i]);
+    out += "]";
+  }
+  return out + "}";
+}
+
+// ", "partial_omega": {speed: [3], ...}, ..." for body k.
+std::string partials_json(const Model& model, const PartialVelocities<double>& pv, int k) {
+  const std::vector<SpeedColumn> columns = independent_columns(model, pv, k);
+  const char* names[] = {"partial_omega", "partial_velocity", "partial_omega_dot",
+                         "partial_velocity_dot"};
+  const Vec3<double> SpeedColumn::*fields[] = {&SpeedColumn::omega, &SpeedColumn::velocity,
+                                               &SpeedColumn::omega_dot, &SpeedColumn::velocity_dot};
+  std::string out;
+  for (int f = 0; f < 4; ++f) {
+    out += std::string(", \"") + names[f] + "\": {";
+    for (size_t i = 0; i < columns.size(); ++i) {
+      const Vec3<double>& v = columns[i].*fields[f];
+      if (!v.allFinite())
+        throw std::runtime_error("body " + std::to_string(k) + " '" + model.bodies[k].name +
+                                 "': partial velocities not finite");
+      out += (i ? ", " : "") + json_string(model.speed_names[columns[i].speed]) + ": " +
+             json_array(v.transpose());
+    }
+    out += "}";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string format_eval_json(const Model& model, const Data<double>& data,
+                             const SystemKinematics<double>* system,
+                             const PartialVelocities<double>* pv) {
   std::ostringstream out;
   out << "{\"frame\": " << json_string(model.frame) << ", \"bodies\": [";
   for (int k = 1; k <= model.body_count(); ++k) {
@@ -87,9 +141,11 @@ std::string format_eval_json(const Model& model, const Data<double>& data) {
         << ", \"alpha\": " << json_array(data.alpha[k].transpose())
         << ", \"velocity\": " << json_array(data.mass_center_velocity[k].transpose())
         << ", \"acceleration\": " << json_array(data.mass_center_acceleration[k].transpose())
-        << "}";
+        << (pv ? partials_json(model, *pv, k) : "") << "}";
   }
-  out << "\n]}\n";
+  out << "\n]";
+  if (system) out << ", \"system\": " << system_json(model, *system);
+  out << "}\n";
   return out.str();
 }
 

@@ -6,6 +6,8 @@
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/system_kinematics.h"
 
 namespace mbk {
 
@@ -18,7 +20,12 @@ std::string format_lower_body_table(const std::vector<int>& lower,
 std::string format_lower_body_csv(const std::vector<int>& lower);
 
 // design.md `mbk eval` JSON. Throws std::runtime_error naming the body if a value is not
-// finite (nothing is printed then).
-std::string format_eval_json(const Model& model, const Data<double>& data);
+// finite (nothing is printed then). `system` adds "system" (issue 10: null vectors when M = 0,
+// a null angular momentum and "missing_inertia" when bodies lack inertias); `pv` adds per body
+// "partial_omega", "partial_velocity", "partial_omega_dot", "partial_velocity_dot", keyed by
+// independent speed name (core/independent_speeds.h).
+std::string format_eval_json(const Model& model, const Data<double>& data,
+                             const SystemKinematics<double>* system = nullptr,
+                             const PartialVelocities<double>* pv = nullptr);
 
 }  // namespace mbk

@@ -8,8 +8,12 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "mb_kinematics/core/inertia.h"
+#include "mb_kinematics/io/urdf_writer.h"
 
 namespace mbk {
 namespace {
@@ -71,6 +75,34 @@ std::map<std::string, int> joint_file_order(const std::string& xml) {
   return order;
 }
 
+// Links whose <inertial> `mbk urdf` wrote with a token inertia (the scene gave none): marked by
+// a comment starting with kTokenInertia (urdf_writer.h), as URDF requires an <inertia>.
+std::set<std::string> links_with_token_inertia(const std::string& xml) {
+  tinyxml2::XMLDocument doc;
+  std::set<std::string> links;
+  if (doc.Parse(xml.c_str()) != tinyxml2::XML_SUCCESS || !doc.FirstChildElement("robot"))
+    return links;
+  for (auto* e = doc.FirstChildElement("robot")->FirstChildElement("link"); e;
+       e = e->NextSiblingElement("link")) {
+    const auto* inertial = e->FirstChildElement("inertial");
+    for (auto* c = inertial ? inertial->FirstChild() : nullptr; c; c = c->NextSibling())
+      if (c->ToComment() && std::string(c->Value()).find(kTokenInertia) != std::string::npos)
+        links.insert(e->Attribute("name") ? e->Attribute("name") : "");
+  }
+  return links;
+}
+
+// I_k in Bk's axes from URDF's inertia in the <inertial> origin's axes: R I R^T.
+void set_inertia(const urdf::Inertial& inertial, Body& body) {
+  const urdf::Rotation& r = inertial.origin.rotation;
+  const Mat3<double> rotation =
+      Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
+  const Mat3<double> i = inertia_matrix(inertial.ixx, inertial.iyy, inertial.izz, inertial.ixy,
+                                        inertial.ixz, inertial.iyz);
+  body.inertia = rotation * i * rotation.transpose();
+  body.has_inertia = true;
+}
+
 Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
   Body body;
   body.name = link.name;
@@ -87,6 +119,7 @@ Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
     const urdf::Vector3& c = link.inertial->origin.position;
     body.mass_center = Vec3<double>(c.x, c.y, c.z);
     body.mass = link.inertial->mass;
+    set_inertia(*link.inertial, body);
   }
   return body;
 }
@@ -126,6 +159,10 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
     if (!parent_joint.count(name))
       throw std::invalid_argument("link '" + name + "' is not connected to the root link '" +
                                   root->name + "' (its joints form a loop)");
+  for (const std::string& link : links_with_token_inertia(xml)) {
+    const int k = model.body_index(link);
+    if (k > 0) model.bodies[k].has_inertia = false;
+  }
   finalize_model(model);
   for (const auto& [name, k] : index_of_joint) {
     const urdf::Joint& joint = *urdf.getJoint(name);

@@ -24,6 +24,10 @@ enum class UrdfStyle {
   kDisplay,
 };
 
+// The comment that marks a written <inertia> as a token (the scene gave none; URDF needs one):
+// load_urdf_string then leaves the body without inertia, so nothing is invented.
+constexpr const char kTokenInertia[] = "mbk: token inertia, the scene gives none";
+
 std::string write_urdf(const Model& model, const std::string& robot_name,
                        UrdfStyle style = UrdfStyle::kEquivalent);
 

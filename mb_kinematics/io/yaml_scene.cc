@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/io/rpy.h"
 
@@ -80,6 +81,19 @@ void read_joint(const YAML::Node& body_node, Body& body, int k) {
   }
 }
 
+// inertia: [ixx, iyy, izz, ixy, ixz, iyz], about G_k in Bk's axes (as URDF's <inertia>).
+void read_inertia(const YAML::Node& node, Body& body, int k) {
+  const std::string field = "body " + std::to_string(k) + " '" + body.name + "' inertia";
+  if (!node.IsSequence() || node.size() != 6)
+    throw SceneError(node, field + " must be a list of 6 numbers [ixx, iyy, izz, ixy, ixz, iyz]");
+  double c[6];
+  for (int i = 0; i < 6; ++i) c[i] = read_number(node[i], field);
+  body.inertia = inertia_matrix(c[0], c[1], c[2], c[3], c[4], c[5]);
+  body.has_inertia = true;
+  const std::string problem = inertia_problem(body.inertia);
+  if (!problem.empty()) throw SceneError(node, field + " " + problem);
+}
+
 Model read_scene(const YAML::Node& root) {
   if (!root.IsMap()) throw SceneError(root, "a scene is a map with 'bodies' (see README.md)");
   Model model;
@@ -130,6 +144,7 @@ Model read_scene(const YAML::Node& root) {
     if (node["mass_center"])
       body.mass_center = read_vec3(node["mass_center"], body.name + " mass_center");
     if (node["mass"]) body.mass = read_number(node["mass"], body.name + " mass");
+    if (node["inertia"]) read_inertia(node["inertia"], body, k);
     model.bodies.push_back(body);
   }
   try {

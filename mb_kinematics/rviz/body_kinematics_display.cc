@@ -12,6 +12,7 @@
 #include <pluginlib/class_list_macros.hpp>
 
 #include "mb_kinematics/rviz/body_kinematics_visual.h"
+#include "mb_kinematics/rviz/system_kinematics_visual.h"
 
 namespace mbk_rviz {
 namespace {
@@ -77,6 +78,7 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
                                           SLOT(updateHistoryLength()));
   history_length_->setMin(1);
   history_length_->setMax(100);
+  makeSystemProperties();
 }
 
 BodyKinematicsDisplay::~BodyKinematicsDisplay() = default;
@@ -93,6 +95,62 @@ void BodyKinematicsDisplay::makeQuantityProperties(int q, const QColor& color, d
                                     SLOT(updateStyle()), this);
 }
 
+void BodyKinematicsDisplay::makeSystemProperties() {
+  const SystemStyle d;
+  system_ = new rviz::BoolProperty(
+      "System Mass Center", true,
+      "A larger sphere at the mass center G of the whole system (when the node fills the "
+      "message's system field).",
+      this, SLOT(updateStyle()));
+  system_color_ = new rviz::ColorProperty(
+      "Color", QColor::fromRgbF(d.color.r, d.color.g, d.color.b),
+      "Color of the sphere and of its projection.", system_, SLOT(updateStyle()), this);
+  system_radius_ = new rviz::FloatProperty("Radius", d.radius, "Sphere radius (m).", system_,
+                                           SLOT(updateStyle()), this);
+  system_radius_->setMin(0);
+  system_velocity_ = new rviz::BoolProperty(
+      "Velocity", true, "The velocity of G (Velocity's color and scale, twice as wide).", system_,
+      SLOT(updateStyle()), this);
+  system_acceleration_ = new rviz::BoolProperty(
+      "Acceleration", true,
+      "The acceleration of G (Acceleration's color and scale, twice as wide).", system_,
+      SLOT(updateStyle()), this);
+  system_projection_ = new rviz::BoolProperty(
+      "Ground Projection", true,
+      "G's projection on the x-y plane of R (the message's frame): a disc at z = 0 and a line "
+      "down to it.",
+      system_, SLOT(updateStyle()), this);
+}
+
+void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg,
+                                       const Ogre::Vector3& position,
+                                       const Ogre::Quaternion& orientation) {
+  if (!system_visual_)
+    system_visual_ =
+        std::make_unique<SystemKinematicsVisual>(context_->getSceneManager(), scene_node_);
+  SystemStyle s;
+  s.show = system_->getBool();
+  s.velocity = system_velocity_->getBool();
+  s.acceleration = system_acceleration_->getBool();
+  s.projection = system_projection_->getBool();
+  const QColor c = system_color_->getColor();
+  const float alpha = alpha_->getFloat();
+  s.color = Ogre::ColourValue(c.redF(), c.greenF(), c.blueF(), alpha);
+  auto colour = [&](const mbk_ros::Rgba& x) { return Ogre::ColourValue(x.r, x.g, x.b, alpha); };
+  s.velocity_color = colour(style_.color[mbk_ros::GlyphQuantity::kVelocity]);
+  s.acceleration_color = colour(style_.color[mbk_ros::GlyphQuantity::kAcceleration]);
+  s.velocity_scale = style_.scale[mbk_ros::GlyphQuantity::kVelocity];
+  s.acceleration_scale = style_.scale[mbk_ros::GlyphQuantity::kAcceleration];
+  s.radius = system_radius_->getFloat();
+  s.width = 2 * style_.width;
+  system_visual_->setFramePose(position, orientation);
+  if (system_visual_->set(msg.system, s))
+    deleteStatus("System");
+  else
+    setStatus(rviz::StatusProperty::Warn, "System",
+              "system quantities with NaN or infinite values");
+}
+
 void BodyKinematicsDisplay::onInitialize() {
   MFDClass::onInitialize();
   updateHistoryLength();
@@ -104,6 +162,7 @@ void BodyKinematicsDisplay::reset() {
   MFDClass::reset();
   visuals_.clear();
   pending_.clear();
+  system_visual_.reset();
 }
 
 void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
@@ -200,6 +259,7 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
   visual->setFramePose(position, orientation);
   visual->set(glyphs, style_, alpha_->getFloat());
   visuals_.push_back(visual);
+  drawSystem(msg, position, orientation);
 }
 
 }  // namespace mbk_rviz

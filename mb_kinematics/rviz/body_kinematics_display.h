@@ -2,10 +2,13 @@
 // manner of rviz's own screw_display): per body arrows for the mass-center velocity and
 // acceleration at G_k, omega and alpha as arrows with a circular arc for the sense of rotation,
 // a sphere at each mass center, optionally the skeleton. Bodies with invalid floats are skipped
-// with a status warning.
+// with a status warning. The whole system (the message's `system`, when filled): a larger sphere
+// at its mass center G, G's velocity and acceleration, G's projection on R's x-y plane.
 #pragma once
 
 #ifndef Q_MOC_RUN
+#include <OgreQuaternion.h>
+#include <OgreVector3.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <rviz/message_filter_display.h>
 
@@ -28,6 +31,7 @@ class StringProperty;
 namespace mbk_rviz {
 
 class BodyKinematicsVisual;
+class SystemKinematicsVisual;
 
 class BodyKinematicsDisplay
     : public rviz::MessageFilterDisplay<mb_kinematics_msgs::BodyKinematicsArray> {
@@ -60,6 +64,9 @@ class BodyKinematicsDisplay
   void autoScale(const mb_kinematics_msgs::BodyKinematicsArray& msg);
   void reportSkipped(const mbk_ros::Glyphs& glyphs);
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
+  void makeSystemProperties();
+  void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg, const Ogre::Vector3& position,
+                  const Ogre::Quaternion& orientation);
 
   std::array<QuantityProperties, mbk_ros::GlyphQuantity::kCount> quantity_;
   rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
@@ -73,6 +80,12 @@ class BodyKinematicsDisplay
   std::array<mbk_ros::AutoScale, mbk_ros::GlyphQuantity::kCount> auto_scales_;
   boost::circular_buffer<std::shared_ptr<BodyKinematicsVisual>> visuals_;
   std::vector<mb_kinematics_msgs::BodyKinematicsArray::ConstPtr> pending_;
+
+  // The whole system (issue 10): the newest message's, one visual.
+  rviz::BoolProperty *system_, *system_velocity_, *system_acceleration_, *system_projection_;
+  rviz::ColorProperty* system_color_;
+  rviz::FloatProperty* system_radius_;
+  std::unique_ptr<SystemKinematicsVisual> system_visual_;
 };
 
 }  // namespace mbk_rviz

@@ -1,6 +1,7 @@
 // mbk: the command-line tool (design.md "Contracts").
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
 //   mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]
+//       [--partial-velocities]
 //   mbk urdf --model SCENE.yaml [--name ROBOT] [--display]   (a scene as URDF: the equivalent
 //       kinematics for KDL and robot_state_publisher, or with --display a link per body for
 //       rviz's RobotModel beside a node that runs the scene)
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state_check.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/state_json.h"
@@ -25,6 +28,7 @@ namespace {
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
     "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
+    "                [--partial-velocities]\n"
     "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
@@ -32,12 +36,12 @@ struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Options of the form --name value, and the flags --csv and --display.
+// Options of the form --name value, and the flags --csv, --display and --partial-velocities.
 std::map<std::string, std::string> parse_options(int argc, char** argv) {
   std::map<std::string, std::string> options;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--csv" || arg == "--display") {
+    if (arg == "--csv" || arg == "--display" || arg == "--partial-velocities") {
       options[arg] = "1";
     } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method" ||
                 arg == "--name") &&
@@ -80,15 +84,19 @@ int eval(const std::map<std::string, std::string>& options) {
                                 ": " + problem);
   mbk::Data<double> data(model);
   const std::string method = options.count("--method") ? options.at("--method") : "recursive";
-  if (method == "recursive") {
-    mbk::forward_kinematics(model, state, data);
-  } else if (method == "partial_velocity") {
-    mbk::PartialVelocities<double> pv(model);
-    mbk::partial_velocity_kinematics(model, state, pv, data);
-  } else {
+  if (method != "recursive" && method != "partial_velocity")
     throw UsageError("unknown --method '" + method + "'");
+  const bool partials = options.count("--partial-velocities");
+  std::unique_ptr<mbk::PartialVelocities<double>> pv;  // O(N * depth): only when used
+  if (method == "partial_velocity" || partials) {
+    pv = std::make_unique<mbk::PartialVelocities<double>>(model);
+    mbk::Data<double> scratch(model);
+    mbk::partial_velocity_kinematics(model, state, *pv, method == "recursive" ? scratch : data);
   }
-  std::cout << mbk::format_eval_json(model, data);
+  if (method == "recursive") mbk::forward_kinematics(model, state, data);
+  mbk::SystemKinematics<double> system;
+  mbk::system_kinematics(model, data, system);
+  std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr);
   return 0;
 }
 

@@ -18,8 +18,10 @@
 #include "mb_kinematics/analysis/kinematics_error.h"
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/analysis/quad.h"
+#include "mb_kinematics/analysis/system_error.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 
 namespace mbk {
@@ -92,12 +94,37 @@ Row formulation_row(const std::string& method, const Scene& scene, int states, i
   return {method, scene.name, t.median, t.min, t.max, error, ""};
 }
 
+// The system quantities (issue 10) from the double recursion, against the same in quad precision
+// (system_error.h); bodies without an inertia get a random one (with_random_inertias) so that
+// the angular momentum is measured too. The time is that of system_kinematics alone.
+Row system_row(const Scene& scene, int states, int repetitions) {
+  std::mt19937 rng(7);
+  const Model model = with_random_inertias(scene.model, 3);
+  Data<double> data(model);
+  Data<Quad> reference(model);
+  SystemKinematics<double> system;
+  SystemKinematics<Quad> system_reference;
+  double error = 0;
+  for (int i = 0; i < states; ++i) {
+    const JointState<double> state = random_state(model, rng);
+    forward_kinematics(model, state, data);
+    system_kinematics(model, data, system);
+    forward_kinematics(model, cast_state<Quad>(model, state), reference);
+    system_kinematics(model, reference, system_reference);
+    error = std::max(error, system_error(model, system, system_reference, reference));
+  }
+  const Timing t = time_per_update([&] { system_kinematics(model, data, system); }, repetitions);
+  return {"system quantities double", scene.name, t.median, t.min, t.max, error,
+          "after the recursion"};
+}
+
 void formulation_rows(const Scene& scene, bool quick, std::vector<Row>& rows) {
   const int reps = quick ? 5 : 15, states = quick ? 3 : 10;
   const bool small = scene.model.body_count() <= 200;  // partial velocities are O(N * depth)
   rows.push_back(formulation_row<double, false>("recursive double", scene, states, reps));
   rows.push_back(formulation_row<float, false>("recursive float", scene, states, reps));
   rows.push_back(formulation_row<long double, false>("recursive long double", scene, states, reps));
+  rows.push_back(system_row(scene, states, reps));
   if (small) {
     rows.push_back(formulation_row<double, true>("partial velocity double", scene, states, reps));
     rows.push_back(formulation_row<float, true>("partial velocity float", scene, states, reps));

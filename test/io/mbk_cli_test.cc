@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/state_json.h"
 #include "test/support/test_models.h"
@@ -320,7 +322,7 @@ class MbkEval : public ::testing::Test {
 TEST_F(MbkEval, JsonHasTheContractFieldsAndTheKinematics) {
   const Json doc = parse(mbk(args));
   ASSERT_EQ(doc.type, Json::kObject);
-  EXPECT_EQ(doc.keys(), (std::vector<std::string>{"frame", "bodies"}));
+  EXPECT_EQ(doc.keys(), (std::vector<std::string>{"frame", "bodies", "system"}));
   EXPECT_EQ(doc.at("frame").string, "world");
   const Json& bodies = doc.at("bodies");
   ASSERT_EQ(bodies.array.size(), 16u);
@@ -375,6 +377,117 @@ TEST_F(MbkEval, PartialVelocityMethodGivesTheSameNumbers) {
     }
   }
   EXPECT_EQ(mbk(args + " --method recursive").out, mbk(args).out);  // the default
+}
+
+// "system" (issue 10): M, p_G, v_G, a_G, M v_G as the core computes them; the angular momentum
+// null with the bodies that lack an inertia named, or a vector when all have one.
+void expect_system(const Json& system, const mbk::Model& model, const mbk::Data<double>& data) {
+  mbk::SystemKinematics<double> s;
+  mbk::system_kinematics(model, data, s);
+  const bool known = s.angular_momentum_known;
+  std::vector<std::string> keys = {"mass",         "mass_center",     "velocity",
+                                   "acceleration", "linear_momentum", "angular_momentum"};
+  if (!known) keys.push_back("missing_inertia");
+  ASSERT_EQ(system.keys(), keys);
+  EXPECT_EQ(system.at("mass").number, s.mass);
+  const double scale = std::max(1.0, s.acceleration.norm());
+  expect_near_all(numbers(system, "mass_center", 3), row_major(s.mass_center), scale, "p_G");
+  expect_near_all(numbers(system, "velocity", 3), row_major(s.velocity), scale, "v_G");
+  expect_near_all(numbers(system, "acceleration", 3), row_major(s.acceleration), scale, "a_G");
+  expect_near_all(numbers(system, "linear_momentum", 3), row_major(s.linear_momentum),
+                  s.mass * scale, "M v_G");
+  if (known) {
+    expect_near_all(numbers(system, "angular_momentum", 3), row_major(s.angular_momentum),
+                    s.mass * scale, "H_G");
+    return;
+  }
+  EXPECT_EQ(system.at("angular_momentum").type, Json::kNull);
+  std::vector<std::string> missing;
+  for (const Json& name : system.at("missing_inertia").array) missing.push_back(name.string);
+  EXPECT_EQ(missing, mbk::bodies_without_inertia(model));
+  EXPECT_FALSE(missing.empty());
+}
+
+TEST_F(MbkEval, SystemQuantities) {
+  const mbk::Model model = mbk::load_model_file(source_path("config/human_body.yaml"));
+  const mbk::JointState<double> state =
+      mbk::read_state_file(model, source_path("config/human_body_state.json"));
+  mbk::Data<double> data(model);
+  mbk::forward_kinematics(model, state, data);
+  expect_system(parse(mbk(args)).at("system"), model, data);
+  EXPECT_GT(parse(mbk(args)).at("system").at("mass").number, 70.0);  // about 79 kg
+  // With inertias: a scene that gives every body one, written to a temporary file.
+  const std::string path = "/tmp/mbk_cli_test_inertia.yaml";
+  {
+    std::ofstream out(path);
+    out << "bodies:\n"
+           "  - {name: a, lower: 0, joint: {type: ball_123}, mass_center: [0, 0, 0.3], mass: 2,"
+           " inertia: [0.1, 0.2, 0.25, 0.01, 0, 0]}\n"
+           "  - {name: b, lower: a, joint: {type: revolute, origin: [0, 0, 0.6], axis: [0, 1, 0]},"
+           " mass_center: [0.2, 0, 0], mass: 1, inertia: [0.01, 0.05, 0.05, 0, 0, 0]}\n";
+  }
+  const mbk::Model with = mbk::load_model_file(path);
+  {
+    std::ofstream out("/tmp/mbk_cli_test_inertia_state.json");
+    out << "{\"position\": {\"a_joint/alpha\": 0.3, \"a_joint/beta\": 0.4, "
+           "\"a_joint/gamma\": 0.5, \"b_joint\": 0.6}, \"velocity\": {\"a_joint/alpha\": 1, "
+           "\"a_joint/beta\": 0.6, \"a_joint/gamma\": 0.2, \"b_joint\": -0.2}, "
+           "\"acceleration\": {\"a_joint/alpha\": 0, \"a_joint/beta\": 0.5, \"a_joint/gamma\": 1, "
+           "\"b_joint\": 1.5}}\n";
+  }
+  const mbk::JointState<double> read =
+      mbk::read_state_file(with, "/tmp/mbk_cli_test_inertia_state.json");
+  mbk::Data<double> with_data(with);
+  mbk::forward_kinematics(with, read, with_data);
+  const Json doc =
+      parse(mbk("eval --model " + path + " --state /tmp/mbk_cli_test_inertia_state.json"));
+  expect_system(doc.at("system"), with, with_data);
+  EXPECT_EQ(doc.at("system").at("angular_momentum").type, Json::kArray);
+  std::remove(path.c_str());
+  std::remove("/tmp/mbk_cli_test_inertia_state.json");
+}
+
+// --partial-velocities: per body the columns of the speeds of its own chain, keyed by speed
+// name, and v_k = sum_r v_kr y_r, alpha_k = sum_r (omega_kr y_r' + omega_kr' y_r) hold with the
+// printed numbers (1e-12 of the field's scale, as above).
+TEST_F(MbkEval, PartialVelocitiesAreTheColumnsOfTheChain) {
+  const mbk::Model model = mbk::load_model_file(source_path("config/human_body.yaml"));
+  const mbk::JointState<double> state =
+      mbk::read_state_file(model, source_path("config/human_body_state.json"));
+  const Json doc = parse(mbk(args + " --partial-velocities"));
+  const Json plain = parse(mbk(args));
+  const Json& bodies = doc.at("bodies");
+  ASSERT_EQ(bodies.array.size(), 16u);
+  const std::map<std::string, double> scale = field_scales(plain.at("bodies"));
+  mbk::PartialVelocities<double> pv(model);
+  for (int k = 1; k <= 16; ++k) {
+    const Json& body = bodies.array[k - 1];
+    SCOPED_TRACE(model.bodies[k].name);
+    std::vector<std::string> keys = kBodyFields;
+    for (const char* f :
+         {"partial_omega", "partial_velocity", "partial_omega_dot", "partial_velocity_dot"})
+      keys.push_back(f);
+    ASSERT_EQ(body.keys(), keys);
+    std::vector<std::string> chain;  // the speeds of Bk's chain, from R outward
+    for (int i = pv.begin[k]; i < pv.begin[k] + pv.count[k]; ++i)
+      chain.push_back(model.speed_names[pv.speed[i]]);
+    EXPECT_EQ(body.at("partial_omega").keys(), chain);
+    EXPECT_EQ(body.at("partial_velocity_dot").keys(), chain);
+    std::vector<double> v(3, 0.0), alpha(3, 0.0);
+    for (const std::string& speed : chain) {
+      const int r = model.speed_index(speed);
+      const std::vector<double> vr = numbers(body.at("partial_velocity"), speed, 3);
+      const std::vector<double> wr = numbers(body.at("partial_omega"), speed, 3);
+      const std::vector<double> wdr = numbers(body.at("partial_omega_dot"), speed, 3);
+      for (int i = 0; i < 3; ++i) {
+        v[i] += vr[i] * state.velocity[r];
+        alpha[i] += wr[i] * state.acceleration[r] + wdr[i] * state.velocity[r];
+      }
+    }
+    expect_near_all(v, numbers(body, "velocity", 3), scale.at("velocity"), "v_k");
+    expect_near_all(alpha, numbers(body, "alpha", 3), scale.at("alpha"), "alpha_k");
+  }
+  EXPECT_EQ(doc.at("system").keys(), plain.at("system").keys());
 }
 
 struct BadInput {

@@ -153,9 +153,9 @@ class HostileTest : public ::testing::Test {
     double omega = 1, v = 1, alpha = 1, a = 1;
     for (int k = 1; k <= model_.body_count(); ++k) {
       omega = std::max(omega, d.omega[k].norm());
-      v = std::max(v, d.velocity[k].norm());
+      v = std::max(v, d.mass_center_velocity[k].norm());
       alpha = std::max(alpha, d.alpha[k].norm());
-      a = std::max(a, d.acceleration[k].norm());
+      a = std::max(a, d.mass_center_acceleration[k].norm());
     }
     ASSERT_EQ(msg.bodies.size(), static_cast<size_t>(model_.body_count()));
     for (int k = 1; k <= model_.body_count(); ++k) {

@@ -1,0 +1,60 @@
+// Whole-system quantities in R from the bodies' kinematics (issue 10): total mass M, the system
+// mass center G with its velocity and acceleration, linear momentum M v_G, and the angular
+// momentum about G, H_G = sum_k S0K I_k S0K^T omega_k + m_k (p_k - p_G) x (v_k - v_G).
+// Computed only when a caller asks, from a Data already filled by either formulation.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/model.h"
+
+namespace mbk {
+
+template <typename S>
+struct SystemKinematics {
+  S mass = S(0);                               // M = sum_k m_k
+  Vec3<S> mass_center = Vec3<S>::Zero();       // p_G = sum_k m_k p_k / M
+  Vec3<S> velocity = Vec3<S>::Zero();          // v_G = sum_k m_k v_k / M
+  Vec3<S> acceleration = Vec3<S>::Zero();      // a_G = sum_k m_k a_k / M
+  Vec3<S> linear_momentum = Vec3<S>::Zero();   // M v_G
+  Vec3<S> angular_momentum = Vec3<S>::Zero();  // H_G, when angular_momentum_known
+  bool angular_momentum_known = false;         // every body with mass has an inertia
+};
+
+// Bodies with a mass but no inertia (their names): H_G is unknown unless this is empty.
+std::vector<std::string> bodies_without_inertia(const Model& model);
+bool inertias_known(const Model& model);  // bodies_without_inertia is empty (no allocation)
+
+// Fills `out` from `data` at `level` (kPose: M and p_G; kVelocity adds v_G, M v_G and H_G;
+// kAcceleration adds a_G). With M = 0 every vector is zero (there is no mass center).
+template <typename S>
+void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics<S>& out,
+                       Level level = Level::kAcceleration) {
+  const int n = model.body_count();
+  out = SystemKinematics<S>();
+  for (int k = 1; k <= n; ++k) out.mass += S(model.bodies[k].mass);
+  out.angular_momentum_known = level != Level::kPose && inertias_known(model);
+  if (!(out.mass > S(0))) return;
+  for (int k = 1; k <= n; ++k) {
+    const S m = S(model.bodies[k].mass);
+    out.mass_center += m * data.mass_center[k];
+    if (level != Level::kPose) out.linear_momentum += m * data.mass_center_velocity[k];
+    if (level == Level::kAcceleration) out.acceleration += m * data.mass_center_acceleration[k];
+  }
+  out.mass_center /= out.mass;
+  out.velocity = out.linear_momentum / out.mass;
+  out.acceleration /= out.mass;
+  if (!out.angular_momentum_known) return;
+  for (int k = 1; k <= n; ++k) {
+    const Body& body = model.bodies[k];
+    const Mat3<S>& s0k = data.rotation[k];
+    const Vec3<S> spin = s0k * (body.inertia.cast<S>() * (s0k.transpose() * data.omega[k]));
+    const Vec3<S> orbit =
+        (data.mass_center[k] - out.mass_center).cross(data.mass_center_velocity[k] - out.velocity);
+    out.angular_momentum += spin + S(body.mass) * orbit;  // issue 10: S0K I_k S0K^T omega_k + ...
+  }
+}
+
+}  // namespace mbk
