@@ -22,7 +22,9 @@ struct NodeParams {
   bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs
   // ~acceleration_estimator: the best zero-latency tradeoff of the work-precision report
   std::string acceleration_estimator = "kalman_smooth";
-  double max_sample_gap = 1.0;  // ~max_sample_gap (s): no derivative across a longer pause
+  double max_sample_gap = 1.0;   // ~max_sample_gap (s): no derivative across a longer pause
+  double publish_frequency = 0;  // ~publish_frequency (Hz): outputs at most this often; 0: all
+  int queue_size = 50;           // ~queue_size: of the joint_states and joint_accelerations queues
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.
