@@ -86,7 +86,8 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       state_(model_),
       data_(model_),
       nh_(nh) {
-  const std::string frame = params_.frame_id.empty() ? model_.frame : params_.frame_id;
+  const std::string frame =
+      params_.frame_id.empty() ? params_.frame_prefix + model_.frame : params_.frame_id;
   log_model(model_, frame);
   const OutputSetup setup{nh_, params_, model_, frame};
   outputs_ = make_outputs(setup);

@@ -25,6 +25,7 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "lower_body_array", p.lower_body_array, "a list of integers");
   get(pnh, "joint_type", p.joint_type, "a string");
   get(pnh, "frame_id", p.frame_id, "a string");
+  get(pnh, "frame_prefix", p.frame_prefix, "a string");
   get(pnh, "per_body_topics", p.per_body_topics, "true or false");
   get(pnh, "publish_markers", p.publish_markers, "true or false");
   get(pnh, "acceleration_estimator", p.acceleration_estimator, "a string");

@@ -17,6 +17,7 @@ struct NodeParams {
   std::vector<int> lower_body_array;    // ~lower_body_array: a bare scene; wins over both
   std::string joint_type = "ball_123";  // ~joint_type: the bare scene's joints
   std::string frame_id;                 // ~frame_id: R's frame; "" = URDF root link / scene frame
+  std::string frame_prefix;             // ~frame_prefix: before every frame taken from the model
   bool per_body_topics = false;         // ~per_body_topics: body/<name>/twist and .../accel
   bool publish_markers = false;         // ~publish_markers: body_kinematics/markers (MarkerArray)
   bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs

@@ -21,8 +21,10 @@ std::string body_topic_name(const std::string& body) {
 BodyMotionOutput::BodyMotionOutput(const OutputSetup& setup, Kind kind)
     : kind_(kind),
       publishers_(setup.model.body_count() + 1),
+      frames_(setup.model.body_count() + 1),
       listened_(setup.model.body_count() + 1, 0) {
   for (int k = 1; k <= setup.model.body_count(); ++k) {
+    frames_[k] = setup.body_frame(k);
     const std::string base = "body/" + body_topic_name(setup.model.bodies[k].name);
     publishers_[k] = kind == Kind::kTwist
                          ? setup.nh.advertise<geometry_msgs::TwistStamped>(base + "/twist", 10)
@@ -47,7 +49,7 @@ void BodyMotionOutput::publish(const ros::Time& stamp, const Sample& sample) {
   const mbk::Vec3<double> origin = mbk::Vec3<double>::Zero();  // of O_k, in Bk
   for (size_t k = 1; k < publishers_.size(); ++k) {
     if (!listened_[k]) continue;
-    const std::string& frame = sample.model.bodies[k].name;
+    const std::string& frame = frames_[k];
     if (kind_ == Kind::kTwist) {
       const auto v = mbk::point_velocity(sample.data, k, origin, mbk::ReferenceFrame::kBody);
       geometry_msgs::TwistStamped t;

@@ -27,6 +27,7 @@ class BodyMotionOutput : public Output {
  private:
   Kind kind_;
   std::vector<ros::Publisher> publishers_;  // index k; [0] unused
+  std::vector<std::string> frames_;         // index k: Bk's tf frame
   std::vector<char> listened_;              // index k: a subscriber at the last active()
 };
 
