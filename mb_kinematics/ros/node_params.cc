@@ -26,7 +26,10 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "joint_type", p.joint_type, "a string");
   get(pnh, "frame_id", p.frame_id, "a string");
   get(pnh, "frame_prefix", p.frame_prefix, "a string");
-  get(pnh, "per_body_topics", p.per_body_topics, "true or false");
+  if (!pnh.getParam("per_body_topics", p.per_body_names))  // a list of bodies, or a bool
+    get(pnh, "per_body_topics", p.per_body_topics, "true, false or a list of body names");
+  else
+    p.per_body_topics = true;
   get(pnh, "publish_markers", p.publish_markers, "true or false");
   get(pnh, "acceleration_estimator", p.acceleration_estimator, "a string");
   get(pnh, "max_sample_gap", p.max_sample_gap, "a number of seconds");

@@ -19,7 +19,8 @@ struct NodeParams {
   std::string frame_id;                 // ~frame_id: R's frame; "" = URDF root link / scene frame
   std::string frame_prefix;             // ~frame_prefix: before every frame taken from the model
   bool per_body_topics = false;         // ~per_body_topics: body/<name>/twist and .../accel
-  bool publish_markers = false;         // ~publish_markers: body_kinematics/markers (MarkerArray)
+  std::vector<std::string> per_body_names;  // ~per_body_topics as a list: those bodies only
+  bool publish_markers = false;  // ~publish_markers: body_kinematics/markers (MarkerArray)
   bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs
   // ~acceleration_estimator: the best zero-latency tradeoff of the work-precision report
   std::string acceleration_estimator = "kalman_smooth";

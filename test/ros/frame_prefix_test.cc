@@ -4,6 +4,7 @@
 // body_kinematics and lower_body_array stay the model's.
 #include <geometry_msgs/TwistStamped.h>
 #include <mb_kinematics_msgs/LowerBodyArray.h>
+#include <ros/master.h>
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/transform_listener.h>
 
@@ -97,6 +98,26 @@ TEST(FramePrefixTest, NoFrameCollides) {
   EXPECT_EQ(twist.header.frame_id, "r1/finger");
   EXPECT_EQ(topology.header.frame_id, "r2/base_link");
   EXPECT_EQ(topology.names[finger - 1], "finger");
+}
+
+// ~per_body_topics as a list (r2: [finger, arm1]): topics for those bodies only; true (r1):
+// for every body.
+TEST(PerBodyTopicsTest, ListNamesTheBodies) {
+  auto advertised = [](const std::string& topic) {
+    ros::master::V_TopicInfo topics;
+    ros::master::getTopics(topics);
+    for (const auto& t : topics)
+      if (t.name == topic) return true;
+    return false;
+  };
+  ASSERT_TRUE(wait_until([&] { return advertised("/r2/body/finger/twist"); }, 10));
+  for (const char* body : {"finger", "arm1"})
+    for (const char* kind : {"twist", "accel"})
+      EXPECT_TRUE(advertised(std::string("/r2/body/") + body + "/" + kind)) << body << kind;
+  for (const char* body : {"slider", "floater", "camera", "arm2", "tool"}) {
+    EXPECT_FALSE(advertised(std::string("/r2/body/") + body + "/twist")) << body;
+    EXPECT_TRUE(advertised(std::string("/r1/body/") + body + "/twist")) << body;
+  }
 }
 
 }  // namespace
