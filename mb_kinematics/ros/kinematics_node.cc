@@ -86,7 +86,8 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       state_(model_),
       data_(model_),
       nh_(nh) {
-  const std::string frame = params_.frame_id.empty() ? model_.frame : params_.frame_id;
+  const std::string frame =
+      params_.frame_id.empty() ? params_.frame_prefix + model_.frame : params_.frame_id;
   log_model(model_, frame);
   const OutputSetup setup{nh_, params_, model_, frame};
   outputs_ = make_outputs(setup);
@@ -94,9 +95,11 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   diagnostics_ = diagnostics.get();
   outputs_.push_back(std::move(diagnostics));
   active_.assign(outputs_.size(), 0);
-  joint_states_sub_ = nh_.subscribe("joint_states", 50, &KinematicsNode::on_joint_states, this);
-  accelerations_sub_ =
-      nh_.subscribe("joint_accelerations", 50, &KinematicsNode::on_joint_accelerations, this);
+  const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
+  joint_states_sub_ = nh_.subscribe("joint_states", params_.queue_size,
+                                    &KinematicsNode::on_joint_states, this, hints);
+  accelerations_sub_ = nh_.subscribe("joint_accelerations", params_.queue_size,
+                                     &KinematicsNode::on_joint_accelerations, this, hints);
 }
 
 void KinematicsNode::on_joint_states(const sensor_msgs::JointStateConstPtr& msg) {
@@ -194,6 +197,16 @@ bool KinematicsNode::compute(mbk::Level level) {
   return true;
 }
 
+// ~publish_frequency: true for a sample less than a period (by stamp) after the last one that
+// went out; a stamp going backwards starts again.
+bool KinematicsNode::decimated(double t) {
+  if (params_.publish_frequency <= 0) return false;
+  const double period = 1.0 / params_.publish_frequency;
+  if (t >= last_output_ && t - last_output_ < period * (1 - 1e-9)) return true;
+  last_output_ = t;
+  return false;
+}
+
 // The listened outputs that read the data (or not) and that the sample's level satisfies.
 void KinematicsNode::publish(const ros::Time& stamp, const Sample& sample, bool uses_data) {
   for (size_t i = 0; i < outputs_.size(); ++i)
@@ -207,6 +220,7 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   if (msg.header.stamp.isZero())
     diagnostics_->count(InputProblem::kZeroStamp, "joint_states: stamp 0, time of arrival used");
   if (!report(input_.add(msg, stamp.toSec()))) return;
+  if (decimated(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
   const mbk::Level level = input_.fill(wanted, pairing_.at(stamp.toSec()), state_);
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...

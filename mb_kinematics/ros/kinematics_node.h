@@ -41,6 +41,7 @@ class KinematicsNode {
   bool report(const JointStateInput::Update& update);
   void warn(InputProblem problem, const std::string& message);
   mbk::Level wanted_level();  // asks each output once whether it is listened to
+  bool decimated(double t);
   bool compute(mbk::Level level);
   void publish(const ros::Time& stamp, const Sample& sample, bool uses_data);
 
@@ -55,6 +56,7 @@ class KinematicsNode {
   std::vector<std::unique_ptr<Output>> outputs_;
   std::vector<char> active_;        // per output: listened to for the current sample
   DiagnosticsOutput* diagnostics_;  // one of outputs_
+  double last_output_ = -1e300;     // stamp of the last sample computed (~publish_frequency)
   ros::Subscriber joint_states_sub_, accelerations_sub_;
   std::array<std::chrono::steady_clock::time_point, static_cast<size_t>(InputProblem::kCount)>
       last_warned_{};  // per class, for throttling

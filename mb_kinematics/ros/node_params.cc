@@ -1,5 +1,6 @@
 #include "mb_kinematics/ros/node_params.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "mb_kinematics/io/load_model.h"
@@ -24,12 +25,23 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "lower_body_array", p.lower_body_array, "a list of integers");
   get(pnh, "joint_type", p.joint_type, "a string");
   get(pnh, "frame_id", p.frame_id, "a string");
-  get(pnh, "per_body_topics", p.per_body_topics, "true or false");
+  get(pnh, "frame_prefix", p.frame_prefix, "a string");
+  if (!pnh.getParam("per_body_topics", p.per_body_names))  // a list of bodies, or a bool
+    get(pnh, "per_body_topics", p.per_body_topics, "true, false or a list of body names");
+  else
+    p.per_body_topics = true;
   get(pnh, "publish_markers", p.publish_markers, "true or false");
   get(pnh, "acceleration_estimator", p.acceleration_estimator, "a string");
   get(pnh, "max_sample_gap", p.max_sample_gap, "a number of seconds");
   if (!(p.max_sample_gap >= 0))
     throw std::invalid_argument(pnh.resolveName("max_sample_gap") + " must be >= 0");
+  get(pnh, "publish_frequency", p.publish_frequency, "a number of Hz");
+  if (!(p.publish_frequency >= 0 && std::isfinite(p.publish_frequency)))
+    throw std::invalid_argument(pnh.resolveName("publish_frequency") +
+                                " must be >= 0 (Hz; 0: every sample)");
+  get(pnh, "queue_size", p.queue_size, "an integer");
+  if (p.queue_size < 1)
+    throw std::invalid_argument(pnh.resolveName("queue_size") + " must be >= 1");
   std::vector<std::string> outputs;
   get(pnh, "outputs", outputs, "a list of strings, e.g. [tf, body_kinematics]");
   if (pnh.hasParam("outputs")) {

@@ -17,12 +17,16 @@ struct NodeParams {
   std::vector<int> lower_body_array;    // ~lower_body_array: a bare scene; wins over both
   std::string joint_type = "ball_123";  // ~joint_type: the bare scene's joints
   std::string frame_id;                 // ~frame_id: R's frame; "" = URDF root link / scene frame
+  std::string frame_prefix;             // ~frame_prefix: before every frame taken from the model
   bool per_body_topics = false;         // ~per_body_topics: body/<name>/twist and .../accel
-  bool publish_markers = false;         // ~publish_markers: body_kinematics/markers (MarkerArray)
+  std::vector<std::string> per_body_names;  // ~per_body_topics as a list: those bodies only
+  bool publish_markers = false;  // ~publish_markers: body_kinematics/markers (MarkerArray)
   bool tf = true, body_kinematics = true, twist = true, accel = true;  // ~outputs
   // ~acceleration_estimator: the best zero-latency tradeoff of the work-precision report
   std::string acceleration_estimator = "kalman_smooth";
-  double max_sample_gap = 1.0;  // ~max_sample_gap (s): no derivative across a longer pause
+  double max_sample_gap = 1.0;   // ~max_sample_gap (s): no derivative across a longer pause
+  double publish_frequency = 0;  // ~publish_frequency (Hz): outputs at most this often; 0: all
+  int queue_size = 50;           // ~queue_size: of the joint_states and joint_accelerations queues
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.

@@ -271,6 +271,36 @@ TEST(FreshNodeTest, MergesTwoPublishersAndWaitsForMissingJoints) {
   expect_kinematics(msgs[0], model, expected_kinematics(model, trajectory.at(2 * kDt)), kTol);
 }
 
+// ~publish_frequency 10 on a 50 Hz positions-only stream: outputs for one sample in five (by
+// stamp), while the estimators take in every sample: the first output with accelerations, at
+// sample 5, needs the three samples 3, 4, 5 (the published ones alone, 0 and 5, are too few).
+TEST(DecimatedNodeTest, PublishFrequencyDecimatesOutputsNotEstimates) {
+  ros::NodeHandle nh("decimated");
+  const mbk::Model model = test_model();
+  ros::Publisher states = nh.advertise<sensor_msgs::JointState>("joint_states", 100);
+  KinematicsRecorder recorder(nh, "body_kinematics");
+  connect(states, recorder);
+  const Quadratic trajectory(model, 7.0);
+  const ros::Time start(800.0);
+  auto stamp = [&](int i) { return start + ros::Duration(i * kDt); };
+  const int n = 21;
+  for (int i = 0; i < n; ++i) {
+    states.publish(joint_state_msg(model, trajectory.at(i * kDt), stamp(i), false));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(recorder.wait_for(stamp(n - 1)));
+  for (int i = 0; i < n; ++i) {
+    const auto msgs = recorder.at(stamp(i));
+    if (i % 5 != 0 || i == 0) {
+      EXPECT_TRUE(msgs.empty()) << "published at sample " << i;
+      continue;
+    }
+    ASSERT_EQ(msgs.size(), 1u) << "sample " << i;
+    expect_kinematics(msgs[0], model, expected_kinematics(model, trajectory.at(i * kDt)), kTol);
+  }
+  EXPECT_EQ(recorder.count(), 4u);
+}
+
 // Runs the node with `arguments` until it exits; returns its exit code (-1 if it did not exit
 // normally) and puts what it printed to stderr into `output`.
 int run_node(const std::string& arguments, std::string& output) {
@@ -307,6 +337,16 @@ TEST(StartupTest, EstimatorWithLatencyExitsNonZero) {
             0);
   EXPECT_NE(output.find("savitzky_golay_9_2"), std::string::npos) << output;
   EXPECT_NE(output.find("4 samples back"), std::string::npos) << output;
+}
+
+TEST(StartupTest, BadQueueSizeExitsNonZero) {
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("/robot_description", urdf));
+  nh.setParam("/queue/robot_description", urdf);
+  std::string output;
+  EXPECT_GT(run_node("__ns:=/queue __name:=queue_node _queue_size:=0", output), 0);
+  EXPECT_NE(output.find("queue_size must be >= 1"), std::string::npos) << output;
 }
 
 // Above 10,000 cells (N x (max depth + 1)) the lower body arrays table is not logged at start,

@@ -3,7 +3,9 @@
 #include <geometry_msgs/AccelStamped.h>
 #include <geometry_msgs/TwistStamped.h>
 
+#include <algorithm>
 #include <cctype>
+#include <stdexcept>
 
 #include "mb_kinematics/core/body_velocity.h"
 #include "mb_kinematics/ros/outputs/message_fields.h"
@@ -21,8 +23,17 @@ std::string body_topic_name(const std::string& body) {
 BodyMotionOutput::BodyMotionOutput(const OutputSetup& setup, Kind kind)
     : kind_(kind),
       publishers_(setup.model.body_count() + 1),
+      frames_(setup.model.body_count() + 1),
       listened_(setup.model.body_count() + 1, 0) {
+  const std::vector<std::string>& only = setup.params.per_body_names;  // empty: every body
+  for (const std::string& name : only)
+    if (setup.model.body_index(name) < 1)
+      throw std::invalid_argument("~per_body_topics: '" + name + "' is no body of the model");
   for (int k = 1; k <= setup.model.body_count(); ++k) {
+    frames_[k] = setup.body_frame(k);
+    if (!only.empty() &&
+        std::find(only.begin(), only.end(), setup.model.bodies[k].name) == only.end())
+      continue;
     const std::string base = "body/" + body_topic_name(setup.model.bodies[k].name);
     publishers_[k] = kind == Kind::kTwist
                          ? setup.nh.advertise<geometry_msgs::TwistStamped>(base + "/twist", 10)
@@ -37,7 +48,7 @@ mbk::Level BodyMotionOutput::level() const {
 bool BodyMotionOutput::active() {
   bool any = false;
   for (size_t k = 1; k < publishers_.size(); ++k) {
-    listened_[k] = publishers_[k].getNumSubscribers() > 0;
+    listened_[k] = publishers_[k] && publishers_[k].getNumSubscribers() > 0;
     any = any || listened_[k];
   }
   return any;
@@ -47,7 +58,7 @@ void BodyMotionOutput::publish(const ros::Time& stamp, const Sample& sample) {
   const mbk::Vec3<double> origin = mbk::Vec3<double>::Zero();  // of O_k, in Bk
   for (size_t k = 1; k < publishers_.size(); ++k) {
     if (!listened_[k]) continue;
-    const std::string& frame = sample.model.bodies[k].name;
+    const std::string& frame = frames_[k];
     if (kind_ == Kind::kTwist) {
       const auto v = mbk::point_velocity(sample.data, k, origin, mbk::ReferenceFrame::kBody);
       geometry_msgs::TwistStamped t;

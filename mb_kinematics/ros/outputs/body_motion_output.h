@@ -1,7 +1,8 @@
 // body/<name>/twist and body/<name>/accel (~per_body_topics; ~outputs twist, accel):
 // geometry_msgs/TwistStamped and AccelStamped of the origin O_k, in the body's own frame, so
 // that rviz draws them at the body and rqt_plot shows them. One publisher per body; a body's
-// message is filled only while it has a subscriber.
+// message is filled only while it has a subscriber. ~per_body_topics as a list of body names:
+// those bodies only.
 #pragma once
 
 #include <ros/publisher.h>
@@ -27,6 +28,7 @@ class BodyMotionOutput : public Output {
  private:
   Kind kind_;
   std::vector<ros::Publisher> publishers_;  // index k; [0] unused
+  std::vector<std::string> frames_;         // index k: Bk's tf frame
   std::vector<char> listened_;              // index k: a subscriber at the last active()
 };
 

@@ -21,7 +21,14 @@ struct OutputSetup {
   ros::NodeHandle& nh;
   const NodeParams& params;
   const mbk::Model& model;
-  const std::string& frame;  // R
+  const std::string& frame;  // R (with ~frame_prefix when it is the model's own)
+  // The tf frame of body k (1..N): ~frame_prefix + its name.
+  std::string body_frame(int k) const { return params.frame_prefix + model.bodies[k].name; }
+  // Of body k's lower body: R for L(k) = 0.
+  std::string lower_frame(int k) const {
+    const int j = model.bodies[k].lower;
+    return j ? body_frame(j) : frame;
+  }
 };
 
 // One computed sample.

@@ -6,10 +6,6 @@
 namespace mbk_ros {
 namespace {
 
-std::string parent_frame(const mbk::Model& model, const mbk::Body& body, const std::string& frame) {
-  return body.lower ? model.bodies[body.lower].name : frame;
-}
-
 // The joint's relative transform: q_k + s_k in Bj, and SJK.
 void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
                    geometry_msgs::Transform& out) {
@@ -27,9 +23,8 @@ TfOutput::TfOutput(const OutputSetup& setup) {
   last_stamp_.resize(moving_.size());
   out_.reserve(moving_.size());
   for (size_t i = 0; i < moving_.size(); ++i) {
-    const mbk::Body& body = model.bodies[moving_[i]];
-    transforms_[i].header.frame_id = parent_frame(model, body, setup.frame);
-    transforms_[i].child_frame_id = body.name;
+    transforms_[i].header.frame_id = setup.lower_frame(moving_[i]);
+    transforms_[i].child_frame_id = setup.body_frame(moving_[i]);
   }
 }
 
@@ -59,8 +54,8 @@ TfStaticOutput::TfStaticOutput(const OutputSetup& setup) {
     mbk::joint_motion<double>(body.joint, model.speeds, nullptr, nullptr, m);
     geometry_msgs::TransformStamped t;
     t.header.stamp = ros::Time::now();
-    t.header.frame_id = parent_frame(model, body, setup.frame);
-    t.child_frame_id = body.name;
+    t.header.frame_id = setup.lower_frame(k);
+    t.child_frame_id = setup.body_frame(k);
     set_transform(body, m, t.transform);
     fixed.push_back(t);
   }
