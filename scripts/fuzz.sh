@@ -23,7 +23,9 @@ mkdir -p "$dir/build" "$dir/findings"
 
 # The generated mb_kinematics_msgs headers come from the catkin build (scripts/test.sh's).
 [ -f "$MBK_WS/devel/include/mb_kinematics_msgs/JointAccelerations.h" ] || mbk_build
-(cmake -S "$MBK_SRC/test/fuzz" -B "$dir/build" -DCMAKE_C_COMPILER=clang-14 \
+# The physical path: ctest runs this script through the workspace's src/ link, and another
+# source path would make CMake compile everything again.
+(cmake -S "$(cd "$MBK_SRC" && pwd -P)/test/fuzz" -B "$dir/build" -DCMAKE_C_COMPILER=clang-14 \
    -DCMAKE_CXX_COMPILER=clang++-14 -DMBK_DEVEL_INCLUDE="$MBK_WS/devel/include" &&
    cmake --build "$dir/build" -j2) >"$dir/build.log" 2>&1 || {
   tail -n 40 "$dir/build.log"
