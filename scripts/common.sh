@@ -20,6 +20,7 @@ MBK_PACKAGES=(
   python3-tf2-msgs python3-diagnostic-msgs
   librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
   pluginlib-dev libogre-1.12-dev
+  clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
 )
 
 mbk_install_deps() {

@@ -1,17 +1,37 @@
 #!/usr/bin/env bash
-# Builds everything and runs every test (unit, peer and integration) with ctest.
+# Builds everything and runs every test (unit, peer, integration, the fuzz smoke) with ctest.
 # Exits non-zero on any failure; the last line is ctest's summary.
+#   scripts/test.sh [--sanitize]
+# --sanitize: the same build with -fsanitize=address,undefined (UB aborts, leaks fail, urdfdom's
+# own leaks suppressed by test/lsan.supp) in a workspace of its own, <workspace>-sanitize; the
+# rviz screenshot test (rviz itself is not instrumented) and the fuzz smoke (its harnesses
+# always are) are left out (README "Reliability").
+sanitize=${1:-}
+[ -z "$sanitize" ] || [ "$sanitize" = --sanitize ] || { echo "usage: scripts/test.sh [--sanitize]" >&2; exit 2; }
 source "$(dirname "$0")/common.sh"
+build_args=()
+skip=()
+if [ -n "$sanitize" ]; then
+  MBK_WS=$MBK_WS-sanitize
+  flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+  build_args=(-DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags"
+    -DCMAKE_SHARED_LINKER_FLAGS="$flags")
+  skip=(-E 'screenshot|fuzz_smoke')
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
+  export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+fi
 mbk_install_deps
-mbk_build
+mbk_build "${build_args[@]}"
 echo "== building tests"
 (cd "$MBK_WS/build" && make -j2 tests >>"$MBK_WS/build.log" 2>&1) || {
   tail -n 60 "$MBK_WS/build.log"
   echo "test build failed: full log in $MBK_WS/build.log" >&2
   exit 1
 }
+[ -n "$sanitize" ] || { echo "== building the fuzz harnesses" && "$MBK_SRC/scripts/fuzz.sh" --build; }
 cd "$MBK_WS/build"
 set +e
-ctest --output-on-failure -j2 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'
+ctest --output-on-failure -j2 "${skip[@]}" 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'
 status=${PIPESTATUS[0]}
 exit "$status"

@@ -1,7 +1,10 @@
 #include "mb_kinematics/core/lower_body_array.h"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
+
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk {
 
@@ -32,7 +35,7 @@ std::vector<int> parse_lower_body_array(const std::string& text) {
     }
     if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
       throw std::invalid_argument("lower body array: entry " + std::to_string(lower.size() + 1) +
-                                  " ('" + item + "') is not an integer");
+                                  " ('" + printable(item) + "') is not an integer");
     lower.push_back(value);
   }
   return lower;
@@ -43,17 +46,31 @@ int lower_body_power(const std::vector<int>& lower, int k, int t) {
   return k;
 }
 
+int lower_body_table_rows(const std::vector<int>& lower) {
+  std::vector<int> depth(lower.size() + 1, 0);  // depth[0] = 0: R
+  int deepest = 0;
+  for (size_t i = 0; i < lower.size(); ++i) {
+    depth[i + 1] = depth[lower[i]] + 1;
+    deepest = std::max(deepest, depth[i + 1]);
+  }
+  return deepest + 1;
+}
+
+void for_each_lower_body_row(const std::vector<int>& lower,
+                             const std::function<void(int, const std::vector<int>&)>& row) {
+  std::vector<int> powers(lower.size());
+  for (size_t i = 0; i < powers.size(); ++i) powers[i] = static_cast<int>(i) + 1;
+  const int rows = lower_body_table_rows(lower);
+  for (int t = 0; t < rows; ++t) {
+    if (t > 0)
+      for (int& v : powers) v = v > 0 ? lower[v - 1] : 0;  // eq. 4.2.1
+    row(t, powers);
+  }
+}
+
 std::vector<std::vector<int>> lower_body_table(const std::vector<int>& lower) {
   std::vector<std::vector<int>> table;
-  std::vector<int> row(lower.size());
-  for (size_t i = 0; i < row.size(); ++i) row[i] = static_cast<int>(i) + 1;
-  for (;;) {
-    table.push_back(row);
-    bool all_zero = true;
-    for (int v : row) all_zero = all_zero && v == 0;
-    if (all_zero) break;
-    for (int& v : row) v = v > 0 ? lower[v - 1] : 0;
-  }
+  for_each_lower_body_row(lower, [&](int, const std::vector<int>& row) { table.push_back(row); });
   return table;
 }
 

@@ -1,9 +1,11 @@
 #include "mb_kinematics/core/model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/core/lower_body_array.h"
@@ -38,6 +40,67 @@ void validate_body(Body& body, int k) {
     if (std::abs(joint.axis.squaredNorm() - 1.0) > 4 * std::numeric_limits<double>::epsilon())
       joint.axis.normalize();
   }
+}
+
+// Refuses a name given to two coordinates (or two speeds), naming both joints: a ball joint
+// `s` has `s/alpha`, which a joint named `s/alpha` would have too.
+void check_unique(const Model& model, const std::vector<std::string>& names, bool speeds) {
+  std::unordered_map<std::string, int> owner;  // name -> body
+  owner.reserve(names.size());
+  int i = 0;
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Body& body = model.bodies[k];
+    const int n =
+        speeds ? speed_count(body.joint.type, model.speeds) : coordinate_count(body.joint.type);
+    for (int end = i + n; i < end; ++i) {
+      const auto [it, inserted] = owner.emplace(names[i], k);
+      if (inserted) continue;
+      const Body& first = model.bodies[it->second];
+      fail(body, k,
+           std::string(speeds ? "speed" : "coordinate") + " name '" + names[i] + "' of joint '" +
+               body.joint.name + "' is also one of joint '" + first.joint.name + "' (body " +
+               std::to_string(it->second) + " '" + first.name + "')");
+    }
+  }
+}
+
+// Orders the mimics so that each comes after the mimic that sets its source (a mimic of a
+// mimic reads the updated value); refuses a coordinate mimicking twice and cycles, naming them.
+void order_mimics(Model& model) {
+  std::unordered_map<int, int> mimic_of;  // coordinate -> its mimic
+  for (size_t i = 0; i < model.mimics.size(); ++i)
+    if (!mimic_of.emplace(model.mimics[i].coordinate, static_cast<int>(i)).second)
+      throw std::invalid_argument("mimic: '" + model.coordinate_names[model.mimics[i].coordinate] +
+                                  "' mimics two joints");
+  std::vector<int> level(model.mimics.size(), -1);  // hops to a source that is no mimic
+  std::vector<char> on_path(model.mimics.size(), 0);
+  std::vector<int> path;  // unresolved mimics from `start` towards a resolved source
+  auto name = [&](int i) { return model.coordinate_names[model.mimics[i].coordinate]; };
+  for (size_t start = 0; start < model.mimics.size(); ++start) {
+    path.clear();
+    int i = static_cast<int>(start);
+    while (i >= 0 && level[i] < 0) {
+      if (on_path[i]) {
+        std::string cycle;
+        for (auto j = std::find(path.begin(), path.end(), i); j != path.end(); ++j)
+          cycle += name(*j) + " -> ";
+        throw std::invalid_argument("mimic joints form a cycle: " + cycle + name(i));
+      }
+      on_path[i] = 1;
+      path.push_back(i);
+      const auto source = mimic_of.find(model.mimics[i].source);
+      i = source == mimic_of.end() ? -1 : source->second;
+    }
+    int next = i < 0 ? -1 : level[i];
+    for (auto j = path.rbegin(); j != path.rend(); ++j) level[*j] = ++next;
+    for (int j : path) on_path[j] = 0;
+  }
+  std::vector<int> order(model.mimics.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return level[a] < level[b]; });
+  std::vector<Mimic> sorted;
+  for (int i : order) sorted.push_back(model.mimics[i]);
+  model.mimics = sorted;
 }
 
 }  // namespace
@@ -101,6 +164,8 @@ void finalize_model(Model& model) {
     model.nq += coordinate_count(type);
     model.nv += ns;
   }
+  check_unique(model, model.coordinate_names, false);
+  check_unique(model, model.speed_names, true);
   for (const Mimic& m : model.mimics) {
     const bool ok = m.coordinate >= 0 && m.coordinate < model.nq && m.source >= 0 &&
                     m.source < model.nq && m.source != m.coordinate &&
@@ -109,6 +174,7 @@ void finalize_model(Model& model) {
     if (model.nq != model.nv)
       throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
   }
+  order_mimics(model);
 }
 
 Model make_bare_model(const std::vector<int>& lower, JointType type) {

@@ -1,11 +1,13 @@
 #include "mb_kinematics/io/report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
@@ -21,48 +23,96 @@ std::string json_array(const Matrix& m) {  // row-major
   return out + "]";
 }
 
-std::string json_string(const std::string& s) {
+// Length of the UTF-8 sequence starting at s[i], 0 if it is not one (RFC 3629: no overlong
+// forms, no surrogates, at most U+10FFFF).
+size_t utf8_length(const std::string& s, size_t i) {
+  const auto byte = [&](size_t j) { return static_cast<unsigned char>(s[j]); };
+  const unsigned char c = byte(i);
+  const size_t n = c < 0x80                 ? 1
+                   : c >= 0xc2 && c <= 0xdf ? 2
+                   : c >= 0xe0 && c <= 0xef ? 3
+                   : c >= 0xf0 && c <= 0xf4 ? 4
+                                            : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (size_t j = 1; j < n; ++j)
+    if ((byte(i + j) & 0xc0) != 0x80) return 0;
+  if (n == 3 && ((c == 0xe0 && byte(i + 1) < 0xa0) || (c == 0xed && byte(i + 1) >= 0xa0))) return 0;
+  if (n == 4 && ((c == 0xf0 && byte(i + 1) < 0x90) || (c == 0xf4 && byte(i + 1) >= 0x90))) return 0;
+  return n;
+}
+
+// Widths of the text table: the label column and each entry, with at least one space between.
+int digits(size_t n) { return static_cast<int>(std::to_string(n).size()); }
+
+}  // namespace
+
+std::string json_string(const std::string& text) {
   std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+  for (size_t i = 0; i < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    const size_t n = utf8_length(text, i);
+    if (c == '"' || c == '\\') {
+      out += std::string("\\") + text[i];
+    } else if (c < 0x20 || c == 0x7f) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\u%04x", c);
+      out += escape;
+    } else if (n == 0) {
+      out += "\\ufffd";
+    } else {
+      out += text.substr(i, n);
+    }
+    i += n == 0 ? 1 : n;
   }
   return out + "\"";
 }
 
-}  // namespace
+void write_lower_body_table(std::ostream& out, const std::vector<int>& lower,
+                            const std::vector<std::string>& names) {
+  const int rows = lower_body_table_rows(lower);
+  const int label_width = std::max(8, digits(rows - 1) + 6);  // "L^" t "(k)" and a space
+  const int cell_width = std::max(4, digits(lower.size()) + 1);
+  out << "Lower body arrays, N = " << lower.size() << " (method.md 1)\n";
+  std::vector<int> previous;
+  std::string line;
+  for_each_lower_body_row(lower, [&](int t, const std::vector<int>& row) {
+    const std::string label = "L^" + std::to_string(t) + "(k)";
+    line = label + std::string(label_width - label.size(), ' ');
+    for (size_t i = 0; i < row.size(); ++i) {
+      const bool shown = t == 0 || previous[i] != 0;
+      const std::string cell = shown ? std::to_string(row[i]) : "";
+      line.append(cell_width - cell.size(), ' ').append(cell);
+    }
+    out << line << "\n";
+    previous = row;
+  });
+  if (!names.empty()) {
+    out << "bodies:";
+    for (size_t i = 0; i < names.size(); ++i) out << " " << i + 1 << "=" << printable(names[i]);
+    out << "\n";
+  }
+}
 
 std::string format_lower_body_table(const std::vector<int>& lower,
                                     const std::vector<std::string>& names) {
-  const auto table = lower_body_table(lower);
   std::ostringstream out;
-  out << "Lower body arrays, N = " << lower.size() << " (method.md 1)\n";
-  for (size_t t = 0; t < table.size(); ++t) {
-    char label[16];
-    std::snprintf(label, sizeof label, "L^%zu(k)", t);
-    out << label << std::string(8 - std::string(label).size(), ' ');
-    for (size_t i = 0; i < lower.size(); ++i) {
-      const bool shown = t == 0 || table[t - 1][i] != 0;
-      char cell[16];
-      std::snprintf(cell, sizeof cell, "%4d", table[t][i]);
-      out << (shown ? cell : "    ");
-    }
-    out << "\n";
-  }
-  if (!names.empty()) {
-    out << "bodies:";
-    for (size_t i = 0; i < names.size(); ++i) out << " " << i + 1 << "=" << names[i];
-    out << "\n";
-  }
+  write_lower_body_table(out, lower, names);
   return out.str();
+}
+
+void write_lower_body_csv(std::ostream& out, const std::vector<int>& lower) {
+  std::string line;
+  for_each_lower_body_row(lower, [&](int, const std::vector<int>& row) {
+    line.clear();
+    for (size_t i = 0; i < row.size(); ++i)
+      line.append(i ? "," : "").append(std::to_string(row[i]));
+    out << line << "\n";
+  });
 }
 
 std::string format_lower_body_csv(const std::vector<int>& lower) {
   std::ostringstream out;
-  for (const auto& row : lower_body_table(lower)) {
-    for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
-    out << "\n";
-  }
+  write_lower_body_csv(out, lower);
   return out.str();
 }
 

@@ -1,6 +1,7 @@
 // Text the `mbk` tool prints: the lower body arrays table and the kinematics as JSON.
 #pragma once
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,21 @@
 namespace mbk {
 
 // Table 4.2.1 layout: a row per t with L^t(k), each entry shown until its chain has reached 0
-// (the 0 itself shown once). `names` (optional, N entries) adds a legend.
+// (the 0 itself shown once). `names` (optional, N entries) adds a legend. Columns widen for
+// N >= 1000 and depths >= 1000. Written row by row as computed: O(N) memory for N x depth text.
+void write_lower_body_table(std::ostream& out, const std::vector<int>& lower,
+                            const std::vector<std::string>& names = {});
 std::string format_lower_body_table(const std::vector<int>& lower,
                                     const std::vector<std::string>& names = {});
 
-// One row per t = 0, 1, ... until a row is all zeros, N comma-separated values each.
+// One row per t = 0, 1, ... until a row is all zeros, N comma-separated values each; streamed
+// like write_lower_body_table.
+void write_lower_body_csv(std::ostream& out, const std::vector<int>& lower);
 std::string format_lower_body_csv(const std::vector<int>& lower);
+
+// A JSON string literal: quotes, backslashes and control characters escaped; bytes that are
+// not UTF-8 become U+FFFD (JSON text is Unicode).
+std::string json_string(const std::string& text);
 
 // design.md `mbk eval` JSON. Throws std::runtime_error naming the body if a value is not
 // finite (nothing is printed then). `system` adds "system" (issue 10: null vectors when M = 0,

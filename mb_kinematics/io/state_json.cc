@@ -1,11 +1,15 @@
 #include "mb_kinematics/io/state_json.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
+
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk {
 namespace {
@@ -33,10 +37,20 @@ void read_section(const YAML::Node& root, const char* key, IndexOf index_of, Vec
   }
 }
 
-}  // namespace
+// Name -> position, so that a state of N names reads in O(N).
+std::unordered_map<std::string, int> name_index(const std::vector<std::string>& names) {
+  std::unordered_map<std::string, int> index;
+  for (size_t i = 0; i < names.size(); ++i) index.emplace(names[i], static_cast<int>(i));
+  return index;
+}
 
-JointState<double> read_state_string(const Model& model, const std::string& text,
-                                     const std::string& source) {
+int find_index(const std::unordered_map<std::string, int>& index, const std::string& name) {
+  const auto it = index.find(name);
+  return it == index.end() ? -1 : it->second;
+}
+
+JointState<double> parse_state(const Model& model, const std::string& text,
+                               const std::string& source) {
   JointState<double> state(model);
   try {
     const YAML::Node root = YAML::Load(text);
@@ -47,11 +61,17 @@ JointState<double> read_state_string(const Model& model, const std::string& text
         throw std::invalid_argument("unknown key '" + key +
                                     "' (expected position, velocity, acceleration)");
     }
-    auto coordinate = [&](const std::string& n) { return model.coordinate_index(n); };
-    auto speed = [&](const std::string& n) { return model.speed_index(n); };
+    const auto coordinates = name_index(model.coordinate_names);
+    const auto speeds = name_index(model.speed_names);
+    auto coordinate = [&](const std::string& n) { return find_index(coordinates, n); };
+    auto speed = [&](const std::string& n) { return find_index(speeds, n); };
     read_section(root, "position", coordinate, state.position);
     read_section(root, "velocity", speed, state.velocity);
     read_section(root, "acceleration", speed, state.acceleration);
+  } catch (const YAML::DeepRecursion& e) {  // its own message is "bad file"
+    throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) +
+                                ": malformed JSON: nested " + std::to_string(e.depth()) +
+                                " levels deep, too deep to read");
   } catch (const YAML::Exception& e) {
     const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
     throw std::invalid_argument(source + line + ": malformed JSON: " + e.msg);
@@ -60,6 +80,18 @@ JointState<double> read_state_string(const Model& model, const std::string& text
   }
   apply_mimics(model, state);
   return state;
+}
+
+}  // namespace
+
+// Messages hold names and yaml-cpp's text: control characters escaped to keep them one line.
+JointState<double> read_state_string(const Model& model, const std::string& text,
+                                     const std::string& source) {
+  try {
+    return parse_state(model, text, source);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(printable(e.what()));
+  }
 }
 
 JointState<double> read_state_file(const Model& model, const std::string& path) {

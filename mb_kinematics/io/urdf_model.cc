@@ -14,12 +14,14 @@
 
 #include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/io/urdf_writer.h"
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk {
 namespace {
 
 // urdfdom reports what is wrong only through console_bridge. While it parses, this handler
-// collects the error messages (one line) and passes everything on to the previous handler.
+// collects the error messages (one line, for the exception) and keeps everything else (its
+// warnings and notes, also on success) off stderr.
 class UrdfdomErrors : public console_bridge::OutputHandler {
  public:
   UrdfdomErrors() : previous_(console_bridge::getOutputHandler()) {
@@ -29,9 +31,8 @@ class UrdfdomErrors : public console_bridge::OutputHandler {
     console_bridge::restorePreviousOutputHandler();
     console_bridge::useOutputHandler(previous_);  // leaves no pointer to this behind
   }
-  void log(const std::string& text, console_bridge::LogLevel level, const char* file,
-           int line) override {
-    if (previous_) previous_->log(text, level, file, line);
+  void log(const std::string& text, console_bridge::LogLevel level, const char* /*file*/,
+           int /*line*/) override {
     if (level < console_bridge::CONSOLE_BRIDGE_LOG_ERROR) return;
     std::string one_line = text;
     std::replace(one_line.begin(), one_line.end(), '\n', ' ');
@@ -182,9 +183,7 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
   return model;
 }
 
-}  // namespace
-
-Model load_urdf_string(const std::string& xml, const std::string& source) {
+Model parse_urdf(const std::string& xml, const std::string& source) {
   tinyxml2::XMLDocument doc;  // for the line of a syntax error, which urdfdom does not give
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
     throw std::invalid_argument(source + ":" + std::to_string(doc.ErrorLineNum()) +
@@ -210,6 +209,17 @@ Model load_urdf_string(const std::string& xml, const std::string& source) {
     return build_model(*urdf, xml);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(source + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+// Messages hold names and urdfdom's text: control characters escaped to keep them one line.
+Model load_urdf_string(const std::string& xml, const std::string& source) {
+  try {
+    return parse_urdf(xml, source);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(printable(e.what()));
   }
 }
 

@@ -2,13 +2,69 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
+#include <vector>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 namespace {
 
 std::string num(double x) { return format_double(x); }
+
+// A name as an XML attribute value (between double quotes).
+std::string xml(const std::string& name) {
+  std::string out;
+  for (const char c : name) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// XML 1.0 has no control characters but tab, newline and carriage return, and parsers turn
+// those into spaces in attributes: a name with any of them cannot be written.
+void check_name(const std::string& name, const std::string& what) {
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      throw std::invalid_argument(what + " '" + printable(name) +
+                                  "' has a control character, which URDF (XML) cannot hold");
+}
+
+// The URDF being written. Every link name and every joint name must be used once: expanded
+// joints' names (`<joint>/alpha`, `<body>__alpha`) may meet names of the scene.
+struct UrdfOut {
+  std::ostream& out;
+  std::string owner;  // the body (or R) being written, for errors
+  std::unordered_map<std::string, std::string> links, joints;  // name -> owner
+
+  void add(std::unordered_map<std::string, std::string>& names, const std::string& name,
+           const char* kind) {
+    check_name(name, std::string(kind) + " of " + owner);
+    const auto [it, inserted] = names.emplace(name, owner);
+    if (!inserted)
+      throw std::invalid_argument(std::string("URDF ") + kind + " name '" + printable(name) +
+                                  "' is made by " + it->second + " and by " + owner);
+  }
+};
 
 std::string triple(const Vec3<double>& v) {
   return num(v.x()) + " " + num(v.y()) + " " + num(v.z());
@@ -26,9 +82,11 @@ std::string origin(const Vec3<double>& xyz, const Mat3<double>& rotation) {
 
 // A body's link (massless links: body = nullptr). URDF requires an <inertia>: without the
 // scene's, a token one marked kTokenInertia, which our loader reads as none.
-void write_link(std::ostream& out, const std::string& name, const Body* body,
+void write_link(UrdfOut& urdf, const std::string& name, const Body* body,
                 const std::string& visuals) {
-  out << "  <link name=\"" << name << "\">\n";
+  urdf.add(urdf.links, name, "link");
+  std::ostream& out = urdf.out;
+  out << "  <link name=\"" << xml(name) << "\">\n";
   if (body && (body->mass > 0 || body->has_inertia)) {
     const Mat3<double> i = body->has_inertia
                                ? body->inertia
@@ -43,15 +101,18 @@ void write_link(std::ostream& out, const std::string& name, const Body* body,
   out << visuals << "  </link>\n";
 }
 
-void write_joint(std::ostream& out, const std::string& name, const std::string& type,
+void write_joint(UrdfOut& urdf, const std::string& name, const std::string& type,
                  const std::string& parent, const std::string& child, const std::string& origin_tag,
-                 const Vec3<double>* axis) {
-  out << "  <joint name=\"" << name << "\" type=\"" << type << "\">\n    " << origin_tag
-      << "\n    <parent link=\"" << parent << "\"/>\n    <child link=\"" << child << "\"/>\n";
+                 const Vec3<double>* axis, const std::string& mimic = "") {
+  urdf.add(urdf.joints, name, "joint");
+  std::ostream& out = urdf.out;
+  out << "  <joint name=\"" << xml(name) << "\" type=\"" << type << "\">\n    " << origin_tag
+      << "\n    <parent link=\"" << xml(parent) << "\"/>\n    <child link=\"" << xml(child)
+      << "\"/>\n";
   if (axis) out << "    <axis xyz=\"" << triple(*axis) << "\"/>\n";
   if (type == "prismatic")
     out << "    <limit lower=\"-1e6\" upper=\"1e6\" effort=\"1e6\" velocity=\"1e6\"/>\n";
-  out << "  </joint>\n";
+  out << mimic << "  </joint>\n";
 }
 
 constexpr const char* kMaterial = "<material name=\"mbk_body\"/>";  // defined once, in the robot
@@ -63,15 +124,15 @@ std::string sphere(const Vec3<double>& at, double radius) {
 
 // A sphere at the mass center and a capsule (a cylinder with sphere caps) from O_k to each
 // child's joint point.
-std::string visuals(const Model& model, int k) {
+std::string visuals(const Model& model, int k, const std::vector<int>& children) {
   constexpr double kRadius = 0.02;
   std::ostringstream out;
   const Body& body = model.bodies[k];
   out << sphere(body.mass_center, 0.03);
   bool capped = false;
-  for (int c = k + 1; c <= model.body_count(); ++c) {
+  for (const int c : children) {
     const Vec3<double> to = model.bodies[c].joint.offset;
-    if (model.bodies[c].lower != k || to.norm() < 1e-9) continue;
+    if (to.norm() < 1e-9) continue;
     const Mat3<double> along =
         Eigen::Quaterniond::FromTwoVectors(Vec3<double>::UnitZ(), to).toRotationMatrix();
     if (!capped) out << sphere(Vec3<double>::Zero(), kRadius);
@@ -86,7 +147,7 @@ std::string visuals(const Model& model, int k) {
 
 // A ball or free joint on 1-2-3 angles as URDF joints: prismatic x, y, z (free joints), then
 // continuous joints about x, the new y and the new z, through massless links <body>__<coord>.
-void write_angle_chain(std::ostream& out, const Body& body, const std::string& parent) {
+void write_angle_chain(UrdfOut& out, const Body& body, const std::string& parent) {
   const Vec3<double> ex = Vec3<double>::UnitX(), ey = Vec3<double>::UnitY(),
                      ez = Vec3<double>::UnitZ();
   struct Step {
@@ -115,13 +176,23 @@ void write_angle_chain(std::ostream& out, const Body& body, const std::string& p
 }  // namespace
 
 std::string write_urdf(const Model& model, const std::string& robot_name, UrdfStyle style) {
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n<!-- Generated by `mbk urdf` from a scene: do not edit. -->\n"
-      << "<robot name=\"" << robot_name << "\">\n"
-      << "  <material name=\"mbk_body\"><color rgba=\"0.6 0.65 0.75 1\"/></material>\n";
+  check_name(robot_name, "robot name");
+  std::vector<std::vector<int>> children(model.bodies.size());  // for the visuals, in O(N)
+  for (int k = 1; k <= model.body_count(); ++k) children[model.bodies[k].lower].push_back(k);
+  std::vector<std::string> mimics(model.nq);  // the <mimic> tag of each coordinate that has one
+  for (const Mimic& m : model.mimics)
+    mimics[m.coordinate] = "    <mimic joint=\"" + xml(model.coordinate_names[m.source]) +
+                           "\" multiplier=\"" + num(m.multiplier) + "\" offset=\"" + num(m.offset) +
+                           "\"/>\n";
+  std::ostringstream text;
+  UrdfOut out{text, "R '" + printable(model.frame) + "'", {}, {}};
+  text << "<?xml version=\"1.0\"?>\n<!-- Generated by `mbk urdf` from a scene: do not edit. -->\n"
+       << "<robot name=\"" << xml(robot_name) << "\">\n"
+       << "  <material name=\"mbk_body\"><color rgba=\"0.6 0.65 0.75 1\"/></material>\n";
   write_link(out, model.frame, nullptr, "");
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
+    out.owner = "body " + std::to_string(k) + " '" + printable(body.name) + "'";
     const Joint& joint = body.joint;
     const std::string parent = model.bodies[body.lower].name;
     const std::string first = origin(joint.offset, joint.rotation);
@@ -129,7 +200,7 @@ std::string write_urdf(const Model& model, const std::string& robot_name, UrdfSt
                             joint.type == JointType::kFree123 || uses_euler_parameters(joint.type);
     if (style == UrdfStyle::kDisplay && multi_axis) {
       write_joint(out, joint.name, "floating", parent, body.name, first, nullptr);
-      write_link(out, body.name, &body, visuals(model, k));
+      write_link(out, body.name, &body, visuals(model, k, children[k]));
       continue;
     }
     switch (joint.type) {
@@ -137,10 +208,12 @@ std::string write_urdf(const Model& model, const std::string& robot_name, UrdfSt
         write_joint(out, joint.name, "fixed", parent, body.name, first, nullptr);
         break;
       case JointType::kRevolute:
-        write_joint(out, joint.name, "continuous", parent, body.name, first, &joint.axis);
+        write_joint(out, joint.name, "continuous", parent, body.name, first, &joint.axis,
+                    mimics[body.q_index]);
         break;
       case JointType::kPrismatic:
-        write_joint(out, joint.name, "prismatic", parent, body.name, first, &joint.axis);
+        write_joint(out, joint.name, "prismatic", parent, body.name, first, &joint.axis,
+                    mimics[body.q_index]);
         break;
       case JointType::kPlanar:
         write_joint(out, joint.name, "planar", parent, body.name, first, &joint.axis);
@@ -154,10 +227,10 @@ std::string write_urdf(const Model& model, const std::string& robot_name, UrdfSt
         throw std::invalid_argument("body '" + body.name + "': joint '" + joint.name + "' (" +
                                     to_string(joint.type) + ") has no URDF equivalent");
     }
-    write_link(out, body.name, &body, visuals(model, k));
+    write_link(out, body.name, &body, visuals(model, k, children[k]));
   }
-  out << "</robot>\n";
-  return out.str();
+  text << "</robot>\n";
+  return text.str();
 }
 
 }  // namespace mbk

@@ -4,7 +4,9 @@
 // (new z) (method.md 2: "three hinges about x, then the new y, then the new z"); free_123 into
 // prismatics `<joint>/x`, `/y`, `/z` then the same three revolutes. The intermediate links,
 // `<body>__<coordinate>`, are massless. Simple visuals (material `mbk_body`, grey-blue): a
-// sphere at each mass center and a capsule from each joint point to the next.
+// sphere at each mass center and a capsule from each joint point to the next. Mimics are
+// written as URDF mimics; names are XML-escaped. Throws std::invalid_argument, naming the
+// bodies, for a name with a control character and for two links or joints of one name.
 #pragma once
 
 #include <string>

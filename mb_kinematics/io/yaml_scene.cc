@@ -1,14 +1,17 @@
 #include "mb_kinematics/io/yaml_scene.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/rpy.h"
 
 namespace mbk {
@@ -39,13 +42,15 @@ Vec3<double> read_vec3(const YAML::Node& node, const std::string& field) {
 }
 
 // `body_node` gives the line when the field is missing (a missing key's node has no line).
-int read_lower(const YAML::Node& body_node, const Model& model, int k) {
+// `earlier` maps the names of R (0) and of bodies 1..k-1 to their numbers.
+int read_lower(const YAML::Node& body_node, const std::unordered_map<std::string, int>& earlier,
+               int k) {
   const std::string field = "body " + std::to_string(k) + " lower";
   const YAML::Node node = body_node["lower"];
   if (!node) throw SceneError(body_node, field + " is missing");
-  int lower = model.body_index(node.Scalar());  // by name of an earlier body, or R's
-  if (node.Scalar() == model.frame) lower = 0;
-  if (lower >= 0 && lower < k) return lower;
+  const auto by_name = earlier.find(node.Scalar());  // an earlier body's name, or R's
+  if (by_name != earlier.end()) return by_name->second;
+  int lower = -1;
   try {
     lower = node.as<int>();
   } catch (const YAML::Exception&) {
@@ -132,6 +137,7 @@ Model read_scene(const YAML::Node& root) {
   if (!bodies || !bodies.IsSequence() || bodies.size() == 0)
     throw SceneError(root, "scene has no 'bodies' list");
   model.bodies.resize(1);
+  std::unordered_map<std::string, int> earlier = {{model.frame, 0}};
   for (size_t i = 0; i < bodies.size(); ++i) {
     const YAML::Node node = bodies[i];
     const int k = static_cast<int>(i) + 1;
@@ -139,7 +145,8 @@ Model read_scene(const YAML::Node& root) {
     Body body;
     if (!node["name"]) throw SceneError(node, "body " + std::to_string(k) + " has no name");
     body.name = node["name"].Scalar();
-    body.lower = read_lower(node, model, k);
+    body.lower = read_lower(node, earlier, k);
+    earlier.emplace(body.name, k);  // a duplicate name keeps the first; finalize_model refuses it
     read_joint(node, body, k);
     if (node["mass_center"])
       body.mass_center = read_vec3(node["mass_center"], body.name + " mass_center");
@@ -155,16 +162,29 @@ Model read_scene(const YAML::Node& root) {
   return model;
 }
 
-}  // namespace
-
-Model load_yaml_scene_string(const std::string& text, const std::string& source) {
+Model parse_scene(const std::string& text, const std::string& source) {
   try {
     return read_scene(YAML::Load(text));
+  } catch (const YAML::DeepRecursion& e) {  // its own message is "bad file"
+    throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) +
+                                ": malformed YAML: nested " + std::to_string(e.depth()) +
+                                " levels deep, too deep to read");
   } catch (const YAML::Exception& e) {
     throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) +
                                 ": malformed YAML: " + e.msg);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(source + ":" + e.what());
+  }
+}
+
+}  // namespace
+
+// Messages hold names and yaml-cpp's text: control characters escaped to keep them one line.
+Model load_yaml_scene_string(const std::string& text, const std::string& source) {
+  try {
+    return parse_scene(text, source);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(printable(e.what()));
   }
 }
 

@@ -16,6 +16,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
@@ -67,8 +68,10 @@ int tables(const std::map<std::string, std::string>& options) {
     lower = model.lower_body_array();
     for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
   }
-  std::cout << (options.count("--csv") ? mbk::format_lower_body_csv(lower)
-                                       : mbk::format_lower_body_table(lower, names));
+  if (options.count("--csv"))
+    mbk::write_lower_body_csv(std::cout, lower);
+  else
+    mbk::write_lower_body_table(std::cout, lower, names);
   return 0;
 }
 
@@ -124,10 +127,10 @@ int main(int argc, char** argv) {
     if (command == "urdf") return urdf(options);
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
-    std::cerr << "mbk: error: " << e.what() << "\n" << kUsage;
+    std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n" << kUsage;
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "mbk: error: " << e.what() << "\n";
+    std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";
     return 1;
   }
 }

@@ -271,6 +271,52 @@ TEST(Mimics, Validation) {
   expect_error(model, {"mimic", "coordinate-derivative speeds"});
 }
 
+// A mimic of a mimic, listed before its source (URDF mimics were once applied in joint name
+// order): d = 3 c + 1 where c = -2 a + 0.25; evaluated in list order, d read c's stale value.
+TEST(Mimics, MimicOfAMimicReadsTheUpdatedSource) {
+  mbk::Model model = two_hinges_and_a_mimic();
+  model.bodies.push_back(body("d", 3, JointType::kRevolute));
+  model.mimics.insert(model.mimics.begin(), {3, 2, 3.0, 1.0});
+  mbk::finalize_model(model);
+  mbk::JointState<double> state(model);
+  state.position << 0.5, 0.7, 99.0, 99.0;
+  state.velocity << -1.5, 0.3, 99.0, 99.0;
+  mbk::apply_mimics(model, state);
+  const double c = -2.0 * 0.5 + 0.25;
+  EXPECT_EQ(state.position, Eigen::Vector4d(0.5, 0.7, c, 3.0 * c + 1.0));
+  EXPECT_EQ(state.velocity, Eigen::Vector4d(-1.5, 0.3, 3.0, 9.0));
+}
+
+TEST(Mimics, CyclesAndTwoSourcesAreRefusedNamingTheJoints) {
+  mbk::Model model = two_hinges_and_a_mimic();  // joints a_joint, b_joint, c_joint
+  model.mimics.push_back({0, 2, 1.0, 0.0});     // a follows c, c follows a
+  expect_error(model, {"mimic joints form a cycle", "c_joint -> a_joint -> c_joint"});
+  model.mimics.back() = {1, 2, 1.0, 0.0};  // b follows c: a chain, accepted
+  EXPECT_NO_THROW(mbk::finalize_model(model));
+  model.mimics.push_back({2, 1, 1.0, 0.0});  // c follows a and b
+  expect_error(model, {"c_joint", "mimics two joints"});
+}
+
+// A ball joint `s` has the coordinates s/alpha, s/beta, s/gamma; a joint named `s/beta`
+// beside it would share one, and a state could set only one of the two.
+TEST(FinalizeModel, DuplicateCoordinateNamesNameBothJoints) {
+  mbk::Model model = three_bodies();
+  model.bodies[3].joint.name = "s";
+  model.bodies.push_back(body("finger", 3, JointType::kRevolute, "s/beta"));
+  expect_error(model, {"body 4 'finger'", "coordinate name 's/beta'", "joint 's/beta'",
+                       "joint 's' (body 3 'hand')"});
+  model.bodies[4].joint.type = JointType::kFixed;  // no coordinate: no clash
+  EXPECT_NO_THROW(mbk::finalize_model(model));
+  // Angular velocity speeds of an Euler joint `e` are e/wx, e/wy, e/wz.
+  model.speeds = mbk::SpeedKind::kAngularVelocity;
+  model.bodies[3].joint = {};
+  model.bodies[3].joint.name = "e";
+  model.bodies[3].joint.type = JointType::kBallEuler;
+  model.bodies[4].joint.type = JointType::kRevolute;
+  model.bodies[4].joint.name = "e/wy";
+  expect_error(model, {"speed name 'e/wy'", "joint 'e'"});
+}
+
 }  // namespace
 
 // Finalizing a finalized model changes nothing (model variants such as Euler-parameter twins

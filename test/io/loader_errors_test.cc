@@ -1,7 +1,6 @@
 // Every loader error path (YAML scenes, URDF, STATE.json, model files) ends in one
 // std::invalid_argument whose one-line message says what is wrong and where (design.md "Bad
 // input"), never in a crash, another exception type or a silently accepted model.
-// urdfdom also prints its own errors to stderr (console_bridge); that is expected.
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -183,6 +182,22 @@ TEST(YamlSceneErrors, WrongVectorLength) {
                     {"scene.yaml:3:", "B1 mass_center must be a list of 3 numbers"});
 }
 
+// A ball joint `s` (coordinates s/alpha, s/beta, s/gamma) beside a joint named `s/alpha`.
+TEST(YamlSceneErrors, DuplicateCoordinateNamesNameBothJoints) {
+  expect_yaml_error(
+      "bodies:\n  - {name: a, lower: 0, joint: {name: s, type: ball_123}}\n"
+      "  - {name: b, lower: a, joint: {name: s/alpha, type: revolute}}\n",
+      {"scene.yaml:2:", "body 2 'b'", "coordinate name 's/alpha'", "joint 's' (body 1 'a')"});
+}
+
+// yaml-cpp stops at a nesting depth it cannot handle; the error must still say where.
+TEST(YamlSceneErrors, DeepNestingGivesFileAndLine) {
+  expect_yaml_error("bodies: " + std::string(100000, '['),
+                    {"scene.yaml:1:", "malformed YAML", "too deep"});
+  expect_yaml_error("bodies:\n  - " + std::string(100000, '{'),
+                    {"scene.yaml:2:", "malformed YAML", "too deep"});
+}
+
 TEST(YamlSceneErrors, FileNameInTheMessage) {
   const std::string missing = mbk_test::source_path("test/io/data/no_such_scene.yaml");
   expect_error([&] { mbk::load_yaml_scene_file(missing); }, {missing, "cannot open scene file"});
@@ -281,6 +296,43 @@ TEST(UrdfErrors, JointTypesAndMimics) {
   expect_urdf_error(fixed_then_mimic, {"robot.urdf", "mimic joint 'm'", "one coordinate"});
 }
 
+// Three hinges in a chain, each joint a mimic of the one before: m_end of z_mid of a_src.
+// By name, m_end comes before z_mid: it once read z_mid's stale value.
+std::string mimic_chain(const std::string& a_src_mimic = "") {
+  return "<robot name=\"r\"><link name=\"l0\"/><link name=\"l1\"/><link name=\"l2\"/>"
+         "<link name=\"l3\"/>" +
+         continuous("a_src", "l0", "l1", a_src_mimic) +
+         continuous("z_mid", "l1", "l2", "<mimic joint=\"a_src\" multiplier=\"2\" offset=\"1\"/>") +
+         continuous("m_end", "l2", "l3", "<mimic joint=\"z_mid\" multiplier=\"-3\"/>") + "</robot>";
+}
+
+TEST(UrdfMimics, AMimicOfAMimicFollowsTheUpdatedValue) {
+  const mbk::Model model = mbk::load_urdf_string(mimic_chain(), "robot.urdf");
+  const mbk::JointState<double> s =
+      mbk::read_state_string(model, "{\"position\": {\"a_src\": 0.5}}", "state.json");
+  const double z_mid = 2 * 0.5 + 1;
+  EXPECT_EQ(s.position[model.coordinate_index("z_mid")], z_mid);
+  EXPECT_EQ(s.position[model.coordinate_index("m_end")], -3 * z_mid);
+}
+
+TEST(UrdfMimics, ACycleIsRefusedNamingTheJoints) {
+  expect_urdf_error(mimic_chain("<mimic joint=\"m_end\"/>"),
+                    {"robot.urdf", "mimic joints form a cycle", "a_src", "z_mid", "m_end"});
+}
+
+// urdfdom's console_bridge output (its errors and warnings) stays off stderr: the errors are
+// in the exception's one line; the warnings of a URDF that loads are of no use to a user.
+TEST(UrdfErrors, UrdfdomPrintsNothing) {
+  testing::internal::CaptureStderr();
+  expect_urdf_error(
+      two_links(continuous("j", "a", "b"),
+                std::string("<inertial><mass value=\"nan\"/>") + kInertia + "</inertial>"),
+      {"mass [nan]"});
+  expect_urdf_error(two_links(continuous("j", "nowhere", "b")), {"[nowhere]"});
+  EXPECT_NO_THROW(mbk::load_urdf_string(mimic_chain(), "robot.urdf"));  // mimics without offset
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(UrdfErrors, FileNameInTheMessage) {
   const std::string missing = mbk_test::source_path("test/io/data/no_such_robot.urdf");
   expect_error([&] { mbk::load_urdf_file(missing); }, {missing, "cannot open URDF file"});
@@ -341,6 +393,11 @@ TEST_F(StateErrors, NonFinite) {
 TEST_F(StateErrors, MalformedJsonGivesLine) {
   expect_state_error("{\n  \"position\": {\"head_nod\": 1}\n", {"state.json:3: malformed JSON"});
   expect_state_error("{\n  \"position\": {\"head_nod\": 1]\n}\n", {"state.json:2: malformed JSON"});
+}
+
+TEST_F(StateErrors, DeepNestingGivesLine) {  // yaml-cpp's own message was "bad file"
+  expect_state_error("{\"position\": " + std::string(100000, '['),
+                     {"state.json:1: malformed JSON", "too deep"});
 }
 
 TEST_F(StateErrors, FileNameInTheMessage) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -20,6 +21,7 @@
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/state_json.h"
+#include "mb_kinematics/io/urdf_model.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -187,8 +189,22 @@ class JsonReader {
     std::string out;
     while (i_ < s_.size() && s_[i_] != '"') {
       if (s_[i_] == '\\') {
-        if (++i_ >= s_.size() || std::string("\"\\/").find(s_[i_]) == std::string::npos)
-          fail("unsupported escape");
+        if (++i_ >= s_.size()) fail("unfinished escape");
+        const char* simple = std::strchr("\"\\/bfnrt", s_[i_]);
+        if (s_[i_] == 'u') {  // \uXXXX below U+0800 (what names here need), as UTF-8
+          const unsigned long u = std::strtoul(s_.substr(i_ + 1, 4).c_str(), nullptr, 16);
+          if (i_ + 4 >= s_.size()) fail("short \\u escape");
+          out += u < 0x80    ? std::string(1, static_cast<char>(u))
+                 : u < 0x800 ? std::string{static_cast<char>(0xc0 | u >> 6),
+                                           static_cast<char>(0x80 | (u & 0x3f))}
+                             : "\xef\xbf\xbd";  // U+FFFD stands for the rest
+          i_ += 5;
+          continue;
+        }
+        if (!simple || !*simple) fail("unsupported escape");
+        out += "\"\\/\b\f\n\r\t"[simple - "\"\\/bfnrt"];
+        ++i_;
+        continue;
       } else if (static_cast<unsigned char>(s_[i_]) < 0x20) {
         fail("control character in string");
       }
@@ -554,6 +570,101 @@ TEST(MbkCli, BadInputIsAOneLineErrorAndNonZeroExit) {
     else
       EXPECT_EQ(rest, "") << "more than one line";
   }
+}
+
+// Writes `text` to a temporary file with the given suffix; removed with the object.
+struct TempFile {
+  std::string path;
+  TempFile(const std::string& text, const std::string& suffix) {
+    char name[] = "/tmp/mbk_cli_test_XXXXXX";
+    const int fd = mkstemp(name);
+    if (fd < 0) throw std::runtime_error("mkstemp failed");
+    close(fd);
+    std::remove(name);
+    path = std::string(name) + suffix;
+    std::ofstream(path) << text;
+  }
+  ~TempFile() { std::remove(path.c_str()); }
+};
+
+// Body names with a quote, a backslash and control characters: valid JSON, the same names.
+TEST(MbkCli, EvalEscapesNamesInJson) {
+  const TempFile scene(
+      "frame: \"R\\\"0\"\nbodies:\n"
+      "  - {name: \"a\\\"b\", lower: 0, joint: {type: revolute}}\n"
+      "  - {name: \"c\\\\d\", lower: 1, joint: {type: revolute}}\n"
+      "  - {name: \"e\\nf\\tg\\x01h\", lower: 2, joint: {type: revolute}}\n",
+      ".yaml");
+  const Output run = mbk("eval --model " + scene.path);
+  ASSERT_EQ(run.status, 0) << run.err;
+  Json doc;
+  ASSERT_NO_THROW(doc = JsonReader(run.out).document()) << run.out;
+  EXPECT_EQ(doc.at("frame").string, "R\"0");
+  const std::vector<Json>& bodies = doc.at("bodies").array;
+  ASSERT_EQ(bodies.size(), 3u);
+  EXPECT_EQ(bodies[0].at("name").string, "a\"b");
+  EXPECT_EQ(bodies[1].at("name").string, "c\\d");
+  EXPECT_EQ(bodies[2].at("name").string, "e\nf\tg\x01h");
+}
+
+// Names with XML's special characters: a URDF that loads, with the same names.
+TEST(MbkCli, UrdfEscapesNames) {
+  const TempFile scene(
+      "bodies:\n  - {name: 'a\"b', lower: 0, joint: {name: 'j<1>', type: ball_123}}\n"
+      "  - {name: 'c&d', lower: 1, joint: {name: \"j'2\", type: revolute}}\n",
+      ".yaml");
+  const Output run = mbk("urdf --model " + scene.path + " --name 'r&\"'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const mbk::Model back = mbk::load_urdf_string(run.out, "out.urdf");
+  EXPECT_GE(back.body_index("a\"b"), 1);
+  EXPECT_GE(back.body_index("c&d"), 1);
+  EXPECT_GE(back.coordinate_index("j<1>/gamma"), 0);
+  EXPECT_GE(back.coordinate_index("j'2"), 0);
+}
+
+// A chain deeper than 1000 (the table's label column once underflowed: "basic_string::
+// _M_create") and with more than 999 bodies (entries of four digits).
+TEST(MbkCli, TablesOfADeepChain) {
+  std::string lower = "0";
+  for (int k = 2; k <= 1100; ++k) lower += "," + std::to_string(k - 1);
+  for (const char* csv : {"", " --csv"}) {
+    const Output run = mbk("tables --lower " + lower + csv);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(run.err, "");
+    std::istringstream out(run.out);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(out, line);) lines.push_back(line);
+    ASSERT_EQ(lines.size(), *csv ? 1101u : 1102u);  // t = 0..1100 (and the header)
+    std::string zeros = "0";
+    for (int k = 2; k <= 1100; ++k) zeros += ",0";
+    if (*csv)
+      EXPECT_EQ(lines.back(), zeros);
+    else
+      EXPECT_EQ(words(lines.back()), (std::vector<std::string>{"L^1100(k)", "0"}));
+  }
+}
+
+// The one-line error holds user text with newlines escaped.
+TEST(MbkCli, ErrorsWithNewlinesInTheInputStayOneLine) {
+  const Output run = mbk("tables --lower \"$(printf '0,1,x\\ny')\"");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(run.err, "mbk: error: lower body array: entry 3 ('x\\ny') is not an integer\n");
+}
+
+// urdfdom's own output (console_bridge) once added four lines to the error.
+TEST(MbkCli, BadUrdfIsOneLine) {
+  const TempFile robot(
+      "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"><inertial><mass value=\"x\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"
+      "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/></joint>"
+      "</robot>",
+      ".urdf");
+  const Output run = mbk("eval --model " + robot.path);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+  EXPECT_NE(run.err.find("mass [x]"), std::string::npos) << run.err;
 }
 
 TEST(MbkCli, EulerSceneWithAValidStateWorks) {  // the zero-norm failure above is the state's

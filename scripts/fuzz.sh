@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Fuzzes the loaders with libFuzzer (README "Reliability"): builds test/fuzz/ with clang-14
+# (ASan, UBSan, LeakSanitizer) outside catkin, then runs each harness for SECONDS seconds
+# (default 60) on its corpus, seeded from the shipped configs and test/io/data, plus the inputs
+# of past findings (test/fuzz/regressions/<harness>/). Any crash, hang (10 s), leak or sanitizer
+# report fails it; the input is kept in <fuzz dir>/findings/.
+#   scripts/fuzz.sh [seconds]     all harnesses, SECONDS each
+#   scripts/fuzz.sh --smoke       what scripts/test.sh runs (ctest fuzz_smoke): 6 s each
+#   scripts/fuzz.sh --build       only build the harnesses
+source "$(dirname "$0")/common.sh"
+seconds=60
+mode=run
+case "${1:-}" in
+  --smoke) seconds=6 ;;  # the smoke's corpus is the seeds alone (see below)
+  --build) mode=build ;;
+  [0-9]*) seconds=$1 ;;
+  "") ;;
+  *) echo "usage: scripts/fuzz.sh [seconds | --smoke | --build]" >&2; exit 2 ;;
+esac
+harnesses=(urdf yaml_scene state_json lower joint_state_input)
+dir=${MBK_FUZZ_DIR:-$MBK_WS/fuzz}
+mkdir -p "$dir/build" "$dir/findings"
+
+# The generated mb_kinematics_msgs headers come from the catkin build (scripts/test.sh's).
+[ -f "$MBK_WS/devel/include/mb_kinematics_msgs/JointAccelerations.h" ] || mbk_build
+# The physical path: ctest runs this script through the workspace's src/ link, and another
+# source path would make CMake compile everything again.
+(cmake -S "$(cd "$MBK_SRC" && pwd -P)/test/fuzz" -B "$dir/build" -DCMAKE_C_COMPILER=clang-14 \
+   -DCMAKE_CXX_COMPILER=clang++-14 -DMBK_DEVEL_INCLUDE="$MBK_WS/devel/include" &&
+   cmake --build "$dir/build" -j2) >"$dir/build.log" 2>&1 || {
+  tail -n 40 "$dir/build.log"
+  echo "fuzz build failed: full log in $dir/build.log" >&2
+  exit 1
+}
+[ "$mode" = build ] && exit 0
+
+seeds() {  # the shipped files each harness starts from
+  case "$1" in
+    urdf) ls "$MBK_SRC"/config/*.urdf "$MBK_SRC"/test/ros/*.urdf ;;
+    yaml_scene) ls "$MBK_SRC"/config/*.yaml "$MBK_SRC"/test/io/data/*.yaml ;;
+    state_json | joint_state_input) ls "$MBK_SRC"/config/*.json "$MBK_SRC"/test/io/data/*.json ;;
+    lower) ls "$MBK_SRC"/test/fuzz/seeds/lower/* ;;
+  esac
+}
+
+export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
+export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+set +e
+failed=0
+for h in "${harnesses[@]}"; do
+  corpus="$dir/corpus/$h"  # grows from run to run; the smoke starts from the seeds each time
+  [ "$seconds" -le 6 ] && corpus="$dir/smoke/$h" && rm -rf "$corpus"
+  mkdir -p "$corpus"
+  seeds "$h" | xargs -I{} cp {} "$corpus/"
+  regressions="$MBK_SRC/test/fuzz/regressions/$h"
+  [ -d "$regressions" ] && cp "$regressions"/* "$corpus/" 2>/dev/null
+  log="$dir/$h.log"
+  "$dir/build/${h}_fuzzer" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$dir/findings/$h-" >"$log" 2>&1
+  status=$?
+  runs=$(awk '/stat::number_of_executed_units/ {print $2}' "$log")
+  if [ "$status" -ne 0 ]; then
+    failed=$((failed + 1))
+    echo "fuzz $h: FINDING after ${runs:-?} runs (exit $status): $(grep -m1 -E 'ERROR|finding|deadly|timeout|leak' "$log")"
+    echo "  log: $log; input: $(ls -t "$dir"/findings/"$h"-* 2>/dev/null | head -n 1)"
+  else
+    echo "fuzz $h: ${runs:-?} runs in ${seconds} s, corpus $(ls "$corpus" | wc -l) inputs, no finding"
+  fi
+done
+echo "$(( ${#harnesses[@]} - failed )) passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,59 @@
+// The inputs the fuzz harnesses (test/fuzz/) once failed on, kept in test/fuzz/regressions/
+// <harness>/, replayed in the ordinary build: each loads, or is refused with one
+// std::invalid_argument of one line (README "Reliability").
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/state_json.h"
+#include "mb_kinematics/io/urdf_model.h"
+#include "mb_kinematics/io/yaml_scene.h"
+#include "test/support/test_models.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Calls `load` on every file of test/fuzz/regressions/<harness>/; returns how many there are.
+int replay(const std::string& harness, const std::function<void(const std::string&)>& load) {
+  const fs::path dir = mbk_test::source_path("test/fuzz/regressions/" + harness);
+  int files = 0;
+  if (!fs::exists(dir)) return files;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    SCOPED_TRACE(entry.path().string());
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    ++files;
+    try {
+      load(text.str());
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  }
+  return files;
+}
+
+TEST(FuzzRegressions, StateJson) {
+  const mbk::Model model = mbk::load_model_file(mbk_test::source_path("config/human_body.yaml"));
+  EXPECT_GT(replay("state_json",
+                   [&](const std::string& t) { mbk::read_state_string(model, t, "state.json"); }),
+            0);
+}
+
+TEST(FuzzRegressions, Loaders) {
+  replay("urdf", [](const std::string& t) { mbk::load_urdf_string(t, "robot.urdf"); });
+  replay("yaml_scene", [](const std::string& t) { mbk::load_yaml_scene_string(t, "scene.yaml"); });
+  replay("lower", [](const std::string& t) {
+    mbk::validate_lower_body_array(mbk::parse_lower_body_array(t));
+  });
+}
+
+}  // namespace
