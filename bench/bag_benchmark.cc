@@ -8,6 +8,7 @@
 //   compute/<model>/<estimated|given> OfflineStates::state_at + forward_kinematics per sample at
 //                                     1 kHz, derivatives estimated (default estimator) or given;
 //                                     counter x_real_time = samples/s / 1000
+//   compute/tree100/kinematics_only   forward_kinematics alone on the same states
 // Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1).
 #include <benchmark/benchmark.h>
 #include <rosbag/bag.h>
@@ -80,7 +81,9 @@ mbk::Recording recording(const mbk::Model& model, double rate, double seconds, b
   return r;
 }
 
-void compute(benchmark::State& state, const mbk::Model& model, bool given) {
+// kinematics_only: forward_kinematics on the recorded states alone (no OfflineStates), to split
+// the computation's time between the estimates and the kinematics.
+void compute(benchmark::State& state, const mbk::Model& model, bool given, bool kinematics_only) {
   const mbk::Recording rec = recording(model, 1000, 5, given);
   const mbk::OfflineEstimator e = mbk::make_offline_estimator(mbk::default_offline_estimator());
   mbk::JointState<double> s(model);
@@ -89,13 +92,23 @@ void compute(benchmark::State& state, const mbk::Model& model, bool given) {
   for (auto _ : state) {
     mbk::OfflineStates states(model, rec, e, 0);
     for (int r = 0; r < rec.rows(); ++r) {
-      states.state_at(r, s);
+      if (kinematics_only) {
+        s.position =
+            Eigen::Map<const Eigen::VectorXd>(rec.position.data() + r * model.nq, model.nq);
+        s.velocity =
+            Eigen::Map<const Eigen::VectorXd>(rec.velocity.data() + r * model.nq, model.nq);
+        s.acceleration =
+            Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
+      } else {
+        states.state_at(r, s);
+      }
       mbk::forward_kinematics(model, s, d, mbk::Level::kAcceleration);
       benchmark::DoNotOptimize(d.acceleration.back());
     }
     samples += rec.rows();
   }
   state.SetItemsProcessed(samples);
+  state.counters["coordinates"] = model.nq;
   state.counters["x_real_time"] = benchmark::Counter(samples / 1000.0, benchmark::Counter::kIsRate);
 }
 
@@ -112,9 +125,12 @@ BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchma
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_and_csv_out, 1000.0, true)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, human / estimated, human(), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, human / estimated, human(), false, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false, false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, tree100 / kinematics_only, tree100(), true, true)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

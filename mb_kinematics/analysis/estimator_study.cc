@@ -102,8 +102,8 @@ EstimatorResult run_offline_estimator(const std::string& name, const std::vector
       std::fill(second.begin(), second.end(), 0.0);
       for (int j = 0; j < w.count; ++j)
         for (int c = 0; c < m; ++c) {
-          first[c] += w.first[j] * x[(w.begin + j) * m + c];
-          second[c] += w.second[j] * x[(w.begin + j) * m + c];
+          first[c] += w.first[j] * x[w.row(j) * m + c];
+          second[c] += w.second[j] * x[w.row(j) * m + c];
         }
       if (r > 0) continue;  // errors once
       for (int c = 0; c < m; ++c) {

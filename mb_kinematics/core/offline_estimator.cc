@@ -35,12 +35,6 @@ void window_range(const OfflineEstimator& e, const std::vector<double>& t, int s
     else
       ++end;
   }
-  while (end - begin > kMaxOfflineWindow) {  // cut the longer side
-    if (i - begin > end - 1 - i)
-      ++begin;
-    else
-      --end;
-  }
 }
 
 }  // namespace
@@ -77,7 +71,7 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
   if (order < 2 || order > kMaxOrder || !window_ok)
     throw std::invalid_argument("offline estimator '" + name +
                                 "': need 2 <= order <= 5 and an odd sample window above the "
-                                "order (at most 2001) or a positive time window");
+                                "order (at most 41) or a positive time window");
   return e;
 }
 
@@ -110,28 +104,29 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
   const int seg = segments.segment_of[i];
   int begin = 0, end = 0;
   window_range(e, t, segments.begin[seg], segments.end[seg], i, begin, end);
-  const int n = end - begin, order = std::min(e.order, n - 1);
-  w.begin = begin;
+  w.stride = (end - begin + kMaxOfflineWindow - 1) / kMaxOfflineWindow;
+  w.begin = i - (i - begin) / w.stride * w.stride;  // every stride-th sample, i among them
+  const int n = (end - 1 - w.begin) / w.stride + 1, order = std::min(e.order, n - 1);
   w.count = n;
   w.valid = std::min(order, 2);
   w.first.assign(n, 0.0);
   w.second.assign(n, 0.0);
   if (order < 1) return;
-  const double scale = std::max(t[i] - t[begin], t[end - 1] - t[i]);
+  const double scale = std::max(t[i] - t[w.begin], t[w.row(n - 1)] - t[i]);
   using Mat =
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOrder + 1, kMaxOrder + 1>;
   using Row = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kMaxOrder + 1>;
   Mat normal = Mat::Zero(order + 1, order + 1);
   Row a(order + 1);
   for (int j = 0; j < n; ++j) {
-    const double s = (t[begin + j] - t[i]) / scale;
+    const double s = (t[w.row(j)] - t[i]) / scale;
     double p = 1;
     for (int c = 0; c <= order; ++c, p *= s) a[c] = p;
     normal.noalias() += a.transpose() * a;
   }
   const Mat inverse = normal.ldlt().solve(Mat::Identity(order + 1, order + 1));
   for (int j = 0; j < n; ++j) {
-    const double s = (t[begin + j] - t[i]) / scale;
+    const double s = (t[w.row(j)] - t[i]) / scale;
     double p = 1;
     for (int c = 0; c <= order; ++c, p *= s) a[c] = p;
     w.first[j] = a.dot(inverse.col(1)) / scale;
@@ -152,8 +147,8 @@ void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,
     derivative_weights(e, t, segments, i, w);
     valid[i] = w.valid;
     for (int j = 0; j < w.count; ++j) {
-      first[i] += w.first[j] * x[w.begin + j];
-      second[i] += w.second[j] * x[w.begin + j];
+      first[i] += w.first[j] * x[w.row(j)];
+      second[i] += w.second[j] * x[w.row(j)];
     }
   }
 }

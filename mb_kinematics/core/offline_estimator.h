@@ -26,12 +26,15 @@ OfflineEstimator make_offline_estimator(const std::string& name);
 const std::vector<std::string>& offline_estimator_names();
 const char* default_offline_estimator();
 
-// Samples held by one window at most (a longer time window is cut down to these).
-constexpr int kMaxOfflineWindow = 2001;
+// Samples fitted by one window at most: a time window holding more (a high rate) takes every
+// stride-th sample, the estimated one included, so the cost per sample does not grow with the
+// rate.
+constexpr int kMaxOfflineWindow = 41;
 
-// Weights of one sample's estimate: x'(t_i) = sum_j first[j] x[begin + j], likewise x''.
+// Weights of one sample's estimate: x'(t_i) = sum_j first[j] x[row(j)], likewise x''.
 struct DerivativeWeights {
-  int begin = 0, count = 0;
+  int begin = 0, count = 0, stride = 1;
+  int row(int j) const { return begin + j * stride; }
   int valid = 0;  // 0: none (a lone sample), 1: first derivative only, 2: both
   std::vector<double> first, second;
 };

@@ -10,7 +10,8 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       max_gap_(max_gap > 0 ? max_gap : default_max_gap(recording.stamp)),
       velocity_everywhere_(model.nq, 1),
       first_(Eigen::VectorXd::Zero(model.nq)),
-      second_(Eigen::VectorXd::Zero(model.nq)) {
+      second_(Eigen::VectorXd::Zero(model.nq)),
+      velocity_first_(Eigen::VectorXd::Zero(model.nq)) {
   std::vector<char> mimic(model.nq, 0), everywhere(model.nq, 1);
   for (const Mimic& m : model.mimics) mimic[m.coordinate] = 1;
   const int nq = model.nq;
@@ -35,6 +36,8 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
     series_.push_back(std::move(s));
   }
   segments_ = find_segments(rec_.stamp, max_gap_);
+  for (int c : full_)
+    any_velocity_everywhere_ = any_velocity_everywhere_ || velocity_everywhere_[c];
 }
 
 // x'(t) and x''(t) of coordinate c from the weights (over rows, or over a series' rows);
@@ -44,7 +47,7 @@ void OfflineStates::derivatives(const DerivativeWeights& w, const std::vector<in
   const int nq = rec_.nq;
   first = second = 0;
   for (int j = 0; j < w.count; ++j) {
-    const int r = rows ? (*rows)[w.begin + j] : w.begin + j;
+    const int r = rows ? (*rows)[w.row(j)] : w.row(j);
     first += w.first[j] * rec_.position[r * nq + c];
     second +=
         velocity ? w.first[j] * rec_.velocity[r * nq + c] : w.second[j] * rec_.position[r * nq + c];
@@ -53,32 +56,39 @@ void OfflineStates::derivatives(const DerivativeWeights& w, const std::vector<in
 
 std::string OfflineStates::state_at(int r, JointState<double>& state) {
   const int nq = rec_.nq;
+  const std::uint8_t* given = rec_.given.data() + r * nq;
+  constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
+  bool estimate = false;  // does some coordinate given everywhere lack a derivative here?
+  for (int c : full_) estimate = estimate || (given[c] & kBoth) != kBoth;
   int valid = 2;
-  if (!full_.empty()) {
+  if (estimate) {
     derivative_weights(estimator_, rec_.stamp, segments_, r, weights_);
-    // Coordinates given everywhere: one pass over the window rows for all of them.
+    // One pass over the window's rows for all coordinates (positions, and given velocities).
     first_.setZero();
     second_.setZero();
+    velocity_first_.setZero();
     for (int j = 0; j < weights_.count; ++j) {
-      const int row = weights_.begin + j;
+      const int row = weights_.row(j);
       const Eigen::Map<const Eigen::VectorXd> p(rec_.position.data() + row * nq, nq);
       first_.noalias() += weights_.first[j] * p;
       second_.noalias() += weights_.second[j] * p;
+      if (!any_velocity_everywhere_) continue;
+      const Eigen::Map<const Eigen::VectorXd> v(rec_.velocity.data() + row * nq, nq);
+      velocity_first_.noalias() += weights_.first[j] * v;
     }
   }
   for (int c : full_) {
-    double second = second_[c];
-    if (velocity_everywhere_[c]) {  // accelerations from the given velocities
-      double unused = 0;
-      derivatives(weights_, nullptr, c, true, unused, second);
-    }
     state.position[c] = rec_.position[r * nq + c];
-    const std::uint8_t g = rec_.given[r * nq + c];
-    state.velocity[c] = g & Recording::kVelocity ? rec_.velocity[r * nq + c] : first_[c];
-    state.acceleration[c] = g & Recording::kAcceleration ? rec_.acceleration[r * nq + c] : second;
-    const bool given = (g & Recording::kAcceleration) && (g & Recording::kVelocity);
-    if (!given)
-      valid = std::min(valid, velocity_everywhere_[c] ? 2 * weights_.valid : weights_.valid);
+    state.velocity[c] = given[c] & Recording::kVelocity ? rec_.velocity[r * nq + c] : first_[c];
+    state.acceleration[c] = given[c] & Recording::kAcceleration ? rec_.acceleration[r * nq + c]
+                            : velocity_everywhere_[c] ? velocity_first_[c]  // from given v
+                                                      : second_[c];
+    // The derivative order this coordinate needs from the fit here.
+    const int need =
+        std::max(given[c] & Recording::kVelocity ? 0 : 1, given[c] & Recording::kAcceleration ? 0
+                                                          : velocity_everywhere_[c]           ? 1
+                                                                                              : 2);
+    if (need > weights_.valid) valid = 0;
   }
   DerivativeWeights w;
   for (size_t i = 0; i < partial_.size(); ++i) {

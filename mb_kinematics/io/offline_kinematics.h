@@ -50,7 +50,8 @@ class OfflineStates {
   std::vector<Series> series_;  // per coordinate in partial_
   Segments segments_;
   DerivativeWeights weights_;
-  Eigen::VectorXd first_, second_;  // scratch, nq
+  bool any_velocity_everywhere_ = false;
+  Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
 };
 
 }  // namespace mbk

@@ -55,6 +55,7 @@ BagOptions parse_bag_options(int argc, char** argv) {
       {"--csv", &o.out_csv},
       {"--joint-states", &o.joint_states},
       {"--joint-accelerations", &o.joint_accelerations},
+      {"--base-odometry", &o.base_odometry},
       {"--estimator", &o.estimator},
       {"--frame-prefix", &o.frame_prefix}};
   for (int i = 2; i < argc; ++i) {
@@ -90,12 +91,15 @@ BagSummary run_bag(const BagOptions& o) {
   s.estimator = estimator.name;
   // Read everything first: the centred estimates look ahead.
   mbk::RecordingBuilder builder(model);
+  BaseOdometry base;
+  if (!o.base_odometry.empty() && ends_with(o.input, ".csv"))
+    throw std::invalid_argument("--base-odometry needs a bag input");
   {
     mbk::Progress bar("reading  ", o.progress);
     if (ends_with(o.input, ".csv")) {
       mbk::read_trajectory_csv(o.input, builder);
     } else {
-      read_bag(o.input, {o.joint_states, o.joint_accelerations}, builder,
+      read_bag(o.input, {o.joint_states, o.joint_accelerations, o.base_odometry}, builder, base,
                [&](long done, long total) { bar.update(done, total); });
     }
   }
@@ -105,9 +109,24 @@ BagSummary run_bag(const BagOptions& o) {
   s.read_seconds = since(wall);
   mbk::OfflineStates states(model, rec, estimator, o.max_gap);
   s.max_gap = states.max_gap();
+  const bool floating = !o.base_odometry.empty();
+  if (floating && base.samples.empty())
+    throw std::invalid_argument(o.input + ": no usable message on '" + o.base_odometry + "'");
+  std::vector<mbk::Vec3<double>> base_linear, base_angular;
+  std::vector<int> base_valid;
+  if (floating)
+    mbk::base_accelerations(base.samples, estimator,
+                            o.max_gap > 0 ? o.max_gap : mbk::default_max_gap([&] {
+                              std::vector<double> t;
+                              for (const auto& b : base.samples) t.push_back(b.t);
+                              return t;
+                            }()),
+                            base_linear, base_angular, base_valid);
+  mbk::BaseMotion motion;
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
-  if (!o.out_bag.empty()) bag = std::make_unique<BagOutput>(o.out_bag, model, o.frame_prefix);
+  if (!o.out_bag.empty())
+    bag = std::make_unique<BagOutput>(o.out_bag, model, o.frame_prefix, base.frame);
   if (!o.out_csv.empty()) csv = std::make_unique<mbk::TidyCsvWriter>(o.out_csv, model);
   mbk::JointState<double> state(model);
   mbk::Data<double> data(model);
@@ -126,6 +145,13 @@ BagSummary run_bag(const BagOptions& o) {
       continue;
     }
     mbk::forward_kinematics(model, state, data, mbk::Level::kAcceleration);
+    if (floating) {
+      if (!mbk::interpolate_base(base.samples, base_linear, base_angular, rec.stamp[r], motion)) {
+        s.log.drop("outside the base odometry's time span", where);
+        continue;
+      }
+      mbk::apply_floating_base(motion, data);
+    }
     bool ok = true;
     for (int k = 1; k <= model.body_count() && ok; ++k) ok = finite(data, k);
     if (!ok) {
@@ -133,7 +159,7 @@ BagSummary run_bag(const BagOptions& o) {
       continue;
     }
     const auto t1 = Clock::now();
-    if (bag) bag->write(rec.stamp[r], state, data);
+    if (bag) bag->write(rec.stamp[r], state, data, floating ? &motion : nullptr);
     if (csv) csv->write(rec.stamp[r], data);
     ++s.written;
     s.compute_seconds += std::chrono::duration<double>(t1 - t0).count();

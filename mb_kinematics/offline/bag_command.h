@@ -15,7 +15,8 @@ struct BagOptions {
   std::string out_bag, out_csv;
   std::string joint_states = "/joint_states";
   std::string joint_accelerations;
-  std::string estimator;  // empty: the default
+  std::string base_odometry;  // nav_msgs/Odometry of a floating base (core/floating_base.h)
+  std::string estimator;      // empty: the default
   std::string frame_prefix;
   double max_gap = 0;     // seconds; 0: 5 x the median interval
   bool progress = false;  // draw a progress bar on stderr

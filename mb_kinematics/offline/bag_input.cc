@@ -1,10 +1,12 @@
 #include "mb_kinematics/offline/bag_input.h"
 
 #include <mb_kinematics_msgs/JointAccelerations.h>
+#include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <stdexcept>
@@ -43,10 +45,31 @@ double stamp_of(const std_msgs::Header& header, const rosbag::MessageInstance& m
   return header.stamp.isZero() ? m.getTime().toSec() : header.stamp.toSec();  // as the node
 }
 
+void add_odometry(const nav_msgs::Odometry& o, double t, const std::string& where,
+                  BaseOdometry& base, mbk::DropLog& log) {
+  mbk::BaseSample s;
+  s.t = t;
+  const auto& p = o.pose.pose;
+  s.position << p.position.x, p.position.y, p.position.z;
+  s.orientation =
+      Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+  s.linear << o.twist.twist.linear.x, o.twist.twist.linear.y, o.twist.twist.linear.z;
+  s.angular << o.twist.twist.angular.x, o.twist.twist.angular.y, o.twist.twist.angular.z;
+  const double norm = s.orientation.norm();
+  if (!std::isfinite(t) || !s.position.allFinite() || !s.linear.allFinite() ||
+      !s.angular.allFinite() || !std::isfinite(norm) || norm < 1e-6)
+    return log.note("base odometry ignored", where + ": NaN/Inf or a zero quaternion");
+  if (!base.samples.empty() && t <= base.samples.back().t)
+    return log.note("base odometry ignored", where + ": stamp not after the previous one");
+  s.orientation.normalize();
+  if (base.frame.empty()) base.frame = o.header.frame_id;
+  base.samples.push_back(s);
+}
+
 }  // namespace
 
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
-              const std::function<void(long, long)>& progress) {
+              BaseOdometry& base, const std::function<void(long, long)>& progress) {
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
@@ -72,6 +95,10 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
     require(present, path, topics.joint_accelerations, "mb_kinematics_msgs/JointAccelerations");
     wanted.push_back(topics.joint_accelerations);
   }
+  if (!topics.base_odometry.empty()) {
+    require(present, path, topics.base_odometry, "nav_msgs/Odometry");
+    wanted.push_back(topics.base_odometry);
+  }
   rosbag::View view(bag, rosbag::TopicQuery(wanted));
   const long total = view.size();
   long done = 0;
@@ -82,6 +109,9 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
       if (m.getTopic() == topics.joint_states) {
         const auto js = m.instantiate<sensor_msgs::JointState>();
         builder.add(stamp_of(js->header, m), js->name, js->position, js->velocity, where);
+      } else if (m.getTopic() == topics.base_odometry) {
+        const auto o = m.instantiate<nav_msgs::Odometry>();
+        add_odometry(*o, stamp_of(o->header, m), where, base, builder.log());
       } else {
         const auto a = m.instantiate<mb_kinematics_msgs::JointAccelerations>();
         builder.add_accelerations(stamp_of(a->header, m), a->name, a->acceleration, where);

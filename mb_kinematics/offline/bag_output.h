@@ -8,15 +8,20 @@
 
 #include <string>
 
+#include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/offline/kinematics_msg.h"
 
 namespace mbk_offline {
 
 class BagOutput {
  public:
-  // Throws std::invalid_argument if `path` cannot be written. `prefix` goes before every frame.
-  BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix);
-  void write(double stamp, const mbk::JointState<double>& state, const mbk::Data<double>& data);
+  // Throws std::invalid_argument if `path` cannot be written. `prefix` goes before every frame
+  // taken from the model. With a floating base, `base_frame` names R (the odometry's frame) and
+  // each write gets the root frame's pose in it.
+  BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
+            const std::string& base_frame = "");
+  void write(double stamp, const mbk::JointState<double>& state, const mbk::Data<double>& data,
+             const mbk::BaseMotion* base = nullptr);
   void close();
 
  private:
@@ -26,6 +31,7 @@ class BagOutput {
   TfFrames frames_;
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;
   tf2_msgs::TFMessage tf_;
+  std::string base_frame_;
   bool static_written_ = false;
 };
 

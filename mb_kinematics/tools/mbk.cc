@@ -31,7 +31,9 @@ const char kUsage[] =
     "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
     "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n"
     "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
-    "           [--joint-accelerations T] [--estimator NAME] [--frame-prefix P] [--max-gap S]\n";
+    "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
+    "P]\n"
+    "           [--max-gap S]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {

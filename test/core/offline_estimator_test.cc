@@ -77,8 +77,12 @@ TEST(OfflineEstimatorTest, TimeWindowScalesWithTheRate) {
     for (int i = 0; i < 2 * rate; ++i) t.push_back(i / rate);
     const mbk::Segments s = mbk::find_segments(t, 0);
     mbk::DerivativeWeights w;
-    mbk::derivative_weights(e, t, s, static_cast<int>(rate), w);
-    EXPECT_EQ(w.count, static_cast<int>(0.1 * rate) + 1) << rate;
+    const int i = static_cast<int>(rate);
+    mbk::derivative_weights(e, t, s, i, w);
+    EXPECT_LE(w.count, mbk::kMaxOfflineWindow);
+    EXPECT_EQ((i - w.begin) % w.stride, 0);  // the estimated sample is one of those fitted
+    EXPECT_NEAR(t[w.row(w.count - 1)] - t[w.begin], 0.1, 1.5 * w.stride / rate) << rate;
+    EXPECT_NEAR(t[i] - t[w.begin], 0.05, 1.5 * w.stride / rate) << rate;
   }
 }
 

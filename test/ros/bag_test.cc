@@ -4,6 +4,7 @@
 // counted drop.
 #include <gtest/gtest.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <nav_msgs/Odometry.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
+#include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/offline/bag_command.h"
@@ -227,6 +229,87 @@ TEST(BagTest, AJointNeverNamedIsAnError) {
   });
   EXPECT_NE(error_of(options(in, temp("z.bag"))).find("no sample names the joints"),
             std::string::npos);
+}
+
+// The model's root on a base that runs round a circle of radius 1 turning with it (yaw = w t;
+// its velocity is w along its own y), the joints still: every body is carried rigidly.
+TEST(BagTest, BaseOdometryCarriesTheModel) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const double w = 1.3;
+  const auto base_at = [&](double t) {
+    mbk::BaseMotion m;
+    m.rotation = Eigen::AngleAxisd(w * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    m.position << std::cos(w * t), std::sin(w * t), 0.5;
+    m.velocity << -w * std::sin(w * t), w * std::cos(w * t), 0;
+    m.acceleration = -w * w * mbk::Vec3<double>(std::cos(w * t), std::sin(w * t), 0);
+    m.omega << 0, 0, w;
+    return m;
+  };
+  {
+    rosbag::Bag bag(temp("odom.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 300; ++i) {  // odometry over [1, 3.99] s
+      const double t = 1.0 + i / 100.0;
+      const mbk::BaseMotion m = base_at(t);
+      nav_msgs::Odometry o;
+      o.header.stamp = ros::Time(t);
+      o.header.frame_id = "odom";
+      o.child_frame_id = "world";
+      o.pose.pose.position.x = m.position.x();
+      o.pose.pose.position.y = m.position.y();
+      o.pose.pose.position.z = m.position.z();
+      const Eigen::Quaterniond q(m.rotation);
+      o.pose.pose.orientation.x = q.x(), o.pose.pose.orientation.y = q.y();
+      o.pose.pose.orientation.z = q.z(), o.pose.pose.orientation.w = q.w();
+      o.twist.twist.linear.y = w;  // in the child frame
+      o.twist.twist.angular.z = w;
+      bag.write("/odom", o.header.stamp, o);
+    }
+    for (int i = 0; i < 305; ++i) {  // joints at 100 Hz, 5 ms after the odometry, 5 beyond it
+      sensor_msgs::JointState js;
+      js.header.stamp = ros::Time(1.005 + i / 100.0);
+      js.name = model.coordinate_names;
+      js.position.assign(model.nq, 0.1);
+      bag.write("/joint_states", js.header.stamp, js);
+    }
+  }
+  mbk_offline::BagOptions o = options(temp("odom.bag"), temp("odom_out.bag"));
+  o.base_odometry = "/odom";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.written, 299);
+  EXPECT_EQ(s.log.drops.at("outside the base odometry's time span"), 6);
+  mbk::JointState<double> still(model);
+  still.position.setConstant(0.1);
+  mbk::Data<double> relative(model);
+  mbk::forward_kinematics(model, still, relative, mbk::Level::kAcceleration);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  double worst_p = 0, worst_v = 0, worst_a = 0;
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>();
+    ASSERT_EQ(msg->header.frame_id, "odom");
+    const double t = msg->header.stamp.toSec();
+    mbk::Data<double> expected = relative;
+    mbk::apply_floating_base(base_at(t), expected);
+    for (int k = 1; k <= model.body_count(); ++k) {
+      const auto& b = msg->bodies[k - 1];
+      const auto v3 = [](const auto& x) { return mbk::Vec3<double>(x.x, x.y, x.z); };
+      worst_p = std::max(worst_p, (v3(b.mass_center) - expected.mass_center[k]).norm());
+      worst_v = std::max(worst_v, (v3(b.twist.linear) - expected.velocity[k]).norm());
+      if (t > 1.4 && t < 3.6)  // the base's acceleration is estimated: away from the ends
+        worst_a = std::max(worst_a, (v3(b.accel.linear) - expected.acceleration[k]).norm());
+    }
+  }
+  // Linear interpolation half way between odometry samples: chord errors of (w h)^2 / 8 times
+  // the radius (about 2e-5 m), the speed scale w (1e-4 m/s with the arms' reach).
+  EXPECT_LT(worst_p, 1e-4);
+  EXPECT_LT(worst_v, 1e-4);
+  EXPECT_LT(worst_a, 1e-3);  // of accelerations of about w^2 = 1.7 m/s^2
+  rosbag::View tf(bag, rosbag::TopicQuery("/tf"));
+  const auto first = tf.begin()->instantiate<tf2_msgs::TFMessage>();
+  EXPECT_EQ(first->transforms.back().header.frame_id, "odom");
+  EXPECT_EQ(first->transforms.back().child_frame_id, "world");
+  o.base_odometry = "/nothing";
+  EXPECT_NE(error_of(o).find("no topic '/nothing'"), std::string::npos);
 }
 
 TEST(BagTest, TheMbkCommandRunsIt) {
