@@ -312,6 +312,37 @@ TEST(BagTest, BaseOdometryCarriesTheModel) {
   EXPECT_NE(error_of(o).find("no topic '/nothing'"), std::string::npos);
 }
 
+// Fixed joints go to /tf_static once, at the first sample's stamp, with the prefix.
+TEST(BagTest, FixedJointsOnTfStaticOnce) {
+  const std::string urdf = MBK_SOURCE_DIR "/test/ros/test_robot.urdf";
+  const mbk::Model model = mbk::load_model_file(urdf);
+  {
+    rosbag::Bag bag(temp("fixed.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 20; ++i) {
+      sensor_msgs::JointState js;
+      js.header.stamp = ros::Time(2.0 + i / 100.0);
+      js.name = model.coordinate_names;
+      js.position.assign(model.nq, 0.01 * i);
+      bag.write("/joint_states", js.header.stamp, js);
+    }
+  }
+  mbk_offline::BagOptions o = options(temp("fixed.bag"), temp("fixed_out.bag"));
+  o.model = urdf;
+  o.frame_prefix = "r1/";
+  EXPECT_EQ(mbk_offline::run_bag(o).written, 20);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/tf_static"));
+  ASSERT_EQ(view.size(), 1u);
+  const auto fixed = view.begin()->instantiate<tf2_msgs::TFMessage>();
+  EXPECT_EQ(view.begin()->getTime(), ros::Time(2.0));
+  ASSERT_EQ(fixed->transforms.size(), 2u);  // camera_joint, tool_joint
+  for (const auto& t : fixed->transforms) {
+    EXPECT_EQ(t.child_frame_id.rfind("r1/", 0), 0u) << t.child_frame_id;
+    EXPECT_EQ(t.header.frame_id.rfind("r1/", 0), 0u) << t.header.frame_id;
+  }
+  EXPECT_EQ(count_topics(o.out_bag).at("/tf"), 20);
+}
+
 TEST(BagTest, TheMbkCommandRunsIt) {
   const std::string in = write_bag("cli.bag", 10, 1.0);
   const std::string mbk = MBK_MBK_PATH;
