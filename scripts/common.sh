@@ -19,7 +19,8 @@ MBK_PACKAGES=(
   libdiagnostic-updater-dev libsensor-msgs-dev python3-sensor-msgs python3-geometry-msgs
   python3-tf2-msgs python3-diagnostic-msgs
   librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
-  pluginlib-dev libogre-1.12-dev
+  pluginlib-dev libogre-1.12-dev librosbag-dev libtf2-msgs-dev libnav-msgs-dev python3-rosbag
+  python3-matplotlib
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
 )
 

@@ -19,3 +19,10 @@ foreach(name node pairing rsp_compare markers hostile frame_prefix)
     MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 endforeach()
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
+
+# mbk bag on bags written by the test (no master needed).
+catkin_add_gtest(bag_test test/ros/bag_test.cc)
+add_dependencies(bag_test mbk mbk_bag mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(bag_test mbk_offline mbk_analysis mbk_io mbk_core gtest_main)
+target_compile_definitions(bag_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+  MBK_MBK_PATH="$<TARGET_FILE:mbk>")

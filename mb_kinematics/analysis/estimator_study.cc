@@ -8,20 +8,40 @@
 #include <random>
 
 #include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/core/offline_estimator.h"
 
 namespace mbk {
 
-EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& waves, double rate,
-                              double jitter, double noise, double seconds, int repetitions) {
+namespace {
+
+std::string stream_name(double rate, double jitter, double noise) {
+  char stream[64];
+  std::snprintf(stream, sizeof stream, "%gHz jitter%g%% noise%g", rate, jitter * 100, noise);
+  return stream;
+}
+
+// The stream's stamps t and noisy samples x[i * m + c] (the same for every estimator).
+void make_stream(const std::vector<Wave>& waves, double rate, double jitter, double noise,
+                 double seconds, std::vector<double>& t, std::vector<double>& x) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::normal_distribution<double> n(0.0, 1.0);
   const int count = static_cast<int>(seconds * rate), m = static_cast<int>(waves.size());
-  std::vector<double> t(count), x(static_cast<size_t>(count) * m);  // x[i * m + c]
+  t.resize(count);
+  x.resize(static_cast<size_t>(count) * m);
   for (int i = 0; i < count; ++i) {
     t[i] = (i + jitter * u(rng)) / rate;
     for (int c = 0; c < m; ++c) x[i * m + c] = waves[c].at(t[i], 0) + noise * n(rng);
   }
+}
+
+}  // namespace
+
+EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& waves, double rate,
+                              double jitter, double noise, double seconds, int repetitions) {
+  std::vector<double> t, x;
+  make_stream(waves, rate, jitter, noise, seconds, t, x);
+  const int count = static_cast<int>(t.size()), m = static_cast<int>(waves.size());
   std::vector<std::unique_ptr<DerivativeEstimator>> estimators;
   for (int c = 0; c < m; ++c) estimators.push_back(make_derivative_estimator(name));
   const int latency = estimators.front()->latency();
@@ -50,11 +70,64 @@ EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& 
     ns.push_back(elapsed / (static_cast<double>(count) * m));
   }
   std::sort(ns.begin(), ns.end());
-  char stream[64], note[96];
-  std::snprintf(stream, sizeof stream, "%gHz jitter%g%% noise%g", rate, jitter * 100, noise);
+  char note[96];
   std::snprintf(note, sizeof note, "velocity error %.2e; latency %d samples", v_err / v_scale,
                 latency);
-  return {name, stream, ns[ns.size() / 2], ns.front(), ns.back(), a_err / a_scale, note};
+  return {name,
+          stream_name(rate, jitter, noise),
+          ns[ns.size() / 2],
+          ns.front(),
+          ns.back(),
+          a_err / a_scale,
+          note};
+}
+
+EstimatorResult run_offline_estimator(const std::string& name, const std::vector<Wave>& waves,
+                                      double rate, double jitter, double noise, double seconds,
+                                      int repetitions) {
+  std::vector<double> t, x;
+  make_stream(waves, rate, jitter, noise, seconds, t, x);
+  const int count = static_cast<int>(t.size()), m = static_cast<int>(waves.size());
+  const OfflineEstimator e = make_offline_estimator(name);
+  const Segments segments = find_segments(t, default_max_gap(t));
+  DerivativeWeights w;
+  std::vector<double> first(m), second(m);
+  double v_err = 0, a_err = 0, v_scale = 0, a_scale = 0;
+  std::vector<double> ns;
+  for (int r = 0; r < repetitions; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < count; ++i) {
+      derivative_weights(e, t, segments, i, w);
+      std::fill(first.begin(), first.end(), 0.0);
+      std::fill(second.begin(), second.end(), 0.0);
+      for (int j = 0; j < w.count; ++j)
+        for (int c = 0; c < m; ++c) {
+          first[c] += w.first[j] * x[w.row(j) * m + c];
+          second[c] += w.second[j] * x[w.row(j) * m + c];
+        }
+      if (r > 0) continue;  // errors once
+      for (int c = 0; c < m; ++c) {
+        v_err = std::max(v_err, std::abs(first[c] - waves[c].at(t[i], 1)));
+        a_err = std::max(a_err, std::abs(second[c] - waves[c].at(t[i], 2)));
+        v_scale = std::max(v_scale, std::abs(waves[c].at(t[i], 1)));
+        a_scale = std::max(a_scale, std::abs(waves[c].at(t[i], 2)));
+      }
+    }
+    const double elapsed =
+        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - t0).count();
+    ns.push_back(elapsed / (static_cast<double>(count) * m));
+  }
+  std::sort(ns.begin(), ns.end());
+  char note[96];
+  std::snprintf(note, sizeof note, "velocity error %.2e; latency 0 samples; offline",
+                v_err / v_scale);
+  return {name,
+          stream_name(rate, jitter, noise),
+          ns[ns.size() / 2],
+          ns.front(),
+          ns.back(),
+          a_err / a_scale,
+          note};
 }
 
 std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, bool quick) {
@@ -66,6 +139,12 @@ std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, boo
         for (double noise : {0.0, 1e-6, 1e-4})
           out.push_back(
               run_estimator(name, waves, rate, jitter, noise, quick ? 4.0 : 10.0, repetitions));
+  for (const std::string& name : offline_estimator_names())
+    for (double rate : {100.0, 1000.0})
+      for (double jitter : {0.0, 0.2})
+        for (double noise : {0.0, 1e-6, 1e-4})
+          out.push_back(run_offline_estimator(name, waves, rate, jitter, noise, quick ? 4.0 : 10.0,
+                                              repetitions));
   return out;
 }
 

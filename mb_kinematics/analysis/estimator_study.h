@@ -20,7 +20,8 @@ struct EstimatorResult {
   std::string note;  // velocity error (the same way) and latency in samples
 };
 
-// Every estimator of derivative_estimator_names() on every stream of `waves` (one estimator per
+// Every estimator of derivative_estimator_names() (the node's) and of offline_estimator_names()
+// (mbk bag's, note "offline") on every stream of `waves` (one estimator per
 // coordinate, each wave sampled at the same stamps).
 std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, bool quick);
 
@@ -29,5 +30,12 @@ std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, boo
 // median over `repetitions`.
 EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& waves, double rate,
                               double jitter, double noise, double seconds, int repetitions);
+
+// The same stream through an offline estimator (core/offline_estimator.h) as mbk bag runs it:
+// weights once per sample for all coordinates; the error over every sample, the recording's
+// ends included (no warm-up); the run time per sample and coordinate includes the weights.
+EstimatorResult run_offline_estimator(const std::string& name, const std::vector<Wave>& waves,
+                                      double rate, double jitter, double noise, double seconds,
+                                      int repetitions);
 
 }  // namespace mbk

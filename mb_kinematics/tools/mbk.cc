@@ -5,6 +5,10 @@
 //   mbk urdf --model SCENE.yaml [--name ROBOT] [--display]   (a scene as URDF: the equivalent
 //       kinematics for KDL and robot_state_publisher, or with --display a link per body for
 //       rviz's RobotModel beside a node that runs the scene)
+//   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] ...   (runs mbk_bag, beside
+//       mbk, which links the ROS libraries that mbk itself does without)
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -30,7 +34,11 @@ const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
     "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
     "                [--partial-velocities]\n"
-    "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n";
+    "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n"
+    "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
+    "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
+    "P]\n"
+    "           [--max-gap S]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {
@@ -112,6 +120,16 @@ int urdf(const std::map<std::string, std::string>& options) {
   return 0;
 }
 
+// Replaces this process by mbk_bag from mbk's own directory, with the same arguments.
+int exec_bag(char** argv) {
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  std::string path = n > 0 ? std::string(self, n) : std::string(argv[0]);
+  path = path.substr(0, path.rfind('/') + 1) + "mbk_bag";
+  execv(path.c_str(), argv);
+  throw std::runtime_error("cannot run " + path + " (is mb_kinematics built with rosbag?)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -121,6 +139,7 @@ int main(int argc, char** argv) {
   }
   try {
     const std::string command = argv[1];
+    if (command == "bag") return exec_bag(argv);
     const auto options = parse_options(argc, argv);
     if (command == "tables") return tables(options);
     if (command == "eval") return eval(options);

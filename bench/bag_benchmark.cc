@@ -1,0 +1,137 @@
+// mbk bag (README "Recorded data"): the whole offline path, and its computation alone.
+//
+//   bag/human/<rate>Hz/bag_out        run_bag on a 10 s bag of the demo trajectories (human body
+//                                     model, positions only): read, estimate, kinematics, write
+//                                     OUT.bag; counters: samples/s end to end and the seconds
+//                                     spent reading, computing and writing per 1000 samples
+//   bag/human/<rate>Hz/bag_and_csv_out   the same with the tidy CSV too
+//   compute/<model>/<estimated|given> OfflineStates::state_at + forward_kinematics per sample at
+//                                     1 kHz, derivatives estimated (default estimator) or given;
+//                                     counter x_real_time = samples/s / 1000
+//   compute/tree100/kinematics_only   forward_kinematics alone on the same states
+// Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1).
+#include <benchmark/benchmark.h>
+#include <rosbag/bag.h>
+#include <sensor_msgs/JointState.h>
+
+#include <string>
+
+#include "mb_kinematics/analysis/demo_trajectory.h"
+#include "mb_kinematics/analysis/model_generators.h"
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/offline_kinematics.h"
+#include "mb_kinematics/offline/bag_command.h"
+
+namespace {
+
+const std::string kHuman = std::string(MBK_SOURCE_DIR) + "/config/human_body.yaml";
+
+std::string demo_bag(double rate) {
+  const std::string path = "/tmp/mbk_bag_benchmark_" + std::to_string(int(rate)) + ".bag";
+  const mbk::Model model = mbk::load_model_file(kHuman);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  sensor_msgs::JointState js;
+  js.name = model.coordinate_names;
+  js.position.resize(model.nq);
+  for (int i = 0; i < 10 * rate; ++i) {
+    const double t = 1.0 + i / rate;
+    js.header.stamp = ros::Time(t);
+    for (int c = 0; c < model.nq; ++c) js.position[c] = waves[c].at(t, 0);
+    bag.write("/joint_states", js.header.stamp, js);
+  }
+  return path;
+}
+
+void bag_path(benchmark::State& state, double rate, bool csv) {
+  mbk_offline::BagOptions o;
+  o.input = demo_bag(rate);
+  o.model = kHuman;
+  o.out_bag = "/tmp/mbk_bag_benchmark_out.bag";
+  if (csv) o.out_csv = "/tmp/mbk_bag_benchmark_out.csv";
+  long samples = 0;
+  double read = 0, compute = 0, write = 0;
+  for (auto _ : state) {
+    const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+    samples += s.written;
+    read += s.read_seconds, compute += s.compute_seconds, write += s.write_seconds;
+  }
+  state.SetItemsProcessed(samples);
+  const double per_k = 1000.0 / samples;
+  state.counters["read_ms_per_1k"] = 1e3 * read * per_k;
+  state.counters["compute_ms_per_1k"] = 1e3 * compute * per_k;
+  state.counters["write_ms_per_1k"] = 1e3 * write * per_k;
+}
+
+mbk::Recording recording(const mbk::Model& model, double rate, double seconds, bool given) {
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  mbk::Recording r;
+  r.nq = model.nq;
+  for (int i = 0; i < rate * seconds; ++i) {
+    const double t = i / rate;
+    r.stamp.push_back(t);
+    for (int c = 0; c < model.nq; ++c) {
+      r.position.push_back(waves[c].at(t, 0));
+      r.velocity.push_back(waves[c].at(t, 1));
+      r.acceleration.push_back(waves[c].at(t, 2));
+      r.given.push_back(given ? 7 : 1);
+    }
+  }
+  return r;
+}
+
+// kinematics_only: forward_kinematics on the recorded states alone (no OfflineStates), to split
+// the computation's time between the estimates and the kinematics.
+void compute(benchmark::State& state, const mbk::Model& model, bool given, bool kinematics_only) {
+  const mbk::Recording rec = recording(model, 1000, 5, given);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator(mbk::default_offline_estimator());
+  mbk::JointState<double> s(model);
+  mbk::Data<double> d(model);
+  long samples = 0;
+  for (auto _ : state) {
+    mbk::OfflineStates states(model, rec, e, 0);
+    for (int r = 0; r < rec.rows(); ++r) {
+      if (kinematics_only) {
+        s.position =
+            Eigen::Map<const Eigen::VectorXd>(rec.position.data() + r * model.nq, model.nq);
+        s.velocity =
+            Eigen::Map<const Eigen::VectorXd>(rec.velocity.data() + r * model.nq, model.nq);
+        s.acceleration =
+            Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
+      } else {
+        states.state_at(r, s);
+      }
+      mbk::forward_kinematics(model, s, d, mbk::Level::kAcceleration);
+      benchmark::DoNotOptimize(d.acceleration.back());
+    }
+    samples += rec.rows();
+  }
+  state.SetItemsProcessed(samples);
+  state.counters["coordinates"] = model.nq;
+  state.counters["x_real_time"] = benchmark::Counter(samples / 1000.0, benchmark::Counter::kIsRate);
+}
+
+const mbk::Model& human() {
+  static const mbk::Model m = mbk::load_model_file(kHuman);
+  return m;
+}
+const mbk::Model& tree100() {
+  static const mbk::Model m = mbk::make_random_tree(100, 1);
+  return m;
+}
+
+BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_and_csv_out, 1000.0, true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, human / estimated, human(), false, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false, false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, tree100 / kinematics_only, tree100(), true, true)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

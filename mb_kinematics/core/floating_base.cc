@@ -1,0 +1,70 @@
+#include "mb_kinematics/core/floating_base.h"
+
+#include <algorithm>
+
+namespace mbk {
+
+void base_accelerations(const std::vector<BaseSample>& samples, const OfflineEstimator& estimator,
+                        double max_gap, std::vector<Vec3<double>>& linear_acceleration,
+                        std::vector<Vec3<double>>& angular_acceleration, std::vector<int>& valid) {
+  const size_t n = samples.size();
+  std::vector<double> t(n), x(n), first, second;
+  std::vector<int> ok;
+  for (size_t i = 0; i < n; ++i) t[i] = samples[i].t;
+  linear_acceleration.assign(n, Vec3<double>::Zero());
+  angular_acceleration.assign(n, Vec3<double>::Zero());
+  valid.assign(n, 1);
+  for (int angular = 0; angular < 2; ++angular)
+    for (int c = 0; c < 3; ++c) {
+      for (size_t i = 0; i < n; ++i) {  // the twist in R components
+        const BaseSample& s = samples[i];
+        x[i] = (s.orientation * (angular ? s.angular : s.linear))[c];
+      }
+      estimate_offline(estimator, t, x, max_gap, first, second, ok);
+      for (size_t i = 0; i < n; ++i) {
+        (angular ? angular_acceleration : linear_acceleration)[i][c] = ok[i] >= 1 ? first[i] : 0;
+        valid[i] = valid[i] && ok[i] >= 1;
+      }
+    }
+}
+
+bool interpolate_base(const std::vector<BaseSample>& samples,
+                      const std::vector<Vec3<double>>& linear_acceleration,
+                      const std::vector<Vec3<double>>& angular_acceleration, double t,
+                      BaseMotion& out) {
+  if (samples.empty() || t < samples.front().t || t > samples.back().t) return false;
+  const auto after = std::lower_bound(samples.begin(), samples.end(), t,
+                                      [](const BaseSample& s, double x) { return s.t < x; });
+  const size_t j = after - samples.begin(), i = j == 0 ? 0 : j - 1;
+  const BaseSample &a = samples[i], &b = samples[j];
+  const double u = b.t > a.t ? (t - a.t) / (b.t - a.t) : 1.0;
+  const Eigen::Quaterniond q = a.orientation.slerp(u, b.orientation);
+  out.rotation = q.toRotationMatrix();
+  out.position = (1 - u) * a.position + u * b.position;
+  out.velocity = (1 - u) * (a.orientation * a.linear) + u * (b.orientation * b.linear);
+  out.omega = (1 - u) * (a.orientation * a.angular) + u * (b.orientation * b.angular);
+  out.acceleration = (1 - u) * linear_acceleration[i] + u * linear_acceleration[j];
+  out.alpha = (1 - u) * angular_acceleration[i] + u * angular_acceleration[j];
+  return true;
+}
+
+void apply_floating_base(const BaseMotion& base, Data<double>& data) {
+  const Mat3<double>& rb = base.rotation;
+  const Vec3<double>& w = base.omega;
+  const auto carry = [&](Vec3<double>& p, Vec3<double>& v, Vec3<double>& a) {
+    const Vec3<double> r = rb * p, vr = rb * v;  // relative position and velocity, in R
+    a = base.acceleration + base.alpha.cross(r) + w.cross(w.cross(r)) + 2 * w.cross(vr) + rb * a;
+    v = base.velocity + w.cross(r) + vr;
+    p = base.position + r;
+  };
+  for (size_t k = 1; k < data.rotation.size(); ++k) {
+    data.rotation[k] = rb * data.rotation[k];
+    const Vec3<double> omega = rb * data.omega[k];
+    data.alpha[k] = base.alpha + w.cross(omega) + rb * data.alpha[k];
+    data.omega[k] = w + omega;
+    carry(data.mass_center[k], data.velocity[k], data.acceleration[k]);
+    carry(data.origin[k], data.origin_velocity[k], data.origin_acceleration[k]);
+  }
+}
+
+}  // namespace mbk

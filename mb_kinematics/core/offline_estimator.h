@@ -1,0 +1,61 @@
+// Zero-phase (centred) derivative estimates for recorded data, where every sample is known in
+// advance: at each sample, a least-squares polynomial through the samples on both sides of it
+// (irregular stamps allowed), differentiated at the sample's own stamp. Near the recording's
+// ends and at gaps longer than `max_gap` the window is shifted to stay on one side (a one-sided
+// fit); a segment shorter than the window is fitted whole, with a lower order if it must.
+// The weights depend on the stamps only, so one set serves every coordinate sampled together.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mbk {
+
+struct OfflineEstimator {
+  std::string name;           // as --estimator takes it, e.g. "centered_0.1s_3" or "centered_9_4"
+  int window_samples = 0;     // > 0: the window holds this many samples (odd)
+  double window_seconds = 0;  // > 0: the window spans this many seconds, centred on the sample,
+                              // widened to hold order + 3 samples where the samples are sparse
+  int order = 2;              // degree of the polynomial (2..5)
+};
+
+// "centered_<N>_<order>" (N samples, odd) or "centered_<seconds>s_<order>"; throws
+// std::invalid_argument naming the known forms.
+OfflineEstimator make_offline_estimator(const std::string& name);
+// The studied ones (README's work-precision report), the default first.
+const std::vector<std::string>& offline_estimator_names();
+const char* default_offline_estimator();
+
+// Samples fitted by one window at most: a time window holding more (a high rate) takes every
+// stride-th sample, the estimated one included, so the cost per sample does not grow with the
+// rate.
+constexpr int kMaxOfflineWindow = 41;
+
+// Weights of one sample's estimate: x'(t_i) = sum_j first[j] x[row(j)], likewise x''.
+struct DerivativeWeights {
+  int begin = 0, count = 0, stride = 1;
+  int row(int j) const { return begin + j * stride; }
+  int valid = 0;  // 0: none (a lone sample), 1: first derivative only, 2: both
+  std::vector<double> first, second;
+};
+
+// Index ranges [begin, end) of the runs of `t` (increasing) without a gap longer than max_gap
+// (max_gap <= 0: no gaps); segment_of[i] is the run holding sample i.
+struct Segments {
+  std::vector<int> begin, end, segment_of;
+};
+Segments find_segments(const std::vector<double>& t, double max_gap);
+
+// The weights for sample i of the increasing stamps t (within its segment).
+void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
+                        const Segments& segments, int i, DerivativeWeights& w);
+
+// 5 x the median interval of t: what counts as a gap unless the user says otherwise.
+double default_max_gap(const std::vector<double>& t);
+
+// Both derivatives of x at every sample (convenience for studies and tests): `valid` per sample.
+void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,
+                      const std::vector<double>& x, double max_gap, std::vector<double>& first,
+                      std::vector<double>& second, std::vector<int>& valid);
+
+}  // namespace mbk

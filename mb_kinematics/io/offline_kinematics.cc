@@ -1,0 +1,118 @@
+#include "mb_kinematics/io/offline_kinematics.h"
+
+namespace mbk {
+
+OfflineStates::OfflineStates(const Model& model, const Recording& recording,
+                             const OfflineEstimator& estimator, double max_gap)
+    : model_(model),
+      rec_(recording),
+      estimator_(estimator),
+      max_gap_(max_gap > 0 ? max_gap : default_max_gap(recording.stamp)),
+      velocity_everywhere_(model.nq, 1),
+      first_(Eigen::VectorXd::Zero(model.nq)),
+      second_(Eigen::VectorXd::Zero(model.nq)),
+      velocity_first_(Eigen::VectorXd::Zero(model.nq)) {
+  std::vector<char> mimic(model.nq, 0), everywhere(model.nq, 1);
+  for (const Mimic& m : model.mimics) mimic[m.coordinate] = 1;
+  const int nq = model.nq;
+  for (int r = 0; r < rec_.rows(); ++r)
+    for (int c = 0; c < nq; ++c) {
+      const std::uint8_t g = rec_.given[r * nq + c];
+      everywhere[c] = everywhere[c] && (g & Recording::kPosition);
+      velocity_everywhere_[c] = velocity_everywhere_[c] && (g & Recording::kVelocity);
+    }
+  for (int c = 0; c < nq; ++c) {
+    if (mimic[c]) continue;
+    if (everywhere[c]) {
+      full_.push_back(c);
+      continue;
+    }
+    partial_.push_back(c);
+    Series s;
+    for (int r = 0; r < rec_.rows(); ++r)
+      if (rec_.given[r * nq + c] & Recording::kPosition)
+        s.t.push_back(rec_.stamp[r]), s.row.push_back(r);
+    s.segments = find_segments(s.t, max_gap > 0 ? max_gap : default_max_gap(s.t));
+    series_.push_back(std::move(s));
+  }
+  segments_ = find_segments(rec_.stamp, max_gap_);
+  for (int c : full_)
+    any_velocity_everywhere_ = any_velocity_everywhere_ || velocity_everywhere_[c];
+}
+
+// x'(t) and x''(t) of coordinate c from the weights (over rows, or over a series' rows);
+// with `velocity`, the acceleration is the first derivative of the given velocities.
+void OfflineStates::derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c,
+                                bool velocity, double& first, double& second) const {
+  const int nq = rec_.nq;
+  first = second = 0;
+  for (int j = 0; j < w.count; ++j) {
+    const int r = rows ? (*rows)[w.row(j)] : w.row(j);
+    first += w.first[j] * rec_.position[r * nq + c];
+    second +=
+        velocity ? w.first[j] * rec_.velocity[r * nq + c] : w.second[j] * rec_.position[r * nq + c];
+  }
+}
+
+std::string OfflineStates::state_at(int r, JointState<double>& state) {
+  const int nq = rec_.nq;
+  const std::uint8_t* given = rec_.given.data() + r * nq;
+  constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
+  bool estimate = false;  // does some coordinate given everywhere lack a derivative here?
+  for (int c : full_) estimate = estimate || (given[c] & kBoth) != kBoth;
+  int valid = 2;
+  if (estimate) {
+    derivative_weights(estimator_, rec_.stamp, segments_, r, weights_);
+    // One pass over the window's rows for all coordinates (positions, and given velocities).
+    first_.setZero();
+    second_.setZero();
+    velocity_first_.setZero();
+    for (int j = 0; j < weights_.count; ++j) {
+      const int row = weights_.row(j);
+      const Eigen::Map<const Eigen::VectorXd> p(rec_.position.data() + row * nq, nq);
+      first_.noalias() += weights_.first[j] * p;
+      second_.noalias() += weights_.second[j] * p;
+      if (!any_velocity_everywhere_) continue;
+      const Eigen::Map<const Eigen::VectorXd> v(rec_.velocity.data() + row * nq, nq);
+      velocity_first_.noalias() += weights_.first[j] * v;
+    }
+  }
+  for (int c : full_) {
+    state.position[c] = rec_.position[r * nq + c];
+    state.velocity[c] = given[c] & Recording::kVelocity ? rec_.velocity[r * nq + c] : first_[c];
+    state.acceleration[c] = given[c] & Recording::kAcceleration ? rec_.acceleration[r * nq + c]
+                            : velocity_everywhere_[c] ? velocity_first_[c]  // from given v
+                                                      : second_[c];
+    // The derivative order this coordinate needs from the fit here.
+    const int need =
+        std::max(given[c] & Recording::kVelocity ? 0 : 1, given[c] & Recording::kAcceleration ? 0
+                                                          : velocity_everywhere_[c]           ? 1
+                                                                                              : 2);
+    if (need > weights_.valid) valid = 0;
+  }
+  DerivativeWeights w;
+  for (size_t i = 0; i < partial_.size(); ++i) {
+    const int c = partial_[i];
+    Series& s = series_[i];
+    if (s.next < s.row.size() && s.row[s.next] == r) {  // a sample of its own: estimate
+      derivative_weights(estimator_, s.t, s.segments, static_cast<int>(s.next), w);
+      derivatives(w, &s.row, c, velocity_everywhere_[c], s.velocity, s.acceleration);
+      s.valid = w.valid;
+      const std::uint8_t g = rec_.given[r * nq + c];
+      if (g & Recording::kVelocity) s.velocity = rec_.velocity[r * nq + c];
+      if (g & Recording::kAcceleration) s.acceleration = rec_.acceleration[r * nq + c], s.valid = 2;
+      ++s.next;
+    }  // else the last sample's values hold
+    state.position[c] = rec_.position[r * nq + c];
+    state.velocity[c] = s.velocity;
+    state.acceleration[c] = s.acceleration;
+    valid = std::min(valid, s.valid);
+  }
+  apply_mimics(model_, state);
+  if (valid < 2)
+    return "too few samples around it for derivatives (a run of " + std::to_string(weights_.count) +
+           " between gaps longer than " + std::to_string(max_gap_) + " s)";
+  return "";
+}
+
+}  // namespace mbk

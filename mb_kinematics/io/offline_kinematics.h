@@ -1,0 +1,57 @@
+// The joint state of every row of a Recording, for the offline kinematics (mbk bag): positions
+// as recorded, velocities and accelerations as recorded where given, else from the zero-phase
+// estimator (core/offline_estimator.h) over that coordinate's own samples: accelerations from
+// the given velocities when a coordinate has them at every sample, else from the positions.
+// ROS-free.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/offline_estimator.h"
+#include "mb_kinematics/core/state.h"
+#include "mb_kinematics/io/recording.h"
+
+namespace mbk {
+
+class OfflineStates {
+ public:
+  // `model` (coordinate-derivative speeds) and `recording` must outlive this object. max_gap:
+  // seconds; 0 means default_max_gap of the stamps.
+  OfflineStates(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
+                double max_gap);
+
+  // Fills `state` for row r (rows in increasing order, each once); returns "" or why the row
+  // cannot be computed (too few samples around it for the derivatives).
+  std::string state_at(int r, JointState<double>& state);
+
+  double max_gap() const { return max_gap_; }
+
+ private:
+  // The samples of coordinates that are not in every row.
+  struct Series {
+    std::vector<double> t;
+    std::vector<int> row;
+    Segments segments;
+    size_t next = 0;  // first entry not yet reached
+    double velocity = 0, acceleration = 0;
+    int valid = 0;
+  };
+  void derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c, bool velocity,
+                   double& first, double& second) const;
+
+  const Model& model_;
+  const Recording& rec_;
+  OfflineEstimator estimator_;
+  double max_gap_;
+  std::vector<int> full_;     // coordinates given in every row (share the weights)
+  std::vector<int> partial_;  // the others (mimics aside)
+  std::vector<char> velocity_everywhere_;
+  std::vector<Series> series_;  // per coordinate in partial_
+  Segments segments_;
+  DerivativeWeights weights_;
+  bool any_velocity_everywhere_ = false;
+  Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
+};
+
+}  // namespace mbk

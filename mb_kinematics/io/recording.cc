@@ -1,0 +1,187 @@
+#include "mb_kinematics/io/recording.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace mbk {
+namespace {
+
+std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
+
+std::string join(const std::vector<std::string>& names, size_t max = 8) {
+  std::string out;
+  for (size_t i = 0; i < names.size() && i < max; ++i) out += (i ? ", " : "") + names[i];
+  if (names.size() > max) out += ", ... (" + std::to_string(names.size()) + " in all)";
+  return out;
+}
+
+}  // namespace
+
+void DropLog::drop(const std::string& reason, const std::string& detail) {
+  if (drops[reason]++ == 0) example[reason] = detail;
+}
+
+void DropLog::note(const std::string& reason, const std::string& detail) {
+  if (notes[reason]++ == 0) example[reason] = detail;
+}
+
+long DropLog::dropped() const {
+  long n = 0;
+  for (const auto& d : drops) n += d.second;
+  return n;
+}
+
+RecordingBuilder::RecordingBuilder(const Model& model)
+    : model_(model),
+      mimic_(model.nq, 0),
+      message_index_(model.nq, -1),
+      last_(model.nq, 0.0),
+      seen_(model.nq, 0) {
+  rec_.nq = model.nq;
+  for (int i = 0; i < model.nq; ++i) index_[model.coordinate_names[i]] = i;
+  for (const Mimic& m : model.mimics) mimic_[m.coordinate] = 1;
+}
+
+std::string RecordingBuilder::validate(const std::vector<std::string>& names,
+                                       const std::vector<double>& position,
+                                       const std::vector<double>& velocity) {
+  const size_t n = names.size();
+  if (position.size() != n)
+    return std::to_string(n) + " names but " + std::to_string(position.size()) + " positions";
+  if (!velocity.empty() && velocity.size() != n)
+    return std::to_string(n) + " names but " + std::to_string(velocity.size()) + " velocities";
+  std::fill(message_index_.begin(), message_index_.end(), -1);
+  for (size_t i = 0; i < n; ++i) {
+    auto it = index_.find(names[i]);
+    if (it == index_.end()) continue;
+    if (message_index_[it->second] >= 0) return "joint '" + names[i] + "' is named twice";
+    message_index_[it->second] = static_cast<int>(i);
+    if (!std::isfinite(position[i]))
+      return "joint '" + names[i] + "': position is " + describe(position[i]);
+    if (!velocity.empty() && !std::isfinite(velocity[i]))
+      return "joint '" + names[i] + "': velocity is " + describe(velocity[i]);
+  }
+  return "";
+}
+
+// e and -e are one rotation: a sample that gives all four parameters of a joint with a negative
+// dot product against the previous ones is negated (with its velocities).
+void RecordingBuilder::align_euler_signs(std::vector<double>& row,
+                                         const std::vector<std::uint8_t>& given) const {
+  for (int k = 1; k <= model_.body_count(); ++k) {
+    const Body& body = model_.bodies[k];
+    if (!uses_euler_parameters(body.joint.type)) continue;
+    const int e = body.q_index + coordinate_count(body.joint.type) - 4;
+    double dot = 0;
+    bool all = true;
+    for (int i = e; i < e + 4; ++i) {
+      all = all && given[i] && seen_[i];
+      dot += row[i] * last_[i];
+    }
+    if (all && dot < 0)
+      for (int i = e; i < e + 4; ++i) row[i] = -row[i];
+  }
+}
+
+void RecordingBuilder::add(double t, const std::vector<std::string>& names,
+                           const std::vector<double>& position, const std::vector<double>& velocity,
+                           const std::string& where) {
+  ++read_;
+  if (!std::isfinite(t)) return log_.drop("stamp not finite", where);
+  const std::string error = validate(names, position, velocity);
+  if (!error.empty())
+    return log_.drop("bad sample (lengths, duplicates, NaN/Inf)", where + ": " + error);
+  if (!rec_.stamp.empty() && t <= rec_.stamp.back())
+    return log_.drop(
+        t == rec_.stamp.back() ? "repeated stamp" : "stamp goes backwards",
+        where + ": stamp " + std::to_string(t) + " after " + std::to_string(rec_.stamp.back()));
+  std::vector<std::string> unknown;
+  for (const std::string& name : names)
+    if (!index_.count(name)) unknown.push_back(name);
+  if (!unknown.empty()) log_.note("names not in the model ignored", where + ": " + join(unknown));
+  const int nq = model_.nq;
+  std::vector<double> row(last_), vrow(nq, 0.0);
+  std::vector<std::uint8_t> given(nq, 0);
+  for (int i = 0; i < nq; ++i) {
+    const int m = message_index_[i];
+    if (m < 0 || mimic_[i]) continue;
+    row[i] = position[m];
+    given[i] = Recording::kPosition;
+    if (!velocity.empty()) vrow[i] = velocity[m], given[i] |= Recording::kVelocity;
+  }
+  std::vector<double> before(row);
+  align_euler_signs(row, given);
+  for (int i = 0; i < nq; ++i) {
+    if (row[i] != before[i]) vrow[i] = -vrow[i];
+    if (given[i]) seen_[i] = 1, last_[i] = row[i];
+  }
+  rec_.stamp.push_back(t);
+  rec_.position.insert(rec_.position.end(), row.begin(), row.end());
+  rec_.velocity.insert(rec_.velocity.end(), vrow.begin(), vrow.end());
+  rec_.given.insert(rec_.given.end(), given.begin(), given.end());
+}
+
+void RecordingBuilder::add_accelerations(double t, const std::vector<std::string>& names,
+                                         const std::vector<double>& acceleration,
+                                         const std::string& where) {
+  if (acceleration.size() != names.size())
+    return log_.note("joint_accelerations ignored",
+                     where + ": " + std::to_string(names.size()) + " names but " +
+                         std::to_string(acceleration.size()) + " accelerations");
+  std::vector<double> value(model_.nq, 0.0);
+  std::vector<char> given(model_.nq, 0);
+  for (size_t i = 0; i < names.size(); ++i) {
+    auto it = index_.find(names[i]);
+    if (it == index_.end())
+      return log_.note("joint_accelerations ignored",
+                       where + ": joint '" + names[i] + "' is not in the model");
+    if (given[it->second] || !std::isfinite(acceleration[i]))
+      return log_.note("joint_accelerations ignored",
+                       where + ": joint '" + names[i] + "' named twice or not finite");
+    value[it->second] = acceleration[i];
+    given[it->second] = 1;
+  }
+  accelerations_[t] = {std::move(value), std::move(given)};
+}
+
+Recording RecordingBuilder::finish() {
+  const int nq = model_.nq, rows = rec_.rows();
+  std::vector<std::string> never;
+  for (int i = 0; i < nq; ++i)
+    if (!mimic_[i] && !seen_[i]) never.push_back(model_.coordinate_names[i]);
+  if (!never.empty() && read_ > 0)
+    throw std::invalid_argument("no sample names the joints " + join(never));
+  // The first row from which every coordinate has a value; earlier rows are dropped.
+  std::vector<char> named(nq, 0);
+  int missing = 0, first = 0;
+  for (int i = 0; i < nq; ++i) missing += !mimic_[i];
+  for (; first < rows && missing > 0; ++first) {
+    for (int i = 0; i < nq; ++i)
+      if (!mimic_[i] && !named[i] && rec_.given[first * nq + i]) named[i] = 1, --missing;
+    if (missing == 0) break;
+    std::vector<std::string> names;
+    for (int i = 0; i < nq; ++i)
+      if (!mimic_[i] && !named[i]) names.push_back(model_.coordinate_names[i]);
+    log_.drop("missing joints (not named yet)",
+              "sample at t = " + std::to_string(rec_.stamp[first]) + ": " + join(names));
+  }
+  Recording out;
+  out.nq = nq;
+  out.stamp.assign(rec_.stamp.begin() + first, rec_.stamp.end());
+  out.position.assign(rec_.position.begin() + first * nq, rec_.position.end());
+  out.velocity.assign(rec_.velocity.begin() + first * nq, rec_.velocity.end());
+  out.given.assign(rec_.given.begin() + first * nq, rec_.given.end());
+  out.acceleration.assign(out.position.size(), 0.0);
+  for (int r = 0; r < out.rows(); ++r) {
+    auto it = accelerations_.find(out.stamp[r]);
+    if (it == accelerations_.end()) continue;
+    for (int i = 0; i < nq; ++i)
+      if (it->second.second[i]) {
+        out.acceleration[r * nq + i] = it->second.first[i];
+        out.given[r * nq + i] |= Recording::kAcceleration;
+      }
+  }
+  return out;
+}
+
+}  // namespace mbk

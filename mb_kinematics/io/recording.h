@@ -1,0 +1,78 @@
+// Recorded joint samples (from a bag or a trajectory CSV) in one table, ready for the offline
+// kinematics: one row per accepted sample, positions (and velocities, accelerations where the
+// recording gives them) of every coordinate of a model. Everything rejected is counted by
+// reason; nothing is lost silently. ROS-free.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "mb_kinematics/core/model.h"
+
+namespace mbk {
+
+// Counted drops (samples not written) and notes (samples written, something ignored), by
+// reason; `example` keeps the first message of each reason.
+struct DropLog {
+  std::map<std::string, long> drops, notes;
+  std::map<std::string, std::string> example;
+  void drop(const std::string& reason, const std::string& detail);
+  void note(const std::string& reason, const std::string& detail);
+  long dropped() const;
+};
+
+struct Recording {
+  int nq = 0;
+  std::vector<double> stamp;         // seconds, increasing
+  std::vector<double> position;      // rows x nq, row-major
+  std::vector<double> velocity;      // rows x nq, where kVelocity is set
+  std::vector<double> acceleration;  // rows x nq, where kAcceleration is set
+  std::vector<std::uint8_t> given;   // rows x nq: kPosition | kVelocity | kAcceleration
+  static constexpr std::uint8_t kPosition = 1, kVelocity = 2, kAcceleration = 4;
+  int rows() const { return static_cast<int>(stamp.size()); }
+};
+
+// Builds a Recording from samples by coordinate name, as the node merges joint_states:
+// unknown names are ignored (noted), a coordinate a sample does not name keeps its last value
+// (the derivatives of that coordinate come from its own samples), mimic coordinates are
+// computed later. Dropped (counted): unequal lengths, a name given twice, NaN/Inf, a stamp
+// before the previous sample's or equal to it, samples before every coordinate has been named
+// once. Euler parameters that flip sign (e and -e) are kept continuous.
+class RecordingBuilder {
+ public:
+  explicit RecordingBuilder(const Model& model);
+
+  // One sample at t: names[i] has position[i] and, if velocity is non-empty, velocity[i].
+  // `where` names the sample in messages (e.g. "message 12 at t = 3.25").
+  void add(double t, const std::vector<std::string>& names, const std::vector<double>& position,
+           const std::vector<double>& velocity, const std::string& where);
+  // Accelerations for the sample of the same stamp (added before or after it).
+  void add_accelerations(double t, const std::vector<std::string>& names,
+                         const std::vector<double>& acceleration, const std::string& where);
+
+  // The table; rows before every coordinate was named are dropped here ("missing joints").
+  Recording finish();
+  DropLog& log() { return log_; }
+  long samples_read() const { return read_; }
+
+ private:
+  std::string validate(const std::vector<std::string>& names, const std::vector<double>& position,
+                       const std::vector<double>& velocity);
+  void align_euler_signs(std::vector<double>& row, const std::vector<std::uint8_t>& given) const;
+
+  const Model& model_;
+  std::unordered_map<std::string, int> index_;
+  std::vector<char> mimic_;
+  Recording rec_;
+  std::vector<int> message_index_;  // where the current sample names each coordinate, or -1
+  std::vector<double> last_;        // last position of every coordinate (for Euler signs)
+  std::vector<char> seen_;
+  std::map<double, std::pair<std::vector<double>, std::vector<char>>> accelerations_;
+  DropLog log_;
+  long read_ = 0;
+};
+
+}  // namespace mbk

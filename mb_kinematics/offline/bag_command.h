@@ -1,0 +1,43 @@
+// mbk bag: the kinematics of every sample of a recording (a rosbag or a trajectory CSV) into a
+// bag and/or a tidy CSV, with zero-phase derivative estimates (README "Recorded data").
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "mb_kinematics/io/recording.h"
+
+namespace mbk_offline {
+
+struct BagOptions {
+  std::string input;  // .bag or .csv
+  std::string model;
+  std::string out_bag, out_csv;
+  std::string joint_states = "/joint_states";
+  std::string joint_accelerations;
+  std::string base_odometry;  // nav_msgs/Odometry of a floating base (core/floating_base.h)
+  std::string estimator;      // empty: the default
+  std::string frame_prefix;
+  double max_gap = 0;     // seconds; 0: 5 x the median interval
+  bool progress = false;  // draw a progress bar on stderr
+};
+
+struct BagSummary {
+  long read = 0, written = 0;
+  mbk::DropLog log;
+  double read_seconds = 0, compute_seconds = 0, write_seconds = 0, wall_seconds = 0;
+  std::string estimator;
+  double max_gap = 0;
+};
+
+// Throws std::invalid_argument (bad options, model, input) with a one-line message.
+BagSummary run_bag(const BagOptions& options);
+
+// The summary as printed at the end (several lines).
+std::string format_summary(const BagSummary& s);
+
+// Parses `mbk bag IN --model F ...` (argv[0] is "mbk", argv[1] "bag"); throws
+// std::invalid_argument for a wrong command line.
+BagOptions parse_bag_options(int argc, char** argv);
+
+}  // namespace mbk_offline

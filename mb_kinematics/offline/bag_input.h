@@ -1,0 +1,35 @@
+// Reads joint samples from a rosbag with the rosbag C++ API (no replay, no master):
+// sensor_msgs/JointState on one topic and, optionally, mb_kinematics_msgs/JointAccelerations on
+// another, into a RecordingBuilder.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "mb_kinematics/core/floating_base.h"
+#include "mb_kinematics/io/recording.h"
+
+namespace mbk_offline {
+
+struct BagTopics {
+  std::string joint_states = "/joint_states";
+  std::string joint_accelerations;  // empty: none
+  std::string base_odometry;        // empty: none (nav_msgs/Odometry)
+};
+
+// The base's odometry (issue 9 semantics, core/floating_base.h): samples in time order (a stamp
+// not after the previous one, or NaN/Inf, is dropped and counted) and R's name.
+struct BaseOdometry {
+  std::vector<mbk::BaseSample> samples;
+  std::string frame;  // the odometry's header.frame_id: R
+};
+
+// Throws std::invalid_argument for a bag that cannot be opened (corrupt, truncated: unindexed)
+// and for a topic the bag lacks or of another type (naming the topics and types it has). A bag
+// that becomes unreadable part way keeps what was read and counts the rest as one drop.
+// `progress(done, total)` is called now and then with message counts.
+// With topics.base_odometry, `base` receives the odometry.
+void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
+              BaseOdometry& base, const std::function<void(long, long)>& progress);
+
+}  // namespace mbk_offline

@@ -1,0 +1,58 @@
+#include "mb_kinematics/offline/bag_output.h"
+
+#include <stdexcept>
+
+namespace mbk_offline {
+
+BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
+                     const std::string& base_frame)
+    : model_(model), path_(path), frames_(model, prefix), base_frame_(base_frame) {
+  try {
+    bag_.open(path, rosbag::bagmode::Write);
+  } catch (const rosbag::BagException& e) {
+    throw std::invalid_argument(path + ": cannot write the bag (" + e.what() + ")");
+  }
+  init_kinematics_msg(model, base_frame.empty() ? frames_.root() : base_frame, kinematics_);
+}
+
+void BagOutput::write(double stamp, const mbk::JointState<double>& state,
+                      const mbk::Data<double>& data, const mbk::BaseMotion* base) {
+  const ros::Time time(stamp);
+  if (!static_written_) {
+    tf2_msgs::TFMessage fixed;
+    fixed.transforms = frames_.fixed();
+    for (auto& t : fixed.transforms) t.header.stamp = time;
+    if (!fixed.transforms.empty()) bag_.write("/tf_static", time, fixed);
+    static_written_ = true;
+  }
+  kinematics_.header.stamp = time;
+  fill_kinematics_msg(model_, data, kinematics_);
+  bag_.write("/body_kinematics", time, kinematics_);
+  tf_.transforms = frames_.moving(state);
+  if (base) {  // R -> the model's root frame
+    geometry_msgs::TransformStamped t;
+    t.header.frame_id = base_frame_;
+    t.child_frame_id = frames_.root();
+    t.transform.translation.x = base->position.x();
+    t.transform.translation.y = base->position.y();
+    t.transform.translation.z = base->position.z();
+    const Eigen::Quaterniond q(base->rotation);
+    t.transform.rotation.x = q.x();
+    t.transform.rotation.y = q.y();
+    t.transform.rotation.z = q.z();
+    t.transform.rotation.w = q.w();
+    tf_.transforms.push_back(t);
+  }
+  for (auto& t : tf_.transforms) t.header.stamp = time;
+  if (!tf_.transforms.empty()) bag_.write("/tf", time, tf_);
+}
+
+void BagOutput::close() {
+  try {
+    bag_.close();
+  } catch (const rosbag::BagException& e) {
+    throw std::runtime_error(path_ + ": write failed (" + e.what() + ")");
+  }
+}
+
+}  // namespace mbk_offline

@@ -1,0 +1,38 @@
+// The output bag of mbk bag: /body_kinematics (mb_kinematics_msgs/BodyKinematicsArray) and /tf
+// at each sample's own stamp, /tf_static once (at the first sample's stamp) when the model has
+// fixed joints; written with the rosbag C++ API.
+#pragma once
+
+#include <rosbag/bag.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <string>
+
+#include "mb_kinematics/core/floating_base.h"
+#include "mb_kinematics/offline/kinematics_msg.h"
+
+namespace mbk_offline {
+
+class BagOutput {
+ public:
+  // Throws std::invalid_argument if `path` cannot be written. `prefix` goes before every frame
+  // taken from the model. With a floating base, `base_frame` names R (the odometry's frame) and
+  // each write gets the root frame's pose in it.
+  BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
+            const std::string& base_frame = "");
+  void write(double stamp, const mbk::JointState<double>& state, const mbk::Data<double>& data,
+             const mbk::BaseMotion* base = nullptr);
+  void close();
+
+ private:
+  const mbk::Model& model_;
+  std::string path_;
+  rosbag::Bag bag_;
+  TfFrames frames_;
+  mb_kinematics_msgs::BodyKinematicsArray kinematics_;
+  tf2_msgs::TFMessage tf_;
+  std::string base_frame_;
+  bool static_written_ = false;
+};
+
+}  // namespace mbk_offline

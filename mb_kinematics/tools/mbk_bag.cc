@@ -1,0 +1,21 @@
+// mbk_bag: `mbk bag` (mbk runs it, so that mbk itself stays free of ROS libraries).
+//   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
+//       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
+//       [--frame-prefix P] [--max-gap S]
+#include <iostream>
+#include <stdexcept>
+
+#include "mb_kinematics/io/progress.h"
+#include "mb_kinematics/offline/bag_command.h"
+
+int main(int argc, char** argv) {
+  try {
+    mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
+    options.progress = mbk::stderr_is_terminal();
+    std::cerr << mbk_offline::format_summary(mbk_offline::run_bag(options));
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "mbk: error: " << e.what() << "\n";
+    return 1;
+  }
+}

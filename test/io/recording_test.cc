@@ -1,0 +1,177 @@
+// Recorded samples into a table (io/recording.h), trajectory CSV input, tidy CSV output, and the
+// offline states (io/offline_kinematics.h): every bad sample is a counted drop or a clear error.
+#include "mb_kinematics/io/recording.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/io/offline_kinematics.h"
+#include "mb_kinematics/io/tidy_csv.h"
+#include "mb_kinematics/io/trajectory_csv.h"
+
+namespace {
+
+mbk::Model two_joints() {  // coordinates "J1" and "J2"
+  return mbk::make_bare_model({0, 1}, mbk::JointType::kRevolute);
+}
+
+std::string temp_file(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(RecordingTest, BadSamplesAreCountedDropsAndTheRestIsKept) {
+  const mbk::Model model = two_joints();
+  ASSERT_EQ(model.coordinate_names, (std::vector<std::string>{"J1", "J2"}));
+  mbk::RecordingBuilder b(model);
+  const double nan = std::nan("");
+  b.add(0.0, {"J1"}, {0.1}, {}, "s0");  // J2 not named yet: dropped at finish
+  b.add(0.1, {"J1", "J2", "extra"}, {0.1, 0.2, 9}, {}, "s1");  // unknown name: noted
+  b.add(0.2, {"J1", "J2"}, {nan, 0.2}, {}, "s2");              // NaN
+  b.add(0.05, {"J1", "J2"}, {0.1, 0.2}, {}, "s3");             // backwards
+  b.add(0.1, {"J1", "J2"}, {0.1, 0.2}, {}, "s4");              // repeated stamp
+  b.add(0.3, {"J1", "J1"}, {0.1, 0.2}, {}, "s5");              // named twice
+  b.add(0.4, {"J1", "J2"}, {0.1}, {}, "s6");                   // unequal lengths
+  b.add(0.5, {"J2"}, {0.7}, {}, "s7");                         // J1 keeps its value
+  const mbk::Recording r = b.finish();
+  EXPECT_EQ(b.samples_read(), 8);
+  ASSERT_EQ(r.rows(), 2);
+  EXPECT_EQ(r.stamp, (std::vector<double>{0.1, 0.5}));
+  EXPECT_EQ(r.position, (std::vector<double>{0.1, 0.2, 0.1, 0.7}));
+  EXPECT_EQ(r.given[2], 0);  // J1 not in the last sample
+  const mbk::DropLog& log = b.log();
+  EXPECT_EQ(log.dropped(), 6);
+  EXPECT_EQ(log.drops.at("missing joints (not named yet)"), 1);
+  EXPECT_EQ(log.drops.at("stamp goes backwards"), 1);
+  EXPECT_EQ(log.drops.at("repeated stamp"), 1);
+  EXPECT_EQ(log.drops.at("bad sample (lengths, duplicates, NaN/Inf)"), 3);
+  EXPECT_NE(log.example.at("bad sample (lengths, duplicates, NaN/Inf)")
+                .find("s2: joint 'J1': position is NaN"),
+            std::string::npos);
+  EXPECT_EQ(log.notes.at("names not in the model ignored"), 1);
+  EXPECT_NE(log.example.at("missing joints (not named yet)").find("J2"), std::string::npos);
+}
+
+TEST(RecordingTest, AJointNeverNamedIsAnError) {
+  const mbk::Model model = two_joints();
+  mbk::RecordingBuilder b(model);
+  b.add(0.0, {"J1"}, {0.1}, {}, "s0");
+  try {
+    b.finish();
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no sample names the joints J2"), std::string::npos);
+  }
+}
+
+TEST(RecordingTest, EulerParametersStayContinuousAndAccelerationsPair) {
+  const mbk::Model model = mbk::make_bare_model({0}, mbk::JointType::kBallEuler);
+  mbk::RecordingBuilder b(model);
+  const auto& n = model.coordinate_names;
+  b.add(0.0, n, {0.1, 0, 0, 0.99}, {}, "s0");
+  b.add(0.1, n, {-0.1, 0, 0, -0.99}, {1, 2, 3, 4}, "s1");  // -e: the same rotation
+  b.add_accelerations(0.1, {n[0]}, {5.0}, "a1");
+  b.add_accelerations(0.2, {"nope"}, {5.0}, "a2");  // unknown: ignored, noted
+  const mbk::Recording r = b.finish();
+  ASSERT_EQ(r.rows(), 2);
+  EXPECT_EQ(r.position[4], 0.1);
+  EXPECT_EQ(r.position[7], 0.99);
+  EXPECT_EQ(r.velocity[4], -1.0);
+  EXPECT_EQ(r.acceleration[4], 5.0);
+  EXPECT_TRUE(r.given[4] & mbk::Recording::kAcceleration);
+  EXPECT_FALSE(r.given[5] & mbk::Recording::kAcceleration);
+  EXPECT_EQ(b.log().notes.at("joint_accelerations ignored"), 1);
+}
+
+TEST(TrajectoryCsvTest, ReadsSamplesAndCountsBadLines) {
+  const mbk::Model model = two_joints();
+  const std::string path = temp_file(
+      "traj.csv", "time,J2,J1\n0.0,0.2,0.1\n0.01,0.3,\n0.02,nan,0.1\n0.03,0.4,0.5\n0.04,0.1");
+  mbk::RecordingBuilder b(model);
+  mbk::read_trajectory_csv(path, b);
+  const mbk::Recording r = b.finish();
+  ASSERT_EQ(r.rows(), 3);
+  EXPECT_EQ(r.position, (std::vector<double>{0.1, 0.2, 0.1, 0.3, 0.5, 0.4}));
+  EXPECT_EQ(b.log().drops.at("wrong number of cells"), 1);  // the truncated last line
+  EXPECT_EQ(b.log().drops.at("bad sample (lengths, duplicates, NaN/Inf)"), 1);
+}
+
+TEST(TrajectoryCsvTest, ClearErrors) {
+  const mbk::Model model = two_joints();
+  mbk::RecordingBuilder b(model);
+  for (const auto& bad :
+       {std::make_pair("t,J1\n0,1\n", "traj_bad1.csv:1: the first column must be 'time'"),
+        std::make_pair("time,J1\n0,x1\n", "traj_bad2.csv:2: column 'J1': 'x1' is not a number")}) {
+    const std::string name = std::string(bad.second).substr(0, 13);
+    const std::string path = temp_file(name, bad.first);
+    try {
+      mbk::read_trajectory_csv(path, b);
+      FAIL() << "no error for " << bad.first;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.second), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(TidyCsvTest, OneRowPerSampleAndBodyWithEveryColumn) {
+  const mbk::Model model = two_joints();
+  mbk::JointState<double> state(model);
+  state.position << 0.3, -0.2;
+  state.velocity << 1.0, 0.5;
+  mbk::Data<double> data(model);
+  mbk::forward_kinematics(model, state, data, mbk::Level::kAcceleration);
+  const std::string path = ::testing::TempDir() + "tidy.csv";
+  {
+    mbk::TidyCsvWriter w(path, model);
+    w.write(1.5, data);
+    w.close();
+  }
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> lines;
+  while (std::getline(in, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u);  // header, 2 bodies, system
+  const auto columns = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+  for (const std::string& l : lines) EXPECT_EQ(columns(l), 26) << l;
+  EXPECT_EQ(lines[0].substr(0, 20), "stamp,body,index,low");
+  EXPECT_EQ(lines[1].substr(0, 19), "1.500000000,B1,1,0,");
+  EXPECT_EQ(lines[3].substr(0, 21), "1.500000000,system,0,");
+  // The last value of body 2's row reads back as its acceleration z, exactly.
+  EXPECT_EQ(std::stod(lines[2].substr(lines[2].rfind(',') + 1)), data.acceleration[2].z());
+}
+
+TEST(OfflineStatesTest, EstimatesFromOwnSamplesAndDropsLoneSamples) {
+  const mbk::Model model = two_joints();
+  mbk::RecordingBuilder b(model);
+  // J1 at 100 Hz, J2 at 50 Hz (every other message), then a lone sample after a long gap.
+  for (int i = 0; i < 40; ++i) {
+    const double t = 0.01 * i;
+    if (i % 2 == 0)
+      b.add(t, {"J1", "J2"}, {t * t, 2 * t * t * t}, {}, "s");
+    else
+      b.add(t, {"J1"}, {t * t}, {}, "s");
+  }
+  b.add(10.0, {"J1", "J2"}, {1, 1}, {}, "lone");
+  const mbk::Recording r = b.finish();
+  mbk::OfflineStates states(model, r, mbk::make_offline_estimator("centered_9_4"), 0);
+  EXPECT_NEAR(states.max_gap(), 0.05, 1e-12);
+  mbk::JointState<double> s(model);
+  for (int row = 0; row < 40; ++row) {
+    ASSERT_EQ(states.state_at(row, s), "") << row;
+    const double t = 0.01 * row, t2 = 0.02 * (row / 2);  // J2 holds its last own sample
+    EXPECT_NEAR(s.velocity[0], 2 * t, 1e-9);
+    EXPECT_NEAR(s.acceleration[0], 2, 1e-6);
+    EXPECT_NEAR(s.velocity[1], 6 * t2 * t2, 1e-9) << row;
+    EXPECT_NEAR(s.acceleration[1], 12 * t2, 1e-6) << row;
+  }
+  EXPECT_NE(states.state_at(40, s).find("too few samples"), std::string::npos);
+}
+
+}  // namespace

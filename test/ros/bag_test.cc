@@ -1,0 +1,365 @@
+// mbk bag end to end (offline/bag_command.h) on bags written here: every sample computed and
+// written at its own stamp, poses as the core computes them, derivatives close to the exact
+// ones, a CSV input giving the same output, and each kind of bad input a clear error or a
+// counted drop.
+#include <gtest/gtest.h>
+#include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <nav_msgs/Odometry.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <stdexcept>
+
+#include "mb_kinematics/analysis/demo_trajectory.h"
+#include "mb_kinematics/core/floating_base.h"
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/offline/bag_command.h"
+
+namespace {
+
+const std::string kModel = MBK_SOURCE_DIR "/config/human_body.yaml";
+
+std::string temp(const std::string& name) { return ::testing::TempDir() + name; }
+
+sensor_msgs::JointState sample(const mbk::Model& model, const std::vector<mbk::Wave>& waves,
+                               double t) {
+  sensor_msgs::JointState js;
+  js.header.stamp = ros::Time(t);
+  for (int i = 0; i < model.nq; ++i) {
+    js.name.push_back(model.coordinate_names[i]);
+    js.position.push_back(waves[i].at(t, 0));
+  }
+  return js;
+}
+
+// A bag of the demo trajectory at `rate` Hz over `seconds`; `edit(i, msg)` may spoil samples.
+std::string write_bag(const std::string& name, double rate, double seconds,
+                      const std::function<void(int, sensor_msgs::JointState&)>& edit = {}) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  rosbag::Bag bag(temp(name), rosbag::bagmode::Write);
+  for (int i = 0; i < static_cast<int>(rate * seconds); ++i) {
+    sensor_msgs::JointState js = sample(model, waves, 1.0 + i / rate);
+    if (edit) edit(i, js);
+    bag.write("/joint_states", ros::Time(1.0 + i / rate), js);
+  }
+  bag.close();
+  return temp(name);
+}
+
+mbk_offline::BagOptions options(const std::string& in, const std::string& out) {
+  mbk_offline::BagOptions o;
+  o.input = in;
+  o.model = kModel;
+  o.out_bag = out;
+  return o;
+}
+
+std::map<std::string, int> count_topics(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag);
+  std::map<std::string, int> counts;
+  for (const rosbag::MessageInstance& m : view) ++counts[m.getTopic()];
+  return counts;
+}
+
+std::string error_of(const mbk_offline::BagOptions& o) {
+  try {
+    mbk_offline::run_bag(o);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
+  const std::string in = write_bag("demo.bag", 100, 3.0);
+  mbk_offline::BagOptions o = options(in, temp("demo_out.bag"));
+  o.frame_prefix = "p/";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.read, 300);
+  EXPECT_EQ(s.written, 300);
+  EXPECT_EQ(s.log.dropped(), 0);
+  const std::map<std::string, int> counts = count_topics(o.out_bag);
+  EXPECT_EQ(counts.at("/body_kinematics"), 300);
+  EXPECT_EQ(counts.at("/tf"), 300);
+  EXPECT_EQ(counts.count("/tf_static"), 0u);  // the human scene has no fixed joints
+
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  int i = 0;
+  double worst_alpha = 0, scale_alpha = 0;
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>();
+    const double t = 1.0 + i++ / 100.0;
+    ASSERT_EQ(msg->header.stamp, ros::Time(t));
+    ASSERT_EQ(m.getTime(), ros::Time(t));
+    ASSERT_EQ(msg->header.frame_id, "p/" + model.frame);
+    mbk::JointState<double> exact(model);
+    for (int c = 0; c < model.nq; ++c) {
+      exact.position[c] = waves[c].at(t, 0);
+      exact.velocity[c] = waves[c].at(t, 1);
+      exact.acceleration[c] = waves[c].at(t, 2);
+    }
+    mbk::Data<double> d(model);
+    mbk::forward_kinematics(model, exact, d, mbk::Level::kAcceleration);
+    ASSERT_EQ(msg->bodies.size(), 16u);
+    for (int k = 1; k <= 16; ++k) {
+      const auto& b = msg->bodies[k - 1];
+      EXPECT_EQ(b.name, model.bodies[k].name);
+      EXPECT_EQ(b.pose.position.x, d.origin[k].x());  // positions are as recorded: exact
+      EXPECT_EQ(b.mass_center.z, d.mass_center[k].z());
+      if (t < 1.2 || t > 3.78) continue;  // the ends: one-sided fits
+      worst_alpha = std::max(
+          worst_alpha,
+          (mbk::Vec3<double>(b.accel.angular.x, b.accel.angular.y, b.accel.angular.z) - d.alpha[k])
+              .norm());
+      scale_alpha = std::max(scale_alpha, d.alpha[k].norm());
+    }
+  }
+  EXPECT_EQ(i, 300);
+  // The default estimator at 100 Hz on clean data, away from the ends: the joint accelerations
+  // are within 6.8e-4 of their scale (README "Recorded data"); alpha sums a few of them.
+  EXPECT_LT(worst_alpha / scale_alpha, 2e-3);
+  rosbag::View tf(bag, rosbag::TopicQuery("/tf"));
+  const auto first = tf.begin()->instantiate<tf2_msgs::TFMessage>();
+  EXPECT_EQ(first->transforms.size(), 16u);
+  EXPECT_EQ(first->transforms[0].header.frame_id, "p/world");  // the scene's frame
+  EXPECT_EQ(first->transforms[0].child_frame_id, "p/pelvis");
+  EXPECT_EQ(first->transforms[0].header.stamp, ros::Time(1.0));
+}
+
+TEST(BagTest, CsvInputGivesTheSameKinematics) {
+  const std::string in = write_bag("csv_src.bag", 50, 1.0);
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  std::ofstream csv(temp("traj_in.csv"));
+  csv.precision(17);
+  csv << "time";
+  for (const std::string& n : model.coordinate_names) csv << "," << n;
+  for (int i = 0; i < 50; ++i) {
+    const double t = 1.0 + i / 50.0;
+    csv << "\n" << ros::Time(t).toSec();  // the bag's stamp
+    for (int c = 0; c < model.nq; ++c) csv << "," << waves[c].at(t, 0);
+  }
+  csv.close();
+  mbk_offline::BagOptions a = options(in, "");
+  a.out_csv = temp("from_bag.csv");
+  mbk_offline::BagOptions b = options(temp("traj_in.csv"), "");
+  b.out_csv = temp("from_csv.csv");
+  EXPECT_EQ(mbk_offline::run_bag(a).written, 50);
+  EXPECT_EQ(mbk_offline::run_bag(b).written, 50);
+  std::ifstream fa(a.out_csv), fb(b.out_csv);
+  std::stringstream sa, sb;
+  sa << fa.rdbuf();
+  sb << fb.rdbuf();
+  const std::string from_bag = sa.str(), from_csv = sb.str();
+  EXPECT_EQ(std::count(from_bag.begin(), from_bag.end(), '\n'), 1 + 50 * 17);  // 16 bodies, system
+  EXPECT_EQ(from_bag, from_csv);
+}
+
+TEST(BagTest, MissingTopicNamesTheTopicsTheBagHas) {
+  const std::string in = write_bag("topics.bag", 10, 1.0);
+  mbk_offline::BagOptions o = options(in, temp("x.bag"));
+  o.joint_states = "/robot/joint_states";
+  const std::string e = error_of(o);
+  EXPECT_NE(e.find("no topic '/robot/joint_states'; the bag has /joint_states "
+                   "(sensor_msgs/JointState)"),
+            std::string::npos)
+      << e;
+  o.joint_states = "/joint_states";
+  o.joint_accelerations = "/joint_accelerations";
+  EXPECT_NE(error_of(o).find("no topic '/joint_accelerations'"), std::string::npos);
+}
+
+TEST(BagTest, CorruptAndTruncatedBagsAreClearErrors) {
+  const std::string in = write_bag("whole.bag", 100, 2.0);
+  std::ifstream whole(in, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(whole)),
+                          std::istreambuf_iterator<char>());
+  std::ofstream(temp("truncated.bag"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  std::string garbage(4096, 'x');
+  std::ofstream(temp("corrupt.bag"), std::ios::binary) << garbage;
+  const std::string t = error_of(options(temp("truncated.bag"), temp("y.bag")));
+  EXPECT_NE(t.find("truncated.bag: "), std::string::npos) << t;
+  EXPECT_NE(t.find("rosbag reindex"), std::string::npos) << t;
+  const std::string c = error_of(options(temp("corrupt.bag"), temp("y.bag")));
+  EXPECT_NE(c.find("corrupt.bag: not a readable bag"), std::string::npos) << c;
+  EXPECT_NE(error_of(options(temp("absent.bag"), temp("y.bag"))).find("absent.bag"),
+            std::string::npos);
+}
+
+TEST(BagTest, UnknownMissingNanAndBackwardsAreCountedAndTheRestWritten) {
+  const std::string in = write_bag("bad.bag", 100, 2.0, [](int i, sensor_msgs::JointState& js) {
+    if (i < 3) {  // the first three lack the head: dropped until it is named
+      js.name.erase(js.name.begin() + 5);
+      js.position.erase(js.position.begin() + 5);
+    }
+    if (i % 10 == 0) js.name.push_back("tail"), js.position.push_back(1.0);  // unknown: noted
+    if (i == 50 || i == 51) js.position[7] = std::nan("");
+    if (i == 120) js.header.stamp = ros::Time(1.0);  // backwards
+  });
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(options(in, temp("bad_out.bag")));
+  EXPECT_EQ(s.read, 200);
+  EXPECT_EQ(s.log.drops.at("missing joints (not named yet)"), 3);
+  EXPECT_EQ(s.log.drops.at("bad sample (lengths, duplicates, NaN/Inf)"), 2);
+  EXPECT_EQ(s.log.drops.at("stamp goes backwards"), 1);
+  // every 10th names "tail", but samples 50 and 120 were dropped before being looked at
+  EXPECT_EQ(s.log.notes.at("names not in the model ignored"), 18);
+  EXPECT_EQ(s.written, 194);
+  EXPECT_EQ(s.written + s.log.dropped(), s.read);
+  EXPECT_EQ(count_topics(temp("bad_out.bag")).at("/body_kinematics"), 194);
+  const std::string summary = mbk_offline::format_summary(s);
+  EXPECT_NE(summary.find("200 samples read, 194 written, 6 dropped"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("position is NaN"), std::string::npos) << summary;
+}
+
+TEST(BagTest, AJointNeverNamedIsAnError) {
+  const std::string in = write_bag("nohead.bag", 10, 1.0, [](int, sensor_msgs::JointState& js) {
+    js.name.erase(js.name.begin() + 5);
+    js.position.erase(js.position.begin() + 5);
+  });
+  EXPECT_NE(error_of(options(in, temp("z.bag"))).find("no sample names the joints"),
+            std::string::npos);
+}
+
+// The model's root on a base that runs round a circle of radius 1 turning with it (yaw = w t;
+// its velocity is w along its own y), the joints still: every body is carried rigidly.
+TEST(BagTest, BaseOdometryCarriesTheModel) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const double w = 1.3;
+  const auto base_at = [&](double t) {
+    mbk::BaseMotion m;
+    m.rotation = Eigen::AngleAxisd(w * t, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    m.position << std::cos(w * t), std::sin(w * t), 0.5;
+    m.velocity << -w * std::sin(w * t), w * std::cos(w * t), 0;
+    m.acceleration = -w * w * mbk::Vec3<double>(std::cos(w * t), std::sin(w * t), 0);
+    m.omega << 0, 0, w;
+    return m;
+  };
+  {
+    rosbag::Bag bag(temp("odom.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 300; ++i) {  // odometry over [1, 3.99] s
+      const double t = 1.0 + i / 100.0;
+      const mbk::BaseMotion m = base_at(t);
+      nav_msgs::Odometry o;
+      o.header.stamp = ros::Time(t);
+      o.header.frame_id = "odom";
+      o.child_frame_id = "world";
+      o.pose.pose.position.x = m.position.x();
+      o.pose.pose.position.y = m.position.y();
+      o.pose.pose.position.z = m.position.z();
+      const Eigen::Quaterniond q(m.rotation);
+      o.pose.pose.orientation.x = q.x(), o.pose.pose.orientation.y = q.y();
+      o.pose.pose.orientation.z = q.z(), o.pose.pose.orientation.w = q.w();
+      o.twist.twist.linear.y = w;  // in the child frame
+      o.twist.twist.angular.z = w;
+      bag.write("/odom", o.header.stamp, o);
+    }
+    for (int i = 0; i < 305; ++i) {  // joints at 100 Hz, 5 ms after the odometry, 5 beyond it
+      sensor_msgs::JointState js;
+      js.header.stamp = ros::Time(1.005 + i / 100.0);
+      js.name = model.coordinate_names;
+      js.position.assign(model.nq, 0.1);
+      bag.write("/joint_states", js.header.stamp, js);
+    }
+  }
+  mbk_offline::BagOptions o = options(temp("odom.bag"), temp("odom_out.bag"));
+  o.base_odometry = "/odom";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.written, 299);
+  EXPECT_EQ(s.log.drops.at("outside the base odometry's time span"), 6);
+  mbk::JointState<double> still(model);
+  still.position.setConstant(0.1);
+  mbk::Data<double> relative(model);
+  mbk::forward_kinematics(model, still, relative, mbk::Level::kAcceleration);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  double worst_p = 0, worst_v = 0, worst_a = 0;
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>();
+    ASSERT_EQ(msg->header.frame_id, "odom");
+    const double t = msg->header.stamp.toSec();
+    mbk::Data<double> expected = relative;
+    mbk::apply_floating_base(base_at(t), expected);
+    for (int k = 1; k <= model.body_count(); ++k) {
+      const auto& b = msg->bodies[k - 1];
+      const auto v3 = [](const auto& x) { return mbk::Vec3<double>(x.x, x.y, x.z); };
+      worst_p = std::max(worst_p, (v3(b.mass_center) - expected.mass_center[k]).norm());
+      worst_v = std::max(worst_v, (v3(b.twist.linear) - expected.velocity[k]).norm());
+      if (t > 1.4 && t < 3.6)  // the base's acceleration is estimated: away from the ends
+        worst_a = std::max(worst_a, (v3(b.accel.linear) - expected.acceleration[k]).norm());
+    }
+  }
+  // Linear interpolation half way between odometry samples: chord errors of (w h)^2 / 8 times
+  // the radius (about 2e-5 m), the speed scale w (1e-4 m/s with the arms' reach).
+  EXPECT_LT(worst_p, 1e-4);
+  EXPECT_LT(worst_v, 1e-4);
+  EXPECT_LT(worst_a, 1e-3);  // of accelerations of about w^2 = 1.7 m/s^2
+  rosbag::View tf(bag, rosbag::TopicQuery("/tf"));
+  const auto first = tf.begin()->instantiate<tf2_msgs::TFMessage>();
+  EXPECT_EQ(first->transforms.back().header.frame_id, "odom");
+  EXPECT_EQ(first->transforms.back().child_frame_id, "world");
+  o.base_odometry = "/nothing";
+  EXPECT_NE(error_of(o).find("no topic '/nothing'"), std::string::npos);
+}
+
+// Fixed joints go to /tf_static once, at the first sample's stamp, with the prefix.
+TEST(BagTest, FixedJointsOnTfStaticOnce) {
+  const std::string urdf = MBK_SOURCE_DIR "/test/ros/test_robot.urdf";
+  const mbk::Model model = mbk::load_model_file(urdf);
+  {
+    rosbag::Bag bag(temp("fixed.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 20; ++i) {
+      sensor_msgs::JointState js;
+      js.header.stamp = ros::Time(2.0 + i / 100.0);
+      js.name = model.coordinate_names;
+      js.position.assign(model.nq, 0.01 * i);
+      bag.write("/joint_states", js.header.stamp, js);
+    }
+  }
+  mbk_offline::BagOptions o = options(temp("fixed.bag"), temp("fixed_out.bag"));
+  o.model = urdf;
+  o.frame_prefix = "r1/";
+  EXPECT_EQ(mbk_offline::run_bag(o).written, 20);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/tf_static"));
+  ASSERT_EQ(view.size(), 1u);
+  const auto fixed = view.begin()->instantiate<tf2_msgs::TFMessage>();
+  EXPECT_EQ(view.begin()->getTime(), ros::Time(2.0));
+  ASSERT_EQ(fixed->transforms.size(), 2u);  // camera_joint, tool_joint
+  for (const auto& t : fixed->transforms) {
+    EXPECT_EQ(t.child_frame_id.rfind("r1/", 0), 0u) << t.child_frame_id;
+    EXPECT_EQ(t.header.frame_id.rfind("r1/", 0), 0u) << t.header.frame_id;
+  }
+  EXPECT_EQ(count_topics(o.out_bag).at("/tf"), 20);
+}
+
+TEST(BagTest, TheMbkCommandRunsIt) {
+  const std::string in = write_bag("cli.bag", 10, 1.0);
+  const std::string mbk = MBK_MBK_PATH;
+  const std::string ok = mbk + " bag " + in + " --model " + kModel + " --csv " + temp("cli.csv") +
+                         " 2>" + temp("cli.err");
+  EXPECT_EQ(std::system(ok.c_str()), 0);
+  std::ifstream err(temp("cli.err"));
+  std::string line;
+  std::getline(err, line);
+  EXPECT_EQ(line.rfind("mbk bag: 10 samples read, 10 written, 0 dropped", 0), 0u) << line;
+  const std::string bad = mbk + " bag " + in + " --model " + kModel + " --joint-states /js --out " +
+                          temp("cli.bag.out") + " 2>" + temp("cli2.err");
+  EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 1);
+  std::ifstream err2(temp("cli2.err"));
+  std::getline(err2, line);
+  EXPECT_EQ(line.rfind("mbk: error: ", 0), 0u) << line;
+  EXPECT_NE(line.find("the bag has /joint_states"), std::string::npos) << line;
+}
+
+}  // namespace
