@@ -19,7 +19,7 @@ MBK_PACKAGES=(
   libdiagnostic-updater-dev libsensor-msgs-dev python3-sensor-msgs python3-geometry-msgs
   python3-tf2-msgs python3-diagnostic-msgs
   librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
-  pluginlib-dev libogre-1.12-dev
+  pluginlib-dev libogre-1.12-dev catkin-lint
 )
 
 mbk_install_deps() {

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds everything and runs every test (unit, peer and integration) with ctest.
+# Builds everything, checks the packaging (test/install/install_test.sh) and runs every test
+# (unit, peer and integration) with ctest.
 # Exits non-zero on any failure; the last line is ctest's summary.
 source "$(dirname "$0")/common.sh"
 mbk_install_deps
@@ -10,6 +11,7 @@ echo "== building tests"
   echo "test build failed: full log in $MBK_WS/build.log" >&2
   exit 1
 }
+"$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 cd "$MBK_WS/build"
 set +e
 ctest --output-on-failure -j2 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'

@@ -1,6 +1,8 @@
 // Absolute kinematics by the O(N) outward recursion along the lower body array (method.md 4).
 #pragma once
 
+#include <cassert>
+
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/model.h"
@@ -43,6 +45,7 @@ void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, 
 template <typename S>
 void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>& data,
                         Level level = Level::kAcceleration) {
+  assert(sized_for(data, model) && "forward_kinematics: Data made for another model");
   JointMotion<S> m;
   const bool velocities = level != Level::kPose;
   const bool accelerations = level == Level::kAcceleration;

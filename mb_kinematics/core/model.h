@@ -1,4 +1,7 @@
-// The immutable model: lower body array, joints, mass centers and masses (design.md).
+// The model: lower body array, joints, mass centers and masses (design.md). Plain data, built
+// by the loaders (or by hand) and made consistent by finalize_model; the algorithms take it
+// const. Whoever changes a field afterwards (the node sets `speeds` once, at load) must call
+// finalize_model again before using it.
 #pragma once
 
 #include <string>

@@ -3,6 +3,7 @@
 // only the columns of the speeds of its own joint and its ancestors' joints.
 #pragma once
 
+#include <cassert>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
@@ -53,6 +54,8 @@ template <typename S>
 void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                  PartialVelocities<S>& pv, Data<S>& data,
                                  Level level = Level::kAcceleration) {
+  assert(sized_for(data, model) && pv.begin.size() == model.bodies.size() &&
+         "partial_velocity_kinematics: Data or PartialVelocities made for another model");
   JointMotion<S> m;
   const bool velocities = level != Level::kPose;
   const bool accelerations = level == Level::kAcceleration;

@@ -37,7 +37,7 @@ std::string format_lower_body_table(const std::vector<int>& lower,
   std::ostringstream out;
   out << "Lower body arrays, N = " << lower.size() << " (method.md 1)\n";
   for (size_t t = 0; t < table.size(); ++t) {
-    char label[16];
+    char label[32];
     std::snprintf(label, sizeof label, "L^%zu(k)", t);
     out << label << std::string(8 - std::string(label).size(), ' ');
     for (size_t i = 0; i < lower.size(); ++i) {

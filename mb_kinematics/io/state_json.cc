@@ -3,9 +3,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -63,11 +63,7 @@ JointState<double> read_state_string(const Model& model, const std::string& text
 }
 
 JointState<double> read_state_file(const Model& model, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open state file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return read_state_string(model, text.str(), path);
+  return read_state_string(model, read_text_file(path, "state file"), path);
 }
 
 }  // namespace mbk

@@ -3,12 +3,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/io/rpy.h"
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -154,11 +153,7 @@ Model load_yaml_scene_string(const std::string& text, const std::string& source)
 }
 
 Model load_yaml_scene_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open scene file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_yaml_scene_string(text.str(), path);
+  return load_yaml_scene_string(read_text_file(path, "scene file"), path);
 }
 
 }  // namespace mbk
