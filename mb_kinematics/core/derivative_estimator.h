@@ -1,5 +1,5 @@
 // Time derivatives of one coordinate from its successive samples (t, x), for joint states
-// that come without velocities or accelerations (design.md, "Topics of the node"). Several
+// that come without velocities or accelerations (doc/method.md 8). Several
 // estimators share this interface; the node picks one by name (~acceleration_estimator).
 #pragma once
 

@@ -4,7 +4,8 @@
 
 namespace mbk {
 
-// The table of joint facts (method.md 2; coordinates as in README "Coordinates and conventions").
+// The table of joint facts (doc/method.md 2; coordinates as in README "Coordinates and
+// conventions").
 const JointTraits& joint_traits(JointType type) {
   constexpr CoordinateKind a = CoordinateKind::kAngle, t = CoordinateKind::kTranslation,
                            e = CoordinateKind::kEulerParameter;

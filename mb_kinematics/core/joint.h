@@ -1,4 +1,4 @@
-// Joints: how body Bk moves relative to its lower body Bj (method.md 2 and 3), and the facts
+// Joints: how body Bk moves relative to its lower body Bj (doc/method.md 2 and 3), and the facts
 // about each joint type in one table (joint_traits). Adding a joint type touches JointType, the
 // table in joint.cc and joint_motion.h; the compiler flags every switch over JointType (none has
 // a default).
@@ -23,7 +23,7 @@ enum class JointType {
   kLast = kPlanar,  // keep equal to the last type (all_joint_types() checks its length against it)
 };
 
-// How generalized speeds of Euler-parameter joints are chosen (method.md 5): the time
+// How generalized speeds of Euler-parameter joints are chosen (doc/method.md 5): the time
 // derivatives of e1..e4, or the relative angular velocity components in Bj ("quasi-coordinates",
 // Table 4.3.10). Every other joint always uses coordinate derivatives.
 enum class SpeedKind { kCoordinateDerivatives, kAngularVelocity };

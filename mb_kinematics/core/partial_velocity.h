@@ -1,5 +1,5 @@
 // Absolute kinematics through the partial velocity arrays omega_krm, v_krm and their time
-// derivatives (method.md 5, eq. 4.4.20-4.4.32, 4.7.7-4.7.12, 4.8). Stored sparse: body k keeps
+// derivatives (doc/method.md 5, eq. 4.4.20-4.4.32, 4.7.7-4.7.12, 4.8). Stored sparse: body k keeps
 // only the columns of the speeds of its own joint and its ancestors' joints.
 #pragma once
 

@@ -17,8 +17,8 @@ std::string format_lower_body_table(const std::vector<int>& lower,
 // One row per t = 0, 1, ... until a row is all zeros, N comma-separated values each.
 std::string format_lower_body_csv(const std::vector<int>& lower);
 
-// design.md `mbk eval` JSON. Throws std::runtime_error naming the body if a value is not
-// finite (nothing is printed then).
+// The `mbk eval` JSON (README "`mbk`"; doc/method.md 8). Throws std::runtime_error naming the body
+// if a value is not finite (nothing is printed then).
 std::string format_eval_json(const Model& model, const Data<double>& data);
 
 }  // namespace mbk

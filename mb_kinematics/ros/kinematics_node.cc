@@ -178,7 +178,7 @@ void KinematicsNode::advertise() {
   }
 }
 
-// Fixed joints: SJK and q_k never change, so /tf_static once (design.md "Leave out...").
+// Fixed joints: SJK and q_k never change, so /tf_static once (doc/method.md 8).
 void KinematicsNode::publish_static_tf() {
   std::vector<geometry_msgs::TransformStamped> fixed;
   mbk::JointMotion<double> m;

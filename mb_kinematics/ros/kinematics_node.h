@@ -1,6 +1,6 @@
-// mb_kinematics_node: a thin adapter from joint_states to the core (design.md "Topics of the
-// node"), in the manner of robot_state_publisher: parameters read in one place, one callback
-// per sample, throttled warnings that say what was wrong.
+// mb_kinematics_node: a thin adapter from joint_states to the core (doc/method.md 8), in the manner
+// of robot_state_publisher: parameters read in one place, one callback per sample, throttled
+// warnings that say what was wrong.
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>

@@ -1,4 +1,4 @@
-// The 3-point backward-difference estimator against closed forms (design.md "Topics of the node").
+// The 3-point backward-difference estimator against closed forms (doc/method.md 8).
 #include "mb_kinematics/core/derivative_estimator.h"
 
 #include <gtest/gtest.h>
