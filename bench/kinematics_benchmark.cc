@@ -2,7 +2,7 @@
 // chains of 10, 100 and 1000 bodies.
 //
 //   ours/<model>/<recursive|pv>/<pose|velocity|full>
-//       forward_kinematics (method.md 4) or partial_velocity_kinematics (method.md 5) at
+//       forward_kinematics (doc/method.md 4) or partial_velocity_kinematics (doc/method.md 5) at
 //       Level::kPose, kVelocity, kAcceleration ("full": orientation, origin, mass center, omega,
 //       alpha, velocity and acceleration of every body).
 //   kdl/<model>/tree_pose_all_links   TreeFkSolverPos_recursive::JntToCart for every link

@@ -20,7 +20,7 @@ MBK_PACKAGES=(
   python3-tf2-msgs python3-diagnostic-msgs
   librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
   pluginlib-dev libogre-1.12-dev librosbag-dev libtf2-msgs-dev libnav-msgs-dev python3-rosbag
-  python3-matplotlib
+  python3-matplotlib catkin-lint
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
 )
 

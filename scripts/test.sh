@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds everything and runs every test (unit, peer, integration, the fuzz smoke) with ctest.
+# Builds everything, checks the packaging (test/install/install_test.sh) and runs every test
+# (unit, peer, integration, the fuzz smoke) with ctest.
 # Exits non-zero on any failure; the last line is ctest's summary.
 #   scripts/test.sh [--sanitize]
 # --sanitize: the same build with -fsanitize=address,undefined (UB aborts, leaks fail, urdfdom's
@@ -30,6 +31,7 @@ echo "== building tests"
   exit 1
 }
 [ -n "$sanitize" ] || { echo "== building the fuzz harnesses" && "$MBK_SRC/scripts/fuzz.sh" --build; }
+[ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 cd "$MBK_WS/build"
 set +e
 ctest --output-on-failure -j2 "${skip[@]}" 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'

@@ -1,8 +1,6 @@
 # Every test/core/*_test.cc, test/io/*_test.cc and test/analysis/*_test.cc is a GoogleTest
-# executable of its own; test/peers/*_test.cc also link the peer libraries (Orocos KDL).
-find_package(orocos_kdl REQUIRED)
-find_package(kdl_parser REQUIRED)
-
+# executable of its own; test/peers/*_test.cc also link the peer libraries (Orocos KDL, found
+# in CMakeLists.txt).
 file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/io/*_test.cc
   test/analysis/*_test.cc test/stability/*_test.cc)
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
@@ -14,7 +12,8 @@ foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
 endforeach()
 foreach(source ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
-  target_include_directories(${name} PRIVATE ${orocos_kdl_INCLUDE_DIRS} ${kdl_parser_INCLUDE_DIRS})
+  target_include_directories(${name} SYSTEM PRIVATE ${orocos_kdl_INCLUDE_DIRS}
+    ${kdl_parser_INCLUDE_DIRS})
   target_link_libraries(${name} ${orocos_kdl_LIBRARIES} ${kdl_parser_LIBRARIES})
 endforeach()
 

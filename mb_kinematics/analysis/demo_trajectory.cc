@@ -16,15 +16,14 @@ std::vector<Wave> demo_waves(const Model& model) {
   std::vector<Wave> waves(model.nq);
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
-    const auto& suffixes = coordinate_suffixes(body.joint.type);
-    for (size_t c = 0; c < suffixes.size(); ++c) {
-      const int i = body.q_index + static_cast<int>(c);
-      const std::string& s = suffixes[c];
-      const bool translation =
-          body.joint.type == JointType::kPrismatic || s == "x" || s == "y" || s == "z";
-      const bool euler = s.size() == 2 && s[0] == 'e';
+    const JointType type = body.joint.type;
+    for (int c = 0; c < coordinate_count(type); ++c) {
+      const int i = body.q_index + c;
+      const CoordinateKind kind = coordinate_kind(type, c);
+      const bool translation = kind == CoordinateKind::kTranslation;
+      const bool euler = kind == CoordinateKind::kEulerParameter;
       Wave& w = waves[i];
-      w.b = s == "e4" ? 1.0 : 0.0;
+      w.b = euler && c == first_euler_parameter(type) + 3 ? 1.0 : 0.0;  // e4 = 1: the identity
       w.a = translation ? 0.05 : euler ? 0.2 : 0.4;
       w.w = 2 * M_PI * (0.2 + 0.4 * std::fmod(0.618034 * (i + 1), 1.0));
       w.p = 0.7 * i;

@@ -26,9 +26,7 @@ Model make_chain(int n, JointType type) {
 Model make_random_tree(int n, unsigned seed, SpeedKind speeds) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const JointType types[] = {JointType::kFixed,     JointType::kRevolute,  JointType::kPrismatic,
-                             JointType::kBall123,   JointType::kBallEuler, JointType::kFree123,
-                             JointType::kFreeEuler, JointType::kPlanar};
+  const std::vector<JointType>& types = all_joint_types();
   Model model;
   model.speeds = speeds;
   model.bodies.resize(n + 1);
@@ -37,7 +35,7 @@ Model make_random_tree(int n, unsigned seed, SpeedKind speeds) {
     body.name = "b" + std::to_string(k);
     body.lower = k == 1 ? 0 : (rng() % 3 ? k - 1 : static_cast<int>(rng() % k));
     body.joint.name = "j" + std::to_string(k);
-    body.joint.type = types[rng() % 8];
+    body.joint.type = types[rng() % types.size()];
     body.joint.axis = Vec3<double>(u(rng), u(rng), u(rng)).normalized();
     body.joint.offset = Vec3<double>(u(rng), u(rng), u(rng));
     body.joint.rotation = rotation_from_rpy(3 * u(rng), 1.5 * u(rng), 3 * u(rng));

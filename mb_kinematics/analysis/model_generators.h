@@ -31,11 +31,6 @@ Model with_random_inertias(Model model, unsigned seed);
 // in [-1, 1] * speed_scale, accelerations in [-1, 1] * speed_scale^2.
 JointState<double> random_state(const Model& model, std::mt19937& rng, double speed_scale = 1.0);
 
-// Number of translation coordinates (and speeds) a joint has before its rotation ones.
-inline int translation_count(JointType type) {
-  return type == JointType::kFree123 || type == JointType::kFreeEuler ? 3 : 0;
-}
-
 // Euler parameters of a rotation matrix (Shepperd's method), e4 >= 0.
 template <typename S>
 void quaternion_from_rotation(const Mat3<S>& r, S& e1, S& e2, S& e3, S& e4) {

@@ -134,25 +134,15 @@ StabilityRow kinematics_row(const std::string& group, const std::string& name,
   return row;
 }
 
-bool is_translation(JointType type, int i) {
-  return type == JointType::kPrismatic ||
-         ((type == JointType::kFree123 || type == JointType::kFreeEuler) && i < 3) ||
-         (type == JointType::kPlanar && i < 2);
-}
-
-bool is_angle(JointType type, int i) {
-  return type == JointType::kRevolute || type == JointType::kBall123 ||
-         (type == JointType::kFree123 && i >= 3) || (type == JointType::kPlanar && i == 2);
-}
-
 // Applies f(value, is_angle, is_translation) to every coordinate.
 void for_each_coordinate(const Model& model, JointState<double>& state,
                          const std::function<void(double&, bool, bool)>& f) {
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     for (int i = 0; i < coordinate_count(body.joint.type); ++i)
-      f(state.position[body.q_index + i], is_angle(body.joint.type, i),
-        is_translation(body.joint.type, i));
+      f(state.position[body.q_index + i],
+        coordinate_kind(body.joint.type, i) == CoordinateKind::kAngle,
+        coordinate_kind(body.joint.type, i) == CoordinateKind::kTranslation);
   }
 }
 

@@ -5,7 +5,7 @@
 // prints the table.
 //
 // The analysis. Every quantity of body k is formed, link by link along its path, as a sum of
-// terms (method.md 4): S0K = S0J SJK; o_k = o_j + S0J (q_k + s_k); omega_k = omega_j + S0J w_k;
+// terms (doc/method.md 4): S0K = S0J SJK; o_k = o_j + S0J (q_k + s_k); omega_k = omega_j + S0J w_k;
 // v, alpha, a likewise. Each link adds at most c roundings of terms of the scale of the sum's
 // terms: sin/cos (glibc: < 1 ulp) 2 eps, a rotation entry (product of three, one sum) <= 9
 // eps, the product S0J SJK (sums of three) 3 eps more: <= 12 eps per entry, <= 21 eps in

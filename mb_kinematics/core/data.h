@@ -34,4 +34,13 @@ struct Data {
   }
 };
 
+// Whether `data` was made for `model` (Data(model)): every algorithm asserts it at entry, so a
+// Data of another model stops a debug build there instead of writing out of bounds. O(1): the
+// constructor sizes every member alike. Release builds (NDEBUG) skip the assert.
+template <typename S>
+bool sized_for(const Data<S>& data, const Model& model) {
+  return data.rotation.size() == model.bodies.size() &&
+         data.mass_center_acceleration.size() == model.bodies.size();
+}
+
 }  // namespace mbk

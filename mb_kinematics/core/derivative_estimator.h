@@ -1,5 +1,5 @@
 // Time derivatives of one coordinate from its successive samples (t, x), for joint states
-// that come without velocities or accelerations (design.md, "Topics of the node"). Several
+// that come without velocities or accelerations (doc/method.md 8). Several
 // estimators share this interface; the node picks one by name (~acceleration_estimator).
 #pragma once
 
@@ -28,11 +28,11 @@ class DerivativeEstimator {
 };
 
 // Estimators by name (derivative_estimator_names() lists the studied ones; README's
-// work-precision report compares them). "backward_difference": the derivatives at the
-// newest sample of the quadratic through the last three samples (non-uniform 3-point backward
-// difference; exact for quadratics, first derivative O(h^2), second O(h)); with two samples, the
-// first derivative of the line through them. Throws std::invalid_argument naming the known
-// estimators.
+// work-precision report compares them; the node's default is "kalman_smooth", README "The
+// node"). "backward_difference": the derivatives at the newest sample of the quadratic through
+// the last three samples (non-uniform 3-point backward difference; exact for quadratics, first
+// derivative O(h^2), second O(h)); with two samples, the first derivative of the line through
+// them. Throws std::invalid_argument naming the known estimators.
 std::unique_ptr<DerivativeEstimator> make_derivative_estimator(const std::string& name);
 const std::vector<std::string>& derivative_estimator_names();
 

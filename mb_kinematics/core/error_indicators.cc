@@ -19,7 +19,7 @@ double euler_norm_error(const Model& model, const JointState<double>& state) {
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     if (!uses_euler_parameters(body.joint.type)) continue;
-    const int e = body.q_index + coordinate_count(body.joint.type) - 4;
+    const int e = body.q_index + first_euler_parameter(body.joint.type);
     error = std::max(error, std::abs(state.position.segment<4>(e).norm() - 1.0));
   }
   return error;

@@ -1,4 +1,7 @@
-// Joints: how body Bk moves relative to its lower body Bj (method.md 2 and 3).
+// Joints: how body Bk moves relative to its lower body Bj (doc/method.md 2 and 3), and the facts
+// about each joint type in one table (joint_traits). Adding a joint type touches JointType, the
+// table in joint.cc and joint_motion.h; the compiler flags every switch over JointType (none has
+// a default).
 #pragma once
 
 #include <string>
@@ -17,12 +20,45 @@ enum class JointType {
   kFree123,    // translations x, y, z then 1-2-3 angles: the chapter's general 6-coordinate joint
   kFreeEuler,  // translations x, y, z then Euler parameters e1..e4
   kPlanar,     // translations x, y in the plane normal to `axis`, rotation gamma about it
+  kLast = kPlanar,  // keep equal to the last type (all_joint_types() checks its length against it)
 };
 
-// How generalized speeds of Euler-parameter joints are chosen (method.md 5): the time
+// How generalized speeds of Euler-parameter joints are chosen (doc/method.md 5): the time
 // derivatives of e1..e4, or the relative angular velocity components in Bj ("quasi-coordinates",
 // Table 4.3.10). Every other joint always uses coordinate derivatives.
 enum class SpeedKind { kCoordinateDerivatives, kAngularVelocity };
+
+// What a coordinate is: angles may grow without bound, translations and Euler parameters may not.
+enum class CoordinateKind { kAngle, kTranslation, kEulerParameter };
+
+struct Coordinate {
+  const char*
+      suffix;  // "" for one-coordinate joints (named after the joint), else "x", "alpha", "e4", ...
+  CoordinateKind kind;
+};
+
+// How `mbk urdf` writes a joint of the type.
+enum class UrdfForm {
+  kJoint,      // one URDF joint of type `urdf_type`
+  kAxisChain,  // a one-axis URDF joint per coordinate through massless links: translations
+               // prismatic along x, y, z of the joint frame, then angles continuous about the
+               // new x, y, z (1-2-3)
+  kNone,       // no URDF equivalent
+};
+
+struct JointTraits {
+  const char* name;  // in scenes and on the command line
+  // In coordinate order; translations come first, and the speeds follow the same order: a
+  // translation's speed is its rate (a linear speed), the others turn the body. With
+  // SpeedKind::kAngularVelocity, the four Euler parameters have three speeds wx, wy, wz instead.
+  std::vector<Coordinate> coordinates;
+  bool uses_axis;         // Joint::axis: revolute and prismatic axis, planar normal
+  const char* urdf_type;  // the URDF joint type it is read from and written as ("" if none)
+  UrdfForm urdf_form;
+};
+
+const JointTraits& joint_traits(JointType type);
+const std::vector<JointType>& all_joint_types();  // in JointType order
 
 // Names used in scene files and on the command line: fixed, revolute, prismatic, ball_123,
 // ball_euler, free_123, free_euler, planar. Throws std::invalid_argument for an unknown name.
@@ -32,9 +68,15 @@ std::string to_string(JointType type);
 // Coordinate suffixes of a joint type, in coordinate order: {} for fixed, {""} for the
 // one-coordinate joints (the coordinate is named after the joint), else e.g. {"x","y","z",...}.
 const std::vector<std::string>& coordinate_suffixes(JointType type);
+// Speed suffixes: the coordinate suffixes, except wx, wy, wz for Euler parameters with
+// angular velocity speeds.
+std::vector<std::string> speed_suffixes(JointType type, SpeedKind speeds);
+CoordinateKind coordinate_kind(JointType type, int i);
 int coordinate_count(JointType type);
 int speed_count(JointType type, SpeedKind speeds);
+int translation_count(JointType type);  // leading translation coordinates (= linear speeds)
 bool uses_euler_parameters(JointType type);
+int first_euler_parameter(JointType type);  // index of e1 among the joint's coordinates; -1 if none
 
 struct Joint {
   std::string name;

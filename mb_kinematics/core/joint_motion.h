@@ -1,5 +1,5 @@
 // What a joint contributes, per update: SJK, s_k, and the columns that map its generalized
-// speeds to the relative angular velocity w_k and translation rate s_k' (method.md 2, 4, 5).
+// speeds to the relative angular velocity w_k and translation rate s_k' (doc/method.md 2, 4, 5).
 #pragma once
 
 #include <cmath>
@@ -40,7 +40,7 @@ Mat3<S> rotation_123(S ca, S sa, S cb, S sb, S cg, S sg) {
 
 }  // namespace detail
 
-// 1-2-3 rotation A(alpha) B(beta) C(gamma) (eq. 4.4.9-4.4.12, with the erratum of method.md 7).
+// 1-2-3 rotation A(alpha) B(beta) C(gamma) (eq. 4.4.9-4.4.12, with the erratum of doc/method.md 7).
 template <typename S>
 Mat3<S> rotation_123(S alpha, S beta, S gamma) {
   using std::cos;

@@ -1,5 +1,7 @@
-// Absolute kinematics by the O(N) outward recursion along the lower body array (method.md 4).
+// Absolute kinematics by the O(N) outward recursion along the lower body array (doc/method.md 4).
 #pragma once
+
+#include <cassert>
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/joint_motion.h"
@@ -22,7 +24,7 @@ void reorthonormalize(Mat3<S>& r) {
   r = r * (S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
 }
 
-// Orientation, origin and mass center of body k from its lower body's (method.md 4); also
+// Orientation, origin and mass center of body k from its lower body's (doc/method.md 4); also
 // returns d = S0J (q_k + s_k) and rho = S0K r_k, which the velocity terms reuse.
 template <typename S>
 void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d,
@@ -43,6 +45,7 @@ void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, 
 template <typename S>
 void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>& data,
                         Level level = Level::kAcceleration) {
+  assert(sized_for(data, model) && "forward_kinematics: Data made for another model");
   JointMotion<S> m;
   const bool velocities = level != Level::kPose;
   const bool accelerations = level == Level::kAcceleration;
@@ -68,7 +71,7 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
     const Vec3<S> w0 = s0j * w;
     const Vec3<S>& omega_j = data.omega[j];
     data.omega[k] = omega_j + w0;                                                // eq. 4.4.6
-    data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // method.md 4
+    data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // doc/method.md 4
     data.mass_center_velocity[k] = data.origin_velocity[k] + data.omega[k].cross(rho);
     if (!accelerations) continue;
 
@@ -78,7 +81,7 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
       wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
     const Vec3<S>& alpha_j = data.alpha[j];
     data.alpha[k] = alpha_j + s0j * wd + omega_j.cross(w0);  // eq. 4.5.1
-    Vec3<S>& a_o = data.origin_acceleration[k];              // method.md 4
+    Vec3<S>& a_o = data.origin_acceleration[k];              // doc/method.md 4
     a_o = data.origin_acceleration[j] + alpha_j.cross(d) + omega_j.cross(omega_j.cross(d));
     if (translates) {
       Vec3<S> sdd = Vec3<S>::Zero();  // s_k'' in Bj

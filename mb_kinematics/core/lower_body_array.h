@@ -1,4 +1,4 @@
-// The lower body array L(k) and its powers L^t(k) (method.md 1, eq. 4.2.1).
+// The lower body array L(k) and its powers L^t(k) (doc/method.md 1, eq. 4.2.1).
 #pragma once
 
 #include <functional>

@@ -32,9 +32,7 @@ void validate_body(Body& body, int k) {
   const Mat3<double> c = joint.rotation;
   if ((c.transpose() * c - Mat3<double>::Identity()).norm() > 1e-9 || c.determinant() < 0)
     fail(body, k, "joint rotation (C_k) is not a proper rotation");
-  const bool uses_axis = joint.type == JointType::kRevolute ||
-                         joint.type == JointType::kPrismatic || joint.type == JointType::kPlanar;
-  if (uses_axis) {
+  if (joint_traits(joint.type).uses_axis) {
     if (joint.axis.norm() < 1e-12) fail(body, k, "joint axis is zero");
     // Normalize unless already unit to rounding, so that finalizing twice changes nothing.
     if (std::abs(joint.axis.squaredNorm() - 1.0) > 4 * std::numeric_limits<double>::epsilon())
@@ -151,18 +149,10 @@ void finalize_model(Model& model) {
     const JointType type = body.joint.type;
     for (const std::string& suffix : coordinate_suffixes(type))
       model.coordinate_names.push_back(body.joint.name + (suffix.empty() ? "" : "/" + suffix));
-    const int ns = speed_count(type, model.speeds);
-    if (ns == coordinate_count(type)) {
-      for (int i = 0; i < ns; ++i)
-        model.speed_names.push_back(model.coordinate_names[model.nq + i]);
-    } else {  // Euler joint with angular velocity speeds: translations keep their names
-      for (int i = 0; i < ns - 3; ++i)
-        model.speed_names.push_back(model.coordinate_names[model.nq + i]);
-      for (const char* w : {"wx", "wy", "wz"})
-        model.speed_names.push_back(body.joint.name + "/" + w);
-    }
+    for (const std::string& suffix : speed_suffixes(type, model.speeds))
+      model.speed_names.push_back(body.joint.name + (suffix.empty() ? "" : "/" + suffix));
     model.nq += coordinate_count(type);
-    model.nv += ns;
+    model.nv += speed_count(type, model.speeds);
   }
   check_unique(model, model.coordinate_names, false);
   check_unique(model, model.speed_names, true);

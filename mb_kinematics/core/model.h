@@ -1,4 +1,7 @@
-// The immutable model: lower body array, joints, mass centers and masses (design.md).
+// The model: lower body array, joints, mass centers and masses (doc/method.md 8). Plain data, built
+// by the loaders (or by hand) and made consistent by finalize_model; the algorithms take it
+// const. Whoever changes a field afterwards (the node sets `speeds` once, at load) must call
+// finalize_model again before using it.
 #pragma once
 
 #include <string>
@@ -37,7 +40,7 @@ struct Model {
   std::vector<Mimic> mimics;
   int nq = 0;                                 // number of coordinates
   int nv = 0;                                 // number of generalized speeds
-  std::vector<std::string> coordinate_names;  // nq names (design.md "Coordinate names")
+  std::vector<std::string> coordinate_names;  // nq names (doc/method.md 8)
   std::vector<std::string> speed_names;       // nv names; equal to coordinate_names unless
                                               // Euler joints use angular velocity speeds
 

@@ -1,8 +1,9 @@
 // Absolute kinematics through the partial velocity arrays omega_krm, v_krm and their time
-// derivatives (method.md 5, eq. 4.4.20-4.4.32, 4.7.7-4.7.12, 4.8). Stored sparse: body k keeps
+// derivatives (doc/method.md 5, eq. 4.4.20-4.4.32, 4.7.7-4.7.12, 4.8). Stored sparse: body k keeps
 // only the columns of the speeds of its own joint and its ancestors' joints.
 #pragma once
 
+#include <cassert>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
@@ -53,6 +54,8 @@ template <typename S>
 void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                  PartialVelocities<S>& pv, Data<S>& data,
                                  Level level = Level::kAcceleration) {
+  assert(sized_for(data, model) && pv.begin.size() == model.bodies.size() &&
+         "partial_velocity_kinematics: Data or PartialVelocities made for another model");
   JointMotion<S> m;
   const bool velocities = level != Level::kPose;
   const bool accelerations = level == Level::kAcceleration;

@@ -19,7 +19,7 @@ struct JointState {
     for (int k = 1; k <= model.body_count(); ++k) {
       const Body& body = model.bodies[k];
       if (uses_euler_parameters(body.joint.type))  // identity: e4 = 1
-        position[body.q_index + coordinate_count(body.joint.type) - 1] = S(1);
+        position[body.q_index + first_euler_parameter(body.joint.type) + 3] = S(1);
     }
   }
 };

@@ -17,22 +17,6 @@ std::string where(const Model& model, int k, const std::string& kind, const std:
          "': ";
 }
 
-// True for the coordinates that are angles: unbounded finite values are fine.
-bool is_angle(JointType type, int i) {
-  switch (type) {
-    case JointType::kRevolute:
-      return true;
-    case JointType::kBall123:
-      return true;
-    case JointType::kFree123:
-      return i >= 3;
-    case JointType::kPlanar:
-      return i == 2;
-    default:
-      return false;
-  }
-}
-
 // Message for one value, "" if fine.
 std::string check_value(double x, bool bounded) {
   if (!std::isfinite(x)) return "not finite (" + number(x) + ")";
@@ -54,7 +38,9 @@ std::string check_state(const Model& model, const JointState<double>& state) {
     const JointType type = body.joint.type;
     const int nq = coordinate_count(type), nv = speed_count(type, model.speeds);
     for (int i = 0; i < nq; ++i) {
-      const std::string problem = check_value(state.position[body.q_index + i], !is_angle(type, i));
+      const std::string problem = check_value(
+          state.position[body.q_index + i],
+          coordinate_kind(type, i) != CoordinateKind::kAngle);  // angles may be unbounded
       if (!problem.empty())
         return where(model, k, "coordinate", model.coordinate_names[body.q_index + i]) + problem;
     }
@@ -66,7 +52,7 @@ std::string check_state(const Model& model, const JointState<double>& state) {
       if (!problem.empty()) return where(model, k, "acceleration of", name) + problem;
     }
     if (uses_euler_parameters(type)) {
-      const int e = body.q_index + nq - 4;
+      const int e = body.q_index + first_euler_parameter(type);
       const double n2 = state.position.segment<4>(e).squaredNorm();
       if (!(n2 >= kMinEulerNormSquared)) {
         const std::string& first = model.coordinate_names[e];

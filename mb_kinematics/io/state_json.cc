@@ -4,12 +4,12 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "mb_kinematics/core/printable.h"
+
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -95,11 +95,7 @@ JointState<double> read_state_string(const Model& model, const std::string& text
 }
 
 JointState<double> read_state_file(const Model& model, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open state file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return read_state_string(model, text.str(), path);
+  return read_state_string(model, read_text_file(path, "state file"), path);
 }
 
 }  // namespace mbk

@@ -1,5 +1,5 @@
 // STATE.json for `mbk eval`: {"position": {coord: value}, "velocity": {...},
-// "acceleration": {...}} (design.md). Missing coordinates are 0, except that a missing Euler
+// "acceleration": {...}} (doc/method.md 8). Missing coordinates are 0, except that a missing Euler
 // parameter set is the identity (e4 = 1). Mimic coordinates are computed from their sources.
 #pragma once
 

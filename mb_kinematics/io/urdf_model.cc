@@ -5,7 +5,6 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <mutex>
 #include <set>
@@ -13,8 +12,9 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/inertia.h"
-#include "mb_kinematics/io/urdf_writer.h"
 #include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/io/text_file.h"
+#include "mb_kinematics/io/urdf_writer.h"
 
 namespace mbk {
 namespace {
@@ -58,6 +58,7 @@ JointType joint_type(const urdf::Joint& joint) {
       return JointType::kFree123;
     case urdf::Joint::PLANAR:
       return JointType::kPlanar;
+    case urdf::Joint::UNKNOWN:
     default:
       throw std::invalid_argument("joint '" + joint.name + "' has an unknown type");
   }
@@ -114,7 +115,7 @@ Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
   body.joint.offset = Vec3<double>(origin.position.x, origin.position.y, origin.position.z);
   const urdf::Rotation& r = origin.rotation;
   body.joint.rotation = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
-  if (body.joint.type != JointType::kFixed && body.joint.type != JointType::kFree123)
+  if (joint_traits(body.joint.type).uses_axis)
     body.joint.axis = Vec3<double>(joint.axis.x, joint.axis.y, joint.axis.z);
   if (link.inertial) {
     const urdf::Vector3& c = link.inertial->origin.position;
@@ -224,11 +225,7 @@ Model load_urdf_string(const std::string& xml, const std::string& source) {
 }
 
 Model load_urdf_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open URDF file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_urdf_string(text.str(), path);
+  return load_urdf_string(read_text_file(path, "URDF file"), path);
 }
 
 }  // namespace mbk

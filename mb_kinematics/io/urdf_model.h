@@ -1,5 +1,6 @@
 // URDF (urdfdom) into a Model: R is the root link's frame, every other link is a body,
-// numbered breadth-first from the root in the order the URDF file lists its joints (design.md).
+// numbered breadth-first from the root in the order the URDF file lists its joints (doc/method.md
+// 8).
 #pragma once
 
 #include <string>

@@ -145,32 +145,36 @@ std::string visuals(const Model& model, int k, const std::vector<int>& children)
   return out.str();
 }
 
-// A ball or free joint on 1-2-3 angles as URDF joints: prismatic x, y, z (free joints), then
-// continuous joints about x, the new y and the new z, through massless links <body>__<coord>.
-void write_angle_chain(UrdfOut& out, const Body& body, const std::string& parent) {
-  const Vec3<double> ex = Vec3<double>::UnitX(), ey = Vec3<double>::UnitY(),
-                     ez = Vec3<double>::UnitZ();
-  struct Step {
-    const char* coordinate;
-    const char* type;
-    const Vec3<double>* axis;
-  };
-  const Step steps[] = {{"x", "prismatic", &ex},     {"y", "prismatic", &ey},
-                        {"z", "prismatic", &ez},     {"alpha", "continuous", &ex},
-                        {"beta", "continuous", &ey}, {"gamma", "continuous", &ez}};
+// A joint as a one-axis URDF joint per coordinate (UrdfForm::kAxisChain): translations
+// prismatic along x, y, z, then 1-2-3 angles continuous about x, the new y and the new z
+// (doc/method.md 2), through massless links <body>__<coord>.
+void write_axis_chain(UrdfOut& out, const Body& body, const std::string& parent) {
   const Joint& joint = body.joint;
-  const int first = joint.type == JointType::kFree123 ? 0 : 3;
+  const std::vector<Coordinate>& coordinates = joint_traits(joint.type).coordinates;
   std::string from = parent;
-  for (int i = first; i < 6; ++i) {
-    const bool last = i == 5;
-    const std::string to = last ? body.name : body.name + "__" + steps[i].coordinate;
-    write_joint(out, joint.name + "/" + steps[i].coordinate, steps[i].type, from, to,
-                i == first ? origin(joint.offset, joint.rotation)
-                           : origin(Vec3<double>::Zero(), Mat3<double>::Identity()),
-                steps[i].axis);
+  int translations = 0, angles = 0;
+  for (size_t i = 0; i < coordinates.size(); ++i) {
+    const Coordinate& c = coordinates[i];
+    const bool last = i + 1 == coordinates.size();
+    const bool translation = c.kind == CoordinateKind::kTranslation;
+    const Vec3<double> axis = Vec3<double>::Unit(translation ? translations++ : angles++);
+    const std::string to = last ? body.name : body.name + "__" + c.suffix;
+    write_joint(out, joint.name + "/" + c.suffix, translation ? "prismatic" : "continuous", from,
+                to,
+                i == 0 ? origin(joint.offset, joint.rotation)
+                       : origin(Vec3<double>::Zero(), Mat3<double>::Identity()),
+                &axis);
     if (!last) write_link(out, to, nullptr, "");
     from = to;
   }
+}
+
+// More than one rotation coordinate: drawn as one URDF floating joint by UrdfStyle::kDisplay.
+bool multi_axis(JointType type) {
+  int rotations = 0;
+  for (const Coordinate& c : joint_traits(type).coordinates)
+    rotations += c.kind != CoordinateKind::kTranslation;
+  return rotations > 1;
 }
 
 }  // namespace
@@ -196,34 +200,22 @@ std::string write_urdf(const Model& model, const std::string& robot_name, UrdfSt
     const Joint& joint = body.joint;
     const std::string parent = model.bodies[body.lower].name;
     const std::string first = origin(joint.offset, joint.rotation);
-    const bool multi_axis = joint.type == JointType::kBall123 ||
-                            joint.type == JointType::kFree123 || uses_euler_parameters(joint.type);
-    if (style == UrdfStyle::kDisplay && multi_axis) {
+    const JointTraits& traits = joint_traits(joint.type);
+    if (style == UrdfStyle::kDisplay && multi_axis(joint.type)) {
       write_joint(out, joint.name, "floating", parent, body.name, first, nullptr);
       write_link(out, body.name, &body, visuals(model, k, children[k]));
       continue;
     }
-    switch (joint.type) {
-      case JointType::kFixed:
-        write_joint(out, joint.name, "fixed", parent, body.name, first, nullptr);
+    switch (traits.urdf_form) {
+      case UrdfForm::kJoint:
+        write_joint(out, joint.name, traits.urdf_type, parent, body.name, first,
+                    traits.uses_axis ? &joint.axis : nullptr,
+                    traits.coordinates.size() == 1 ? mimics[body.q_index] : "");
         break;
-      case JointType::kRevolute:
-        write_joint(out, joint.name, "continuous", parent, body.name, first, &joint.axis,
-                    mimics[body.q_index]);
+      case UrdfForm::kAxisChain:
+        write_axis_chain(out, body, parent);
         break;
-      case JointType::kPrismatic:
-        write_joint(out, joint.name, "prismatic", parent, body.name, first, &joint.axis,
-                    mimics[body.q_index]);
-        break;
-      case JointType::kPlanar:
-        write_joint(out, joint.name, "planar", parent, body.name, first, &joint.axis);
-        break;
-      case JointType::kBall123:
-      case JointType::kFree123:
-        write_angle_chain(out, body, parent);
-        break;
-      case JointType::kBallEuler:
-      case JointType::kFreeEuler:
+      case UrdfForm::kNone:
         throw std::invalid_argument("body '" + body.name + "': joint '" + joint.name + "' (" +
                                     to_string(joint.type) + ") has no URDF equivalent");
     }

@@ -4,8 +4,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -13,6 +11,7 @@
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/rpy.h"
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -189,11 +188,7 @@ Model load_yaml_scene_string(const std::string& text, const std::string& source)
 }
 
 Model load_yaml_scene_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open scene file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return load_yaml_scene_string(text.str(), path);
+  return load_yaml_scene_string(read_text_file(path, "scene file"), path);
 }
 
 }  // namespace mbk

@@ -104,7 +104,7 @@ int JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
   for (int k = 1; k <= model_.body_count(); ++k) {
     const mbk::Body& body = model_.bodies[k];
     if (!mbk::uses_euler_parameters(body.joint.type)) continue;
-    const int e = body.q_index + mbk::coordinate_count(body.joint.type) - 4;
+    const int e = body.q_index + mbk::first_euler_parameter(body.joint.type);
     double dot = 0;
     bool all = true;
     for (int i = e; i < e + 4; ++i) {

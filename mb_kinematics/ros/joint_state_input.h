@@ -1,4 +1,4 @@
-// sensor_msgs/JointState into the core's JointState (design.md, "Topics of the node"): names
+// sensor_msgs/JointState into the core's JointState (doc/method.md 8): names
 // matched to coordinates, partial messages from several publishers merged per coordinate,
 // mimic coordinates filled by mbk::apply_mimics, and velocities and accelerations that the
 // messages do not carry estimated per coordinate from its own successive samples.

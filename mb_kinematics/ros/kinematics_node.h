@@ -1,4 +1,4 @@
-// mb_kinematics_node: a thin adapter from joint_states to the core (design.md "Topics of the
+// mb_kinematics_node: a thin adapter from joint_states to the core (doc/method.md 8; README "The
 // node"), in the manner of robot_state_publisher: parameters read in one place, one callback
 // per sample, throttled warnings that say what was wrong. It keeps the input, the pairing with
 // joint_accelerations and the dispatch to its outputs (outputs/output_table.cc); the outputs

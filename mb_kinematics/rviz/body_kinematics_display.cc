@@ -13,20 +13,21 @@
 
 #include "mb_kinematics/rviz/body_kinematics_visual.h"
 #include "mb_kinematics/rviz/system_kinematics_visual.h"
+#include "mb_kinematics/viz/glyph_bodies.h"
 
 namespace mbk_rviz {
 namespace {
 
-QColor qcolor(const mbk_ros::Rgba& c) { return QColor::fromRgbF(c.r, c.g, c.b); }
+QColor qcolor(const mbk::Rgba& c) { return QColor::fromRgbF(c.r, c.g, c.b); }
 
-mbk_ros::Rgba rgba(const QColor& c) {
+mbk::Rgba rgba(const QColor& c) {
   return {static_cast<float>(c.redF()), static_cast<float>(c.greenF()),
           static_cast<float>(c.blueF()), 1.0f};
 }
 
-const char* const kTitles[mbk_ros::GlyphQuantity::kCount] = {
+const char* const kTitles[mbk::GlyphQuantity::kCount] = {
     "Velocity", "Acceleration", "Angular Velocity", "Angular Acceleration"};
-const char* const kWhat[mbk_ros::GlyphQuantity::kCount] = {
+const char* const kWhat[mbk::GlyphQuantity::kCount] = {
     "velocity of each mass center G_k", "acceleration of each mass center G_k",
     "angular velocity omega_k of each body (arrow and arc)",
     "angular acceleration alpha_k of each body (arrow and arc)"};
@@ -34,10 +35,10 @@ const char* const kWhat[mbk_ros::GlyphQuantity::kCount] = {
 }  // namespace
 
 BodyKinematicsDisplay::BodyKinematicsDisplay() {
-  const mbk_ros::GlyphStyle d;
-  const char* units[mbk_ros::GlyphQuantity::kCount] = {"m per m/s", "m per m/s^2", "m per rad/s",
-                                                       "m per rad/s^2"};
-  for (int q = 0; q < mbk_ros::GlyphQuantity::kCount; ++q)
+  const mbk::GlyphStyle d;
+  const char* units[mbk::GlyphQuantity::kCount] = {"m per m/s", "m per m/s^2", "m per rad/s",
+                                                   "m per rad/s^2"};
+  for (int q = 0; q < mbk::GlyphQuantity::kCount; ++q)
     makeQuantityProperties(q, qcolor(d.color[q]), d.scale[q], units[q]);
   auto_scale_ = new rviz::BoolProperty(
       "Auto Scale", true,
@@ -70,7 +71,7 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
   alpha_->setMin(0);
   alpha_->setMax(1);
   filter_ = new rviz::StringProperty(
-      "Body Filter", mbk_ros::kDefaultBodyFilter,
+      "Body Filter", mbk::kDefaultBodyFilter,
       "Regular expression (ECMAScript); bodies whose name it matches are drawn. The default "
       "leaves out the massless links <body>__<coord> of expanded ball and free joints.",
       this, SLOT(updateFilter()));
@@ -172,7 +173,7 @@ void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
 }
 
 void BodyKinematicsDisplay::updateStyle() {
-  for (int q = 0; q < mbk_ros::GlyphQuantity::kCount; ++q) {
+  for (int q = 0; q < mbk::GlyphQuantity::kCount; ++q) {
     style_.show[q] = quantity_[q].show->getBool();
     style_.scale[q] = quantity_[q].scale->getFloat();
     style_.color[q] = rgba(quantity_[q].color->getColor());
@@ -202,14 +203,14 @@ void BodyKinematicsDisplay::updateHistoryLength() {
   visuals_.rset_capacity(history_length_->getInt());
 }
 
-void BodyKinematicsDisplay::autoScale(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
+void BodyKinematicsDisplay::autoScale(const std::vector<mbk::GlyphBody>& bodies) {
   if (!auto_scale_->getBool()) return;
-  for (int q = 0; q < mbk_ros::GlyphQuantity::kCount; ++q)
+  for (int q = 0; q < mbk::GlyphQuantity::kCount; ++q)
     style_.scale[q] =
-        auto_scales_[q].update(mbk_ros::max_norm(msg, style_, q), auto_length_->getFloat());
+        auto_scales_[q].update(mbk::max_norm(bodies, style_, q), auto_length_->getFloat());
 }
 
-void BodyKinematicsDisplay::reportSkipped(const mbk_ros::Glyphs& glyphs) {
+void BodyKinematicsDisplay::reportSkipped(const mbk::Glyphs& glyphs) {
   if (glyphs.skipped.empty()) {
     deleteStatus("Invalid values");
     return;
@@ -252,8 +253,9 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
   }
   deleteStatus("Transform");
   if (!filter_ok_) return;
-  autoScale(msg);
-  const mbk_ros::Glyphs glyphs = mbk_ros::make_glyphs(msg, style_);
+  const std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
+  autoScale(bodies);
+  const mbk::Glyphs glyphs = mbk::make_glyphs(bodies, style_);
   reportSkipped(glyphs);
   std::shared_ptr<BodyKinematicsVisual> visual = nextVisual();
   visual->setFramePose(position, orientation);

@@ -17,7 +17,7 @@
 #include <memory>
 #include <vector>
 
-#include "mb_kinematics/ros/kinematics_markers.h"
+#include "mb_kinematics/viz/glyphs.h"
 #endif
 
 namespace rviz {
@@ -61,23 +61,23 @@ class BodyKinematicsDisplay
   void processMessage(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) override;
   void draw(const mb_kinematics_msgs::BodyKinematicsArray& msg);
   void makeQuantityProperties(int q, const QColor& color, double scale, const QString& unit);
-  void autoScale(const mb_kinematics_msgs::BodyKinematicsArray& msg);
-  void reportSkipped(const mbk_ros::Glyphs& glyphs);
+  void autoScale(const std::vector<mbk::GlyphBody>& bodies);
+  void reportSkipped(const mbk::Glyphs& glyphs);
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
   void makeSystemProperties();
   void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg, const Ogre::Vector3& position,
                   const Ogre::Quaternion& orientation);
 
-  std::array<QuantityProperties, mbk_ros::GlyphQuantity::kCount> quantity_;
+  std::array<QuantityProperties, mbk::GlyphQuantity::kCount> quantity_;
   rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
   rviz::FloatProperty *auto_length_, *alpha_, *width_, *arc_radius_, *sphere_radius_;
   rviz::ColorProperty *mass_center_color_, *skeleton_color_;
   rviz::StringProperty* filter_;
   rviz::IntProperty* history_length_;
 
-  mbk_ros::GlyphStyle style_;
+  mbk::GlyphStyle style_;
   bool filter_ok_ = true;
-  std::array<mbk_ros::AutoScale, mbk_ros::GlyphQuantity::kCount> auto_scales_;
+  std::array<mbk::AutoScale, mbk::GlyphQuantity::kCount> auto_scales_;
   boost::circular_buffer<std::shared_ptr<BodyKinematicsVisual>> visuals_;
   std::vector<mb_kinematics_msgs::BodyKinematicsArray::ConstPtr> pending_;
 

@@ -11,12 +11,12 @@
 namespace mbk_rviz {
 namespace {
 
-using mbk_ros::Glyphs;
-using mbk_ros::GlyphStyle;
+using mbk::Glyphs;
+using mbk::GlyphStyle;
 
 Ogre::Vector3 ogre(const mbk::Vec3<double>& v) { return Ogre::Vector3(v.x(), v.y(), v.z()); }
 
-Ogre::ColourValue colour(const mbk_ros::Rgba& c, float alpha) {
+Ogre::ColourValue colour(const mbk::Rgba& c, float alpha) {
   return Ogre::ColourValue(c.r, c.g, c.b, c.a * alpha);
 }
 
@@ -72,7 +72,7 @@ void BodyKinematicsVisual::resizeArrows(std::vector<std::unique_ptr<rviz::Arrow>
 void BodyKinematicsVisual::setArrows(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
   resizeArrows(arrows_, glyphs.arrows.size());
   for (size_t i = 0; i < glyphs.arrows.size(); ++i) {
-    const mbk_ros::GlyphArrow& a = glyphs.arrows[i];
+    const mbk::GlyphArrow& a = glyphs.arrows[i];
     placeArrow(*arrows_[i], ogre(a.start), ogre(a.end), style.width,
                colour(style.color[a.quantity], alpha));
   }
@@ -86,7 +86,7 @@ void BodyKinematicsVisual::setArcs(const Glyphs& glyphs, const GlyphStyle& style
   arcs_->setMaxPointsPerLine(glyphs.arcs.front().points.size());
   arcs_->setNumLines(glyphs.arcs.size());
   for (size_t i = 0; i < glyphs.arcs.size(); ++i) {
-    const mbk_ros::GlyphArc& arc = glyphs.arcs[i];
+    const mbk::GlyphArc& arc = glyphs.arcs[i];
     const Ogre::ColourValue c = colour(style.color[arc.quantity], alpha);
     if (i > 0) arcs_->newLine();
     for (const mbk::Vec3<double>& p : arc.points) arcs_->addPoint(ogre(p), c);

@@ -1,4 +1,4 @@
-// One message's picture in Ogre (the glyphs of mb_kinematics/ros/kinematics_markers.h): arrows,
+// One message's picture in Ogre (the glyphs of mb_kinematics/viz/glyphs.h): arrows,
 // arcs with their heads, mass-center spheres and skeleton lines under a scene node of its own.
 // Kept and refilled message after message (no Ogre objects made per message once sized).
 #pragma once
@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "mb_kinematics/ros/kinematics_markers.h"
+#include "mb_kinematics/viz/glyphs.h"
 
 namespace rviz {
 class Arrow;
@@ -25,14 +25,14 @@ class BodyKinematicsVisual {
   BodyKinematicsVisual(const BodyKinematicsVisual&) = delete;
   BodyKinematicsVisual& operator=(const BodyKinematicsVisual&) = delete;
 
-  void set(const mbk_ros::Glyphs& glyphs, const mbk_ros::GlyphStyle& style, float alpha);
+  void set(const mbk::Glyphs& glyphs, const mbk::GlyphStyle& style, float alpha);
   void setFramePose(const Ogre::Vector3& position, const Ogre::Quaternion& orientation);
 
  private:
-  void setArrows(const mbk_ros::Glyphs& glyphs, const mbk_ros::GlyphStyle& style, float alpha);
-  void setArcs(const mbk_ros::Glyphs& glyphs, const mbk_ros::GlyphStyle& style, float alpha);
-  void setSpheres(const mbk_ros::Glyphs& glyphs, const mbk_ros::GlyphStyle& style, float alpha);
-  void setSkeleton(const mbk_ros::Glyphs& glyphs, const mbk_ros::GlyphStyle& style, float alpha);
+  void setArrows(const mbk::Glyphs& glyphs, const mbk::GlyphStyle& style, float alpha);
+  void setArcs(const mbk::Glyphs& glyphs, const mbk::GlyphStyle& style, float alpha);
+  void setSpheres(const mbk::Glyphs& glyphs, const mbk::GlyphStyle& style, float alpha);
+  void setSkeleton(const mbk::Glyphs& glyphs, const mbk::GlyphStyle& style, float alpha);
   void resizeArrows(std::vector<std::unique_ptr<rviz::Arrow>>& arrows, size_t n);
 
   Ogre::SceneManager* scene_manager_;

@@ -1,4 +1,4 @@
-// mbk: the command-line tool (design.md "Contracts").
+// mbk: the command-line tool (doc/method.md 8).
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
 //   mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]
 //       [--partial-velocities]

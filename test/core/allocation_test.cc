@@ -1,4 +1,4 @@
-// No heap allocation per update (design.md, "State / Data"): once Model, JointState, Data and
+// No heap allocation per update (doc/method.md 8): once Model, JointState, Data and
 // PartialVelocities exist, forward_kinematics and partial_velocity_kinematics allocate nothing,
 // at every level. Global operator new / new[] are replaced by counting versions; on glibc,
 // malloc is counted too, since Eigen's dynamic vectors allocate with malloc, not new.

@@ -1,5 +1,5 @@
-// Closed forms (method.md 6): single and double pendulum, a spinning top on 1-2-3 angles, and
-// slider-hinge chains, against both formulations (method.md 4 and 5).
+// Closed forms (doc/method.md 6): single and double pendulum, a spinning top on 1-2-3 angles, and
+// slider-hinge chains, against both formulations (doc/method.md 4 and 5).
 //
 // Tolerance: kTol = 1e-14 relative to each quantity's natural scale (the sum of the magnitudes of
 // the closed form's terms, e.g. l1 |th1'| + c2 |phi'| for a velocity). Every value is a few
@@ -187,7 +187,7 @@ TEST(ClosedForm, DoublePendulum) {
   }
 }
 
-// ---- Spinning top on 1-2-3 angles. Written independently of method.md 4's columns: the motion
+// ---- Spinning top on 1-2-3 angles. Written independently of doc/method.md 4's columns: the motion
 // is X(alpha) Y(beta) Z(gamma) from Eigen's elementary rotations; their derivatives are
 // d/dt R_u(th) = th' [u]x R_u and d2/dt2 R_u(th) = (th'' [u]x + th'^2 [u]x^2) R_u; S = C X Y Z by
 // the product rule; omega from the skew part of S' S^T, alpha from the skew part of S'' S^T
@@ -206,7 +206,7 @@ TEST(ClosedForm, SpinningTop123) {
   const V pivot(0.1, -0.2, 0.3), r(0.05, -0.1, 0.8);
   mbk::Body top = make_body("top", 0, mbk::JointType::kBall123, V::UnitZ(), pivot, r);
   const M c = Eigen::AngleAxisd(0.4, V(1, 2, 3).normalized()).toRotationMatrix();
-  top.joint.rotation = c;  // a tilted pivot: SJK = C_k R_motion (method.md 2)
+  top.joint.rotation = c;  // a tilted pivot: SJK = C_k R_motion (doc/method.md 2)
   const mbk::Model model = make_model({top});
   std::mt19937 rng(3);
   for (int n = 0; n < kStates; ++n) {
@@ -240,7 +240,7 @@ TEST(ClosedForm, SpinningTop123) {
   }
 }
 
-// 1-2-3 angles equal three hinges about x, then the new y, then the new z (method.md 2).
+// 1-2-3 angles equal three hinges about x, then the new y, then the new z (doc/method.md 2).
 TEST(ClosedForm, Ball123EqualsThreeHinges) {
   const V pivot(0.1, -0.2, 0.3), r(0.05, -0.1, 0.8);
   const mbk::Model ball =

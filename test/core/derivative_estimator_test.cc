@@ -1,4 +1,4 @@
-// The default derivative estimator against closed forms (design.md "Topics of the node").
+// The 3-point backward-difference estimator against closed forms (doc/method.md 8).
 #include "mb_kinematics/core/derivative_estimator.h"
 
 #include <gtest/gtest.h>
@@ -22,8 +22,12 @@ TEST(DerivativeEstimatorTest, ExactForQuadraticsOnIrregularTimes) {
     e->add(times[i], x(times[i]));
     const int n = e->estimate(first, second);
     EXPECT_EQ(n, std::min(i, 2));
-    if (n >= 1 && i >= 2) EXPECT_NEAR(first, -0.7 + 0.6 * times[i], 1e-10);
-    if (n == 2) EXPECT_NEAR(second, 0.6, 1e-8);
+    if (n >= 1 && i >= 2) {
+      EXPECT_NEAR(first, -0.7 + 0.6 * times[i], 1e-10);
+    }
+    if (n == 2) {
+      EXPECT_NEAR(second, 0.6, 1e-8);
+    }
   }
 }
 

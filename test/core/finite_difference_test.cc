@@ -1,6 +1,6 @@
-// Checks that need no other program (method.md 6) on random trees with every joint type:
+// Checks that need no other program (doc/method.md 6) on random trees with every joint type:
 // velocities and accelerations are the time derivatives of positions and velocities along smooth
-// trajectories, omega is the skew part of S0K' S0K^T; the two formulations (method.md 4 and 5)
+// trajectories, omega is the skew part of S0K' S0K^T; the two formulations (doc/method.md 4 and 5)
 // agree; and the double instantiation agrees with the long double one.
 #include <gtest/gtest.h>
 
@@ -36,8 +36,8 @@ const double kTimes[] = {0.0, 0.73, 2.9};
 constexpr double kH = 5e-4;
 constexpr double kFdTol = 1e-10;
 
-// The formulations agree to rounding (method.md 5): 1e-12 relative to the sum of magnitudes of
-// the method.md 5 sums (SumScales), which bounds the rounding of either (< ~300 terms of a few
+// The formulations agree to rounding (doc/method.md 5): 1e-12 relative to the sum of magnitudes of
+// the doc/method.md 5 sums (SumScales), which bounds the rounding of either (< ~300 terms of a few
 // ulp each: at most ~1e-13; measured 4e-16).
 constexpr double kAgreeTol = 1e-12;
 
@@ -97,7 +97,7 @@ void expect_derivatives(const mbk::Model& model, const StateAt& state_at, double
     expect_derivative(samples, at, &D::origin_velocity, &D::origin_acceleration, k,
                       w + "aO = dvO/dt");
     expect_derivative(samples, at, &D::omega, &D::alpha, k, w + "alpha = d omega/dt");
-    // omega from the skew part of S0K' S0K^T (method.md 6); S0K is O(1).
+    // omega from the skew part of S0K' S0K^T (doc/method.md 6); S0K is O(1).
     const V omega =
         mbk_test::vee_of_skew_part(rotation_derivative(samples, k) * at.rotation[k].transpose());
     EXPECT_LE((omega - at.omega[k]).norm(), kFdTol * std::max(1.0, at.omega[k].norm()))
@@ -140,7 +140,7 @@ void expect_agree(const V& a, const V& b, double scale, const std::string& what)
 
 void expect_same_pose(const mbk::Data<double>& a, const mbk::Data<double>& b, int k,
                       const std::string& w) {
-  // Poses are the same products in both (method.md 4); positions relative to max(1 m, |p|).
+  // Poses are the same products in both (doc/method.md 4); positions relative to max(1 m, |p|).
   EXPECT_LE((a.rotation[k] - b.rotation[k]).norm(), kAgreeTol) << w << "S0K";
   expect_agree(a.origin[k], b.origin[k], std::max(1.0, a.origin[k].norm()), w + "origin");
   expect_agree(a.mass_center[k], b.mass_center[k], std::max(1.0, a.mass_center[k].norm()),

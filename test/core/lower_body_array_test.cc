@@ -1,4 +1,4 @@
-// The chapter's Tables 4.2.1 and 4.2.2 reproduced from the lower body arrays (method.md 1).
+// The chapter's Tables 4.2.1 and 4.2.2 reproduced from the lower body arrays (doc/method.md 1).
 #include "mb_kinematics/core/lower_body_array.h"
 
 #include <gtest/gtest.h>
@@ -24,7 +24,7 @@ TEST(LowerBodyArray, Table421TenBodySystem) {
 }
 
 TEST(LowerBodyArray, Table422HumanBodyModel) {
-  // Table 4.2.2 (16 bodies, body 1 implicit in the chapter's print: method.md 7).
+  // Table 4.2.2 (16 bodies, body 1 implicit in the chapter's print: doc/method.md 7).
   const Table expected = {
       {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16},
       {0, 1, 2, 3, 4, 5, 4, 7, 4, 9, 2, 11, 12, 2, 14, 15},

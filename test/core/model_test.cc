@@ -1,5 +1,5 @@
-// finalize_model (design.md "Architecture": validated once, errors name the body and the field),
-// coordinate and speed names (design.md "Coordinate names"), the initial state and mimics.
+// finalize_model (doc/method.md 8: validated once, errors name the body and the field),
+// coordinate and speed names (doc/method.md 8), the initial state and mimics.
 #include "mb_kinematics/core/model.h"
 
 #include <gtest/gtest.h>
@@ -62,7 +62,7 @@ TEST(FinalizeModel, AcceptsTheValidModel) {
 
 TEST(FinalizeModel, BadLowerBodyNamesBodyAndL) {
   mbk::Model model = three_bodies();
-  model.bodies[3].lower = 3;  // L(k) must be < k (method.md 1)
+  model.bodies[3].lower = 3;  // L(k) must be < k (doc/method.md 1)
   expect_error(model, {"body 3", "L(3) = 3"});
   model.bodies[3].lower = -1;
   expect_error(model, {"body 3", "L(3) = -1"});
@@ -143,7 +143,7 @@ TEST(FinalizeModel, NormalizesAxes) {
   EXPECT_EQ(model.bodies[2].joint.axis, V(0, 0, 1));
 }
 
-// ---- Coordinate and speed names (design.md "Coordinate names").
+// ---- Coordinate and speed names (doc/method.md 8).
 
 mbk::Model every_joint_type(mbk::SpeedKind speeds) {
   mbk::Model model;

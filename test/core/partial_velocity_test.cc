@@ -1,5 +1,5 @@
-// The partial velocity arrays (method.md 5): their sparsity along the lower body array, the
-// chapter's Table 4.4.1 with its erratum (method.md 7), that they are the body Jacobians'
+// The partial velocity arrays (doc/method.md 5): their sparsity along the lower body array, the
+// chapter's Table 4.4.1 with its erratum (doc/method.md 7), that they are the body Jacobians'
 // columns, their O(N * depth) storage, and their time derivatives.
 #include "mb_kinematics/core/partial_velocity.h"
 
@@ -61,7 +61,7 @@ mbk::JointState<double> some_state(const mbk::Model& model, unsigned seed) {
 }
 
 // ---- Sparsity: omega_krm has nonzero column blocks exactly for the speeds of Bk's joint and of
-// its ancestors' joints (method.md 5); all other columns are zero and not stored.
+// its ancestors' joints (doc/method.md 5); all other columns are zero and not stored.
 TEST(PartialVelocities, SparsityOfTheTenBodySystem) {
   const mbk::Model model = mbk::make_bare_model(kTenBody, JointType::kBall123);
   ASSERT_EQ(model.nv, 30);
@@ -77,7 +77,7 @@ TEST(PartialVelocities, SparsityOfTheTenBodySystem) {
   }
 }
 
-// Table 4.4.1, column k = 6, with L(6) = 5 (method.md 7): blocks of B1, B5 and B6, not of B4.
+// Table 4.4.1, column k = 6, with L(6) = 5 (doc/method.md 7): blocks of B1, B5 and B6, not of B4.
 TEST(PartialVelocities, BodySixHasBlocksOfB1B5B6NotB4) {
   const mbk::Model model = mbk::make_bare_model(kTenBody, JointType::kBall123);
   const mbk::PartialVelocities<double> pv(model);
@@ -122,9 +122,9 @@ TEST(PartialVelocities, Table441ColumnSixWithQuasiCoordinates) {
     }
 }
 
-// ---- The partial velocities are the columns of the body Jacobians (method.md 5): with the unit
-// speed vector e_r, the recursion of method.md 4 gives omega_k = omega_kr and v_k = v_kr (zero
-// where r is not stored). Exact: the recursion then adds only zeros to the same products.
+// ---- The partial velocities are the columns of the body Jacobians (doc/method.md 5): with the
+// unit speed vector e_r, the recursion of doc/method.md 4 gives omega_k = omega_kr and v_k = v_kr
+// (zero where r is not stored). Exact: the recursion then adds only zeros to the same products.
 void expect_jacobian_columns(const mbk::Model& model, const mbk::JointState<double>& state,
                              const std::string& tag) {
   mbk::PartialVelocities<double> pv(model);
@@ -224,7 +224,7 @@ TEST(PartialVelocities, StorageIsSumOfAncestorSpeeds) {
     }
 }
 
-// ---- Time derivatives of the partial velocities (method.md 5, eq. 4.5.2-4.5.4, 4.8.3-4.8.7):
+// ---- Time derivatives of the partial velocities (doc/method.md 5, eq. 4.5.2-4.5.4, 4.8.3-4.8.7):
 // omega_kr', v_kr' and the origin's are d/dt of the stored columns along a trajectory. Same
 // fourth-order central difference, step and tolerance as finite_difference_test.cc: h = 5e-4,
 // truncation ~h^4/30 Omega^4 |f'| ~ 2e-11 and rounding ~3e3 * depth * eps |f| ~ 1e-11 relative to

@@ -1,6 +1,6 @@
 // Every loader error path (YAML scenes, URDF, STATE.json, model files) ends in one
-// std::invalid_argument whose one-line message says what is wrong and where (design.md "Bad
-// input"), never in a crash, another exception type or a silently accepted model.
+// std::invalid_argument whose one-line message says what is wrong and where (doc/method.md
+// 8), never in a crash, another exception type or a silently accepted model.
 #include <gtest/gtest.h>
 
 #include <functional>

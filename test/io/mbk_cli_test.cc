@@ -1,4 +1,4 @@
-// The `mbk` command line as users run it (design.md "Contracts"): the built executable, from
+// The `mbk` command line as users run it (doc/method.md 8): the built executable, from
 // the source directory, its stdout, stderr and exit code.
 #include <gtest/gtest.h>
 #include <sys/wait.h>

@@ -1,6 +1,6 @@
 // The shipped scenes in their two forms (config/*.yaml and the URDF generated from it) are the
 // same model: same bodies, coordinates and kinematics. Also the body numbering rules of
-// design.md (YAML: file order; URDF: breadth-first in the file's joint order).
+// doc/method.md 8 (YAML: file order; URDF: breadth-first in the file's joint order).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Peer check against Orocos KDL (design.md "Peers"): link poses from KDL's tree solver and link
+// Peer check against Orocos KDL (doc/method.md 8): link poses from KDL's tree solver and link
 // twists from its chain velocity solver, on the shipped URDFs and on URDFs written from random
 // trees, for random joint positions and velocities. KDL has no acceleration kinematics (no
 // forward solver for FrameAcc in orocos_kdl 1.5), so accelerations are not compared here.

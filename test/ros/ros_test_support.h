@@ -1,7 +1,7 @@
 // Shared by the node's integration tests (test/ros/*.test): the test robot, a quadratic joint
 // trajectory (which backward_difference, the estimator of the tests' nodes, differentiates
 // exactly), the expected kinematics from the core's other formulation (partial velocities,
-// method.md 5; the node uses the recursion of method.md 4), and a recorder of body_kinematics
+// doc/method.md 5; the node uses the recursion of doc/method.md 4), and a recorder of body_kinematics
 // messages.
 #pragma once
 

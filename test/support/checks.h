@@ -27,13 +27,13 @@ T central_difference(const std::function<T(int)>& sample, double h) {
   return sum / (12.0 * h);
 }
 
-// The angular velocity w with [w]x = skew part of W (W = S' S^T, method.md 6).
+// The angular velocity w with [w]x = skew part of W (W = S' S^T, doc/method.md 6).
 inline mbk::Vec3<double> vee_of_skew_part(const mbk::Mat3<double>& w) {
   const mbk::Mat3<double> s = 0.5 * (w - w.transpose());
   return mbk::Vec3<double>(s(2, 1), s(0, 2), s(1, 0));
 }
 
-// Both formulations (method.md 4 and 5) on one state.
+// Both formulations (doc/method.md 4 and 5) on one state.
 struct BothFormulations {
   mbk::Data<double> recursive;
   mbk::Data<double> partial;
@@ -51,7 +51,7 @@ struct BothFormulations {
 
 // Magnitude scales of body k's velocity-level sums, sum over r of |column_r| |y_r| (and for the
 // accelerations |column_r| |y_r'| + |column_r'| |y_r|): the rounding error of either
-// formulation is a modest multiple of eps times these (method.md 5 sums over these columns).
+// formulation is a modest multiple of eps times these (doc/method.md 5 sums over these columns).
 struct SumScales {
   double omega = 0, velocity = 0, origin_velocity = 0, alpha = 0, acceleration = 0,
          origin_acceleration = 0;

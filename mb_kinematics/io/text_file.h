@@ -1,0 +1,11 @@
+// The whole of a text file, for the loaders of scenes, URDF and STATE.json.
+#pragma once
+
+#include <string>
+
+namespace mbk {
+
+// Throws std::invalid_argument("<path>: cannot open <what>") if the file cannot be read.
+std::string read_text_file(const std::string& path, const std::string& what);
+
+}  // namespace mbk

@@ -1,0 +1,124 @@
+#include "mb_kinematics/viz/glyphs.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mbk {
+namespace {
+
+constexpr int kArcSegments = 24;
+constexpr double kArcSweep = 1.5 * M_PI;  // 3/4 of a turn
+
+bool finite(const GlyphBody& b) {
+  bool ok = b.origin.allFinite() && b.mass_center.allFinite() && b.orientation.coeffs().allFinite();
+  for (const Vec3<double>& v : b.vectors) ok = ok && v.allFinite();
+  return ok;
+}
+
+bool drawn(const GlyphStyle& style, const GlyphBody& b) {
+  return std::regex_search(b.name, style.filter);
+}
+
+// A 3/4 arc about the arrow's axis, centred half-way along it, turning the right-hand way.
+GlyphArc make_arc(int q, const Vec3<double>& start, const Vec3<double>& v, double length,
+                  const GlyphStyle& style) {
+  GlyphArc arc;
+  arc.quantity = q;
+  const Vec3<double> n = v.normalized();
+  const Vec3<double> u = n.unitOrthogonal(), w = n.cross(u);
+  const Vec3<double> center = start + 0.5 * length * n;
+  const double r = style.arc_radius;
+  for (int i = 0; i <= kArcSegments; ++i) {
+    const double t = kArcSweep * i / kArcSegments;
+    arc.points.push_back(center + r * (std::cos(t) * u + std::sin(t) * w));
+  }
+  const Vec3<double> tangent = -std::sin(kArcSweep) * u + std::cos(kArcSweep) * w;
+  arc.head_start = arc.points.back();
+  arc.head_dir = 3 * style.width * tangent;
+  return arc;
+}
+
+void add_vectors(const GlyphBody& b, const GlyphStyle& style, Glyphs& out) {
+  const Vec3<double>& g = b.mass_center;
+  for (int q = 0; q < GlyphQuantity::kCount; ++q) {
+    if (!style.show[q]) continue;
+    const Vec3<double>& v = b.vectors[q];
+    const double length = style.scale[q] * v.norm();
+    if (!std::isfinite(length) || length < style.min_length) continue;
+    out.arrows.push_back({q, g, g + length * v.normalized()});
+    if (q == GlyphQuantity::kOmega || q == GlyphQuantity::kAlpha)
+      out.arcs.push_back(make_arc(q, g, v, length, style));
+  }
+}
+
+// Lines from each drawn body's joint point O_k to that of its nearest drawn lower body.
+void add_skeleton(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
+                  const std::vector<char>& ok, Glyphs& out) {
+  std::vector<int> at;  // body index k -> position in bodies
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const uint32_t k = bodies[i].index;
+    if (k >= at.size()) at.resize(k + 1, -1);
+    at[k] = static_cast<int>(i);
+  }
+  auto position = [&](uint32_t k) { return k < at.size() ? at[k] : -1; };
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!ok[i]) continue;
+    int j = position(bodies[i].lower);
+    for (int steps = 0; j >= 0 && !drawn(style, bodies[j]) && steps < 1000; ++steps)
+      j = position(bodies[j].lower);
+    if (j < 0 || !ok[j]) continue;
+    const Vec3<double>& a = bodies[j].origin;
+    const Vec3<double>& b = bodies[i].origin;
+    if ((a - b).norm() > 1e-6) out.skeleton.emplace_back(a, b);
+  }
+}
+
+}  // namespace
+
+const char* glyph_quantity_name(int q) {
+  switch (static_cast<GlyphQuantity::Index>(q)) {
+    case GlyphQuantity::kVelocity:
+      return "velocity";
+    case GlyphQuantity::kAcceleration:
+      return "acceleration";
+    case GlyphQuantity::kOmega:
+      return "omega";
+    case GlyphQuantity::kAlpha:
+      return "alpha";
+    case GlyphQuantity::kCount:
+      break;
+  }
+  return "?";
+}
+
+double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q) {
+  double m = 0;
+  for (const GlyphBody& b : bodies)
+    if (finite(b) && drawn(style, b)) m = std::max(m, b.vectors[q].norm());
+  return m;
+}
+
+double AutoScale::update(double max, double length, double decay) {
+  max_ = std::max(max, max_ * decay);
+  return max_ > 0 ? length / max_ : 1.0;
+}
+
+Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
+  Glyphs out;
+  std::vector<char> ok(bodies.size(), 0);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const GlyphBody& b = bodies[i];
+    if (!finite(b)) {
+      out.skipped.push_back(b.name);
+      continue;
+    }
+    if (!drawn(style, b)) continue;
+    ok[i] = 1;
+    add_vectors(b, style, out);
+    if (style.mass_centers) out.mass_centers.push_back(b.mass_center);
+  }
+  if (style.skeleton) add_skeleton(bodies, style, ok, out);
+  return out;
+}
+
+}  // namespace mbk

@@ -1,0 +1,98 @@
+// The picture of the kinematics of every body, shared by the rviz display (mb_kinematics/rviz/)
+// and the node's MarkerArray (~publish_markers, mb_kinematics/ros/kinematics_markers.h): per
+// body an arrow for the mass-center velocity and acceleration at G_k, an arrow plus a 3/4
+// circular arc (right-hand sense, with a small head) for omega and alpha, a sphere at G_k, and
+// the skeleton (lines between joint points O_k). Plain geometry (Eigen), no ROS: the display
+// draws it with Ogre, the node as Markers.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <regex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mb_kinematics/core/types.h"
+
+namespace mbk {
+
+// The vectors drawn, an index into GlyphStyle's arrays; scoped (GlyphQuantity::kOmega) so they
+// cannot be mistaken for the analysis' ErrorQuantity. Velocity and acceleration: of G_k.
+struct GlyphQuantity {
+  enum Index { kVelocity, kAcceleration, kOmega, kAlpha, kCount };
+};
+const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega", "alpha"
+
+// The default body filter: leaves out the massless links `<body>__<coord>` of ball and free
+// joints in URDFs written by `mbk urdf`.
+constexpr const char* kDefaultBodyFilter = "^(?!.*__)";
+
+struct Rgba {
+  float r, g, b, a;
+};
+
+// The defaults are distinct hues (the rviz screenshot test counts their pixels): velocity
+// cyan, acceleration orange, omega magenta, alpha yellow; mass centers white.
+struct GlyphStyle {
+  std::array<bool, GlyphQuantity::kCount> show{{true, true, true, true}};
+  std::array<double, GlyphQuantity::kCount> scale{{0.1, 0.02, 0.05, 0.005}};  // m per unit
+  std::array<Rgba, GlyphQuantity::kCount> color{{{0.0f, 0.8f, 1.0f, 1.0f},
+                                                 {1.0f, 0.5f, 0.0f, 1.0f},
+                                                 {0.9f, 0.0f, 0.9f, 1.0f},
+                                                 {1.0f, 0.9f, 0.0f, 1.0f}}};
+  Rgba mass_center_color{1.0f, 1.0f, 1.0f, 1.0f};
+  Rgba skeleton_color{0.85f, 0.85f, 0.85f, 1.0f};
+  bool mass_centers = true, skeleton = false;
+  double width = 0.012;          // arrow shaft diameter (m); heads, arcs and lines follow it
+  double arc_radius = 0.05;      // m
+  double sphere_radius = 0.035;  // m
+  double min_length = 1e-3;      // arrows shorter than this (m) are left out
+  std::regex filter{kDefaultBodyFilter};  // bodies drawn: names it matches (regex_search)
+};
+
+// One body's kinematics as drawn, everything in R.
+struct GlyphBody {
+  std::string name;
+  uint32_t index = 0, lower = 0;  // k and L(k)
+  Vec3<double> origin = Vec3<double>::Zero();  // O_k
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // S0K (checked finite)
+  Vec3<double> mass_center = Vec3<double>::Zero();                  // G_k
+  std::array<Vec3<double>, GlyphQuantity::kCount> vectors;          // by GlyphQuantity
+};
+
+struct GlyphArrow {
+  int quantity;
+  Vec3<double> start, end;
+};
+struct GlyphArc {  // a polyline, and the head at its end (from head_start along head_dir)
+  int quantity;
+  std::vector<Vec3<double>> points;
+  Vec3<double> head_start, head_dir;
+};
+
+struct Glyphs {
+  std::vector<GlyphArrow> arrows;
+  std::vector<GlyphArc> arcs;
+  std::vector<Vec3<double>> mass_centers;
+  std::vector<std::pair<Vec3<double>, Vec3<double>>> skeleton;
+  std::vector<std::string> skipped;  // bodies with a non-finite value: left out
+};
+
+// The largest |vector| of quantity q over the bodies drawn (finite ones).
+double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q);
+
+// Auto-scale: the largest vector of a quantity drawn `length` m long; the maximum follows rises
+// at once and falls slowly (by `decay` per message), so arrows do not flicker.
+class AutoScale {
+ public:
+  double update(double max, double length, double decay = 0.98);
+
+ private:
+  double max_ = 0;
+};
+
+Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style);
+
+}  // namespace mbk

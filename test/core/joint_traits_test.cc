@@ -1,0 +1,66 @@
+// The joint traits table (mb_kinematics/core/joint.h) against what joint_motion computes, for
+// every joint type: a new type whose table entry and motion disagree fails here.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/joint.h"
+#include "mb_kinematics/core/joint_motion.h"
+
+namespace {
+
+using mbk::CoordinateKind;
+using mbk::JointType;
+using mbk::SpeedKind;
+
+TEST(JointTraits, EveryTypeHasADistinctNameThatReadsBack) {
+  std::set<std::string> names;
+  for (JointType type : mbk::all_joint_types()) {
+    const std::string name = mbk::to_string(type);
+    EXPECT_TRUE(names.insert(name).second) << name;
+    EXPECT_EQ(mbk::joint_type_from_string(name), type) << name;
+  }
+  EXPECT_EQ(names.size(), static_cast<size_t>(JointType::kLast) + 1);
+  EXPECT_THROW(mbk::joint_type_from_string("hinge"), std::invalid_argument);
+}
+
+TEST(JointTraits, TranslationsFirstAndEulerParametersLast) {
+  for (JointType type : mbk::all_joint_types()) {
+    SCOPED_TRACE(mbk::to_string(type));
+    const int n = mbk::coordinate_count(type), t = mbk::translation_count(type);
+    for (int i = 0; i < n; ++i)
+      EXPECT_EQ(mbk::coordinate_kind(type, i) == CoordinateKind::kTranslation, i < t) << i;
+    const int e = mbk::first_euler_parameter(type);
+    EXPECT_EQ(mbk::uses_euler_parameters(type), e >= 0);
+    if (e >= 0) {
+      EXPECT_EQ(e + 4, n);
+    }
+    EXPECT_EQ(mbk::coordinate_suffixes(type).size(), static_cast<size_t>(n));
+    for (SpeedKind speeds : {SpeedKind::kCoordinateDerivatives, SpeedKind::kAngularVelocity})
+      EXPECT_EQ(mbk::speed_suffixes(type, speeds).size(),
+                static_cast<size_t>(mbk::speed_count(type, speeds)));
+  }
+}
+
+// joint_motion's speed layout (linear speeds first, then rotation rates) is the table's.
+TEST(JointTraits, MatchJointMotion) {
+  for (JointType type : mbk::all_joint_types()) {
+    for (SpeedKind speeds : {SpeedKind::kCoordinateDerivatives, SpeedKind::kAngularVelocity}) {
+      SCOPED_TRACE(mbk::to_string(type));
+      mbk::Joint joint;
+      joint.type = type;
+      std::vector<double> q(mbk::coordinate_count(type), 0.3), qd(mbk::kMaxJointSpeeds, 0.1);
+      if (mbk::uses_euler_parameters(type)) q.back() = 1.0;
+      mbk::JointMotion<double> m;
+      mbk::joint_motion<double>(joint, speeds, q.data(), qd.data(), m);
+      EXPECT_EQ(m.speeds, mbk::speed_count(type, speeds));
+      EXPECT_EQ(m.linear_speeds, mbk::translation_count(type));
+      EXPECT_EQ(m.translation.isZero(), mbk::translation_count(type) == 0);
+      EXPECT_EQ(m.rotation.isIdentity(), m.speeds == m.linear_speeds);
+    }
+  }
+}
+
+}  // namespace
