@@ -106,6 +106,7 @@ void finalize_model(Model& model) {
     if (model.nq != model.nv)
       throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
   }
+  model.steps = make_body_steps(model);
 }
 
 Model make_bare_model(const std::vector<int>& lower, JointType type) {
