@@ -20,6 +20,7 @@ MBK_PACKAGES=(
   python3-tf2-msgs python3-diagnostic-msgs
   librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
   pluginlib-dev libogre-1.12-dev
+  libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
 )
 
 mbk_install_deps() {
