@@ -1,20 +1,29 @@
-// One update of the kinematics, ours and Orocos KDL's, on the human body model and on revolute
-// chains of 10, 100 and 1000 bodies.
+// One update of the kinematics, ours and our peers', in the same run.
 //
-//   ours/<model>/<recursive|pv>/<pose|velocity|full>
+//   ours/<scene>/<recursive|pv>/<pose|velocity|full>
 //       forward_kinematics (doc/method.md 4) or partial_velocity_kinematics (doc/method.md 5) at
 //       Level::kPose, kVelocity, kAcceleration ("full": orientation, origin, mass center, omega,
 //       alpha, velocity and acceleration of every body).
-//   kdl/<model>/tree_pose_all_links   TreeFkSolverPos_recursive::JntToCart for every link
+//   pinocchio/<scene>/pose            forwardKinematics(q)       (only when CMake found
+//   pinocchio/<scene>/full            forwardKinematics(q, v, a)  Pinocchio: bench/bench.cmake)
+//                                     and every body's mass-center kinematics (pinocchio_peer.h)
+//   dart/<scene>/full                 DART: the same full state, read body by body (dart_peer.h)
+//   kdl/<scene>/tree_pose_all_links   TreeFkSolverPos_recursive::JntToCart for every link
 //                                     (what robot_state_publisher's users get: poses only)
-//   kdl/<model>/chain_pose_longest    ChainFkSolverPos_recursive, all frames of the longest chain
-//   kdl/<model>/chain_vel_longest     ChainFkSolverVel_recursive, tip twist of the longest chain
+//   kdl/<scene>/chain_pose_longest    ChainFkSolverPos_recursive, all frames of the longest chain
+//   kdl/<scene>/chain_vel_longest     ChainFkSolverVel_recursive, tip twist of the longest chain
 //   (KDL has no forward acceleration solver.)
 //
-// Models: human = config/human_body.yaml (16 bodies, ball joints as such); human_urdf =
-// config/human_body.urdf loaded by our URDF loader (37 links: ball and free joints expanded into
-// one-axis joints, the same links KDL computes); chainN = N revolute bodies, axes alternating z, y,
-// links of 1 m along x (mbk::make_chain), given to KDL as URDF by write_urdf.
+// Scenes: human = config/human_body.yaml (16 bodies, ball joints as such: ours only);
+// human_urdf = config/human_body.urdf (37 links: ball and free joints expanded into one-axis
+// joints); humanoid29 = 29 revolute joints shaped like Pinocchio's simple_humanoid (legs of 6,
+// waist of 3, arms of 7); random64 = a random tree of 64 revolute joints with random axes,
+// offsets and offset rotations C_k; chainN = N revolute bodies, axes alternating z, y, links of
+// 1 m along x (mbk::make_chain). The URDF scenes are written as URDF (write_urdf) and every
+// side, ours included, loads that text. Chains give Pinocchio the model joint by joint (its
+// URDF parser does not cope with long chains); KDL and DART run up to 1000 bodies, Pinocchio up
+// to 100 (its Data holds N^3 tensors).
+// Before timing, each peer's results are checked against ours on every body it computes.
 // Each iteration nudges one coordinate and speed so that nothing is computed once and reused.
 #include <benchmark/benchmark.h>
 
@@ -33,21 +42,31 @@
 #include <kdl/treefksolverpos_recursive.hpp>
 #include <kdl_parser/kdl_parser.hpp>
 #include <memory>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/analysis/model_generators.h"
+#include "bench/bench_scene.h"
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/urdf_writer.h"
+#ifdef MBK_WITH_PINOCCHIO
+#include "bench/pinocchio_peer.h"
+#endif
+#ifdef MBK_WITH_DART
+#include "bench/dart_peer.h"
+#endif
 
 namespace {
+
+using mbk_bench::nudge;
+using mbk_bench::random_state;
+using mbk_bench::Scene;
 
 std::string source_path(const std::string& relative) {
   return std::string(MBK_SOURCE_DIR) + "/" + relative;
@@ -62,18 +81,6 @@ std::string read_file(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-mbk::JointState<double> random_state(const mbk::Model& model, unsigned seed) {
-  std::mt19937 rng(seed);
-  return mbk::random_state(model, rng);
-}
-
-// Nudges coordinate i % n by a tiny amount: the state differs every iteration at no real cost.
-inline void nudge(double* q, double* v, int n, int64_t i) {
-  const int c = static_cast<int>(i % n);
-  q[c] += 1e-9;
-  if (v) v[c] -= 1e-9;
 }
 
 void ours_recursive(benchmark::State& st, const mbk::Model* model, mbk::Level level) {
@@ -226,25 +233,83 @@ void check_agreement(const std::string& name, const mbk::Model& model, KdlScene&
   }
 }
 
+// 29 revolute joints in the shape of Pinocchio's simple_humanoid: from the waist, two legs of 6
+// (hip roll, pitch, yaw, knee, ankle pitch, roll), a waist of 3 and two arms of 7.
+mbk::Model humanoid29() {
+  struct J {
+    std::string name, parent;  // parent "": the waist (the frame R)
+    double y, z;               // q_k = (0, y, z)
+    int axis;                  // 0, 1, 2: x, y, z
+  };
+  std::vector<J> joints = {
+      {"WAIST_P", "", 0, 0, 1}, {"WAIST_R", "WAIST_P", 0, 0, 0}, {"CHEST", "WAIST_R", 0, 0.35, 2}};
+  for (const std::string side : {"R", "L"}) {
+    const double sign = side == "R" ? -1 : 1;
+    const std::string leg = side + "LEG_", arm = side + "ARM_";
+    const std::vector<J> limbs = {{leg + "HIP_R", "", sign * 0.09, 0, 0},
+                                  {leg + "HIP_P", leg + "HIP_R", 0, 0, 1},
+                                  {leg + "HIP_Y", leg + "HIP_P", 0, -0.3535, 2},
+                                  {leg + "KNEE", leg + "HIP_Y", 0, 0, 1},
+                                  {leg + "ANKLE_P", leg + "KNEE", 0, -0.3, 1},
+                                  {leg + "ANKLE_R", leg + "ANKLE_P", 0, 0, 0},
+                                  {arm + "SHOULDER_P", "CHEST", sign * 0.21, 0, 1},
+                                  {arm + "SHOULDER_R", arm + "SHOULDER_P", 0, 0, 0},
+                                  {arm + "SHOULDER_Y", arm + "SHOULDER_R", 0, -0.263, 2},
+                                  {arm + "ELBOW", arm + "SHOULDER_Y", 0, 0, 1},
+                                  {arm + "WRIST_Y", arm + "ELBOW", 0, -0.247, 2},
+                                  {arm + "WRIST_P", arm + "WRIST_Y", 0, 0, 1},
+                                  {arm + "WRIST_R", arm + "WRIST_P", 0, 0, 0}};
+    joints.insert(joints.end(), limbs.begin(), limbs.end());
+  }
+  mbk::Model model;
+  model.frame = "WAIST_LINK0";
+  model.bodies.resize(joints.size() + 1);
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const J& j = joints[i];
+    mbk::Body& body = model.bodies[i + 1];
+    body.name = j.name + "_LINK";
+    body.joint.name = j.name;
+    body.joint.type = mbk::JointType::kRevolute;
+    body.joint.offset = mbk::Vec3<double>(0.0, j.y, j.z);
+    body.joint.axis = mbk::Vec3<double>::Unit(j.axis);
+    body.lower = j.parent.empty() ? 0 : model.body_index(j.parent + "_LINK");
+    body.mass_center = mbk::Vec3<double>(0.01, 0.0, j.z < 0 ? -0.1 : 0.05);
+    body.mass = 2.0;
+  }
+  mbk::finalize_model(model);
+  return model;
+}
+
+// A random tree of n revolute joints: make_random_tree's shapes, axes, offsets and C_k.
+mbk::Model random_revolute_tree(int n, unsigned seed) {
+  mbk::Model model = mbk::make_random_tree(n, seed);
+  for (int k = 1; k <= n; ++k) model.bodies[k].joint.type = mbk::JointType::kRevolute;
+  mbk::finalize_model(model);
+  return model;
+}
+
+// A scene that every side reads from the same URDF text.
+std::unique_ptr<Scene> urdf_scene(const std::string& name, const std::string& urdf) {
+  return std::make_unique<Scene>(Scene{name, mbk::load_urdf_string(urdf, name), urdf, true, true});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  struct Scene {
-    std::string name;
-    mbk::Model model;
-    std::string urdf;
-  };
   std::vector<std::unique_ptr<Scene>> scenes;
   const std::string human_urdf = read_file(source_path("config/human_body.urdf"));
-  scenes.push_back(std::make_unique<Scene>(
-      Scene{"human", mbk::load_model_file(source_path("config/human_body.yaml")), human_urdf}));
   scenes.push_back(std::make_unique<Scene>(Scene{
-      "human_urdf", mbk::load_model_file(source_path("config/human_body.urdf")), human_urdf}));
-  for (int n : {10, 100, 1000}) {
+      "human", mbk::load_model_file(source_path("config/human_body.yaml")), "", false, false}));
+  scenes.push_back(urdf_scene("human_urdf", human_urdf));
+  scenes.push_back(urdf_scene("humanoid29", mbk::write_urdf(humanoid29(), "humanoid29")));
+  scenes.push_back(
+      urdf_scene("random64", mbk::write_urdf(random_revolute_tree(64, 7), "random64")));
+  for (int n : {10, 100, 1000, 10000, 100000}) {
     mbk::Model chain = mbk::make_chain(n, mbk::JointType::kRevolute);
-    const std::string urdf = mbk::write_urdf(chain, "chain");
-    scenes.push_back(
-        std::make_unique<Scene>(Scene{"chain" + std::to_string(n), std::move(chain), urdf}));
+    const bool small = n <= 1000;
+    const std::string urdf = small ? mbk::write_urdf(chain, "chain") : "";
+    scenes.push_back(std::make_unique<Scene>(
+        Scene{"chain" + std::to_string(n), std::move(chain), urdf, false, small}));
   }
 
   std::vector<std::unique_ptr<KdlScene>> kdl;
@@ -256,23 +321,36 @@ int main(int argc, char** argv) {
     for (const auto& [level_name, level] : levels) {
       benchmark::RegisterBenchmark(("ours/" + scene->name + "/recursive/" + level_name).c_str(),
                                    ours_recursive, model, level);
-      benchmark::RegisterBenchmark(("ours/" + scene->name + "/pv/" + level_name).c_str(),
-                                   ours_partial_velocity, model, level);
+      if (model->body_count() <= 1000)  // N x depth: quadratic on chains
+        benchmark::RegisterBenchmark(("ours/" + scene->name + "/pv/" + level_name).c_str(),
+                                     ours_partial_velocity, model, level);
     }
-    if (scene->name == "human") continue;  // KDL runs on the URDF: see human_urdf
+    if (!scene->peers) continue;  // the human scene: the peers run on its URDF (human_urdf)
+#ifdef MBK_WITH_PINOCCHIO
+    if (model->body_count() <= 100)  // its Data holds N^3 tensors: 32 GB at N = 1000
+      mbk_bench::register_pinocchio(*scene);
+#endif
+#ifdef MBK_WITH_DART
+    mbk_bench::register_dart(*scene);
+#endif
     kdl.push_back(make_kdl_scene(scene->urdf, *model));
     check_agreement(scene->name, *model, *kdl.back());
-    const std::string peer = (scene->name == "human_urdf" ? "human" : scene->name);
     KdlScene* s = kdl.back().get();
-    benchmark::RegisterBenchmark(("kdl/" + peer + "/tree_pose_all_links").c_str(),
+    benchmark::RegisterBenchmark(("kdl/" + scene->name + "/tree_pose_all_links").c_str(),
                                  kdl_tree_pose_all_links, s);
-    benchmark::RegisterBenchmark(("kdl/" + peer + "/chain_pose_longest").c_str(),
+    benchmark::RegisterBenchmark(("kdl/" + scene->name + "/chain_pose_longest").c_str(),
                                  kdl_chain_pose_longest, s);
-    benchmark::RegisterBenchmark(("kdl/" + peer + "/chain_vel_longest").c_str(),
+    benchmark::RegisterBenchmark(("kdl/" + scene->name + "/chain_vel_longest").c_str(),
                                  kdl_chain_vel_longest, s);
   }
   // Our 16-body human scene is checked against KDL too (same URDF, by link name).
   check_agreement("human", scenes[0]->model, *kdl[0]);
+#ifndef MBK_WITH_PINOCCHIO
+  std::fprintf(stderr, "kinematics_benchmark: built without Pinocchio (bench/bench.cmake)\n");
+#endif
+#ifndef MBK_WITH_DART
+  std::fprintf(stderr, "kinematics_benchmark: built without DART (libdart-dev)\n");
+#endif
 
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -22,6 +22,7 @@ MBK_PACKAGES=(
   pluginlib-dev libogre-1.12-dev librosbag-dev libtf2-msgs-dev libnav-msgs-dev python3-rosbag
   python3-matplotlib catkin-lint
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
+  libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
 )
 
 mbk_install_deps() {

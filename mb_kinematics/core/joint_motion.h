@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "mb_kinematics/core/joint.h"
+#include "mb_kinematics/core/sincos.h"
 #include "mb_kinematics/core/types.h"
 
 namespace mbk {
@@ -62,9 +63,8 @@ Mat3<S> rotation_euler(const S* e) {
 // Rotation by angle theta about a unit axis (Rodrigues): c I + s [a]x + (1 - c) a a^T.
 template <typename S>
 Mat3<S> rotation_axis(const Vec3<S>& axis, S theta) {
-  using std::cos;
-  using std::sin;
-  const S c = cos(theta), s = sin(theta);
+  S c, s;
+  sin_cos(theta, s, c);
   Mat3<S> r = (S(1) - c) * axis * axis.transpose() + s * skew(axis);
   r.diagonal().array() += c;
   return r;
@@ -129,8 +129,6 @@ void plane_basis(const Vec3<S>& normal, Vec3<S>& u1, Vec3<S>& u2) {
 template <typename S>
 void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
                   JointMotion<S>& out) {
-  using std::cos;
-  using std::sin;
   const Vec3<S> axis = joint.axis.cast<S>();
   Mat3<S> motion = Mat3<S>::Identity();
   Vec3<S> s = Vec3<S>::Zero();
@@ -152,8 +150,11 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
     case JointType::kBall123:
     case JointType::kFree123: {
       t = joint.type == JointType::kFree123 ? 3 : 0;
-      const S ca = cos(q[t]), sa = sin(q[t]), cb = cos(q[t + 1]), sb = sin(q[t + 1]);
-      motion = detail::rotation_123(ca, sa, cb, sb, cos(q[t + 2]), sin(q[t + 2]));
+      S ca, sa, cb, sb, cg, sg;
+      sin_cos(q[t], sa, ca);
+      sin_cos(q[t + 1], sb, cb);
+      sin_cos(q[t + 2], sg, cg);
+      motion = detail::rotation_123(ca, sa, cb, sb, cg, sg);
       if (qd)
         detail::angles_123_columns(ca, sa, cb, sb, qd + t, out.angular + t, out.angular_dot + t);
       n = t + 3;

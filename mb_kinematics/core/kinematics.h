@@ -1,41 +1,322 @@
 // Absolute kinematics by the O(N) outward recursion along the lower body array (doc/method.md 4).
+// Each body runs its joint's kernel, chosen once when the model was finalized (body_step.h).
 #pragma once
 
 #include <cassert>
+#include <cmath>
+#include <limits>
 
+#include "mb_kinematics/core/body_step.h"
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/sincos.h"
 #include "mb_kinematics/core/state.h"
+
+// The loop over bodies gets every step, sine and Eigen product inlined into it (GCC and Clang
+// would otherwise keep body_update and the 3x3 products out of line, their terms in memory).
+#if defined(__GNUC__)
+#define MBK_FLATTEN __attribute__((flatten))
+#else
+#define MBK_FLATTEN
+#endif
 
 namespace mbk {
 namespace detail {
 
-// Every this many joints of depth, S0K gets one Newton-Schulz step back to orthonormal:
-// R <- R (3 I - R^T R) / 2. Rounding makes S0K = S0J SJK drift from orthonormal by about eps
-// per joint, linearly with depth (README, "Numerical stability"); one step squares the drift
-// away at the cost of two 3x3 products, here once per 32 levels (cheap on long chains, and
-// never on the human model, whose depth is at most 6).
-constexpr int kReorthonormalizeEvery = 32;
-
+// Every kReorthonormalizeEvery joints of depth (body_step.h), S0K gets one Newton-Schulz step
+// back to orthonormal: R <- R (3 I - R^T R) / 2. Rounding makes S0K = S0J SJK drift from
+// orthonormal by about eps per joint, linearly with depth (README, "Numerical stability"); one
+// step squares the drift away at the cost of two 3x3 products, here once per 32 levels (cheap on
+// long chains, and never on the human model, whose depth is at most 6).
 template <typename S>
 void reorthonormalize(Mat3<S>& r) {
   const Mat3<S> rtr = r.transpose() * r;
   r = r * (S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
 }
 
-// Orientation, origin and mass center of body k from its lower body's (doc/method.md 4); also
-// returns d = S0J (q_k + s_k) and rho = S0K r_k, which the velocity terms reuse.
+// A joint's share of body k's motion, in R components: d = S0J (q_k + s_k) (O_j to O_k), the
+// relative angular velocity w = S0J w_k and w' part wd = S0J w_k', and sd = S0J s_k',
+// sdd = S0J s_k''.
 template <typename S>
-void pose_step(const Body& body, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d,
-               Vec3<S>& rho) {
-  const int j = body.lower;
-  data.rotation[k] = data.rotation[j] * m.rotation;  // S0K = S0J SJK
-  if (body.depth % kReorthonormalizeEvery == 0) reorthonormalize(data.rotation[k]);
-  d = data.rotation[j] * (body.joint.offset.cast<S>() + m.translation);  // S0J (q_k + s_k)
-  data.origin[k] = data.origin[j] + d;                                   // eq. 4.6.2
-  rho = data.rotation[k] * body.mass_center.cast<S>();                   // S0K r_k
+struct JointTerms {
+  Vec3<S> d, w, wd, sd, sdd;
+};
+
+// Body k from its lower body once S0K = S0J SJK is in data.rotation[k] (doc/method.md 4).
+// kRotates, kTranslates: whether the joint turns (w, wd used) and translates (sd, sdd used).
+template <Level L, bool kRotates, bool kTranslates, typename S>
+void body_update(const BodyStep& b, int k, const JointTerms<S>& t, Data<S>& data) {
+  const int j = b.lower;
+  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
+  data.origin[k] = data.origin[j] + t.d;                           // eq. 4.6.2
+  const Vec3<S> rho = data.rotation[k] * b.mass_center.cast<S>();  // S0K r_k
   data.mass_center[k] = data.origin[k] + rho;
+  if constexpr (L != Level::kPose) {
+    const Vec3<S>& omega_j = data.omega[j];
+    const Vec3<S> omega_j_d = omega_j.cross(t.d);
+    Vec3<S>& omega_k = data.omega[k];
+    omega_k = omega_j;
+    if constexpr (kRotates) omega_k += t.w;  // eq. 4.4.6
+    Vec3<S>& vo = data.origin_velocity[k];   // doc/method.md 4
+    vo = data.origin_velocity[j] + omega_j_d;
+    if constexpr (kTranslates) vo += t.sd;
+    const Vec3<S> omega_k_rho = omega_k.cross(rho);
+    data.mass_center_velocity[k] = vo + omega_k_rho;
+    if constexpr (L == Level::kAcceleration) {
+      const Vec3<S>& alpha_j = data.alpha[j];
+      Vec3<S>& alpha_k = data.alpha[k];
+      if constexpr (kRotates)
+        alpha_k = alpha_j + t.wd + omega_j.cross(t.w);  // eq. 4.5.1
+      else
+        alpha_k = alpha_j;
+      Vec3<S>& ao = data.origin_acceleration[k];  // doc/method.md 4
+      ao = data.origin_acceleration[j] + alpha_j.cross(t.d) + omega_j.cross(omega_j_d);
+      if constexpr (kTranslates) ao += S(2) * omega_j.cross(t.sd) + t.sdd;
+      data.mass_center_acceleration[k] = ao + alpha_k.cross(rho) + omega_k.cross(omega_k_rho);
+    }
+  }
+}
+
+// S0K = S0J SJK for a turn (cos c, sin s) about coordinate axis I with C_k = I (eq. 4.4.9-4.4.11
+// column by column): column I of S0J stays, the other two turn.
+template <int I, typename S>
+void turn_columns(const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
+  constexpr int a = (I + 1) % 3, b = (I + 2) % 3;
+  s0k.col(I) = s0j.col(I);
+  s0k.col(a) = c * s0j.col(a) + s * s0j.col(b);
+  s0k.col(b) = c * s0j.col(b) - s * s0j.col(a);
+}
+
+// The pose part of each kernel: S0K into data.rotation[k] and d = S0J (q_k + s_k). Both
+// formulations (this recursion and partial_velocity_kinematics) use them, and so agree bit for
+// bit. q: all coordinates.
+
+// Revolute joint about coordinate axis I, C_k = I.
+template <int I, typename S>
+void axis_pose(const BodyStep& b, int k, const S* q, Data<S>& data, Vec3<S>& d) {
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  S c, s;
+  sin_cos(q[b.q_index], s, c);
+  turn_columns<I>(s0j, c, s, data.rotation[k]);
+  d = s0j * b.offset.cast<S>();
+}
+
+// Revolute joint about any axis a with any C_k: SJK = P0 + cos q P1 + sin q P2 (body_step.cc).
+template <typename S>
+void revolute_pose(const Model& model, const BodyStep& b, int k, const S* q, Data<S>& data,
+                   Vec3<S>& d) {
+  const Mat3<double>* p = model.steps.matrices.data() + b.matrices;
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  S c, s;
+  sin_cos(q[b.q_index], s, c);
+  const Mat3<S> sjk = p[0].cast<S>() + c * p[1].cast<S>() + s * p[2].cast<S>();
+  data.rotation[k] = s0j * sjk;
+  d = s0j * b.offset.cast<S>();
+}
+
+// Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
+template <bool kRotated, bool kTranslates, typename S>
+void rigid_pose(const Model& model, const BodyStep& b, int k, const S* q, Data<S>& data,
+                Vec3<S>& d) {
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  if constexpr (kRotated)
+    data.rotation[k] = s0j * model.steps.matrices[b.matrices].cast<S>();
+  else
+    data.rotation[k] = s0j;
+  if constexpr (kTranslates)
+    d = s0j * (b.offset.cast<S>() + b.axis.cast<S>() * q[b.q_index]);
+  else
+    d = s0j * b.offset.cast<S>();
+}
+
+// Any joint from its joint_motion.
+template <typename S>
+void motion_pose(const BodyStep& b, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d) {
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  data.rotation[k] = s0j * m.rotation;             // S0K = S0J SJK
+  d = s0j * (b.offset.cast<S>() + m.translation);  // S0J (q_k + s_k)
+}
+
+// Constants folded in double (P0 P1 P2, C_k a) serve double and float; wider reference builds
+// take those joints through joint_motion, on the model's own C_k and axis.
+template <typename S>
+constexpr bool kFolded = std::numeric_limits<S>::digits <= std::numeric_limits<double>::digits;
+
+// Whether body k's kernel runs through joint_motion.
+template <typename S>
+bool uses_joint_motion(JointKernel kernel) {
+  return kernel == JointKernel::kGeneric ||
+         (!kFolded<S> &&
+          (kernel == JointKernel::kRevolute || kernel == JointKernel::kPrismaticRotated));
+}
+
+// Orientation, origin and mass center of body k by its kernel (m: its joint_motion, used when
+// uses_joint_motion); also returns d = S0J (q_k + s_k) and rho = S0K r_k. For
+// partial_velocity_kinematics.
+template <typename S>
+void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, Data<S>& data,
+               Vec3<S>& d, Vec3<S>& rho) {
+  const BodyStep& b = model.steps.steps[k];
+  if (uses_joint_motion<S>(b.kernel)) {
+    motion_pose(b, k, m, data, d);
+  } else {
+    switch (b.kernel) {
+      case JointKernel::kRevoluteX:
+        axis_pose<0>(b, k, q, data, d);
+        break;
+      case JointKernel::kRevoluteY:
+        axis_pose<1>(b, k, q, data, d);
+        break;
+      case JointKernel::kRevoluteZ:
+        axis_pose<2>(b, k, q, data, d);
+        break;
+      case JointKernel::kRevolute:
+        revolute_pose(model, b, k, q, data, d);
+        break;
+      case JointKernel::kPrismatic:
+        rigid_pose<false, true>(model, b, k, q, data, d);
+        break;
+      case JointKernel::kPrismaticRotated:
+        rigid_pose<true, true>(model, b, k, q, data, d);
+        break;
+      case JointKernel::kFixed:
+        rigid_pose<false, false>(model, b, k, q, data, d);
+        break;
+      case JointKernel::kFixedRotated:
+        rigid_pose<true, false>(model, b, k, q, data, d);
+        break;
+      case JointKernel::kGeneric:
+        break;
+    }
+  }
+  const int j = b.lower;
+  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
+  data.origin[k] = data.origin[j] + d;               // eq. 4.6.2
+  rho = data.rotation[k] * b.mass_center.cast<S>();  // S0K r_k
+  data.mass_center[k] = data.origin[k] + rho;
+}
+
+// Revolute joint about coordinate axis I, C_k = I: w_k = e_I q', so S0J w_k = column I of S0J q'.
+template <Level L, int I, typename S>
+void revolute_axis_step(const BodyStep& b, int k, const JointState<S>& state, Data<S>& data) {
+  JointTerms<S> t;
+  axis_pose<I>(b, k, state.position.data(), data, t.d);
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.velocity.data()[b.v_index];
+  if constexpr (L == Level::kAcceleration) t.wd = s0j.col(I) * state.acceleration.data()[b.v_index];
+  body_update<L, true, false>(b, k, t, data);
+}
+
+// Revolute joint about any axis: S0J w_k = S0J (C_k a) q'.
+template <Level L, typename S>
+void revolute_step(const Model& model, const BodyStep& b, int k, const JointState<S>& state,
+                   Data<S>& data) {
+  JointTerms<S> t;
+  revolute_pose(model, b, k, state.position.data(), data, t.d);
+  if constexpr (L != Level::kPose) {
+    const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
+    t.w = u * state.velocity.data()[b.v_index];
+    if constexpr (L == Level::kAcceleration) t.wd = u * state.acceleration.data()[b.v_index];
+  }
+  body_update<L, true, false>(b, k, t, data);
+}
+
+// Prismatic joint: s_k' = (C_k a) q'.
+template <Level L, bool kRotated, typename S>
+void prismatic_step(const Model& model, const BodyStep& b, int k, const JointState<S>& state,
+                    Data<S>& data) {
+  JointTerms<S> t;
+  rigid_pose<kRotated, true>(model, b, k, state.position.data(), data, t.d);
+  if constexpr (L != Level::kPose) {
+    const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
+    t.sd = u * state.velocity.data()[b.v_index];
+    if constexpr (L == Level::kAcceleration) t.sdd = u * state.acceleration.data()[b.v_index];
+  }
+  body_update<L, false, true>(b, k, t, data);
+}
+
+// Fixed joint.
+template <Level L, bool kRotated, typename S>
+void fixed_step(const Model& model, const BodyStep& b, int k, const JointState<S>& state,
+                Data<S>& data) {
+  JointTerms<S> t;
+  rigid_pose<kRotated, false>(model, b, k, state.position.data(), data, t.d);
+  body_update<L, false, false>(b, k, t, data);
+}
+
+// Any joint through joint_motion (ball, free, planar; and folded joints of a reference build).
+template <Level L, typename S>
+void generic_step(const Model& model, int k, const JointState<S>& state, Data<S>& data) {
+  const Body& body = model.bodies[k];
+  const BodyStep& b = model.steps.steps[k];
+  const S* y = L == Level::kPose ? nullptr : state.velocity.data() + body.v_index;
+  JointMotion<S> m;
+  joint_motion(body.joint, model.speeds, state.position.data() + body.q_index, y, m);
+  JointTerms<S> t;
+  motion_pose(b, k, m, data, t.d);
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  if constexpr (L != Level::kPose) {
+    Vec3<S> w = Vec3<S>::Zero(), sd = Vec3<S>::Zero();  // w_k, s_k' in Bj
+    for (int c = m.linear_speeds; c < m.speeds; ++c) w += m.angular[c] * y[c];
+    for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
+    t.w = s0j * w;
+    t.sd = s0j * sd;
+    if constexpr (L == Level::kAcceleration) {
+      const S* yd = state.acceleration.data() + body.v_index;
+      Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // w_k', s_k'' in Bj
+      for (int c = m.linear_speeds; c < m.speeds; ++c)
+        wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
+      for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
+      t.wd = s0j * wd;
+      t.sdd = s0j * sdd;
+    }
+  }
+  if (m.linear_speeds > 0)  // the s_k' terms vanish otherwise
+    body_update<L, true, true>(b, k, t, data);
+  else
+    body_update<L, true, false>(b, k, t, data);
+}
+
+template <Level L, typename S>
+MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& state,
+                                       Data<S>& data) {
+  const BodyStep* steps = model.steps.steps.data();
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const BodyStep& b = steps[k];
+    if (uses_joint_motion<S>(b.kernel)) {
+      generic_step<L>(model, k, state, data);
+      continue;
+    }
+    switch (b.kernel) {
+      case JointKernel::kRevoluteX:
+        revolute_axis_step<L, 0>(b, k, state, data);
+        break;
+      case JointKernel::kRevoluteY:
+        revolute_axis_step<L, 1>(b, k, state, data);
+        break;
+      case JointKernel::kRevoluteZ:
+        revolute_axis_step<L, 2>(b, k, state, data);
+        break;
+      case JointKernel::kRevolute:
+        revolute_step<L>(model, b, k, state, data);
+        break;
+      case JointKernel::kPrismatic:
+        prismatic_step<L, false>(model, b, k, state, data);
+        break;
+      case JointKernel::kPrismaticRotated:
+        prismatic_step<L, true>(model, b, k, state, data);
+        break;
+      case JointKernel::kFixed:
+        fixed_step<L, false>(model, b, k, state, data);
+        break;
+      case JointKernel::kFixedRotated:
+        fixed_step<L, true>(model, b, k, state, data);
+        break;
+      case JointKernel::kGeneric:
+        break;
+    }
+  }
 }
 
 }  // namespace detail
@@ -46,51 +327,13 @@ template <typename S>
 void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>& data,
                         Level level = Level::kAcceleration) {
   assert(sized_for(data, model) && "forward_kinematics: Data made for another model");
-  JointMotion<S> m;
-  const bool velocities = level != Level::kPose;
-  const bool accelerations = level == Level::kAcceleration;
-  for (int k = 1; k <= model.body_count(); ++k) {
-    const Body& body = model.bodies[k];
-    const int j = body.lower;
-    const S* y = velocities ? state.velocity.data() + body.v_index : nullptr;
-    joint_motion(body.joint, model.speeds, state.position.data() + body.q_index, y, m);
-    Vec3<S> d, rho;
-    detail::pose_step(body, k, m, data, d, rho);
-    if (!velocities) continue;
-
-    const Mat3<S>& s0j = data.rotation[j];
-
-    const bool translates = m.linear_speeds > 0;         // the s_k' terms vanish otherwise
-    Vec3<S> w = Vec3<S>::Zero(), sd0 = Vec3<S>::Zero();  // w_k in Bj; S0J s_k'
-    for (int c = m.linear_speeds; c < m.speeds; ++c) w += m.angular[c] * y[c];
-    if (translates) {
-      Vec3<S> sd = Vec3<S>::Zero();
-      for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
-      sd0 = s0j * sd;
-    }
-    const Vec3<S> w0 = s0j * w;
-    const Vec3<S>& omega_j = data.omega[j];
-    data.omega[k] = omega_j + w0;                                                // eq. 4.4.6
-    data.origin_velocity[k] = data.origin_velocity[j] + omega_j.cross(d) + sd0;  // doc/method.md 4
-    data.mass_center_velocity[k] = data.origin_velocity[k] + data.omega[k].cross(rho);
-    if (!accelerations) continue;
-
-    const S* yd = state.acceleration.data() + body.v_index;
-    Vec3<S> wd = Vec3<S>::Zero();  // w_k' in Bj
-    for (int c = m.linear_speeds; c < m.speeds; ++c)
-      wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
-    const Vec3<S>& alpha_j = data.alpha[j];
-    data.alpha[k] = alpha_j + s0j * wd + omega_j.cross(w0);  // eq. 4.5.1
-    Vec3<S>& a_o = data.origin_acceleration[k];              // doc/method.md 4
-    a_o = data.origin_acceleration[j] + alpha_j.cross(d) + omega_j.cross(omega_j.cross(d));
-    if (translates) {
-      Vec3<S> sdd = Vec3<S>::Zero();  // s_k'' in Bj
-      for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
-      a_o += S(2) * omega_j.cross(sd0) + s0j * sdd;
-    }
-    const Vec3<S>& omega_k = data.omega[k];
-    data.mass_center_acceleration[k] =
-        data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k.cross(rho));
+  switch (level) {
+    case Level::kPose:
+      return detail::forward_kinematics_at<Level::kPose>(model, state, data);
+    case Level::kVelocity:
+      return detail::forward_kinematics_at<Level::kVelocity>(model, state, data);
+    case Level::kAcceleration:
+      return detail::forward_kinematics_at<Level::kAcceleration>(model, state, data);
   }
 }
 

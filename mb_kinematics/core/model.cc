@@ -165,6 +165,7 @@ void finalize_model(Model& model) {
       throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
   }
   order_mimics(model);
+  model.steps = make_body_steps(model);
 }
 
 Model make_bare_model(const std::vector<int>& lower, JointType type) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/body_step.h"
 #include "mb_kinematics/core/joint.h"
 #include "mb_kinematics/core/types.h"
 
@@ -43,6 +44,7 @@ struct Model {
   std::vector<std::string> coordinate_names;  // nq names (doc/method.md 8)
   std::vector<std::string> speed_names;       // nv names; equal to coordinate_names unless
                                               // Euler joints use angular velocity speeds
+  BodySteps steps;  // what each update does per body (body_step.h), set by finalize_model
 
   int body_count() const { return static_cast<int>(bodies.size()) - 1; }
   std::vector<int> lower_body_array() const;            // L(1..N)

@@ -67,7 +67,7 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
     joint_motion(body.joint, model.speeds, state.position.data() + body.q_index,
                  velocities ? y + body.v_index : nullptr, m);
     Vec3<S> d, rho;
-    detail::pose_step(body, k, m, data, d, rho);
+    detail::pose_step(model, k, state.position.data(), m, data, d, rho);
     if (!velocities) continue;
 
     const Mat3<S>& s0j = data.rotation[j];

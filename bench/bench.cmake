@@ -1,0 +1,45 @@
+# kinematics_benchmark (Google Benchmark): ours against Orocos KDL, and against Pinocchio and
+# DART when CMake finds them. Like the tests, benchmarks and their peers are test dependencies
+# (package.xml): without benchmark, KDL or kdl_parser, no benchmark.
+#   Pinocchio 3.x is not in Debian: build it yourself and point CMake at it, e.g.
+#   `source scripts/common.sh; mbk_build -DCMAKE_PREFIX_PATH=<its install prefix>`.
+#   DART: Debian's libdart-dev and libdart-utils-urdf-dev (scripts/common.sh installs them).
+find_package(benchmark QUIET)
+find_package(orocos_kdl QUIET)
+find_package(kdl_parser QUIET)
+if(NOT (benchmark_FOUND AND orocos_kdl_FOUND AND kdl_parser_FOUND))
+  message(STATUS "kinematics_benchmark: not built (needs benchmark, orocos_kdl, kdl_parser)")
+  return()
+endif()
+
+add_executable(kinematics_benchmark bench/kinematics_benchmark.cc)
+target_include_directories(kinematics_benchmark PRIVATE ${orocos_kdl_INCLUDE_DIRS}
+  ${kdl_parser_INCLUDE_DIRS})
+target_link_libraries(kinematics_benchmark mbk_analysis mbk_io mbk_core benchmark::benchmark
+  ${orocos_kdl_LIBRARIES} ${kdl_parser_LIBRARIES})
+target_compile_definitions(kinematics_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+find_package(pinocchio QUIET)
+if(pinocchio_FOUND)
+  message(STATUS "kinematics_benchmark: with Pinocchio ${pinocchio_VERSION}")
+  target_sources(kinematics_benchmark PRIVATE bench/pinocchio_peer.cc)
+  target_link_libraries(kinematics_benchmark pinocchio::pinocchio)
+  target_compile_definitions(kinematics_benchmark PRIVATE MBK_WITH_PINOCCHIO)
+else()
+  message(STATUS "kinematics_benchmark: without Pinocchio (not found; see bench/bench.cmake)")
+endif()
+
+find_package(DART QUIET COMPONENTS utils-urdf)
+if(DART_FOUND)
+  message(STATUS "kinematics_benchmark: with DART ${DART_VERSION}")
+  target_sources(kinematics_benchmark PRIVATE bench/dart_peer.cc)
+  target_link_libraries(kinematics_benchmark ${DART_LIBRARIES})
+  target_compile_definitions(kinematics_benchmark PRIVATE MBK_WITH_DART)
+else()
+  message(STATUS "kinematics_benchmark: without DART (libdart-dev, libdart-utils-urdf-dev)")
+endif()
+
+# bag_benchmark: the whole `mbk bag` path (read, compute, write) on the human model.
+add_executable(bag_benchmark bench/bag_benchmark.cc)
+target_link_libraries(bag_benchmark mbk_offline mbk_demo mbk_analysis mbk_io mbk_core benchmark::benchmark)
+target_compile_definitions(bag_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

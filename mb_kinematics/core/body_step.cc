@@ -1,0 +1,68 @@
+#include "mb_kinematics/core/body_step.h"
+
+#include "mb_kinematics/core/model.h"
+
+namespace mbk {
+namespace {
+
+JointKernel revolute_kernel(const Joint& joint, bool rotated) {
+  if (!rotated) {
+    if (joint.axis == Vec3<double>::UnitX()) return JointKernel::kRevoluteX;
+    if (joint.axis == Vec3<double>::UnitY()) return JointKernel::kRevoluteY;
+    if (joint.axis == Vec3<double>::UnitZ()) return JointKernel::kRevoluteZ;
+  }
+  return JointKernel::kRevolute;
+}
+
+JointKernel kernel_of(const Joint& joint) {
+  const bool rotated = joint.rotation != Mat3<double>::Identity();
+  switch (joint.type) {
+    case JointType::kFixed:
+      return rotated ? JointKernel::kFixedRotated : JointKernel::kFixed;
+    case JointType::kRevolute:
+      return revolute_kernel(joint, rotated);
+    case JointType::kPrismatic:
+      return rotated ? JointKernel::kPrismaticRotated : JointKernel::kPrismatic;
+    default:
+      return JointKernel::kGeneric;
+  }
+}
+
+// C_k R(a, q) = C_k (a a^T + cos q (I - a a^T) + sin q [a]x) (Rodrigues), multiplied out.
+void add_revolute_matrices(const Joint& joint, std::vector<Mat3<double>>& matrices) {
+  const Mat3<double> aat = joint.axis * joint.axis.transpose();
+  const Mat3<double>& c = joint.rotation;
+  matrices.push_back(c * aat);
+  matrices.push_back(c * (Mat3<double>::Identity() - aat));
+  matrices.push_back(c * skew(joint.axis));
+}
+
+}  // namespace
+
+BodySteps make_body_steps(const Model& model) {
+  BodySteps out;
+  out.steps.resize(model.bodies.size());
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Body& body = model.bodies[k];
+    BodyStep& step = out.steps[k];
+    step.kernel = kernel_of(body.joint);
+    step.reorthonormalize = body.depth % detail::kReorthonormalizeEvery == 0;
+    step.lower = body.lower;
+    step.q_index = body.q_index;
+    step.v_index = body.v_index;
+    step.offset = body.joint.offset;
+    step.mass_center = body.mass_center;
+    step.axis = body.joint.rotation * body.joint.axis;
+    if (step.kernel == JointKernel::kFixedRotated ||
+        step.kernel == JointKernel::kPrismaticRotated) {
+      step.matrices = static_cast<int>(out.matrices.size());
+      out.matrices.push_back(body.joint.rotation);
+    } else if (step.kernel == JointKernel::kRevolute) {
+      step.matrices = static_cast<int>(out.matrices.size());
+      add_revolute_matrices(body.joint, out.matrices);
+    }
+  }
+  return out;
+}
+
+}  // namespace mbk

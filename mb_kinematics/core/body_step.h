@@ -1,0 +1,53 @@
+// What forward_kinematics does for each body, decided once when the model is finalized: the
+// joint's kernel (revolute about x, y or z, prismatic, fixed, ...), so that no update compares
+// axes or offset rotations, with constant offset rotations C_k folded into the joint's constants.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mb_kinematics/core/types.h"
+
+namespace mbk {
+
+struct Model;
+
+namespace detail {
+// Every this many joints of depth, S0K gets one Newton-Schulz step back to orthonormal (README,
+// "Numerical stability"; kinematics.h).
+constexpr int kReorthonormalizeEvery = 32;
+}  // namespace detail
+
+enum class JointKernel : std::uint8_t {
+  kFixed,             // SJK = I
+  kFixedRotated,      // SJK = C_k
+  kRevoluteX,         // C_k = I, axis x: SJK = A(q) (eq. 4.4.9); two columns of S0J turn
+  kRevoluteY,         // C_k = I, axis y: SJK = B(q)
+  kRevoluteZ,         // C_k = I, axis z: SJK = C(q)
+  kRevolute,          // any axis a, C_k: SJK = C_k R(a, q) = P0 + cos q P1 + sin q P2
+  kPrismatic,         // C_k = I: SJK = I, s_k = a q
+  kPrismaticRotated,  // SJK = C_k, s_k = (C_k a) q
+  kGeneric,           // ball, free and planar joints: joint_motion()
+};
+
+struct BodyStep {
+  JointKernel kernel = JointKernel::kGeneric;
+  bool reorthonormalize = false;  // depth is a multiple of kReorthonormalizeEvery
+  int lower = 0;                  // L(k)
+  int q_index = 0;
+  int v_index = 0;
+  int matrices = -1;  // this body's first constant in BodySteps::matrices (C_k, or P0 P1 P2)
+  Vec3<double> offset = Vec3<double>::Zero();       // q_k, in Bj
+  Vec3<double> mass_center = Vec3<double>::Zero();  // r_k, in Bk
+  Vec3<double> axis = Vec3<double>::Zero();         // C_k a, in Bj: w_k / q' or s_k' / q'
+};
+
+struct BodySteps {
+  std::vector<BodyStep> steps;  // steps[k] for body Bk; steps[0] unused
+  std::vector<Mat3<double>> matrices;
+};
+
+// The steps of a model whose bodies, joints and indices are final (finalize_model calls it).
+BodySteps make_body_steps(const Model& model);
+
+}  // namespace mbk
