@@ -147,8 +147,8 @@ void check_agreement(const Scene& scene, PinRun& r) {
     e = std::max(e, disagreement(r.p[i], data.mass_center[k]));
     e = std::max(e, disagreement(r.omega[i], data.omega[k]));
     e = std::max(e, disagreement(r.alpha[i], data.alpha[k]));
-    e = std::max(e, disagreement(r.vel[i], data.velocity[k]));
-    e = std::max(e, disagreement(r.acc[i], data.acceleration[k]));
+    e = std::max(e, disagreement(r.vel[i], data.mass_center_velocity[k]));
+    e = std::max(e, disagreement(r.acc[i], data.mass_center_acceleration[k]));
   }
   if (!(e < 1e-9)) {
     std::fprintf(stderr, "%s: Pinocchio and ours disagree (%g)\n", scene.name.c_str(), e);
