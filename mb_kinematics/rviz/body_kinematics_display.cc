@@ -116,11 +116,11 @@ void BodyKinematicsDisplay::makeSystemProperties() {
       "Acceleration", true,
       "The acceleration of G (Acceleration's color and scale, twice as wide).", system_,
       SLOT(updateStyle()), this);
-  system_projection_ = new rviz::BoolProperty(
-      "Ground Projection", true,
-      "G's projection on the x-y plane of R (the message's frame): a disc at z = 0 and a line "
-      "down to it.",
-      system_, SLOT(updateStyle()), this);
+  system_projection_ = new rviz::BoolProperty("Ground Projection", true,
+                                              "G's projection on the x-y plane of R (the message's "
+                                              "frame): a flat short cylinder at z = 0 and a line "
+                                              "down to it.",
+                                              system_, SLOT(updateStyle()), this);
 }
 
 void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg,

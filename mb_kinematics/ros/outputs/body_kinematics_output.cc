@@ -3,6 +3,7 @@
 #include <mb_kinematics_msgs/LowerBodyArray.h>
 
 #include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/ros/outputs/system_fields.h"
 
 namespace mbk_ros {
 
@@ -42,6 +43,7 @@ BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
 
 void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample) {
   fill_body_kinematics(stamp, sample.data, msg_);
+  fill_system_kinematics(sample.model, sample.data, msg_.system);  // issue 10
   publisher_.publish(msg_);
 }
 

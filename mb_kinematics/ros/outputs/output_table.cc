@@ -3,6 +3,7 @@
 #include "mb_kinematics/ros/outputs/body_kinematics_output.h"
 #include "mb_kinematics/ros/outputs/body_motion_output.h"
 #include "mb_kinematics/ros/outputs/markers_output.h"
+#include "mb_kinematics/ros/outputs/partial_velocities_service.h"
 #include "mb_kinematics/ros/outputs/tf_output.h"
 
 namespace mbk_ros {
@@ -21,9 +22,14 @@ OutputKind kind() {
 
 // Adding a topic: its Output class and one line here.
 const OutputKind kOutputs[] = {
-    kind<LowerBodyArrayOutput>(), kind<TfStaticOutput>(), kind<TfOutput>(),
-    kind<BodyKinematicsOutput>(), kind<MarkersOutput>(),  kind<BodyTwistOutput>(),
+    kind<LowerBodyArrayOutput>(),
+    kind<TfStaticOutput>(),
+    kind<TfOutput>(),
+    kind<BodyKinematicsOutput>(),
+    kind<MarkersOutput>(),
+    kind<BodyTwistOutput>(),
     kind<BodyAccelOutput>(),
+    kind<PartialVelocitiesService>(),
 };
 
 }  // namespace
