@@ -103,7 +103,7 @@ void compute(benchmark::State& state, const mbk::Model& model, bool given, bool 
         states.state_at(r, s);
       }
       mbk::forward_kinematics(model, s, d, mbk::Level::kAcceleration);
-      benchmark::DoNotOptimize(d.acceleration.back());
+      benchmark::DoNotOptimize(d.mass_center_acceleration.back());
     }
     samples += rec.rows();
   }

@@ -62,7 +62,7 @@ void apply_floating_base(const BaseMotion& base, Data<double>& data) {
     const Vec3<double> omega = rb * data.omega[k];
     data.alpha[k] = base.alpha + w.cross(omega) + rb * data.alpha[k];
     data.omega[k] = w + omega;
-    carry(data.mass_center[k], data.velocity[k], data.acceleration[k]);
+    carry(data.mass_center[k], data.mass_center_velocity[k], data.mass_center_acceleration[k]);
     carry(data.origin[k], data.origin_velocity[k], data.origin_acceleration[k]);
   }
 }

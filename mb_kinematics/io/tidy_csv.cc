@@ -47,7 +47,7 @@ void TidyCsvWriter::write(double stamp, const Data<double>& d) {
     const Eigen::Quaterniond q(d.rotation[k]);
     for (int i = 0; i < 3; ++i) number(d.origin[k][i]);
     for (double x : {q.x(), q.y(), q.z(), q.w()}) number(x);
-    for (const auto* v : {&d.mass_center, &d.omega, &d.alpha, &d.velocity, &d.acceleration})
+    for (const auto* v : {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
       for (int i = 0; i < 3; ++i) number((*v)[k][i]);
     std::fputc('\n', file_);
   }
@@ -56,8 +56,8 @@ void TidyCsvWriter::write(double stamp, const Data<double>& d) {
   for (int k = 1; k <= model_.body_count(); ++k) {
     const double m = model_.bodies[k].mass / total_mass_;
     p += m * d.mass_center[k];
-    v += m * d.velocity[k];
-    a += m * d.acceleration[k];
+    v += m * d.mass_center_velocity[k];
+    a += m * d.mass_center_acceleration[k];
   }
   std::fprintf(file_, "%s,system,0,0%s", stamp_text, ",,,,,,,");  // no origin, orientation
   for (int i = 0; i < 3; ++i) number(p[i]);

@@ -31,8 +31,8 @@ bool ends_with(const std::string& s, const std::string& end) {
 
 bool finite(const mbk::Data<double>& d, int k) {
   return d.rotation[k].allFinite() && d.origin[k].allFinite() && d.mass_center[k].allFinite() &&
-         d.omega[k].allFinite() && d.velocity[k].allFinite() && d.alpha[k].allFinite() &&
-         d.acceleration[k].allFinite();
+         d.omega[k].allFinite() && d.mass_center_velocity[k].allFinite() && d.alpha[k].allFinite() &&
+         d.mass_center_acceleration[k].allFinite();
 }
 
 // The node's model rules: coordinate-derivative speeds (JointState velocities are q').

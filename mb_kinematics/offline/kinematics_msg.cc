@@ -45,9 +45,9 @@ void fill_kinematics_msg(const mbk::Model& model, const mbk::Data<double>& data,
     set_quaternion(data.rotation[k], b.pose.orientation);
     set_vector(data.mass_center[k], b.mass_center);
     set_vector(data.omega[k], b.twist.angular);
-    set_vector(data.velocity[k], b.twist.linear);
+    set_vector(data.mass_center_velocity[k], b.twist.linear);
     set_vector(data.alpha[k], b.accel.angular);
-    set_vector(data.acceleration[k], b.accel.linear);
+    set_vector(data.mass_center_acceleration[k], b.accel.linear);
   }
 }
 

@@ -137,11 +137,11 @@ void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsA
   const QColor c = system_color_->getColor();
   const float alpha = alpha_->getFloat();
   s.color = Ogre::ColourValue(c.redF(), c.greenF(), c.blueF(), alpha);
-  auto colour = [&](const mbk_ros::Rgba& x) { return Ogre::ColourValue(x.r, x.g, x.b, alpha); };
-  s.velocity_color = colour(style_.color[mbk_ros::GlyphQuantity::kVelocity]);
-  s.acceleration_color = colour(style_.color[mbk_ros::GlyphQuantity::kAcceleration]);
-  s.velocity_scale = style_.scale[mbk_ros::GlyphQuantity::kVelocity];
-  s.acceleration_scale = style_.scale[mbk_ros::GlyphQuantity::kAcceleration];
+  auto colour = [&](const mbk::Rgba& x) { return Ogre::ColourValue(x.r, x.g, x.b, alpha); };
+  s.velocity_color = colour(style_.color[mbk::GlyphQuantity::kVelocity]);
+  s.acceleration_color = colour(style_.color[mbk::GlyphQuantity::kAcceleration]);
+  s.velocity_scale = style_.scale[mbk::GlyphQuantity::kVelocity];
+  s.acceleration_scale = style_.scale[mbk::GlyphQuantity::kAcceleration];
   s.radius = system_radius_->getFloat();
   s.width = 2 * style_.width;
   system_visual_->setFramePose(position, orientation);
