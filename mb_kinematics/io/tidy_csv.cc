@@ -47,7 +47,8 @@ void TidyCsvWriter::write(double stamp, const Data<double>& d) {
     const Eigen::Quaterniond q(d.rotation[k]);
     for (int i = 0; i < 3; ++i) number(d.origin[k][i]);
     for (double x : {q.x(), q.y(), q.z(), q.w()}) number(x);
-    for (const auto* v : {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
+    for (const auto* v :
+         {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
       for (int i = 0; i < 3; ++i) number((*v)[k][i]);
     std::fputc('\n', file_);
   }

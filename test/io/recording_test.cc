@@ -144,7 +144,8 @@ TEST(TidyCsvTest, OneRowPerSampleAndBodyWithEveryColumn) {
   EXPECT_EQ(lines[1].substr(0, 19), "1.500000000,B1,1,0,");
   EXPECT_EQ(lines[3].substr(0, 21), "1.500000000,system,0,");
   // The last value of body 2's row reads back as its acceleration z, exactly.
-  EXPECT_EQ(std::stod(lines[2].substr(lines[2].rfind(',') + 1)), data.acceleration[2].z());
+  EXPECT_EQ(std::stod(lines[2].substr(lines[2].rfind(',') + 1)),
+            data.mass_center_acceleration[2].z());
 }
 
 TEST(OfflineStatesTest, EstimatesFromOwnSamplesAndDropsLoneSamples) {
