@@ -36,7 +36,7 @@ struct PinRun {
 };
 
 // Joint by joint from our model (revolute joints only): Pinocchio's URDF parser does not cope
-// with long chains (design.md, "Peers").
+// with long chains (README "Speed").
 pinocchio::Model build_from(const mbk::Model& model) {
   pinocchio::Model pin;
   std::vector<pinocchio::JointIndex> id(model.bodies.size(), 0);

@@ -31,7 +31,7 @@ BodyMotion<S> in_frame(const Data<S>& data, int k, ReferenceFrame frame, BodyMot
 }  // namespace detail
 
 // omega_k and the velocity of the point P at r from O_k (components in Bk; r = 0: O_k itself,
-// r = r_k: G_k): v_P = vO_k + omega_k x (S0K r) (method.md 4, as v_k). Needs Level kVelocity.
+// r = r_k: G_k): v_P = vO_k + omega_k x (S0K r) (doc/method.md 4, as v_k). Needs Level kVelocity.
 template <typename S>
 BodyMotion<S> point_velocity(const Data<S>& data, int k, const Vec3<S>& r, ReferenceFrame frame) {
   const Vec3<S> rho = data.rotation[k] * r;  // S0K r
@@ -40,7 +40,7 @@ BodyMotion<S> point_velocity(const Data<S>& data, int k, const Vec3<S>& r, Refer
 }
 
 // alpha_k and the acceleration of the same point:
-// a_P = aO_k + alpha_k x (S0K r) + omega_k x (omega_k x (S0K r)) (method.md 4, as a_k).
+// a_P = aO_k + alpha_k x (S0K r) + omega_k x (omega_k x (S0K r)) (doc/method.md 4, as a_k).
 // Needs Level kAcceleration.
 template <typename S>
 BodyMotion<S> point_acceleration(const Data<S>& data, int k, const Vec3<S>& r,

@@ -1,5 +1,5 @@
 // mb_kinematics_msgs/BodyKinematicsArray and tf transforms from the core's Data, filled as the
-// node fills them (design.md "Messages"): every vector in R; tf: a frame per moving body,
+// node fills them (doc/method.md 8): every vector in R; tf: a frame per moving body,
 // parent = its lower body's frame (q_k + s_k and SJK); fixed joints separately, for /tf_static.
 #pragma once
 

@@ -1,5 +1,5 @@
 // joint_accelerations paired with the joint_states sample of the same stamp, whichever of the
-// two arrives first (design.md, "Topics of the node"): a sample waits for its accelerations
+// two arrives first (doc/method.md 8): a sample waits for its accelerations
 // until they come or the next sample does; then it goes on with estimated accelerations.
 #pragma once
 

@@ -1,6 +1,6 @@
 // /tf and /tf_static: a frame per body, parent = its lower body's frame (R for L(k) = 0), the
 // relative transform q_k + s_k, SJK of its joint alone. Fixed joints never move: /tf_static,
-// once at start (design.md "Leave out what a scene does not need").
+// once at start (doc/method.md 8).
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
