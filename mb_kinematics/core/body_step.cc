@@ -16,16 +16,21 @@ JointKernel revolute_kernel(const Joint& joint, bool rotated) {
 
 JointKernel kernel_of(const Joint& joint) {
   const bool rotated = joint.rotation != Mat3<double>::Identity();
-  switch (joint.type) {
+  switch (joint.type) {  // no default: -Wswitch-enum flags a new joint type here
     case JointType::kFixed:
       return rotated ? JointKernel::kFixedRotated : JointKernel::kFixed;
     case JointType::kRevolute:
       return revolute_kernel(joint, rotated);
     case JointType::kPrismatic:
       return rotated ? JointKernel::kPrismaticRotated : JointKernel::kPrismatic;
-    default:
+    case JointType::kBall123:
+    case JointType::kBallEuler:
+    case JointType::kFree123:
+    case JointType::kFreeEuler:
+    case JointType::kPlanar:
       return JointKernel::kGeneric;
   }
+  return JointKernel::kGeneric;  // not reached: every JointType is a case above
 }
 
 // C_k R(a, q) = C_k (a a^T + cos q (I - a a^T) + sin q [a]x) (Rodrigues), multiplied out.

@@ -126,8 +126,11 @@ TEST(Inertia, WrittenUrdfKeepsInertiasAndInventsNone) {
   EXPECT_EQ(back.bodies[b1].mass, 2.0);
   ASSERT_TRUE(back.bodies[b2].has_inertia);
   EXPECT_EQ(back.bodies[b2].inertia, model.bodies[2].inertia);  // printed to round trip
-  for (int k = 1; k <= back.body_count(); ++k)  // the massless links of the expanded ball joint
-    if (back.bodies[k].mass == 0) EXPECT_FALSE(back.bodies[k].has_inertia) << back.bodies[k].name;
+  for (int k = 1; k <= back.body_count(); ++k) {  // the massless links of the expanded ball joint
+    if (back.bodies[k].mass == 0) {
+      EXPECT_FALSE(back.bodies[k].has_inertia) << back.bodies[k].name;
+    }
+  }
 }
 
 }  // namespace

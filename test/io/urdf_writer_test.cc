@@ -79,7 +79,9 @@ TEST(UrdfWriter, NamesAreXmlEscaped) {
     EXPECT_EQ(back.frame, "W<o>rld");
     for (int k = 1; k <= model.body_count(); ++k)
       EXPECT_GE(back.body_index(model.bodies[k].name), 1) << model.bodies[k].name;
-    if (style == mbk::UrdfStyle::kDisplay) EXPECT_EQ(parents(back), parents(model));
+    if (style == mbk::UrdfStyle::kDisplay) {
+      EXPECT_EQ(parents(back), parents(model));
+    }
     EXPECT_EQ(back.bodies[back.body_index("<c>'")].joint.name, "j&amp;2");
   }
   EXPECT_GE(
