@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "mb_kinematics/ros/body_kinematics_fill.h"
+
 namespace mbk_offline {
 
 BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
@@ -12,7 +14,8 @@ BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std
   } catch (const rosbag::BagException& e) {
     throw std::invalid_argument(path + ": cannot write the bag (" + e.what() + ")");
   }
-  init_kinematics_msg(model, base_frame.empty() ? frames_.root() : base_frame, kinematics_);
+  mbk_ros::init_body_kinematics(model, base_frame.empty() ? frames_.root() : base_frame,
+                                kinematics_);
 }
 
 void BagOutput::write(double stamp, const mbk::JointState<double>& state,
@@ -25,8 +28,7 @@ void BagOutput::write(double stamp, const mbk::JointState<double>& state,
     if (!fixed.transforms.empty()) bag_.write("/tf_static", time, fixed);
     static_written_ = true;
   }
-  kinematics_.header.stamp = time;
-  fill_kinematics_msg(model_, data, kinematics_);
+  mbk_ros::fill_body_kinematics(time, data, kinematics_);
   bag_.write("/body_kinematics", time, kinematics_);
   tf_.transforms = frames_.moving(state);
   if (base) {  // R -> the model's root frame

@@ -3,6 +3,7 @@
 // fixed joints; written with the rosbag C++ API.
 #pragma once
 
+#include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <rosbag/bag.h>
 #include <tf2_msgs/TFMessage.h>
 

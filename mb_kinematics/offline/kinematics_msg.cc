@@ -1,55 +1,11 @@
 #include "mb_kinematics/offline/kinematics_msg.h"
 
-#include <Eigen/Geometry>
-
 #include "mb_kinematics/core/joint_motion.h"
+#include "mb_kinematics/ros/outputs/message_fields.h"
 
 namespace mbk_offline {
-namespace {
-
-template <typename T>
-void set_vector(const mbk::Vec3<double>& v, T& out) {
-  out.x = v.x();
-  out.y = v.y();
-  out.z = v.z();
-}
-
-template <typename T>
-void set_quaternion(const mbk::Mat3<double>& r, T& out) {
-  const Eigen::Quaterniond q(r);
-  out.x = q.x();
-  out.y = q.y();
-  out.z = q.z();
-  out.w = q.w();
-}
-
-}  // namespace
-
-void init_kinematics_msg(const mbk::Model& model, const std::string& frame,
-                         mb_kinematics_msgs::BodyKinematicsArray& msg) {
-  msg.header.frame_id = frame;
-  msg.bodies.resize(model.body_count());
-  for (int k = 1; k <= model.body_count(); ++k) {
-    auto& b = msg.bodies[k - 1];
-    b.name = model.bodies[k].name;
-    b.index = k;
-    b.lower_body = model.bodies[k].lower;
-  }
-}
-
-void fill_kinematics_msg(const mbk::Model& model, const mbk::Data<double>& data,
-                         mb_kinematics_msgs::BodyKinematicsArray& msg) {
-  for (int k = 1; k <= model.body_count(); ++k) {
-    auto& b = msg.bodies[k - 1];
-    set_vector(data.origin[k], b.pose.position);
-    set_quaternion(data.rotation[k], b.pose.orientation);
-    set_vector(data.mass_center[k], b.mass_center);
-    set_vector(data.omega[k], b.twist.angular);
-    set_vector(data.mass_center_velocity[k], b.twist.linear);
-    set_vector(data.alpha[k], b.accel.angular);
-    set_vector(data.mass_center_acceleration[k], b.accel.linear);
-  }
-}
+using mbk_ros::set_quaternion;
+using mbk_ros::set_vector;
 
 TfFrames::TfFrames(const mbk::Model& model, const std::string& prefix)
     : model_(model), prefix_(prefix), root_(prefix + model.frame) {

@@ -1,10 +1,9 @@
-// mb_kinematics_msgs/BodyKinematicsArray and tf transforms from the core's Data, filled as the
-// node fills them (doc/method.md 8): every vector in R; tf: a frame per moving body,
-// parent = its lower body's frame (q_k + s_k and SJK); fixed joints separately, for /tf_static.
+// tf transforms from the core's Data, made as the node makes them (doc/method.md 8): a frame per
+// moving body, parent = its lower body's frame (q_k + s_k and SJK); fixed joints separately, for
+// /tf_static. body_kinematics is filled by the node's own mb_kinematics/ros/body_kinematics_fill.h.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
-#include <mb_kinematics_msgs/BodyKinematicsArray.h>
 
 #include <string>
 #include <vector>
@@ -14,13 +13,6 @@
 #include "mb_kinematics/core/state.h"
 
 namespace mbk_offline {
-
-// Names, indices and lower bodies of every body; header.frame_id = `frame` (R's tf name).
-void init_kinematics_msg(const mbk::Model& model, const std::string& frame,
-                         mb_kinematics_msgs::BodyKinematicsArray& msg);
-// Pose, mass center, twist and accel of every body from `data`.
-void fill_kinematics_msg(const mbk::Model& model, const mbk::Data<double>& data,
-                         mb_kinematics_msgs::BodyKinematicsArray& msg);
 
 // tf frame names: `prefix` + body name, R = `prefix` + R's name.
 class TfFrames {

@@ -7,34 +7,6 @@
 
 namespace mbk_ros {
 
-void init_body_kinematics(const mbk::Model& model, const std::string& frame,
-                          mb_kinematics_msgs::BodyKinematicsArray& msg) {
-  msg.header.frame_id = frame;
-  msg.bodies.resize(model.body_count());
-  for (int k = 1; k <= model.body_count(); ++k) {
-    auto& b = msg.bodies[k - 1];
-    b.name = model.bodies[k].name;
-    b.index = k;
-    b.lower_body = model.bodies[k].lower;
-  }
-}
-
-void fill_body_kinematics(const ros::Time& stamp, const mbk::Data<double>& data,
-                          mb_kinematics_msgs::BodyKinematicsArray& msg) {
-  msg.header.stamp = stamp;
-  for (size_t i = 0; i < msg.bodies.size(); ++i) {
-    const size_t k = i + 1;
-    auto& b = msg.bodies[i];
-    set_vector(data.origin[k], b.pose.position);
-    set_quaternion(data.rotation[k], b.pose.orientation);
-    set_vector(data.mass_center[k], b.mass_center);
-    set_vector(data.omega[k], b.twist.angular);
-    set_vector(data.mass_center_velocity[k], b.twist.linear);
-    set_vector(data.alpha[k], b.accel.angular);
-    set_vector(data.mass_center_acceleration[k], b.accel.linear);
-  }
-}
-
 BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
     : publisher_(
           setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics", 10)) {

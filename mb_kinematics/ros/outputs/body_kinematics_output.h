@@ -6,16 +6,10 @@
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <ros/publisher.h>
 
+#include "mb_kinematics/ros/body_kinematics_fill.h"
 #include "mb_kinematics/ros/outputs/output.h"
 
 namespace mbk_ros {
-
-// Names, indices and lower bodies of `msg`, once: the per-sample fill leaves them.
-void init_body_kinematics(const mbk::Model& model, const std::string& frame,
-                          mb_kinematics_msgs::BodyKinematicsArray& msg);
-// The sample's values (forward_kinematics at Level kAcceleration) into `msg`.
-void fill_body_kinematics(const ros::Time& stamp, const mbk::Data<double>& data,
-                          mb_kinematics_msgs::BodyKinematicsArray& msg);
 
 class BodyKinematicsOutput : public Output {
  public:

@@ -1,0 +1,47 @@
+// body_kinematics (mb_kinematics_msgs/BodyKinematicsArray) from the core's Data: every body's
+// pose, mass center, twist (omega_k, velocity of G_k) and accel (alpha_k, acceleration of G_k),
+// all in R. Message headers only, so that the node and `mbk bag` fill it the same way.
+#pragma once
+
+#include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <ros/time.h>
+
+#include <string>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/ros/outputs/message_fields.h"
+
+namespace mbk_ros {
+
+// Names, indices and lower bodies of `msg`, once: the per-sample fill leaves them.
+inline void init_body_kinematics(const mbk::Model& model, const std::string& frame,
+                                 mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  msg.header.frame_id = frame;
+  msg.bodies.resize(model.body_count());
+  for (int k = 1; k <= model.body_count(); ++k) {
+    auto& b = msg.bodies[k - 1];
+    b.name = model.bodies[k].name;
+    b.index = k;
+    b.lower_body = model.bodies[k].lower;
+  }
+}
+
+// The sample's values (forward_kinematics at Level kAcceleration) into `msg`.
+inline void fill_body_kinematics(const ros::Time& stamp, const mbk::Data<double>& data,
+                                 mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  msg.header.stamp = stamp;
+  for (size_t i = 0; i < msg.bodies.size(); ++i) {
+    const size_t k = i + 1;
+    auto& b = msg.bodies[i];
+    set_vector(data.origin[k], b.pose.position);
+    set_quaternion(data.rotation[k], b.pose.orientation);
+    set_vector(data.mass_center[k], b.mass_center);
+    set_vector(data.omega[k], b.twist.angular);
+    set_vector(data.mass_center_velocity[k], b.twist.linear);
+    set_vector(data.alpha[k], b.accel.angular);
+    set_vector(data.mass_center_acceleration[k], b.accel.linear);
+  }
+}
+
+}  // namespace mbk_ros
