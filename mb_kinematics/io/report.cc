@@ -8,6 +8,7 @@
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/core/utf8.h"
 #include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
@@ -21,24 +22,6 @@ std::string json_array(const Matrix& m) {  // row-major
   for (int r = 0; r < m.rows(); ++r)
     for (int c = 0; c < m.cols(); ++c) out += (r + c ? ", " : "") + number(m(r, c));
   return out + "]";
-}
-
-// Length of the UTF-8 sequence starting at s[i], 0 if it is not one (RFC 3629: no overlong
-// forms, no surrogates, at most U+10FFFF).
-size_t utf8_length(const std::string& s, size_t i) {
-  const auto byte = [&](size_t j) { return static_cast<unsigned char>(s[j]); };
-  const unsigned char c = byte(i);
-  const size_t n = c < 0x80                 ? 1
-                   : c >= 0xc2 && c <= 0xdf ? 2
-                   : c >= 0xe0 && c <= 0xef ? 3
-                   : c >= 0xf0 && c <= 0xf4 ? 4
-                                            : 0;
-  if (n == 0 || i + n > s.size()) return 0;
-  for (size_t j = 1; j < n; ++j)
-    if ((byte(i + j) & 0xc0) != 0x80) return 0;
-  if (n == 3 && ((c == 0xe0 && byte(i + 1) < 0xa0) || (c == 0xed && byte(i + 1) >= 0xa0))) return 0;
-  if (n == 4 && ((c == 0xf0 && byte(i + 1) < 0x90) || (c == 0xf4 && byte(i + 1) >= 0x90))) return 0;
-  return n;
 }
 
 // Widths of the text table: the label column and each entry, with at least one space between.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/core/utf8.h"
 #include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
@@ -41,12 +42,16 @@ std::string xml(const std::string& name) {
 }
 
 // XML 1.0 has no control characters but tab, newline and carriage return, and parsers turn
-// those into spaces in attributes: a name with any of them cannot be written.
+// those into spaces in attributes; its text is Unicode. A name with a control character or
+// bytes that are not UTF-8 cannot be written.
 void check_name(const std::string& name, const std::string& what) {
   for (const char c : name)
     if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
       throw std::invalid_argument(what + " '" + printable(name) +
                                   "' has a control character, which URDF (XML) cannot hold");
+  if (!is_utf8(name))
+    throw std::invalid_argument(what + " '" + printable(name) +
+                                "' is not UTF-8 text, which URDF (XML) needs");
 }
 
 // The URDF being written. Every link name and every joint name must be used once: expanded

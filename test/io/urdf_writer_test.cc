@@ -109,6 +109,23 @@ TEST(UrdfWriter, RefusesNamesWithControlCharacters) {
                  {"'a\\nb'", "control character"});
 }
 
+// XML text is Unicode: a name whose bytes are not UTF-8 (here a Latin-1 e-acute run, which a
+// fuzzer found) would be written and then not parse. Refused, with the bytes escaped.
+TEST(UrdfWriter, RefusesNamesThatAreNotUtf8) {
+  expect_refused("bodies:\n  - {name: B1, lower: 0, joint: {name: \"J\xe9\xe9\", type: revolute}}\n",
+                 {"'J\\xe9\\xe9'", "not UTF-8"});
+}
+
+// A name in UTF-8 (here "e-acute" as C3 A9) is written and loads back under the same name.
+TEST(UrdfWriter, WritesUtf8Names) {
+  const mbk::Model model = mbk::load_yaml_scene_string(
+      "bodies:\n  - {name: \"B\xc3\xa9\", lower: 0, joint: {type: revolute}}\n", "utf8.yaml");
+  const mbk::Model back =
+      mbk::load_urdf_string(mbk::write_urdf(model, "utf8", mbk::UrdfStyle::kEquivalent), "w.urdf");
+  ASSERT_EQ(back.bodies.size(), model.bodies.size());
+  EXPECT_EQ(back.bodies.back().name, "B\xc3\xa9");
+}
+
 // An expanded ball joint makes links <body>__alpha and joints <joint>/alpha, which a scene may
 // also use: such a URDF would not load. Refused, naming both owners.
 TEST(UrdfWriter, RefusesNameClashesOfExpandedJoints) {
