@@ -112,8 +112,9 @@ TEST(UrdfWriter, RefusesNamesWithControlCharacters) {
 // XML text is Unicode: a name whose bytes are not UTF-8 (here a Latin-1 e-acute run, which a
 // fuzzer found) would be written and then not parse. Refused, with the bytes escaped.
 TEST(UrdfWriter, RefusesNamesThatAreNotUtf8) {
-  expect_refused("bodies:\n  - {name: B1, lower: 0, joint: {name: \"J\xe9\xe9\", type: revolute}}\n",
-                 {"'J\\xe9\\xe9'", "not UTF-8"});
+  expect_refused(
+      "bodies:\n  - {name: B1, lower: 0, joint: {name: \"J\xe9\xe9\", type: revolute}}\n",
+      {"'J\\xe9\\xe9'", "not UTF-8"});
 }
 
 // A name in UTF-8 (here "e-acute" as C3 A9) is written and loads back under the same name.
