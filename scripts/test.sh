@@ -5,8 +5,9 @@
 #   scripts/test.sh [--sanitize]
 # --sanitize: the same build with -fsanitize=address,undefined (UB aborts, leaks fail, urdfdom's
 # own leaks suppressed by test/lsan.supp) in a workspace of its own, <workspace>-sanitize; the
-# rviz screenshot test (rviz itself is not instrumented) and the fuzz smoke (its harnesses
-# always are) are left out (README "Reliability").
+# rviz plugin and its screenshot test (rviz itself is not instrumented), the benchmarks (not
+# tests) and the fuzz smoke (its harnesses always are) are left out, and it is built with -O1
+# -g (README "Reliability").
 sanitize=${1:-}
 [ -z "$sanitize" ] || [ "$sanitize" = --sanitize ] || { echo "usage: scripts/test.sh [--sanitize]" >&2; exit 2; }
 source "$(dirname "$0")/common.sh"
@@ -16,7 +17,8 @@ if [ -n "$sanitize" ]; then
   MBK_WS=$MBK_WS-sanitize
   flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
   build_args=(-DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags"
-    -DCMAKE_SHARED_LINKER_FLAGS="$flags")
+    -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g -DNDEBUG"
+    -DMBK_BENCHMARKS=OFF -DCMAKE_DISABLE_FIND_PACKAGE_rviz=ON)
   skip=(-E 'screenshot|fuzz_smoke')
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
   export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
