@@ -33,6 +33,13 @@ JointKernel kernel_of(const Joint& joint) {
   return JointKernel::kGeneric;  // not reached: every JointType is a case above
 }
 
+VectorShape shape_of(const Vec3<double>& v) {
+  const int nonzero = (v.array() != 0.0).count();
+  if (nonzero == 0) return VectorShape::kZero;
+  if (nonzero > 1) return VectorShape::kDense;
+  return v.x() != 0.0 ? VectorShape::kX : v.y() != 0.0 ? VectorShape::kY : VectorShape::kZ;
+}
+
 // C_k R(a, q) = C_k (a a^T + cos q (I - a a^T) + sin q [a]x) (Rodrigues), multiplied out.
 void add_revolute_matrices(const Joint& joint, std::vector<Mat3<double>>& matrices) {
   const Mat3<double> aat = joint.axis * joint.axis.transpose();
@@ -57,6 +64,8 @@ BodySteps make_body_steps(const Model& model) {
     step.v_index = body.v_index;
     step.offset = body.joint.offset;
     step.mass_center = body.mass_center;
+    step.offset_shape = shape_of(step.offset);
+    step.mass_center_shape = shape_of(step.mass_center);
     step.axis = body.joint.rotation * body.joint.axis;
     if (step.kernel == JointKernel::kFixedRotated ||
         step.kernel == JointKernel::kPrismaticRotated) {

@@ -30,10 +30,16 @@ enum class JointKernel : std::uint8_t {
   kGeneric,           // ball, free and planar joints: joint_motion()
 };
 
+// Which entries of a constant vector (q_k, r_k) are nonzero, so that S0J q_k takes a column of
+// S0J, or nothing, instead of the whole product (the same sums without their zero terms).
+enum class VectorShape : std::uint8_t { kZero, kX, kY, kZ, kDense };
+
 struct BodyStep {
   JointKernel kernel = JointKernel::kGeneric;
-  bool reorthonormalize = false;  // depth is a multiple of kReorthonormalizeEvery
-  int lower = 0;                  // L(k)
+  bool reorthonormalize = false;                   // depth is a multiple of kReorthonormalizeEvery
+  VectorShape offset_shape = VectorShape::kDense;  // of offset
+  VectorShape mass_center_shape = VectorShape::kDense;  // of mass_center
+  int lower = 0;                                        // L(k)
   int q_index = 0;
   int v_index = 0;
   int matrices = -1;  // this body's first constant in BodySteps::matrices (C_k, or P0 P1 P2)

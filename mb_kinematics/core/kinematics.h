@@ -35,6 +35,52 @@ void reorthonormalize(Mat3<S>& r) {
   r = r * (S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
 }
 
+// Data's arrays as raw pointers, and the state's: the loop over bodies keeps them in registers
+// instead of reloading each std::vector's and Eigen vector's start at every access.
+template <typename S>
+struct DataView {
+  Mat3<S>* rotation;
+  Vec3<S>*origin, *mass_center, *omega, *alpha, *mass_center_velocity, *mass_center_acceleration,
+      *origin_velocity, *origin_acceleration;
+  explicit DataView(Data<S>& d)
+      : rotation(d.rotation.data()),
+        origin(d.origin.data()),
+        mass_center(d.mass_center.data()),
+        omega(d.omega.data()),
+        alpha(d.alpha.data()),
+        mass_center_velocity(d.mass_center_velocity.data()),
+        mass_center_acceleration(d.mass_center_acceleration.data()),
+        origin_velocity(d.origin_velocity.data()),
+        origin_acceleration(d.origin_acceleration.data()) {}
+};
+
+// q, y and y' of a JointState (doc/method.md 8).
+template <typename S>
+struct StateView {
+  const S *q, *y, *yd;
+  explicit StateView(const JointState<S>& s)
+      : q(s.position.data()), y(s.velocity.data()), yd(s.acceleration.data()) {}
+};
+
+// m v for a constant v of the given shape (body_step.h): bit for bit m * v, whose zero terms
+// change no sum.
+template <typename S>
+Vec3<S> times_constant(const Mat3<S>& m, const Vec3<double>& v, VectorShape shape) {
+  switch (shape) {
+    case VectorShape::kZero:
+      return Vec3<S>::Zero();
+    case VectorShape::kX:
+      return m.col(0) * S(v.x());
+    case VectorShape::kY:
+      return m.col(1) * S(v.y());
+    case VectorShape::kZ:
+      return m.col(2) * S(v.z());
+    case VectorShape::kDense:
+      break;
+  }
+  return m * v.cast<S>();
+}
+
 // A joint's share of body k's motion, in R components: d = S0J (q_k + s_k) (O_j to O_k), the
 // relative angular velocity w = S0J w_k and w' part wd = S0J w_k', and sd = S0J s_k',
 // sdd = S0J s_k''.
@@ -43,39 +89,76 @@ struct JointTerms {
   Vec3<S> d, w, wd, sd, sdd;
 };
 
-// Body k from its lower body once S0K = S0J SJK is in data.rotation[k] (doc/method.md 4).
-// kRotates, kTranslates: whether the joint turns (w, wd used) and translates (sd, sdd used).
-template <Level L, bool kRotates, bool kTranslates, typename S>
-void body_update(const BodyStep& b, int k, const JointTerms<S>& t, Data<S>& data) {
+// O_k and its velocity and acceleration from O_j's (doc/method.md 4, eq. 4.6.2): d = 0 (a joint
+// at O_j that does not translate) leaves them O_j's.
+template <Level L, bool kTranslates, typename S>
+void origin_update(const BodyStep& b, int k, const JointTerms<S>& t, const DataView<S>& data) {
   const int j = b.lower;
-  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
-  data.origin[k] = data.origin[j] + t.d;                           // eq. 4.6.2
-  const Vec3<S> rho = data.rotation[k] * b.mass_center.cast<S>();  // S0K r_k
-  data.mass_center[k] = data.origin[k] + rho;
+  if (!kTranslates && b.offset_shape == VectorShape::kZero) {
+    data.origin[k] = data.origin[j];
+    if constexpr (L != Level::kPose) data.origin_velocity[k] = data.origin_velocity[j];
+    if constexpr (L == Level::kAcceleration)
+      data.origin_acceleration[k] = data.origin_acceleration[j];
+    return;
+  }
+  data.origin[k] = data.origin[j] + t.d;  // eq. 4.6.2
   if constexpr (L != Level::kPose) {
     const Vec3<S>& omega_j = data.omega[j];
     const Vec3<S> omega_j_d = omega_j.cross(t.d);
+    Vec3<S>& vo = data.origin_velocity[k];
+    vo = data.origin_velocity[j] + omega_j_d;
+    if constexpr (kTranslates) vo += t.sd;
+    if constexpr (L == Level::kAcceleration) {
+      Vec3<S>& ao = data.origin_acceleration[k];
+      ao = data.origin_acceleration[j] + data.alpha[j].cross(t.d) + omega_j.cross(omega_j_d);
+      if constexpr (kTranslates) ao += S(2) * omega_j.cross(t.sd) + t.sdd;
+    }
+  }
+}
+
+// G_k and its velocity and acceleration from O_k's, rho = S0K r_k (doc/method.md 4): r_k = 0
+// leaves them O_k's.
+template <Level L, typename S>
+void mass_center_update(const BodyStep& b, int k, const DataView<S>& data) {
+  if (b.mass_center_shape == VectorShape::kZero) {
+    data.mass_center[k] = data.origin[k];
+    if constexpr (L != Level::kPose) data.mass_center_velocity[k] = data.origin_velocity[k];
+    if constexpr (L == Level::kAcceleration)
+      data.mass_center_acceleration[k] = data.origin_acceleration[k];
+    return;
+  }
+  const Vec3<S> rho = times_constant(data.rotation[k], b.mass_center, b.mass_center_shape);
+  data.mass_center[k] = data.origin[k] + rho;
+  if constexpr (L != Level::kPose) {
+    const Vec3<S>& omega_k = data.omega[k];
+    const Vec3<S> omega_k_rho = omega_k.cross(rho);
+    data.mass_center_velocity[k] = data.origin_velocity[k] + omega_k_rho;
+    if constexpr (L == Level::kAcceleration)
+      data.mass_center_acceleration[k] =
+          data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k_rho);
+  }
+}
+
+// Body k from its lower body once S0K = S0J SJK is in data.rotation[k] (doc/method.md 4).
+// kRotates, kTranslates: whether the joint turns (w, wd used) and translates (sd, sdd used).
+template <Level L, bool kRotates, bool kTranslates, typename S>
+void body_update(const BodyStep& b, int k, const JointTerms<S>& t, const DataView<S>& data) {
+  const int j = b.lower;
+  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
+  if constexpr (L != Level::kPose) {
+    const Vec3<S>& omega_j = data.omega[j];
     Vec3<S>& omega_k = data.omega[k];
     omega_k = omega_j;
     if constexpr (kRotates) omega_k += t.w;  // eq. 4.4.6
-    Vec3<S>& vo = data.origin_velocity[k];   // doc/method.md 4
-    vo = data.origin_velocity[j] + omega_j_d;
-    if constexpr (kTranslates) vo += t.sd;
-    const Vec3<S> omega_k_rho = omega_k.cross(rho);
-    data.mass_center_velocity[k] = vo + omega_k_rho;
     if constexpr (L == Level::kAcceleration) {
-      const Vec3<S>& alpha_j = data.alpha[j];
-      Vec3<S>& alpha_k = data.alpha[k];
       if constexpr (kRotates)
-        alpha_k = alpha_j + t.wd + omega_j.cross(t.w);  // eq. 4.5.1
+        data.alpha[k] = data.alpha[j] + t.wd + omega_j.cross(t.w);  // eq. 4.5.1
       else
-        alpha_k = alpha_j;
-      Vec3<S>& ao = data.origin_acceleration[k];  // doc/method.md 4
-      ao = data.origin_acceleration[j] + alpha_j.cross(t.d) + omega_j.cross(omega_j_d);
-      if constexpr (kTranslates) ao += S(2) * omega_j.cross(t.sd) + t.sdd;
-      data.mass_center_acceleration[k] = ao + alpha_k.cross(rho) + omega_k.cross(omega_k_rho);
+        data.alpha[k] = data.alpha[j];
     }
   }
+  origin_update<L, kTranslates>(b, k, t, data);
+  mass_center_update<L>(b, k, data);
 }
 
 // S0K = S0J SJK for a turn (cos c, sin s) about coordinate axis I with C_k = I (eq. 4.4.9-4.4.11
@@ -94,30 +177,30 @@ void turn_columns(const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
 
 // Revolute joint about coordinate axis I, C_k = I.
 template <int I, typename S>
-void axis_pose(const BodyStep& b, int k, const S* q, Data<S>& data, Vec3<S>& d) {
+void axis_pose(const BodyStep& b, int k, const S* q, const DataView<S>& data, Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
   S c, s;
   sin_cos(q[b.q_index], s, c);
   turn_columns<I>(s0j, c, s, data.rotation[k]);
-  d = s0j * b.offset.cast<S>();
+  d = times_constant(s0j, b.offset, b.offset_shape);
 }
 
 // Revolute joint about any axis a with any C_k: SJK = P0 + cos q P1 + sin q P2 (body_step.cc).
 template <typename S>
-void revolute_pose(const Model& model, const BodyStep& b, int k, const S* q, Data<S>& data,
-                   Vec3<S>& d) {
+void revolute_pose(const Model& model, const BodyStep& b, int k, const S* q,
+                   const DataView<S>& data, Vec3<S>& d) {
   const Mat3<double>* p = model.steps.matrices.data() + b.matrices;
   const Mat3<S>& s0j = data.rotation[b.lower];
   S c, s;
   sin_cos(q[b.q_index], s, c);
   const Mat3<S> sjk = p[0].cast<S>() + c * p[1].cast<S>() + s * p[2].cast<S>();
   data.rotation[k] = s0j * sjk;
-  d = s0j * b.offset.cast<S>();
+  d = times_constant(s0j, b.offset, b.offset_shape);
 }
 
 // Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
 template <bool kRotated, bool kTranslates, typename S>
-void rigid_pose(const Model& model, const BodyStep& b, int k, const S* q, Data<S>& data,
+void rigid_pose(const Model& model, const BodyStep& b, int k, const S* q, const DataView<S>& data,
                 Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (kRotated)
@@ -127,12 +210,13 @@ void rigid_pose(const Model& model, const BodyStep& b, int k, const S* q, Data<S
   if constexpr (kTranslates)
     d = s0j * (b.offset.cast<S>() + b.axis.cast<S>() * q[b.q_index]);
   else
-    d = s0j * b.offset.cast<S>();
+    d = times_constant(s0j, b.offset, b.offset_shape);
 }
 
 // Any joint from its joint_motion.
 template <typename S>
-void motion_pose(const BodyStep& b, int k, const JointMotion<S>& m, Data<S>& data, Vec3<S>& d) {
+void motion_pose(const BodyStep& b, int k, const JointMotion<S>& m, const DataView<S>& data,
+                 Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
   data.rotation[k] = s0j * m.rotation;             // S0K = S0J SJK
   d = s0j * (b.offset.cast<S>() + m.translation);  // S0J (q_k + s_k)
@@ -155,8 +239,9 @@ bool uses_joint_motion(JointKernel kernel) {
 // uses_joint_motion); also returns d = S0J (q_k + s_k) and rho = S0K r_k. For
 // partial_velocity_kinematics.
 template <typename S>
-void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, Data<S>& data,
+void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, Data<S>& all,
                Vec3<S>& d, Vec3<S>& rho) {
+  const DataView<S> data(all);
   const BodyStep& b = model.steps.steps[k];
   if (uses_joint_motion<S>(b.kernel)) {
     motion_pose(b, k, m, data, d);
@@ -192,67 +277,68 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
   }
   const int j = b.lower;
   if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
-  data.origin[k] = data.origin[j] + d;               // eq. 4.6.2
-  rho = data.rotation[k] * b.mass_center.cast<S>();  // S0K r_k
+  data.origin[k] = data.origin[j] + d;                                         // eq. 4.6.2
+  rho = times_constant(data.rotation[k], b.mass_center, b.mass_center_shape);  // S0K r_k
   data.mass_center[k] = data.origin[k] + rho;
 }
 
 // Revolute joint about coordinate axis I, C_k = I: w_k = e_I q', so S0J w_k = column I of S0J q'.
 template <Level L, int I, typename S>
-void revolute_axis_step(const BodyStep& b, int k, const JointState<S>& state, Data<S>& data) {
+void revolute_axis_step(const BodyStep& b, int k, const StateView<S>& state,
+                        const DataView<S>& data) {
   JointTerms<S> t;
-  axis_pose<I>(b, k, state.position.data(), data, t.d);
+  axis_pose<I>(b, k, state.q, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
-  if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.velocity.data()[b.v_index];
-  if constexpr (L == Level::kAcceleration) t.wd = s0j.col(I) * state.acceleration.data()[b.v_index];
+  if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.y[b.v_index];
+  if constexpr (L == Level::kAcceleration) t.wd = s0j.col(I) * state.yd[b.v_index];
   body_update<L, true, false>(b, k, t, data);
 }
 
 // Revolute joint about any axis: S0J w_k = S0J (C_k a) q'.
 template <Level L, typename S>
-void revolute_step(const Model& model, const BodyStep& b, int k, const JointState<S>& state,
-                   Data<S>& data) {
+void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                   const DataView<S>& data) {
   JointTerms<S> t;
-  revolute_pose(model, b, k, state.position.data(), data, t.d);
+  revolute_pose(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
-    t.w = u * state.velocity.data()[b.v_index];
-    if constexpr (L == Level::kAcceleration) t.wd = u * state.acceleration.data()[b.v_index];
+    t.w = u * state.y[b.v_index];
+    if constexpr (L == Level::kAcceleration) t.wd = u * state.yd[b.v_index];
   }
   body_update<L, true, false>(b, k, t, data);
 }
 
 // Prismatic joint: s_k' = (C_k a) q'.
 template <Level L, bool kRotated, typename S>
-void prismatic_step(const Model& model, const BodyStep& b, int k, const JointState<S>& state,
-                    Data<S>& data) {
+void prismatic_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                    const DataView<S>& data) {
   JointTerms<S> t;
-  rigid_pose<kRotated, true>(model, b, k, state.position.data(), data, t.d);
+  rigid_pose<kRotated, true>(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
-    t.sd = u * state.velocity.data()[b.v_index];
-    if constexpr (L == Level::kAcceleration) t.sdd = u * state.acceleration.data()[b.v_index];
+    t.sd = u * state.y[b.v_index];
+    if constexpr (L == Level::kAcceleration) t.sdd = u * state.yd[b.v_index];
   }
   body_update<L, false, true>(b, k, t, data);
 }
 
 // Fixed joint.
 template <Level L, bool kRotated, typename S>
-void fixed_step(const Model& model, const BodyStep& b, int k, const JointState<S>& state,
-                Data<S>& data) {
+void fixed_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                const DataView<S>& data) {
   JointTerms<S> t;
-  rigid_pose<kRotated, false>(model, b, k, state.position.data(), data, t.d);
+  rigid_pose<kRotated, false>(model, b, k, state.q, data, t.d);
   body_update<L, false, false>(b, k, t, data);
 }
 
 // Any joint through joint_motion (ball, free, planar; and folded joints of a reference build).
 template <Level L, typename S>
-void generic_step(const Model& model, int k, const JointState<S>& state, Data<S>& data) {
+void generic_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
   const Body& body = model.bodies[k];
   const BodyStep& b = model.steps.steps[k];
-  const S* y = L == Level::kPose ? nullptr : state.velocity.data() + body.v_index;
+  const S* y = L == Level::kPose ? nullptr : state.y + body.v_index;
   JointMotion<S> m;
-  joint_motion(body.joint, model.speeds, state.position.data() + body.q_index, y, m);
+  joint_motion(body.joint, model.speeds, state.q + body.q_index, y, m);
   JointTerms<S> t;
   motion_pose(b, k, m, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
@@ -263,7 +349,7 @@ void generic_step(const Model& model, int k, const JointState<S>& state, Data<S>
     t.w = s0j * w;
     t.sd = s0j * sd;
     if constexpr (L == Level::kAcceleration) {
-      const S* yd = state.acceleration.data() + body.v_index;
+      const S* yd = state.yd + body.v_index;
       Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // w_k', s_k'' in Bj
       for (int c = m.linear_speeds; c < m.speeds; ++c)
         wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
@@ -279,10 +365,13 @@ void generic_step(const Model& model, int k, const JointState<S>& state, Data<S>
 }
 
 template <Level L, typename S>
-MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& state,
-                                       Data<S>& data) {
+MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& joint_state,
+                                       Data<S>& all) {
+  const StateView<S> state(joint_state);
+  const DataView<S> data(all);
+  const int n = model.body_count();
   const BodyStep* steps = model.steps.steps.data();
-  for (int k = 1; k <= model.body_count(); ++k) {
+  for (int k = 1; k <= n; ++k) {
     const BodyStep& b = steps[k];
     if (uses_joint_motion<S>(b.kernel)) {
       generic_step<L>(model, k, state, data);

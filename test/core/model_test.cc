@@ -143,6 +143,26 @@ TEST(FinalizeModel, NormalizesAxes) {
   EXPECT_EQ(model.bodies[2].joint.axis, V(0, 0, 1));
 }
 
+// The shapes of q_k and r_k that forward_kinematics uses to skip zero terms (body_step.h).
+TEST(FinalizeModel, ClassifiesOffsetsAndMassCenters) {
+  using mbk::VectorShape;
+  mbk::Model model = three_bodies();
+  model.bodies[1].joint.offset = V(0, 0, 0);
+  model.bodies[1].mass_center = V(0, -0.5, 0);
+  model.bodies[2].joint.offset = V(0, 0, 2);
+  model.bodies[2].mass_center = V(1e-300, 0, 0);
+  model.bodies[3].joint.offset = V(1, 0, 1);
+  model.bodies[3].mass_center = V(0, 0, 0);
+  mbk::finalize_model(model);
+  const auto& steps = model.steps.steps;
+  EXPECT_EQ(steps[1].offset_shape, VectorShape::kZero);
+  EXPECT_EQ(steps[1].mass_center_shape, VectorShape::kY);
+  EXPECT_EQ(steps[2].offset_shape, VectorShape::kZ);
+  EXPECT_EQ(steps[2].mass_center_shape, VectorShape::kX);
+  EXPECT_EQ(steps[3].offset_shape, VectorShape::kDense);
+  EXPECT_EQ(steps[3].mass_center_shape, VectorShape::kZero);
+}
+
 // ---- Coordinate and speed names (doc/method.md 8).
 
 mbk::Model every_joint_type(mbk::SpeedKind speeds) {
