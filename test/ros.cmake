@@ -26,6 +26,7 @@ foreach(name node pairing rsp_compare markers hostile frame_prefix system)
     MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 endforeach()
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
+add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
 
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/ros/bag_test.cc)
