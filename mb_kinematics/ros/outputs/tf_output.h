@@ -28,7 +28,7 @@ class TfOutput : public Output {
   explicit TfOutput(const OutputSetup& setup);
   mbk::Level level() const override { return mbk::Level::kPose; }
   bool uses_data() const override { return false; }
-  bool active() override { return true; }  // tf listeners are not counted: always
+  bool active() override { return publisher_.getNumSubscribers() > 0; }  // tf listeners
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
  private:
