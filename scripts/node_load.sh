@@ -4,7 +4,9 @@
 # robot_state_publisher (_ignore_timestamp:=true: tf for every sample), demo_publisher at RATE
 # on MODEL, and load_monitor (subscribed to body_kinematics and /tf). After a warm-up it reads
 # /proc/<pid>/stat of the node and of robot_state_publisher over a window, and prints both CPU
-# shares (% of one core), their ratio, the node's RSS and the message rates received.
+# shares (% of one core), their ratio, the node's RSS and the message rates received; with /tf
+# listened also the CPU per sample each one published (us per /tf message: robot_state_publisher
+# subscribes joint_states with a queue of 1 and skips the samples that arrive while it works).
 #
 #   scripts/node_load.sh [--rate HZ] [--bodies N | --model FILE.urdf] [--seconds S]
 #                        [--warmup S] [--runs R] [--port PORT] [--nodelet]
@@ -88,7 +90,9 @@ PIDS+=($!)
 for _ in $(seq 100); do rosparam get /rosdistro >/dev/null 2>&1 && break; sleep 0.2; done
 rosparam set --textfile "$MODEL" /robot_description
 
+NODE_NAME=/mb_kinematics  # the publisher of the node's /tf
 if [ "$NODELET" = 1 ]; then
+  NODE_NAME=/manager
   /usr/lib/nodelet/nodelet manager __name:=manager >"$TMP/node.log" 2>&1 &
   NODE=$!
   /usr/lib/nodelet/nodelet load mb_kinematics/KinematicsNodelet manager __name:=mb_kinematics \
@@ -130,13 +134,20 @@ for run in $(seq "$RUNS"); do
   ratio=$(awk -v n="$node" -v r="$rsp" 'BEGIN { printf "%.2f", (r > 0) ? n / r : 0 }')
   bk=$(awk -F'[:,]' '/^body_kinematics/ { print $2 + 0 }' "$TMP/monitor.log")
   js=$(awk -F'[:,]' '/^joint_states/ { print $2 + 0 }' "$TMP/monitor.log")
+  tf_node=$(awk -F'[:,]' -v n="/tf from $NODE_NAME" 'index($0, n) == 1 { print $2 + 0 }' "$TMP/monitor.log")
+  tf_rsp=$(awk -F'[:,]' '/^\/tf from \/robot_state_publisher/ { print $2 + 0 }' "$TMP/monitor.log")
+  per=$(awk -v n="$node" -v r="$rsp" -v a="${tf_node:-0}" -v b="${tf_rsp:-0}" -v s="$SECONDS_" 'BEGIN {
+    if (a > 0 && b > 0) printf "%.0f %.0f %.2f", n * s * 1e4 / a, r * s * 1e4 / b, (n / a) / (r / b); else print "- - -" }')
   echo "run $run: node ${node} % of a core, robot_state_publisher ${rsp} %, ratio ${ratio}; node RSS $(rss_mb "$NODE") MB"
+  read -r per_node per_rsp per_ratio <<<"$per"
+  echo "  CPU per published sample: node ${per_node} us, robot_state_publisher ${per_rsp} us, ratio ${per_ratio}"
   sed 's/^/  /' "$TMP/monitor.log"
   echo "  body_kinematics messages / joint_states messages: ${bk:-0} / ${js:-0}"
-  echo "$node $rsp $ratio" >>"$TMP/runs"
+  echo "$node $rsp $ratio $per_ratio" >>"$TMP/runs"
   sleep 1
 done
 if [ "$RUNS" -gt 1 ]; then
   echo "medians of $RUNS runs: node $(cut -d' ' -f1 "$TMP/runs" | median) %," \
-    "robot_state_publisher $(cut -d' ' -f2 "$TMP/runs" | median) %, ratio $(cut -d' ' -f3 "$TMP/runs" | median)"
+    "robot_state_publisher $(cut -d' ' -f2 "$TMP/runs" | median) %, ratio $(cut -d' ' -f3 "$TMP/runs" | median);" \
+    "ratio per published sample $(cut -d' ' -f4 "$TMP/runs" | median)"
 fi
