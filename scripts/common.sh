@@ -21,6 +21,7 @@ MBK_PACKAGES=(
   librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
   pluginlib-dev libogre-1.12-dev librosbag-dev libtf2-msgs-dev libnav-msgs-dev python3-rosbag
   python3-matplotlib catkin-lint
+  libnodelet-dev libnodeletlib-dev libnodeletlib-tools libtopic-tools-dev  # the nodelet; load_monitor
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
 )

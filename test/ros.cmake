@@ -7,6 +7,13 @@ add_dependencies(joint_state_input_test mb_kinematics_msgs_generate_messages_cpp
 target_link_libraries(joint_state_input_test mbk_ros mbk_io mbk_core gtest_main)
 target_compile_definitions(joint_state_input_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+# No allocation per sample in the node's output fill functions (no ROS master needed).
+catkin_add_gtest(output_allocation_test test/ros/output_allocation_test.cc
+  test/support/test_models.cc)
+add_dependencies(output_allocation_test mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(output_allocation_test mbk_ros mbk_analysis mbk_io mbk_core gtest_main)
+target_compile_definitions(output_allocation_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
 # The picture shared by the rviz display and ~publish_markers (no master needed).
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers gtest_main)
@@ -19,6 +26,7 @@ foreach(name node pairing rsp_compare markers hostile frame_prefix system)
     MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 endforeach()
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
+add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
 
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/ros/bag_test.cc)

@@ -4,31 +4,32 @@
 
 namespace mbk_ros {
 
-std::vector<AccelerationPairing::Ready> AccelerationPairing::add(
+const std::vector<AccelerationPairing::Ready>& AccelerationPairing::add(
     const sensor_msgs::JointStateConstPtr& msg, bool pairing) {
-  std::vector<Ready> ready;
+  ready_.clear();
   if (pending_) {  // its accelerations did not come in time: estimate them
-    ready.push_back({pending_, true});
+    ready_.push_back({pending_, true});
     pending_.reset();
   }
   if (pairing && !at(msg->header.stamp.toSec()))
     pending_ = msg;  // wait for joint_accelerations of the same stamp (or the next sample)
   else
-    ready.push_back({msg, false});
-  return ready;
+    ready_.push_back({msg, false});
+  return ready_;
 }
 
-std::vector<AccelerationPairing::Ready> AccelerationPairing::add(AccelerationSample accelerations) {
+const std::vector<AccelerationPairing::Ready>& AccelerationPairing::add(
+    AccelerationSample accelerations) {
   if (!kept_.empty() && accelerations.stamp < kept_.back().stamp)
     kept_.clear();  // stamps went backwards (a bag looping)
   kept_.push_back(std::move(accelerations));
   if (kept_.size() > kKept) kept_.pop_front();
-  std::vector<Ready> ready;
+  ready_.clear();
   if (pending_ && pending_->header.stamp.toSec() == kept_.back().stamp) {
-    ready.push_back({pending_, false});
+    ready_.push_back({pending_, false});
     pending_.reset();
   }
-  return ready;
+  return ready_;
 }
 
 const AccelerationSample* AccelerationPairing::at(double t) const {

@@ -21,11 +21,13 @@ class AccelerationPairing {
 
   // A joint_states sample. `pairing`: some joint_accelerations publisher is there. Returns the
   // samples to compute now, oldest first: the pending one (unpaired), then `msg` unless it waits
-  // for its own accelerations.
-  std::vector<Ready> add(const sensor_msgs::JointStateConstPtr& msg, bool pairing);
+  // for its own accelerations. The list is this object's, valid until the next add (no
+  // allocation per sample).
+  const std::vector<Ready>& add(const sensor_msgs::JointStateConstPtr& msg, bool pairing);
 
-  // A converted joint_accelerations message; returns the pending sample it completes, if any.
-  std::vector<Ready> add(AccelerationSample accelerations);
+  // A converted joint_accelerations message; returns the pending sample it completes, if any
+  // (likewise until the next add).
+  const std::vector<Ready>& add(AccelerationSample accelerations);
 
   // The kept accelerations of stamp t (seconds), or null.
   const AccelerationSample* at(double t) const;
@@ -34,6 +36,7 @@ class AccelerationPairing {
   static constexpr size_t kKept = 16;  // the latest few, by stamp
   sensor_msgs::JointStateConstPtr pending_;
   std::deque<AccelerationSample> kept_;
+  std::vector<Ready> ready_;  // what add returns (at most two)
 };
 
 }  // namespace mbk_ros

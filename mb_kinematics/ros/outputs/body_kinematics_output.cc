@@ -10,13 +10,14 @@ namespace mbk_ros {
 BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
     : publisher_(
           setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics", 10)) {
-  init_body_kinematics(setup.model, setup.frame, msg_);
+  init_body_kinematics(setup.model, setup.frame, msg_.next());
 }
 
 void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample) {
-  fill_body_kinematics(stamp, sample.data, msg_);
-  fill_system_kinematics(sample.model, sample.data, msg_.system);  // issue 10
-  publisher_.publish(msg_);
+  mb_kinematics_msgs::BodyKinematicsArray& msg = msg_.next();
+  fill_body_kinematics(stamp, sample.data, msg);
+  fill_system_kinematics(sample.model, sample.data, msg.system);  // issue 10
+  msg_.publish(publisher_);
 }
 
 LowerBodyArrayOutput::LowerBodyArrayOutput(const OutputSetup& setup)

@@ -8,6 +8,7 @@
 
 #include "mb_kinematics/ros/body_kinematics_fill.h"
 #include "mb_kinematics/ros/outputs/output.h"
+#include "mb_kinematics/ros/outputs/reused_message.h"
 
 namespace mbk_ros {
 
@@ -21,7 +22,7 @@ class BodyKinematicsOutput : public Output {
 
  private:
   ros::Publisher publisher_;
-  mb_kinematics_msgs::BodyKinematicsArray msg_;
+  ReusedMessage<mb_kinematics_msgs::BodyKinematicsArray> msg_;
 };
 
 class LowerBodyArrayOutput : public Output {

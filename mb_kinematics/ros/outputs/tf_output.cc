@@ -15,33 +15,37 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 
 }  // namespace
 
-TfOutput::TfOutput(const OutputSetup& setup) {
+TfOutput::TfOutput(const OutputSetup& setup)
+    : publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", 100)) {
   const mbk::Model& model = setup.model;
   for (int k = 1; k <= model.body_count(); ++k)
     if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) moving_.push_back(k);
-  transforms_.resize(moving_.size());
-  last_stamp_.resize(moving_.size());
-  out_.reserve(moving_.size());
+  std::vector<geometry_msgs::TransformStamped>& transforms = msg_.next().transforms;
+  transforms.resize(moving_.size());
   for (size_t i = 0; i < moving_.size(); ++i) {
-    transforms_[i].header.frame_id = setup.lower_frame(moving_[i]);
-    transforms_[i].child_frame_id = setup.body_frame(moving_[i]);
+    transforms[i].header.frame_id = setup.lower_frame(moving_[i]);
+    transforms[i].child_frame_id = setup.body_frame(moving_[i]);
+  }
+}
+
+void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
+                     const std::vector<int>& moving, const ros::Time& stamp,
+                     std::vector<geometry_msgs::TransformStamped>& transforms) {
+  mbk::JointMotion<double> m;
+  for (size_t i = 0; i < moving.size(); ++i) {
+    const mbk::Body& body = model.bodies[moving[i]];
+    mbk::joint_motion<double>(body.joint, model.speeds, state.position.data() + body.q_index,
+                              nullptr, m);
+    transforms[i].header.stamp = stamp;
+    set_transform(body, m, transforms[i].transform);
   }
 }
 
 void TfOutput::publish(const ros::Time& stamp, const Sample& sample) {
-  mbk::JointMotion<double> m;
-  out_.clear();
-  for (size_t i = 0; i < moving_.size(); ++i) {
-    if (last_stamp_[i] == stamp) continue;  // tf2 rejects repeated stamps
-    const mbk::Body& body = sample.model.bodies[moving_[i]];
-    mbk::joint_motion<double>(body.joint, sample.model.speeds,
-                              sample.state.position.data() + body.q_index, nullptr, m);
-    transforms_[i].header.stamp = stamp;
-    set_transform(body, m, transforms_[i].transform);
-    last_stamp_[i] = stamp;
-    out_.push_back(transforms_[i]);
-  }
-  if (!out_.empty()) broadcaster_.sendTransform(out_);
+  if (moving_.empty() || stamp == last_stamp_) return;  // tf2 rejects repeated stamps
+  last_stamp_ = stamp;
+  fill_transforms(sample.model, sample.state, moving_, stamp, msg_.next().transforms);
+  msg_.publish(publisher_);
 }
 
 TfStaticOutput::TfStaticOutput(const OutputSetup& setup) {

@@ -3,32 +3,39 @@
 // once at start (doc/method.md 8).
 #pragma once
 
-#include <geometry_msgs/TransformStamped.h>
+#include <ros/publisher.h>
+#include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <vector>
 
 #include "mb_kinematics/ros/outputs/output.h"
+#include "mb_kinematics/ros/outputs/reused_message.h"
 
 namespace mbk_ros {
 
-// The joints with coordinates, every sample.
+// The relative transforms of the `moving` bodies at `stamp` into `transforms` (one per moving
+// body, frames already set): nothing allocated.
+void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
+                     const std::vector<int>& moving, const ros::Time& stamp,
+                     std::vector<geometry_msgs::TransformStamped>& transforms);
+
+// The joints with coordinates, every sample: one TFMessage, its frames set once, published as
+// tf2_ros::TransformBroadcaster does (/tf, queue 100) without its per-sample copy.
 class TfOutput : public Output {
  public:
   static bool enabled(const NodeParams& p) { return p.tf; }
   explicit TfOutput(const OutputSetup& setup);
   mbk::Level level() const override { return mbk::Level::kPose; }
   bool uses_data() const override { return false; }
-  bool active() override { return true; }  // tf listeners are not counted: always
+  bool active() override { return publisher_.getNumSubscribers() > 0; }  // tf listeners
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
  private:
-  std::vector<int> moving_;                                  // bodies on joints with coordinates
-  std::vector<geometry_msgs::TransformStamped> transforms_;  // one per moving body
-  std::vector<ros::Time> last_stamp_;                        // per moving body
-  std::vector<geometry_msgs::TransformStamped> out_;
-  tf2_ros::TransformBroadcaster broadcaster_;
+  std::vector<int> moving_;                 // bodies on joints with coordinates
+  ReusedMessage<tf2_msgs::TFMessage> msg_;  // a transform per moving body
+  ros::Time last_stamp_;
+  ros::Publisher publisher_;
 };
 
 // The fixed joints, once, when made.

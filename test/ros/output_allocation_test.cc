@@ -1,0 +1,90 @@
+// No allocation per sample in the node's output fill functions (README "The node"): once the
+// messages are made (names and frames set), filling tf, body_kinematics and its system field
+// allocates nothing. No ROS master: the fill functions only (the publishers reuse the filled
+// messages, outputs/reused_message.h).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/joint.h"
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/ros/body_kinematics_fill.h"
+#include "mb_kinematics/ros/outputs/system_fields.h"
+#include "mb_kinematics/ros/outputs/tf_output.h"
+#include "test/support/allocation_counter.h"
+#include "test/support/test_models.h"
+
+namespace {
+
+using mbk_test::allocation_counts;
+using mbk_test::AllocationCounts;
+
+// Frame names longer than any small-string buffer, so that copying one would allocate.
+std::string frame(int k) { return "a_frame_name_longer_than_small_strings_" + std::to_string(k); }
+
+// `after` is taken before `what` is built (building it allocates).
+void expect_none(const AllocationCounts& before, const AllocationCounts& after,
+                 const std::string& what) {
+  EXPECT_EQ(after.news, before.news) << what << ": operator new per sample";
+  EXPECT_EQ(after.mallocs, before.mallocs) << what << ": malloc per sample";
+}
+
+// The counters see what the tests look for (a string copy, a vector), so the tests can fail.
+TEST(OutputAllocation, CountersSeeStringsAndVectors) {
+  const AllocationCounts before = allocation_counts();
+  std::vector<std::string> copy(1, frame(1));
+  asm volatile("" : : "g"(copy.data()) : "memory");
+  EXPECT_GE(allocation_counts().news, before.news + 2);
+}
+
+TEST(OutputAllocation, NoneInFillTransforms) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const mbk::Model model = mbk_test::random_tree(100, seed);
+    const mbk_test::Trajectory trajectory(model, seed);
+    std::vector<int> moving;
+    for (int k = 1; k <= model.body_count(); ++k)
+      if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) moving.push_back(k);
+    std::vector<geometry_msgs::TransformStamped> transforms(moving.size());
+    for (size_t i = 0; i < moving.size(); ++i) {
+      transforms[i].header.frame_id = frame(model.bodies[moving[i]].lower);
+      transforms[i].child_frame_id = frame(moving[i]);
+    }
+    const std::vector<mbk::JointState<double>> states = {trajectory.at<double>(0.1),
+                                                         trajectory.at<double>(0.2)};
+    const AllocationCounts before = allocation_counts();
+    for (int sample = 0; sample < 4; ++sample)
+      mbk_ros::fill_transforms(model, states[sample % 2], moving, ros::Time(1.0 + sample),
+                               transforms);
+    const AllocationCounts after = allocation_counts();
+    expect_none(before, after, "fill_transforms, seed " + std::to_string(seed));
+    // The fill did its work: the last sample's stamp and frames as set.
+    ASSERT_FALSE(transforms.empty());
+    EXPECT_EQ(transforms.back().header.stamp, ros::Time(4.0));
+    EXPECT_EQ(transforms.back().child_frame_id, frame(moving.back()));
+  }
+}
+
+TEST(OutputAllocation, NoneInFillBodyKinematicsAndSystem) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const mbk::Model model = mbk_test::random_tree(100, seed);
+    const mbk_test::Trajectory trajectory(model, seed);
+    mbk::Data<double> data(model);
+    mbk::forward_kinematics(model, trajectory.at<double>(0.3), data, mbk::Level::kAcceleration);
+    mb_kinematics_msgs::BodyKinematicsArray msg;
+    mbk_ros::init_body_kinematics(model, frame(0), msg);
+    const AllocationCounts before = allocation_counts();
+    for (int sample = 0; sample < 4; ++sample) {
+      mbk_ros::fill_body_kinematics(ros::Time(1.0 + sample), data, msg);
+      mbk_ros::fill_system_kinematics(model, data, msg.system);
+    }
+    const AllocationCounts after = allocation_counts();
+    expect_none(before, after,
+                "fill_body_kinematics and fill_system_kinematics, seed " + std::to_string(seed));
+    ASSERT_EQ(msg.bodies.size(), static_cast<size_t>(model.body_count()));
+    EXPECT_EQ(msg.bodies.back().pose.position.x, data.origin[model.body_count()].x());
+    EXPECT_EQ(msg.header.stamp, ros::Time(4.0));
+  }
+}
+
+}  // namespace
