@@ -1,101 +1,25 @@
 // No heap allocation per update (doc/method.md 8): once Model, JointState, Data and
 // PartialVelocities exist, forward_kinematics and partial_velocity_kinematics allocate nothing,
 // at every level. Global operator new / new[] are replaced by counting versions; on glibc,
-// malloc is counted too, since Eigen's dynamic vectors allocate with malloc, not new.
+// malloc is counted too, since Eigen's dynamic vectors allocate with malloc, not new
+// (test/support/allocation_counter.h).
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
 #include <string>
 #include <vector>
 
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "test/support/allocation_counter.h"
 #include "test/support/test_models.h"
-
-namespace {
-
-std::atomic<long> g_news{0};
-std::atomic<long> g_mallocs{0};
-
-void* counted_new(std::size_t size) {
-  ++g_news;
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-
-void* counted_aligned_new(std::size_t size, std::align_val_t align) {
-  ++g_news;
-  const std::size_t a = static_cast<std::size_t>(align);
-  if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
-  throw std::bad_alloc();
-}
-
-}  // namespace
-
-void* operator new(std::size_t size) { return counted_new(size); }
-void* operator new[](std::size_t size) { return counted_new(size); }
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  try {
-    return counted_new(size);
-  } catch (...) {
-    return nullptr;
-  }
-}
-void* operator new[](std::size_t size, const std::nothrow_t& tag) noexcept {
-  return operator new(size, tag);
-}
-void* operator new(std::size_t size, std::align_val_t align) {
-  return counted_aligned_new(size, align);
-}
-void* operator new[](std::size_t size, std::align_val_t align) {
-  return counted_aligned_new(size, align);
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-
-// glibc lets a program interpose malloc; forward to its implementation after counting. Not under
-// sanitizers, which interpose malloc themselves.
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
-#define MBK_COUNT_MALLOC 1
-#else
-#define MBK_COUNT_MALLOC 0
-#endif
-
-#if MBK_COUNT_MALLOC
-extern "C" void* __libc_malloc(std::size_t size);
-extern "C" void* __libc_calloc(std::size_t n, std::size_t size);
-extern "C" void* __libc_realloc(void* p, std::size_t size);
-extern "C" void* malloc(std::size_t size) {
-  ++g_mallocs;
-  return __libc_malloc(size);
-}
-extern "C" void* calloc(std::size_t n, std::size_t size) {
-  ++g_mallocs;
-  return __libc_calloc(n, size);
-}
-extern "C" void* realloc(void* p, std::size_t size) {
-  ++g_mallocs;
-  return __libc_realloc(p, size);
-}
-#endif
 
 namespace {
 
 const std::vector<int> kHuman = {0, 1, 2, 3, 4, 5, 4, 7, 4, 9, 2, 11, 12, 2, 14, 15};
 const mbk::Level kLevels[] = {mbk::Level::kPose, mbk::Level::kVelocity, mbk::Level::kAcceleration};
 
-struct Counts {
-  long news, mallocs;
-};
-Counts counts() { return {g_news.load(), g_mallocs.load()}; }
+using Counts = mbk_test::AllocationCounts;
+Counts counts() { return mbk_test::allocation_counts(); }
 
 // Runs every update of both formulations (several times, at every level) between two counts.
 void expect_no_allocation(const mbk::Model& model, const mbk::JointState<double>& state,
