@@ -13,7 +13,8 @@
 
 namespace mbk_ros {
 
-// The joints with coordinates, every sample.
+// The joints with coordinates, every sample (with ~base_odometry, the base's only with
+// ~publish_base_tf).
 class TfOutput : public Output {
  public:
   static bool enabled(const NodeParams& p) { return p.tf; }
