@@ -3,8 +3,11 @@
 // partial-velocity formulation, with the odometry made from that model's base. The base turns
 // about one fixed axis at a constant angular acceleration and accelerates uniformly, so its
 // velocities in R are linear in time and the nodes' backward_difference estimates the base's
-// acceleration exactly. Then bad odometry: NaN, another frame_id, odometry too new and too old.
+// acceleration exactly. Then bad odometry: NaN, another frame_id, odometry too new and too old,
+// each counted on /diagnostics.
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
+#include <ros/message_event.h>
 
 #include <cmath>
 
@@ -17,6 +20,40 @@ namespace {
 
 constexpr double kTol = 1e-6;
 const double kDt = 0.02;
+
+// The input counters of /mb_kinematics on /diagnostics (README: a key per class of input).
+class InputCounters {
+ public:
+  explicit InputCounters(ros::NodeHandle& nh)
+      : sub_(nh.subscribe("/diagnostics", 10, &InputCounters::on, this)) {}
+  // The value of `key` in the second report from now (made after what came before the call;
+  // -1: none within 5 s).
+  long next(const std::string& key) {
+    const int seen = reports();
+    if (!wait_until([&] { return reports() > seen + 1; }, 5)) return -1;
+    std::lock_guard<std::mutex> lock(mutex_);
+    return latest_.count(key) ? std::stol(latest_.at(key)) : -1;
+  }
+
+ private:
+  int reports() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return reports_;
+  }
+  void on(const ros::MessageEvent<diagnostic_msgs::DiagnosticArray const>& e) {
+    if (e.getPublisherName() != "/mb_kinematics") return;
+    for (const auto& status : e.getMessage()->status) {
+      if (status.name.find("Joint state input") == std::string::npos) continue;
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (const auto& kv : status.values) latest_[kv.key] = kv.value;
+      ++reports_;
+    }
+  }
+  mutable std::mutex mutex_;
+  std::map<std::string, std::string> latest_;
+  int reports_ = 0;
+  ros::Subscriber sub_;
+};
 
 class BaseOdometryTest : public ::testing::Test {
  protected:
@@ -132,6 +169,10 @@ TEST_F(BaseOdometryTest, AbsoluteKinematicsInTheOdometryFrame) {
 }
 
 TEST_F(BaseOdometryTest, NaNAndAnotherFrameAreRefused) {
+  InputCounters counters(nh_);
+  const char* const kRefused = "ignored: base odometry refused";
+  const long before = counters.next(kRefused);
+  ASSERT_GE(before, 0) << kRefused << " not on /diagnostics";
   const ros::Time start(200.0);
   const int n = 12;
   publish_run(start, n, 0, [](int i, nav_msgs::Odometry& o) {
@@ -160,9 +201,14 @@ TEST_F(BaseOdometryTest, NaNAndAnotherFrameAreRefused) {
   publish_run(later, 8);  // the node goes on
   ASSERT_TRUE(recorder_.wait_for(later + ros::Duration(7 * kDt)));
   EXPECT_GE(check_run(later, 8, recorder_), 4u);
+  EXPECT_EQ(counters.next(kRefused), before + 3) << "NaN, Inf and 'map': each counted";
 }
 
 TEST_F(BaseOdometryTest, OdometryTooNewOrTooOldPublishesNothing) {
+  InputCounters counters(nh_);
+  const char* const kDropped = "dropped: no base odometry within the gap";
+  const long before = counters.next(kDropped);
+  ASSERT_GE(before, 0) << kDropped << " not on /diagnostics";
   const ros::Time start(300.0);
   publish_run(start, 10, 1.0);  // odometry 1 s ahead of the samples (gap 0.2 s)
   const ros::Time old(400.0);
@@ -176,6 +222,7 @@ TEST_F(BaseOdometryTest, OdometryTooNewOrTooOldPublishesNothing) {
   publish_run(later, 8);  // the node goes on
   ASSERT_TRUE(recorder_.wait_for(later + ros::Duration(7 * kDt)));
   EXPECT_GE(check_run(later, 8, recorder_), 4u);
+  EXPECT_EQ(counters.next(kDropped), before + 20) << "every sample of both runs dropped";
 }
 
 }  // namespace
