@@ -18,13 +18,15 @@ target_compile_definitions(output_allocation_test PRIVATE MBK_SOURCE_DIR="${PROJ
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers gtest_main)
 
-foreach(name node pairing rsp_compare markers hostile frame_prefix system)
+foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
+    two_robots)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)
   add_dependencies(${name}_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
   target_link_libraries(${name}_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES})
   target_compile_definitions(${name}_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 endforeach()
+add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
 

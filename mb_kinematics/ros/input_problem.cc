@@ -14,12 +14,16 @@ const char* diagnostic_key(InputProblem problem) {
       return "dropped: magnitude above 1e50";
     case InputProblem::kNotARotation:
       return "dropped: Euler parameters of near-zero norm";
+    case InputProblem::kNoBaseMotion:
+      return "dropped: no base odometry within the gap";
     case InputProblem::kKinematicsNotFinite:
       return "dropped: kinematics not finite";
     case InputProblem::kNoKnownName:
       return "ignored: empty or no name of the model";
     case InputProblem::kBadAccelerations:
       return "ignored: joint_accelerations refused";
+    case InputProblem::kBadOdometry:
+      return "ignored: base odometry refused";
     case InputProblem::kUnknownName:
       return "repaired: names not in the model ignored";
     case InputProblem::kZeroStamp:
@@ -34,6 +38,8 @@ const char* diagnostic_key(InputProblem problem) {
       return "repaired: joint_accelerations missing, estimated";
     case InputProblem::kMissingJoints:
       return "waiting: joints never received";
+    case InputProblem::kNoOdometry:
+      return "waiting: base odometry never received";
     case InputProblem::kCount:
       break;
   }

@@ -11,10 +11,12 @@ enum class InputProblem {
   kNonFinite,            // NaN or Inf
   kTooLarge,             // beyond mbk::kMaxStateMagnitude (1e50): mbk::check_state
   kNotARotation,         // Euler parameters of near-zero norm: mbk::check_state
+  kNoBaseMotion,         // ~base_odometry: no odometry within the gap of the sample's stamp
   kKinematicsNotFinite,  // the kinematics of some body came out non-finite
   // ignored
   kNoKnownName,       // empty, or no coordinate of the model named
   kBadAccelerations,  // a joint_accelerations message refused
+  kBadOdometry,       // a ~base_odometry message refused (NaN/Inf, another frame_id)
   // repaired: the sample is used
   kUnknownName,     // names not in the model, ignored
   kZeroStamp,       // stamp 0: the time of arrival used
@@ -24,6 +26,7 @@ enum class InputProblem {
   kUnpaired,        // its joint_accelerations never came: accelerations estimated
   // waiting
   kMissingJoints,  // some coordinate never received: nothing published yet
+  kNoOdometry,     // ~base_odometry: no odometry received yet, R unknown: nothing published
   kCount
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 
@@ -80,26 +81,109 @@ void log_model(const mbk::Model& model, const std::string& frame) {
 
 KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
     : params_(read_node_params(nh, pnh)),
-      model_(load_node_model(params_)),
-      input_(model_, *zero_latency_estimator(params_.acceleration_estimator),
-             params_.max_sample_gap),
+      input_state_(model_),
       state_(model_),
       data_(model_),
-      nh_(nh) {
-  const std::string frame =
-      params_.frame_id.empty() ? params_.frame_prefix + model_.frame : params_.frame_id;
-  log_model(model_, frame);
-  const OutputSetup setup{nh_, params_, model_, frame};
-  outputs_ = make_outputs(setup);
-  auto diagnostics = std::make_unique<DiagnosticsOutput>(setup, pnh);
-  diagnostics_ = diagnostics.get();
-  outputs_.push_back(std::move(diagnostics));
-  active_.assign(outputs_.size(), 0);
+      nh_(nh),
+      pnh_(pnh) {
+  if (!params_.base_odometry.empty())
+    base_ = std::make_unique<BaseOdometryInput>(
+        *zero_latency_estimator(params_.acceleration_estimator), params_.base_odometry_max_gap);
+  start(load_node_model(params_));
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
   joint_states_sub_ = nh_.subscribe("joint_states", params_.queue_size,
                                     &KinematicsNode::on_joint_states, this, hints);
   accelerations_sub_ = nh_.subscribe("joint_accelerations", params_.queue_size,
                                      &KinematicsNode::on_joint_accelerations, this, hints);
+  if (base_)
+    odometry_sub_ = nh_.subscribe(params_.base_odometry, params_.queue_size,
+                                  &KinematicsNode::on_odometry, this, hints);
+  reload_service_ = pnh_.advertiseService("reload", &KinematicsNode::on_reload, this);
+}
+
+// Everything that depends on the model, made anew (at start and by ~reload); the estimators
+// start empty. With ~base_odometry the model gets its base (BaseOdometryInput::split).
+void KinematicsNode::start(const mbk::Model& loaded) {
+  for (auto& o : outputs_)  // services end now, topics once the new ones are advertised
+    if (!o->is_service()) retired_.push_back(std::move(o));
+  outputs_.clear();
+  loaded_ = loaded;
+  if (base_)
+    BaseOdometryInput::split(loaded_, input_model_, model_);
+  else
+    input_model_ = model_ = loaded_;
+  input_.emplace(input_model_, *zero_latency_estimator(params_.acceleration_estimator),
+                 params_.max_sample_gap);
+  pairing_ = AccelerationPairing();
+  input_state_ = mbk::JointState<double>(input_model_);
+  state_ = mbk::JointState<double>(model_);
+  data_ = mbk::Data<double>(model_);
+  last_output_ = -1e300;
+  if (base_) base_->reset();
+  frame_ = base_                      ? base_->frame()
+           : params_.frame_id.empty() ? params_.frame_prefix + model_.frame
+                                      : params_.frame_id;
+  const OutputSetup setup{nh_, params_, model_, frame_};
+  auto diagnostics = std::make_unique<DiagnosticsOutput>(setup, pnh_);
+  diagnostics_ = diagnostics.get();
+  outputs_.push_back(std::move(diagnostics));
+  make_outputs_in_r();
+  retired_.clear();
+}
+
+// The outputs but /diagnostics, in R: at start, or with ~base_odometry at its first message.
+void KinematicsNode::make_outputs_in_r() {
+  if (!frame_.empty()) {
+    log_model(model_, frame_);
+    std::vector<std::unique_ptr<Output>> outputs = make_outputs({nh_, params_, model_, frame_});
+    outputs_.insert(outputs_.begin(), std::make_move_iterator(outputs.begin()),
+                    std::make_move_iterator(outputs.end()));
+  }
+  active_.assign(outputs_.size(), 0);
+}
+
+// A model that does not load, or whose outputs cannot be made (a ~per_body_topics name it
+// lacks), leaves the running one in place (README, "~reload").
+bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  const NodeParams running_params = params_;
+  const mbk::Model running = loaded_;
+  try {
+    read_model_source(nh_, pnh_, params_);
+    start(load_node_model(params_));
+  } catch (const std::exception& e) {
+    params_ = running_params;
+    start(running);
+    response.success = false;
+    response.message = e.what();
+    ROS_WARN_STREAM("~reload refused, the running model stays: " << e.what());
+    return true;
+  }
+  response.success = true;
+  response.message = "reloaded: " + std::to_string(model_.body_count()) + " bodies, " +
+                     std::to_string(model_.nq) + " coordinates";
+  ROS_INFO_STREAM("mb_kinematics: " << response.message);
+  return true;
+}
+
+void KinematicsNode::on_odometry(const nav_msgs::OdometryConstPtr& msg) {
+  const ros::Time stamp = msg->header.stamp.isZero() ? ros::Time::now() : msg->header.stamp;
+  const std::string error = base_->add(*msg, stamp.toSec());
+  if (!error.empty()) {
+    warn(InputProblem::kBadOdometry, "base odometry ignored: " + error);
+    return;
+  }
+  if (!frame_.empty()) return;
+  frame_ = base_->frame();  // R is known now
+  make_outputs_in_r();
+}
+
+// The base's coordinates from the odometry at t, the joints' after them; false (with a
+// warning) if the odometry has no motion for t.
+bool KinematicsNode::add_base(double t, mbk::Level& level) {
+  const std::string why = base_->fill(t, model_, input_state_, state_, level);
+  if (why.empty()) return true;
+  warn(InputProblem::kNoBaseMotion, "joint_states sample dropped: " + why);
+  return false;
 }
 
 void KinematicsNode::on_joint_states(const sensor_msgs::JointStateConstPtr& msg) {
@@ -110,7 +194,7 @@ void KinematicsNode::on_joint_states(const sensor_msgs::JointStateConstPtr& msg)
 void KinematicsNode::on_joint_accelerations(
     const mb_kinematics_msgs::JointAccelerationsConstPtr& msg) {
   AccelerationSample sample;
-  const std::string error = input_.convert(*msg, msg->header.stamp.toSec(), sample);
+  const std::string error = input_->convert(*msg, msg->header.stamp.toSec(), sample);
   if (!error.empty()) {
     warn(InputProblem::kBadAccelerations, "joint_accelerations ignored: " + error);
     return;
@@ -163,7 +247,7 @@ bool KinematicsNode::report(const JointStateInput::Update& update) {
     warn(InputProblem::kNoKnownName, "joint_states: a message without any coordinate of the model");
     return false;
   }
-  const std::vector<std::string> missing = input_.missing();
+  const std::vector<std::string> missing = input_->missing();
   if (!missing.empty()) {
     warn(InputProblem::kMissingJoints,
          "joint_states: nothing published yet, waiting for joints: " + join(missing));
@@ -219,10 +303,17 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   const ros::Time stamp = msg.header.stamp.isZero() ? ros::Time::now() : msg.header.stamp;
   if (msg.header.stamp.isZero())
     diagnostics_->count(InputProblem::kZeroStamp, "joint_states: stamp 0, time of arrival used");
-  if (!report(input_.add(msg, stamp.toSec()))) return;
+  if (!report(input_->add(msg, stamp.toSec()))) return;
+  if (base_ && frame_.empty()) {
+    warn(InputProblem::kNoOdometry,
+         "nothing published yet, waiting for base odometry on " + odometry_sub_.getTopic());
+    return;
+  }
   if (decimated(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
-  const mbk::Level level = input_.fill(wanted, pairing_.at(stamp.toSec()), state_);
+  mbk::Level level =
+      input_->fill(wanted, pairing_.at(stamp.toSec()), base_ ? input_state_ : state_);
+  if (base_ && !add_base(stamp.toSec(), level)) return;
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
   if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest
     warn(bad.find("not finite") != std::string::npos ? InputProblem::kNonFinite

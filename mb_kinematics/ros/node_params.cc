@@ -20,10 +20,7 @@ void get(const ros::NodeHandle& nh, const std::string& name, T& value, const cha
 
 NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
   NodeParams p;
-  get(nh, "robot_description", p.robot_description, "a string (URDF)");
-  get(pnh, "model", p.model, "a string (path)");
-  get(pnh, "lower_body_array", p.lower_body_array, "a list of integers");
-  get(pnh, "joint_type", p.joint_type, "a string");
+  read_model_source(nh, pnh, p);
   get(pnh, "frame_id", p.frame_id, "a string");
   get(pnh, "frame_prefix", p.frame_prefix, "a string");
   if (!pnh.getParam("per_body_topics", p.per_body_names))  // a list of bodies, or a bool
@@ -42,6 +39,11 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "queue_size", p.queue_size, "an integer");
   if (p.queue_size < 1)
     throw std::invalid_argument(pnh.resolveName("queue_size") + " must be >= 1");
+  get(pnh, "base_odometry", p.base_odometry, "a string (topic name)");
+  get(pnh, "base_odometry_max_gap", p.base_odometry_max_gap, "a number of seconds");
+  if (!(p.base_odometry_max_gap > 0 && std::isfinite(p.base_odometry_max_gap)))
+    throw std::invalid_argument(pnh.resolveName("base_odometry_max_gap") + " must be > 0 (s)");
+  get(pnh, "publish_base_tf", p.publish_base_tf, "true or false");
   std::vector<std::string> outputs;
   get(pnh, "outputs", outputs, "a list of strings, e.g. [tf, body_kinematics]");
   if (pnh.hasParam("outputs")) {
@@ -61,6 +63,18 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
     }
   }
   return p;
+}
+
+void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, NodeParams& p) {
+  const NodeParams defaults;  // a source no longer set falls back to its default
+  p.robot_description = defaults.robot_description;
+  p.model = defaults.model;
+  p.lower_body_array = defaults.lower_body_array;
+  p.joint_type = defaults.joint_type;
+  get(nh, "robot_description", p.robot_description, "a string (URDF)");
+  get(pnh, "model", p.model, "a string (path)");
+  get(pnh, "lower_body_array", p.lower_body_array, "a list of integers");
+  get(pnh, "joint_type", p.joint_type, "a string");
 }
 
 mbk::Model load_node_model(const NodeParams& p) {

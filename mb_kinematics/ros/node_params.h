@@ -27,10 +27,17 @@ struct NodeParams {
   double max_sample_gap = 1.0;   // ~max_sample_gap (s): no derivative across a longer pause
   double publish_frequency = 0;  // ~publish_frequency (Hz): outputs at most this often; 0: all
   int queue_size = 50;           // ~queue_size: of the joint_states and joint_accelerations queues
+  std::string base_odometry;     // ~base_odometry: nav_msgs/Odometry of the base; "" = off
+  double base_odometry_max_gap = 0.2;  // ~base_odometry_max_gap (s): odometry held this long
+  bool publish_base_tf = false;        // ~publish_base_tf: R -> base on /tf too
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.
 NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pnh);
+
+// Reads the model source again into `p` (robot_description, ~model, ~lower_body_array,
+// ~joint_type), for ~reload; throws like read_node_params.
+void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, NodeParams& p);
 
 // The model the parameters name: ~lower_body_array, else ~model, else robot_description (URDF).
 // Euler-parameter joints get coordinate-derivative speeds. Throws std::invalid_argument.

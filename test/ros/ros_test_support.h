@@ -1,19 +1,22 @@
 // Shared by the node's integration tests (test/ros/*.test): the test robot, a quadratic joint
 // trajectory (which backward_difference, the estimator of the tests' nodes, differentiates
 // exactly), the expected kinematics from the core's other formulation (partial velocities,
-// doc/method.md 5; the node uses the recursion of doc/method.md 4), and a recorder of body_kinematics
-// messages.
+// doc/method.md 5; the node uses the recursion of doc/method.md 4), and a recorder of
+// body_kinematics messages, and a recorder of who publishes which transform on /tf and /tf_static.
 #pragma once
 
 #include <gtest/gtest.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <ros/message_event.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <chrono>
 #include <functional>
 #include <map>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -143,6 +146,10 @@ class KinematicsRecorder {
     std::lock_guard<std::mutex> lock(mutex_);
     return messages_.size();
   }
+  mb_kinematics_msgs::BodyKinematicsArray latest() const {  // call when count() > 0
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_.back();
+  }
   bool wait_for(const ros::Time& stamp, double seconds = 2.0) const {
     return wait_until([&] { return !at(stamp).empty(); }, seconds);
   }
@@ -164,5 +171,36 @@ inline void connect(const ros::Publisher& pub, const KinematicsRecorder& recorde
       << "the node did not connect";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
 }
+
+// Every transform on /tf and /tf_static, with the node that sent it.
+class TfRecorder {
+ public:
+  explicit TfRecorder(ros::NodeHandle& nh)
+      : tf_(nh.subscribe("/tf", 1000, &TfRecorder::on, this)),
+        tf_static_(nh.subscribe("/tf_static", 100, &TfRecorder::on, this)) {}
+  int publishers() const { return tf_.getNumPublishers(); }  // of /tf
+  // Per publisher (node name): its transforms as "parent -> child".
+  std::map<std::string, std::set<std::string>> by_publisher() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return by_publisher_;
+  }
+  // Per child frame: "publisher: parent" of every transform to it (more than one: a collision).
+  std::map<std::string, std::set<std::string>> by_child() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return by_child_;
+  }
+
+ private:
+  void on(const ros::MessageEvent<tf2_msgs::TFMessage const>& e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& t : e.getMessage()->transforms) {
+      by_publisher_[e.getPublisherName()].insert(t.header.frame_id + " -> " + t.child_frame_id);
+      by_child_[t.child_frame_id].insert(e.getPublisherName() + ": " + t.header.frame_id);
+    }
+  }
+  mutable std::mutex mutex_;
+  std::map<std::string, std::set<std::string>> by_publisher_, by_child_;
+  ros::Subscriber tf_, tf_static_;
+};
 
 }  // namespace mbk_ros_test

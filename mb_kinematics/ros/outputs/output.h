@@ -46,6 +46,9 @@ class Output {
   virtual mbk::Level level() const = 0;
   // False if it reads the joint state only (then no forward_kinematics is run for it).
   virtual bool uses_data() const { return true; }
+  // True if it advertises a service: a node advertises one name once, so ~reload ends the old
+  // one before making the new (topics: the other way round, so that subscribers stay connected).
+  virtual bool is_service() const { return false; }
   // Whether anybody listens now; asked once per sample, before the computation.
   virtual bool active() = 0;
   // Called after active() returned true, when the sample reached level().

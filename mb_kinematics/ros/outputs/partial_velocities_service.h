@@ -19,6 +19,7 @@ class PartialVelocitiesService : public Output {
   mbk::Level level() const override { return mbk::Level::kVelocity; }  // the columns need q, y
   bool uses_data() const override { return false; }
   bool active() override { return true; }
+  bool is_service() const override { return true; }
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
  private:

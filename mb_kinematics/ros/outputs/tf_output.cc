@@ -18,7 +18,9 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 TfOutput::TfOutput(const OutputSetup& setup)
     : publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", 100)) {
   const mbk::Model& model = setup.model;
-  for (int k = 1; k <= model.body_count(); ++k)
+  // With ~base_odometry, body 1 is the base: R -> base comes from the odometry's source.
+  const bool base_tf = setup.params.base_odometry.empty() || setup.params.publish_base_tf;
+  for (int k = base_tf ? 1 : 2; k <= model.body_count(); ++k)
     if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) moving_.push_back(k);
   std::vector<geometry_msgs::TransformStamped>& transforms = msg_.next().transforms;
   transforms.resize(moving_.size());

@@ -20,7 +20,8 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
                      const std::vector<int>& moving, const ros::Time& stamp,
                      std::vector<geometry_msgs::TransformStamped>& transforms);
 
-// The joints with coordinates, every sample: one TFMessage, its frames set once, published as
+// The joints with coordinates, every sample (with ~base_odometry, the base's only with
+// ~publish_base_tf): one TFMessage, its frames set once, published as
 // tf2_ros::TransformBroadcaster does (/tf, queue 100) without its per-sample copy.
 class TfOutput : public Output {
  public:
