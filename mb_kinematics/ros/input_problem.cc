@@ -34,6 +34,12 @@ const char* diagnostic_key(InputProblem problem) {
       return "repaired: joint_accelerations missing, estimated";
     case InputProblem::kMissingJoints:
       return "waiting: joints never received";
+    case InputProblem::kBodiesLeftOut:
+      return "partial: bodies left out (joints never received or stale)";
+    case InputProblem::kZeroed:
+      return "invented: joints never received taken as 0";
+    case InputProblem::kStaleHeld:
+      return "stale: joints without a sample for ~max_sample_gap held";
     case InputProblem::kCount:
       break;
   }

@@ -83,6 +83,7 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       model_(load_node_model(params_)),
       input_(model_, *zero_latency_estimator(params_.acceleration_estimator),
              params_.max_sample_gap),
+      coverage_(model_, params_.missing_coordinates),
       state_(model_),
       data_(model_),
       nh_(nh) {
@@ -93,6 +94,7 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   outputs_ = make_outputs(setup);
   auto diagnostics = std::make_unique<DiagnosticsOutput>(setup, pnh);
   diagnostics_ = diagnostics.get();
+  diagnostics_->watch(coverage_);
   outputs_.push_back(std::move(diagnostics));
   active_.assign(outputs_.size(), 0);
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
@@ -163,12 +165,26 @@ bool KinematicsNode::report(const JointStateInput::Update& update) {
     warn(InputProblem::kNoKnownName, "joint_states: a message without any coordinate of the model");
     return false;
   }
-  const std::vector<std::string> missing = input_.missing();
-  if (!missing.empty()) {
+  return true;
+}
+
+// ~missing_coordinates (coordinate_coverage.h): false while waiting; names what is missing
+// once, when it changes, and counts each sample published without it.
+bool KinematicsNode::cover(double t) {
+  const bool changed = coverage_.update(input_, t);
+  if (!coverage_.ready()) {
     warn(InputProblem::kMissingJoints,
-         "joint_states: nothing published yet, waiting for joints: " + join(missing));
+         "joint_states: nothing published yet, waiting for joints: " + join(coverage_.never()));
     return false;
   }
+  const std::string missing = coverage_.describe();
+  if (changed && !missing.empty()) ROS_WARN_STREAM("mb_kinematics: " << missing);
+  if (changed && missing.empty()) ROS_INFO_STREAM("mb_kinematics: every joint received");
+  if (!coverage_.never().empty() || !coverage_.stale().empty())
+    diagnostics_->count(coverage_.mode() == MissingCoordinates::kSkip ? InputProblem::kBodiesLeftOut
+                        : coverage_.never().empty()                   ? InputProblem::kStaleHeld
+                                                                      : InputProblem::kZeroed,
+                        missing);
   return true;
 }
 
@@ -220,9 +236,11 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   if (msg.header.stamp.isZero())
     diagnostics_->count(InputProblem::kZeroStamp, "joint_states: stamp 0, time of arrival used");
   if (!report(input_.add(msg, stamp.toSec()))) return;
+  if (!cover(stamp.toSec())) return;
   if (decimated(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
-  const mbk::Level level = input_.fill(wanted, pairing_.at(stamp.toSec()), state_);
+  const mbk::Level level =
+      input_.fill(wanted, pairing_.at(stamp.toSec()), state_, &coverage_.from_input());
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
   if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest
     warn(bad.find("not finite") != std::string::npos ? InputProblem::kNonFinite
@@ -230,7 +248,7 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
          bad + "; sample dropped");
     return;
   }
-  const Sample sample{model_, state_, data_, level};
+  const Sample sample{model_, state_, data_, level, coverage_.published(), coverage_.complete()};
   publish(stamp, sample, false);  // from the joint state alone (tf) first
   if (!compute(level)) return;
   publish(stamp, sample, true);

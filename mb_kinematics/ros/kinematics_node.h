@@ -19,6 +19,7 @@
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/ros/acceleration_pairing.h"
+#include "mb_kinematics/ros/coordinate_coverage.h"
 #include "mb_kinematics/ros/input_problem.h"
 #include "mb_kinematics/ros/joint_state_input.h"
 #include "mb_kinematics/ros/node_params.h"
@@ -39,6 +40,7 @@ class KinematicsNode {
   void process(const std::vector<AccelerationPairing::Ready>& ready);
   void process(const sensor_msgs::JointState& msg);  // one sample: merge, compute, publish
   bool report(const JointStateInput::Update& update);
+  bool cover(double t);  // ~missing_coordinates
   void warn(InputProblem problem, const std::string& message);
   mbk::Level wanted_level();  // asks each output once whether it is listened to
   bool decimated(double t);
@@ -48,6 +50,7 @@ class KinematicsNode {
   NodeParams params_;
   mbk::Model model_;
   JointStateInput input_;
+  CoordinateCoverage coverage_;
   AccelerationPairing pairing_;
   mbk::JointState<double> state_;
   mbk::Data<double> data_;

@@ -11,6 +11,13 @@
 
 namespace mbk_ros {
 
+// ~missing_coordinates: what the node does about coordinates that never arrived (issue 9).
+enum class MissingCoordinates {
+  kSkip,  // publish the bodies whose chain of coordinates is known; leave the others out
+  kWait,  // publish nothing until every coordinate has come once
+  kZero,  // take them as 0 (Euler parameters: the identity), with a warning naming them
+};
+
 struct NodeParams {
   std::string robot_description;        // robot_description (URDF text), if set
   std::string model;                    // ~model: a .urdf or .yaml scene path; wins over it
@@ -27,6 +34,7 @@ struct NodeParams {
   double max_sample_gap = 1.0;   // ~max_sample_gap (s): no derivative across a longer pause
   double publish_frequency = 0;  // ~publish_frequency (Hz): outputs at most this often; 0: all
   int queue_size = 50;           // ~queue_size: of the joint_states and joint_accelerations queues
+  MissingCoordinates missing_coordinates = MissingCoordinates::kSkip;  // ~missing_coordinates
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.

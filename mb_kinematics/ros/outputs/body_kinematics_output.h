@@ -6,6 +6,8 @@
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <ros/publisher.h>
 
+#include <vector>
+
 #include "mb_kinematics/ros/body_kinematics_fill.h"
 #include "mb_kinematics/ros/outputs/output.h"
 
@@ -22,6 +24,7 @@ class BodyKinematicsOutput : public Output {
  private:
   ros::Publisher publisher_;
   mb_kinematics_msgs::BodyKinematicsArray msg_;
+  std::vector<char> shown_;  // per body: in msg_ (~missing_coordinates skip)
 };
 
 class LowerBodyArrayOutput : public Output {

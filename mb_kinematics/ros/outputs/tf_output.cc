@@ -32,7 +32,8 @@ void TfOutput::publish(const ros::Time& stamp, const Sample& sample) {
   mbk::JointMotion<double> m;
   out_.clear();
   for (size_t i = 0; i < moving_.size(); ++i) {
-    if (last_stamp_[i] == stamp) continue;  // tf2 rejects repeated stamps
+    if (last_stamp_[i] == stamp) continue;        // tf2 rejects repeated stamps
+    if (!sample.published[moving_[i]]) continue;  // ~missing_coordinates skip
     const mbk::Body& body = sample.model.bodies[moving_[i]];
     mbk::joint_motion<double>(body.joint, sample.model.speeds,
                               sample.state.position.data() + body.q_index, nullptr, m);
