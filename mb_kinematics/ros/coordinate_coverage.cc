@@ -17,34 +17,42 @@ CoordinateCoverage::CoordinateCoverage(const mbk::Model& model, MissingCoordinat
       is_mimic_(model.nq, 0),
       fresh_(model.nq, 0),
       from_input_(model.nq, 0),
+      joined_(model.nq, 0),
       published_(model.body_count() + 1, 1) {
   for (const mbk::Mimic& m : model.mimics) is_mimic_[m.coordinate] = 1;
 }
 
 bool CoordinateCoverage::update(const JointStateInput& input, double t) {
+  const bool skip = mode_ == MissingCoordinates::kSkip;
   std::vector<std::string> never, stale;
+  bool joins = false;
   for (int i = 0; i < model_.nq; ++i) {
     if (is_mimic_[i]) continue;  // known_bodies takes them from their sources
     const JointStateInput::Freshness f = input.freshness(i, t);
     if (f == JointStateInput::Freshness::kNever) never.push_back(model_.coordinate_names[i]);
     if (f == JointStateInput::Freshness::kStale) stale.push_back(model_.coordinate_names[i]);
-    fresh_[i] = f == JointStateInput::Freshness::kFresh;
-    // skip: the fresh ones only; wait, zero: all received (stale held), zero: invented ones not
-    from_input_[i] =
-        mode_ == MissingCoordinates::kSkip ? fresh_[i] : f != JointStateInput::Freshness::kNever;
+    const bool fresh = f == JointStateInput::Freshness::kFresh;
+    const bool joined = fresh && (!skip || !started_ || joined_[i] || input.settled(i));
+    joins = joins || joined != joined_[i];
+    joined_[i] = joined;
+    // skip: the joined ones only; wait, zero: all received (stale held), not the invented ones
+    from_input_[i] = skip ? joined : f != JointStateInput::Freshness::kNever;
   }
-  if (never == never_ && stale == stale_) return false;
+  started_ = true;
+  const bool named = never != never_ || stale != stale_;
+  if (!named && !joins) return false;
   never_ = std::move(never);
   stale_ = std::move(stale);
-  mbk::known_bodies(model_, fresh_, placed_);  // the bodies placed by fresh samples alone
+  fresh_ = joined_;                            // same size: no allocation
+  mbk::known_bodies(model_, fresh_, placed_);  // the bodies placed by joined coordinates alone
   affected_.clear();
   for (int k = 1; k <= model_.body_count(); ++k)
     if (!placed_[k]) affected_.push_back(model_.bodies[k].name);
-  if (mode_ == MissingCoordinates::kSkip) {
+  if (skip) {
     published_ = placed_;
     left_out_ = affected_;
   }
-  return true;
+  return named;
 }
 
 std::string CoordinateCoverage::describe() const {
@@ -64,7 +72,7 @@ std::string CoordinateCoverage::describe() const {
            "~max_sample_gap: " + join_names(stale_);
     if (mode_ != MissingCoordinates::kSkip) out += "; their last values held (stale)";
   }
-  if (mode_ == MissingCoordinates::kSkip && !left_out_.empty())
+  if (mode_ == MissingCoordinates::kSkip && !out.empty())  // else: joining, not missing
     out +=
         "; bodies left out of /tf, body_kinematics (its system not filled) and the per-body "
         "topics until they come: " +

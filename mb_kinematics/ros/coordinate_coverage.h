@@ -21,6 +21,9 @@ class CoordinateCoverage {
   CoordinateCoverage(const mbk::Model& model, MissingCoordinates mode);
 
   // For a sample at time t: true if the names of what is missing changed since the last call.
+  // skip: a coordinate that comes after the first sample, or comes back after being stale,
+  // joins (its bodies are published) once JointStateInput::settled, so that its first samples
+  // do not hold back the others' velocities and accelerations.
   bool update(const JointStateInput& input, double t);
 
   MissingCoordinates mode() const { return mode_; }
@@ -44,6 +47,8 @@ class CoordinateCoverage {
   const mbk::Model& model_;
   MissingCoordinates mode_;
   std::vector<char> is_mimic_, fresh_, from_input_, placed_, published_;
+  std::vector<char> joined_;  // skip: taken from the input (see update)
+  bool started_ = false;
   std::vector<std::string> never_, stale_, affected_, left_out_;
 };
 

@@ -203,6 +203,13 @@ JointStateInput::Freshness JointStateInput::freshness(int i, double t) const {
   return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
 }
 
+bool JointStateInput::settled(int i) const {
+  const Coordinate& c = coordinates_[i];
+  double first = 0, second = 0;
+  if (c.velocity_given) return c.velocity_history->estimate(first, second) >= 1;
+  return c.position_history->estimate(first, second) >= 2;
+}
+
 mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* accelerations,
                                  mbk::JointState<double>& state,
                                  const std::vector<char>* from_input) const {

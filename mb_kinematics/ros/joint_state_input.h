@@ -63,6 +63,9 @@ class JointStateInput {
   // (or max_gap 0); or older than that (stale: its publisher has stopped, or paused).
   enum class Freshness { kNever, kFresh, kStale };
   Freshness freshness(int i, double t) const;
+  // True once coordinate i's history gives what fill() needs for accelerations: a velocity
+  // estimate of given velocities, or two position estimates.
+  bool settled(int i) const;
 
   // Fills `state` up to `level`: positions; velocities as given, else estimated; accelerations
   // from `accelerations` (may be null), else estimated from the given velocities, else from
