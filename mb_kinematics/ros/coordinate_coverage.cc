@@ -17,20 +17,20 @@ CoordinateCoverage::CoordinateCoverage(const mbk::Model& model, MissingCoordinat
       is_mimic_(model.nq, 0),
       fresh_(model.nq, 0),
       from_input_(model.nq, 0),
+      published_(model.body_count() + 1, 1),
       joined_(model.nq, 0),
-      published_(model.body_count() + 1, 1) {
+      freshness_(model.nq, JointStateInput::Freshness::kNever) {
   for (const mbk::Mimic& m : model.mimics) is_mimic_[m.coordinate] = 1;
 }
 
 bool CoordinateCoverage::update(const JointStateInput& input, double t) {
   const bool skip = mode_ == MissingCoordinates::kSkip;
-  std::vector<std::string> never, stale;
-  bool joins = false;
+  bool named = false, joins = false;  // what changed: no allocation unless something did
   for (int i = 0; i < model_.nq; ++i) {
     if (is_mimic_[i]) continue;  // known_bodies takes them from their sources
     const JointStateInput::Freshness f = input.freshness(i, t);
-    if (f == JointStateInput::Freshness::kNever) never.push_back(model_.coordinate_names[i]);
-    if (f == JointStateInput::Freshness::kStale) stale.push_back(model_.coordinate_names[i]);
+    named = named || f != freshness_[i];
+    freshness_[i] = f;
     const bool fresh = f == JointStateInput::Freshness::kFresh;
     const bool joined = fresh && (!skip || !started_ || joined_[i] || input.settled(i));
     joins = joins || joined != joined_[i];
@@ -39,8 +39,16 @@ bool CoordinateCoverage::update(const JointStateInput& input, double t) {
     from_input_[i] = skip ? joined : f != JointStateInput::Freshness::kNever;
   }
   started_ = true;
-  const bool named = never != never_ || stale != stale_;
   if (!named && !joins) return false;
+  std::vector<std::string> never, stale;
+  for (int i = 0; i < model_.nq; ++i) {
+    if (is_mimic_[i]) continue;
+    if (freshness_[i] == JointStateInput::Freshness::kNever)
+      never.push_back(model_.coordinate_names[i]);
+    if (freshness_[i] == JointStateInput::Freshness::kStale)
+      stale.push_back(model_.coordinate_names[i]);
+  }
+  named = never != never_ || stale != stale_;
   never_ = std::move(never);
   stale_ = std::move(stale);
   fresh_ = joined_;                            // same size: no allocation
@@ -52,10 +60,11 @@ bool CoordinateCoverage::update(const JointStateInput& input, double t) {
     published_ = placed_;
     left_out_ = affected_;
   }
+  description_ = describe_missing();
   return named;
 }
 
-std::string CoordinateCoverage::describe() const {
+std::string CoordinateCoverage::describe_missing() const {
   std::string out;
   const std::string bodies = join_names(affected_);
   if (!never_.empty()) {

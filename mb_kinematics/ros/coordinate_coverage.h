@@ -41,13 +41,16 @@ class CoordinateCoverage {
   const std::vector<std::string>& affected() const { return affected_; }
   const std::vector<std::string>& left_out() const { return left_out_; }  // skip: = affected
   // One line on what is missing and what is done about it; empty when nothing is.
-  std::string describe() const;
+  const std::string& describe() const { return description_; }
 
  private:
   const mbk::Model& model_;
   MissingCoordinates mode_;
   std::vector<char> is_mimic_, fresh_, from_input_, placed_, published_;
-  std::vector<char> joined_;  // skip: taken from the input (see update)
+  std::vector<char> joined_;                           // skip: taken from the input (see update)
+  std::vector<JointStateInput::Freshness> freshness_;  // at the last update
+  std::string description_;
+  std::string describe_missing() const;
   bool started_ = false;
   std::vector<std::string> never_, stale_, affected_, left_out_;
 };
