@@ -9,6 +9,7 @@
 // A bad value ends the node at start, naming the allowed ones.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/TwistStamped.h>
+#include <mb_kinematics_msgs/GetPartialVelocities.h>
 #include <rosgraph_msgs/Log.h>
 #include <sys/wait.h>
 #include <tf2_msgs/TFMessage.h>
@@ -194,6 +195,20 @@ TEST_F(MissingTest, SkipPublishesThePlacedBodiesAndTheOthersWhenTheirJointComes)
     expect_bodies(msgs[0], model_, trajectory.at(i * kDt), kPlaced);
     EXPECT_FALSE(msgs[0].system.filled) << "a system of 4 bodies out of 7 passed for the whole";
   }
+  // ~get_partial_velocities: the bodies left out are refused, naming why; every body: the 4.
+  ros::ServiceClient client = nh_.serviceClient<mb_kinematics_msgs::GetPartialVelocities>(
+      "mb_kinematics/get_partial_velocities");
+  mb_kinematics_msgs::GetPartialVelocities srv;
+  srv.request.bodies = {"arm1", "finger"};
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("'finger' is left out"), std::string::npos)
+      << srv.response.message;
+  srv.request.bodies.clear();
+  ASSERT_TRUE(client.call(srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ASSERT_EQ(srv.response.partials.size(), kPlaced.size());
+  for (size_t i = 0; i < kPlaced.size(); ++i) EXPECT_EQ(srv.response.partials[i].body, kPlaced[i]);
   EXPECT_GT(arm1_twists.load(), 0);
   EXPECT_EQ(arm2_twists.load(), 0);
   EXPECT_EQ(finger_twists.load(), 0);
