@@ -7,6 +7,7 @@
 #include <ros/time.h>
 
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
@@ -27,13 +28,27 @@ inline void init_body_kinematics(const mbk::Model& model, const std::string& fra
   }
 }
 
-// The sample's values (forward_kinematics at Level kAcceleration) into `msg`.
+// Only the bodies k with published[k] (N + 1 entries), in body order: the node's
+// ~missing_coordinates skip leaves out the bodies whose chain lacks a coordinate.
+inline void select_body_kinematics(const mbk::Model& model, const std::vector<char>& published,
+                                   mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  msg.bodies.clear();
+  for (int k = 1; k <= model.body_count(); ++k) {
+    if (!published[k]) continue;
+    msg.bodies.emplace_back();
+    msg.bodies.back().name = model.bodies[k].name;
+    msg.bodies.back().index = k;
+    msg.bodies.back().lower_body = model.bodies[k].lower;
+  }
+}
+
+// The sample's values (forward_kinematics at Level kAcceleration) into `msg`'s bodies (each
+// by its index k).
 inline void fill_body_kinematics(const ros::Time& stamp, const mbk::Data<double>& data,
                                  mb_kinematics_msgs::BodyKinematicsArray& msg) {
   msg.header.stamp = stamp;
-  for (size_t i = 0; i < msg.bodies.size(); ++i) {
-    const size_t k = i + 1;
-    auto& b = msg.bodies[i];
+  for (auto& b : msg.bodies) {
+    const size_t k = b.index;
     set_vector(data.origin[k], b.pose.position);
     set_quaternion(data.rotation[k], b.pose.orientation);
     set_vector(data.mass_center[k], b.mass_center);

@@ -40,6 +40,12 @@ const char* diagnostic_key(InputProblem problem) {
       return "waiting: joints never received";
     case InputProblem::kNoOdometry:
       return "waiting: base odometry never received";
+    case InputProblem::kBodiesLeftOut:
+      return "partial: bodies left out (joints never received or stale)";
+    case InputProblem::kZeroed:
+      return "invented: joints never received taken as 0";
+    case InputProblem::kStaleHeld:
+      return "stale: joints without a sample for ~max_sample_gap held";
     case InputProblem::kCount:
       break;
   }

@@ -197,13 +197,32 @@ std::vector<std::string> JointStateInput::missing() const {
   return names;
 }
 
+JointStateInput::Freshness JointStateInput::freshness(int i, double t) const {
+  const Coordinate& c = coordinates_[i];
+  if (!c.has_value) return Freshness::kNever;
+  return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
+}
+
+bool JointStateInput::settled(int i) const {
+  const Coordinate& c = coordinates_[i];
+  double first = 0, second = 0;
+  if (c.velocity_given) return c.velocity_history->estimate(first, second) >= 1;
+  return c.position_history->estimate(first, second) >= 2;
+}
+
 mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* accelerations,
-                                 mbk::JointState<double>& state) const {
+                                 mbk::JointState<double>& state,
+                                 const std::vector<char>* from_input) const {
   bool velocities = level != mbk::Level::kPose;
   bool accels = level == mbk::Level::kAcceleration;
   for (int i = 0; i < model_.nq; ++i) {
     const Coordinate& c = coordinates_[i];
     if (c.mimic) continue;
+    if (from_input && !(*from_input)[i]) {  // ~missing_coordinates: held or zero, at rest
+      state.position[i] = c.has_value ? c.position : initial_.position[i];
+      state.velocity[i] = state.acceleration[i] = 0;
+      continue;
+    }
     state.position[i] = c.position;
     double first = 0, second = 0;
     const int n = c.position_history->estimate(first, second);

@@ -59,12 +59,24 @@ class JointStateInput {
   // Names of the coordinates (mimics aside) that no accepted message has set yet.
   std::vector<std::string> missing() const;
 
+  // Of coordinate i (not a mimic) at time t: never set; its last sample within max_gap of t
+  // (or max_gap 0); or older than that (stale: its publisher has stopped, or paused).
+  enum class Freshness { kNever, kFresh, kStale };
+  Freshness freshness(int i, double t) const;
+  // True once coordinate i's history gives what fill() needs for accelerations: a velocity
+  // estimate of given velocities, or two position estimates.
+  bool settled(int i) const;
+
   // Fills `state` up to `level`: positions; velocities as given, else estimated; accelerations
   // from `accelerations` (may be null), else estimated from the given velocities, else from
   // the positions; then the mimic coordinates. Returns the level reached: lower than `level`
-  // while some coordinate has too few samples for an estimate.
+  // while some coordinate has too few samples for an estimate. `from_input` (model.nq flags;
+  // null: all) picks the coordinates taken from the input; the others (~missing_coordinates)
+  // get their last value if any, else the zero configuration (Euler parameters: identity), and
+  // zero derivatives, and do not lower the level.
   mbk::Level fill(mbk::Level level, const AccelerationSample* accelerations,
-                  mbk::JointState<double>& state) const;
+                  mbk::JointState<double>& state,
+                  const std::vector<char>* from_input = nullptr) const;
 
  private:
   struct Coordinate {

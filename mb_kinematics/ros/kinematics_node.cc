@@ -114,6 +114,8 @@ void KinematicsNode::start(const mbk::Model& loaded) {
     input_model_ = model_ = loaded_;
   input_.emplace(input_model_, *zero_latency_estimator(params_.acceleration_estimator),
                  params_.max_sample_gap);
+  coverage_.emplace(input_model_, params_.missing_coordinates);
+  published_.assign(model_.body_count() + 1, 1);
   pairing_ = AccelerationPairing();
   input_state_ = mbk::JointState<double>(input_model_);
   state_ = mbk::JointState<double>(model_);
@@ -126,6 +128,7 @@ void KinematicsNode::start(const mbk::Model& loaded) {
   const OutputSetup setup{nh_, params_, model_, frame_};
   auto diagnostics = std::make_unique<DiagnosticsOutput>(setup, pnh_);
   diagnostics_ = diagnostics.get();
+  diagnostics_->watch(*coverage_);
   outputs_.push_back(std::move(diagnostics));
   make_outputs_in_r();
   retired_.clear();
@@ -247,12 +250,35 @@ bool KinematicsNode::report(const JointStateInput::Update& update) {
     warn(InputProblem::kNoKnownName, "joint_states: a message without any coordinate of the model");
     return false;
   }
-  const std::vector<std::string> missing = input_->missing();
-  if (!missing.empty()) {
+  return true;
+}
+
+// The bodies of model_ published with this sample: coverage_'s, after the base (body 1) with
+// ~base_odometry (its model_ body k + 1 is input_model_'s body k; base_odometry_input.h).
+const std::vector<char>& KinematicsNode::published() {
+  const std::vector<char>& covered = coverage_->published();
+  if (!base_) return covered;
+  for (size_t k = 1; k < covered.size(); ++k) published_[k + 1] = covered[k];
+  return published_;
+}
+
+// ~missing_coordinates (coordinate_coverage.h): false while waiting; names what is missing
+// once, when it changes, and counts each sample published without it.
+bool KinematicsNode::cover(double t) {
+  const bool changed = coverage_->update(*input_, t);
+  if (!coverage_->ready()) {
     warn(InputProblem::kMissingJoints,
-         "joint_states: nothing published yet, waiting for joints: " + join(missing));
+         "joint_states: nothing published yet, waiting for joints: " + join(coverage_->never()));
     return false;
   }
+  const std::string missing = coverage_->describe();
+  if (changed && !missing.empty()) ROS_WARN_STREAM("mb_kinematics: " << missing);
+  if (changed && missing.empty()) ROS_INFO_STREAM("mb_kinematics: every joint received");
+  if (!coverage_->never().empty() || !coverage_->stale().empty())
+    diagnostics_->count(coverage_->mode() == MissingCoordinates::kSkip ? InputProblem::kBodiesLeftOut
+                        : coverage_->never().empty()                   ? InputProblem::kStaleHeld
+                                                                      : InputProblem::kZeroed,
+                        missing);
   return true;
 }
 
@@ -309,10 +335,11 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
          "nothing published yet, waiting for base odometry on " + odometry_sub_.getTopic());
     return;
   }
+  if (!cover(stamp.toSec())) return;
   if (decimated(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
-  mbk::Level level =
-      input_->fill(wanted, pairing_.at(stamp.toSec()), base_ ? input_state_ : state_);
+  mbk::Level level = input_->fill(wanted, pairing_.at(stamp.toSec()),
+                                  base_ ? input_state_ : state_, &coverage_->from_input());
   if (base_ && !add_base(stamp.toSec(), level)) return;
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
   if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest
@@ -321,7 +348,7 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
          bad + "; sample dropped");
     return;
   }
-  const Sample sample{model_, state_, data_, level};
+  const Sample sample{model_, state_, data_, level, published(), coverage_->complete()};
   publish(stamp, sample, false);  // from the joint state alone (tf) first
   if (!compute(level)) return;
   publish(stamp, sample, true);

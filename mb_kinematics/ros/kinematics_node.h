@@ -23,6 +23,7 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/ros/acceleration_pairing.h"
 #include "mb_kinematics/ros/base_odometry_input.h"
+#include "mb_kinematics/ros/coordinate_coverage.h"
 #include "mb_kinematics/ros/input_problem.h"
 #include "mb_kinematics/ros/joint_state_input.h"
 #include "mb_kinematics/ros/node_params.h"
@@ -50,6 +51,8 @@ class KinematicsNode {
   void process(const std::vector<AccelerationPairing::Ready>& ready);
   void process(const sensor_msgs::JointState& msg);  // one sample: merge, compute, publish
   bool report(const JointStateInput::Update& update);
+  bool cover(double t);  // ~missing_coordinates
+  const std::vector<char>& published();
   void warn(InputProblem problem, const std::string& message);
   mbk::Level wanted_level();  // asks each output once whether it is listened to
   bool decimated(double t);
@@ -61,6 +64,9 @@ class KinematicsNode {
   mbk::Model input_model_;  // the joints of joint_states
   mbk::Model model_;        // the kinematics: input_model_, with ~base_odometry after a base
   std::optional<JointStateInput> input_;
+  std::optional<CoordinateCoverage> coverage_;  // over input_model_
+  std::vector<char> published_;  // per body of model_ (with ~base_odometry: the base, then
+                                 // coverage_'s bodies)
   AccelerationPairing pairing_;
   mbk::JointState<double> input_state_, state_;  // input_state_: with ~base_odometry only
   mbk::Data<double> data_;

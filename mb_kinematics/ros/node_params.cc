@@ -16,6 +16,16 @@ void get(const ros::NodeHandle& nh, const std::string& name, T& value, const cha
     throw std::invalid_argument(nh.resolveName(name) + " must be " + type);
 }
 
+MissingCoordinates missing_coordinates(const ros::NodeHandle& pnh) {
+  std::string mode = "skip";
+  get(pnh, "missing_coordinates", mode, "a string: skip, wait or zero");
+  if (mode == "skip") return MissingCoordinates::kSkip;
+  if (mode == "wait") return MissingCoordinates::kWait;
+  if (mode == "zero") return MissingCoordinates::kZero;
+  throw std::invalid_argument(pnh.resolveName("missing_coordinates") + ": unknown value '" + mode +
+                              "' (allowed: skip, wait, zero)");
+}
+
 }  // namespace
 
 NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) {
@@ -44,6 +54,7 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   if (!(p.base_odometry_max_gap > 0 && std::isfinite(p.base_odometry_max_gap)))
     throw std::invalid_argument(pnh.resolveName("base_odometry_max_gap") + " must be > 0 (s)");
   get(pnh, "publish_base_tf", p.publish_base_tf, "true or false");
+  p.missing_coordinates = missing_coordinates(pnh);
   std::vector<std::string> outputs;
   get(pnh, "outputs", outputs, "a list of strings, e.g. [tf, body_kinematics]");
   if (pnh.hasParam("outputs")) {

@@ -11,6 +11,13 @@
 
 namespace mbk_ros {
 
+// ~missing_coordinates: what the node does about coordinates that never arrived (issue 9).
+enum class MissingCoordinates {
+  kSkip,  // publish the bodies whose chain of coordinates is known; leave the others out
+  kWait,  // publish nothing until every coordinate has come once
+  kZero,  // take them as 0 (Euler parameters: the identity), with a warning naming them
+};
+
 struct NodeParams {
   std::string robot_description;        // robot_description (URDF text), if set
   std::string model;                    // ~model: a .urdf or .yaml scene path; wins over it
@@ -30,6 +37,7 @@ struct NodeParams {
   std::string base_odometry;     // ~base_odometry: nav_msgs/Odometry of the base; "" = off
   double base_odometry_max_gap = 0.2;  // ~base_odometry_max_gap (s): odometry held this long
   bool publish_base_tf = false;        // ~publish_base_tf: R -> base on /tf too
+  MissingCoordinates missing_coordinates = MissingCoordinates::kSkip;  // ~missing_coordinates
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.

@@ -104,6 +104,48 @@ TEST_F(JointStateInputTest, EstimatesDerivativesAndRestartsOnBackwardsStamps) {
   EXPECT_EQ(input_.fill(Level::kVelocity, nullptr, state_), Level::kPose);
 }
 
+// ~missing_coordinates: a coordinate is never set, fresh, or stale (older than max_gap = 1 s);
+// settled once it has the samples fill() needs for accelerations.
+TEST_F(JointStateInputTest, FreshnessAndSettling) {
+  using F = mbk_ros::JointStateInput::Freshness;
+  std::vector<std::string> all_but_arm2(kAll.begin(), kAll.end() - 1);
+  const int slider = model_.coordinate_index("slider_joint");
+  const int arm2 = model_.coordinate_index("arm2_joint");
+  EXPECT_EQ(input_.freshness(slider, 10.0), F::kNever);
+  input_.add(msg(all_but_arm2, 0.1), 10.0);
+  EXPECT_EQ(input_.freshness(slider, 10.0), F::kFresh);
+  EXPECT_EQ(input_.freshness(arm2, 10.0), F::kNever);
+  EXPECT_FALSE(input_.settled(slider));
+  input_.add(msg(all_but_arm2, 0.2), 10.1);
+  EXPECT_FALSE(input_.settled(slider));
+  input_.add(msg(all_but_arm2, 0.3), 10.2);
+  EXPECT_TRUE(input_.settled(slider));
+  EXPECT_EQ(input_.freshness(slider, 11.2), F::kFresh);
+  EXPECT_EQ(input_.freshness(slider, 11.3), F::kStale);
+}
+
+// The coordinates not taken from the input get the zero configuration and zero derivatives,
+// and do not hold the level back; the others are as without the flags.
+TEST_F(JointStateInputTest, FillLeavesOutTheCoordinatesNotFromTheInput) {
+  std::vector<std::string> all_but_arm2(kAll.begin(), kAll.end() - 1);
+  const int arm2 = model_.coordinate_index("arm2_joint");
+  const int finger = model_.coordinate_index("finger_joint");
+  std::vector<char> from_input(model_.nq, 1);
+  from_input[arm2] = 0;
+  const double times[] = {10.0, 10.03, 10.04};
+  for (double t : times) input_.add(msg(all_but_arm2, t * t), t);
+  state_.position[arm2] = state_.velocity[arm2] = state_.acceleration[arm2] = 7;  // overwritten
+  EXPECT_EQ(input_.fill(Level::kAcceleration, nullptr, state_, &from_input), Level::kAcceleration);
+  EXPECT_EQ(state_.position[arm2], 0);
+  EXPECT_EQ(state_.velocity[arm2], 0);
+  EXPECT_EQ(state_.acceleration[arm2], 0);
+  EXPECT_DOUBLE_EQ(state_.position[finger], 0.1);  // its mimic: 2 * 0 + 0.1
+  EXPECT_NEAR(state_.velocity[0], 2 * 10.04, 1e-8);
+  EXPECT_NEAR(state_.acceleration[0], 2.0, 1e-6);
+  // Without the flags arm2_joint, never set, has no estimate: positions only.
+  EXPECT_EQ(input_.fill(Level::kAcceleration, nullptr, state_), Level::kPose);
+}
+
 TEST_F(JointStateInputTest, GivenVelocitiesAndPairedAccelerations) {
   input_.add(msg(kAll, 1.0, true), 1.0);  // velocity 2
   EXPECT_EQ(input_.fill(Level::kAcceleration, nullptr, state_), Level::kVelocity);

@@ -9,14 +9,22 @@ namespace mbk_ros {
 
 BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
     : publisher_(
-          setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics", 10)) {
+          setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics", 10)),
+      shown_(setup.model.body_count() + 1, 1) {
   init_body_kinematics(setup.model, setup.frame, msg_.next());
 }
 
 void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample) {
   mb_kinematics_msgs::BodyKinematicsArray& msg = msg_.next();
+  if (sample.published != shown_) {  // ~missing_coordinates skip: bodies left out or joining
+    select_body_kinematics(sample.model, sample.published, msg);
+    shown_ = sample.published;
+  }
   fill_body_kinematics(stamp, sample.data, msg);
-  fill_system_kinematics(sample.model, sample.data, msg.system);  // issue 10
+  if (sample.complete)
+    fill_system_kinematics(sample.model, sample.data, msg.system);  // issue 10
+  else  // over a subset of the bodies it would pass for the system's: not filled
+    msg.system = mb_kinematics_msgs::SystemKinematics();
   msg_.publish(publisher_);
 }
 

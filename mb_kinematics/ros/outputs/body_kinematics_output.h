@@ -6,6 +6,8 @@
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <ros/publisher.h>
 
+#include <vector>
+
 #include "mb_kinematics/ros/body_kinematics_fill.h"
 #include "mb_kinematics/ros/outputs/output.h"
 #include "mb_kinematics/ros/outputs/reused_message.h"
@@ -23,6 +25,7 @@ class BodyKinematicsOutput : public Output {
  private:
   ros::Publisher publisher_;
   ReusedMessage<mb_kinematics_msgs::BodyKinematicsArray> msg_;
+  std::vector<char> shown_;  // per body: in the message (~missing_coordinates skip)
 };
 
 class LowerBodyArrayOutput : public Output {

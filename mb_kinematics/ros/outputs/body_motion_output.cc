@@ -57,7 +57,7 @@ bool BodyMotionOutput::active() {
 void BodyMotionOutput::publish(const ros::Time& stamp, const Sample& sample) {
   const mbk::Vec3<double> origin = mbk::Vec3<double>::Zero();  // of O_k, in Bk
   for (size_t k = 1; k < publishers_.size(); ++k) {
-    if (!listened_[k]) continue;
+    if (!listened_[k] || !sample.published[k]) continue;  // ~missing_coordinates skip
     const std::string& frame = frames_[k];
     if (kind_ == Kind::kTwist) {
       const auto v = mbk::point_velocity(sample.data, k, origin, mbk::ReferenceFrame::kBody);

@@ -5,6 +5,30 @@
 #include "mb_kinematics/core/error_indicators.h"
 
 namespace mbk_ros {
+namespace {
+
+std::string names_or_none(const std::vector<std::string>& names) {
+  return names.empty() ? "none" : join_names(names, 100);
+}
+
+// ~missing_coordinates: what is missing and what is done about it; returns the line (empty:
+// nothing missing).
+std::string report_coverage(const CoordinateCoverage& c,
+                            diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const bool skip = c.mode() == MissingCoordinates::kSkip;
+  status.add("missing_coordinates", skip                                    ? "skip"
+                                    : c.mode() == MissingCoordinates::kWait ? "wait"
+                                                                            : "zero");
+  status.add("joints never received", names_or_none(c.never()));
+  status.add("joints stale (no sample for ~max_sample_gap)", names_or_none(c.stale()));
+  status.add("bodies left out", names_or_none(c.left_out()));
+  const bool none = skip || !c.ready();  // skip: left out; wait: nothing published yet
+  status.add("bodies from invented or held values",
+             names_or_none(none ? std::vector<std::string>() : c.affected()));
+  return c.describe();
+}
+
+}  // namespace
 
 DiagnosticsOutput::DiagnosticsOutput(const OutputSetup& setup, ros::NodeHandle pnh)
     : model_(setup.model),
@@ -74,12 +98,15 @@ void DiagnosticsOutput::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   status.add("Euler parameter norm error", state_ ? mbk::euler_norm_error(model_, *state_) : 0.0);
   status.add("estimator residual, max (rad or m)", window_.max_residual);
   status.add("acceleration estimator", estimator_);
+  const std::string missing = coverage_ ? report_coverage(*coverage_, status) : "";
   if (window_.dropped > 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "dropping samples: " + last_problem_);
   else if (window_.received == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no joint_states received");
   else if (window_.published == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, last_problem_);
+  else if (!missing.empty())
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "publishing; " + missing);
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "publishing");
   window_ = Counters();

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <string>
 
+#include "mb_kinematics/ros/coordinate_coverage.h"
 #include "mb_kinematics/ros/input_problem.h"
 #include "mb_kinematics/ros/outputs/output.h"
 
@@ -28,6 +29,8 @@ class DiagnosticsOutput : public Output {
   // A sample (or a joint_accelerations message) of this class; `message` says what and where.
   void count(InputProblem problem, const std::string& message);
   void published(double seconds);  // a sample went out, after `seconds` of work
+  // Reports what `coverage` says is missing (~missing_coordinates); it must outlive this.
+  void watch(const CoordinateCoverage& coverage) { coverage_ = &coverage; }
 
  private:
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -36,6 +39,7 @@ class DiagnosticsOutput : public Output {
   std::string estimator_;
   const mbk::JointState<double>* state_ = nullptr;  // the latest sample's
   const mbk::Data<double>* data_ = nullptr;
+  const CoordinateCoverage* coverage_ = nullptr;
   mbk::JointState<double> previous_state_;  // the last sample, for the residual
   double previous_stamp_ = -1;              // its stamp; < 0: none
   diagnostic_updater::Updater updater_;

@@ -7,6 +7,7 @@
 #include <ros/publisher.h>
 
 #include <array>
+#include <vector>
 
 #include "mb_kinematics/ros/kinematics_markers.h"
 #include "mb_kinematics/ros/outputs/output.h"
@@ -24,6 +25,7 @@ class MarkersOutput : public Output {
  private:
   ros::Publisher publisher_;
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;  // what the picture shows
+  std::vector<char> shown_;  // per body: in kinematics_ (~missing_coordinates skip)
   GlyphStyle style_;
   std::array<AutoScale, GlyphQuantity::kCount> scales_;
 };

@@ -8,6 +8,7 @@
 #include <ros/time.h>
 
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
@@ -37,6 +38,10 @@ struct Sample {
   const mbk::JointState<double>& state;  // checked by mbk::check_state
   const mbk::Data<double>& data;         // forward_kinematics up to `level`, if uses_data()
   mbk::Level level;                      // what the state holds: estimates may lag behind
+  // Per body (index k; [0] is R): published with this sample. ~missing_coordinates skip leaves
+  // out the bodies whose chain lacks a coordinate; `complete`: none is left out.
+  const std::vector<char>& published;
+  bool complete;
 };
 
 class Output {

@@ -33,7 +33,10 @@ bool fill_body(const mbk::Model& model, const mbk::PartialVelocities<double>& pv
 }  // namespace
 
 PartialVelocitiesService::PartialVelocitiesService(const OutputSetup& setup)
-    : model_(setup.model), frame_(setup.frame), latest_(setup.model) {
+    : model_(setup.model),
+      frame_(setup.frame),
+      latest_(setup.model),
+      published_(setup.model.body_count() + 1, 1) {
   ros::NodeHandle private_nh("~");
   server_ = private_nh.advertiseService("get_partial_velocities", &PartialVelocitiesService::answer,
                                         this);
@@ -42,6 +45,7 @@ PartialVelocitiesService::PartialVelocitiesService(const OutputSetup& setup)
 void PartialVelocitiesService::publish(const ros::Time& stamp, const Sample& sample) {
   latest_.position = sample.state.position;  // same sizes: no allocation
   latest_.velocity = sample.state.velocity;
+  published_ = sample.published;  // same size: no allocation
   stamp_ = stamp;
   has_sample_ = true;
 }
@@ -62,10 +66,17 @@ bool PartialVelocitiesService::answer(
       response.message = "unknown body '" + name + "'";
       return true;
     }
+    if (!published_[k]) {
+      response.message = "body '" + name +
+                         "' is left out: a joint on its chain has never been received, or is "
+                         "stale (~missing_coordinates)";
+      return true;
+    }
     bodies.push_back(k);
   }
-  if (request.bodies.empty())
-    for (int k = 1; k <= model_.body_count(); ++k) bodies.push_back(k);
+  if (request.bodies.empty())  // every body published
+    for (int k = 1; k <= model_.body_count(); ++k)
+      if (published_[k]) bodies.push_back(k);
   mbk::PartialVelocities<double> pv(model_);
   mbk::Data<double> data(model_);
   mbk::partial_velocity_kinematics(model_, latest_, pv, data);  // the _dot columns need q, y

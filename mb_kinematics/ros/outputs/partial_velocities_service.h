@@ -8,6 +8,8 @@
 #include <mb_kinematics_msgs/GetPartialVelocities.h>
 #include <ros/service_server.h>
 
+#include <vector>
+
 #include "mb_kinematics/ros/outputs/output.h"
 
 namespace mbk_ros {
@@ -29,6 +31,7 @@ class PartialVelocitiesService : public Output {
   const mbk::Model& model_;
   std::string frame_;
   mbk::JointState<double> latest_;
+  std::vector<char> published_;  // per body, of the latest sample (~missing_coordinates skip)
   ros::Time stamp_;
   bool has_sample_ = false;
   ros::ServiceServer server_;

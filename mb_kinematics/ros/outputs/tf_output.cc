@@ -16,18 +16,32 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 }  // namespace
 
 TfOutput::TfOutput(const OutputSetup& setup)
-    : publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", 100)) {
+    : shown_(setup.model.body_count() + 1, 0),
+      publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", 100)) {
   const mbk::Model& model = setup.model;
   // With ~base_odometry, body 1 is the base: R -> base comes from the odometry's source.
   const bool base_tf = setup.params.base_odometry.empty() || setup.params.publish_base_tf;
-  for (int k = base_tf ? 1 : 2; k <= model.body_count(); ++k)
-    if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) moving_.push_back(k);
-  std::vector<geometry_msgs::TransformStamped>& transforms = msg_.next().transforms;
-  transforms.resize(moving_.size());
-  for (size_t i = 0; i < moving_.size(); ++i) {
-    transforms[i].header.frame_id = setup.lower_frame(moving_[i]);
-    transforms[i].child_frame_id = setup.body_frame(moving_[i]);
+  for (int k = base_tf ? 1 : 2; k <= model.body_count(); ++k) {
+    if (mbk::coordinate_count(model.bodies[k].joint.type) == 0) continue;
+    moving_all_.push_back(k);
+    parent_.push_back(setup.lower_frame(k));
+    child_.push_back(setup.body_frame(k));
   }
+  select(std::vector<char>(shown_.size(), 1), msg_.next());
+}
+
+// The transforms of the published bodies, their frames set (~missing_coordinates skip).
+void TfOutput::select(const std::vector<char>& published, tf2_msgs::TFMessage& msg) {
+  moving_.clear();
+  msg.transforms.clear();
+  for (size_t i = 0; i < moving_all_.size(); ++i) {
+    if (!published[moving_all_[i]]) continue;
+    moving_.push_back(moving_all_[i]);
+    msg.transforms.emplace_back();
+    msg.transforms.back().header.frame_id = parent_[i];
+    msg.transforms.back().child_frame_id = child_[i];
+  }
+  shown_ = published;
 }
 
 void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
@@ -44,9 +58,12 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
 }
 
 void TfOutput::publish(const ros::Time& stamp, const Sample& sample) {
-  if (moving_.empty() || stamp == last_stamp_) return;  // tf2 rejects repeated stamps
+  if (stamp == last_stamp_) return;  // tf2 rejects repeated stamps
+  tf2_msgs::TFMessage& msg = msg_.next();
+  if (sample.published != shown_) select(sample.published, msg);
+  if (moving_.empty()) return;
   last_stamp_ = stamp;
-  fill_transforms(sample.model, sample.state, moving_, stamp, msg_.next().transforms);
+  fill_transforms(sample.model, sample.state, moving_, stamp, msg.transforms);
   msg_.publish(publisher_);
 }
 

@@ -7,6 +7,7 @@
 #include <tf2_msgs/TFMessage.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include <string>
 #include <vector>
 
 #include "mb_kinematics/ros/outputs/output.h"
@@ -21,8 +22,9 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
                      std::vector<geometry_msgs::TransformStamped>& transforms);
 
 // The joints with coordinates, every sample (with ~base_odometry, the base's only with
-// ~publish_base_tf): one TFMessage, its frames set once, published as
-// tf2_ros::TransformBroadcaster does (/tf, queue 100) without its per-sample copy.
+// ~publish_base_tf): one TFMessage, its frames set once (and again when ~missing_coordinates
+// skip leaves bodies out or lets them join), published as tf2_ros::TransformBroadcaster does
+// (/tf, queue 100) without its per-sample copy.
 class TfOutput : public Output {
  public:
   static bool enabled(const NodeParams& p) { return p.tf; }
@@ -33,8 +35,13 @@ class TfOutput : public Output {
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
  private:
-  std::vector<int> moving_;                 // bodies on joints with coordinates
-  ReusedMessage<tf2_msgs::TFMessage> msg_;  // a transform per moving body
+  void select(const std::vector<char>& published, tf2_msgs::TFMessage& msg);
+
+  std::vector<int> moving_all_;                     // bodies on joints with coordinates
+  std::vector<std::string> parent_, child_;         // their frames
+  std::vector<int> moving_;                         // those of them published now
+  std::vector<char> shown_;                         // per body: published now
+  ReusedMessage<tf2_msgs::TFMessage> msg_;          // a transform per body of moving_
   ros::Time last_stamp_;
   ros::Publisher publisher_;
 };
