@@ -275,9 +275,10 @@ bool KinematicsNode::cover(double t) {
   if (changed && !missing.empty()) ROS_WARN_STREAM("mb_kinematics: " << missing);
   if (changed && missing.empty()) ROS_INFO_STREAM("mb_kinematics: every joint received");
   if (!coverage_->never().empty() || !coverage_->stale().empty())
-    diagnostics_->count(coverage_->mode() == MissingCoordinates::kSkip ? InputProblem::kBodiesLeftOut
-                        : coverage_->never().empty()                   ? InputProblem::kStaleHeld
-                                                                      : InputProblem::kZeroed,
+    diagnostics_->count(coverage_->mode() == MissingCoordinates::kSkip
+                            ? InputProblem::kBodiesLeftOut
+                        : coverage_->never().empty() ? InputProblem::kStaleHeld
+                                                     : InputProblem::kZeroed,
                         missing);
   return true;
 }
@@ -338,8 +339,8 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   if (!cover(stamp.toSec())) return;
   if (decimated(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
-  mbk::Level level = input_->fill(wanted, pairing_.at(stamp.toSec()),
-                                  base_ ? input_state_ : state_, &coverage_->from_input());
+  mbk::Level level = input_->fill(wanted, pairing_.at(stamp.toSec()), base_ ? input_state_ : state_,
+                                  &coverage_->from_input());
   if (base_ && !add_base(stamp.toSec(), level)) return;
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
   if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest

@@ -37,11 +37,11 @@ class TfOutput : public Output {
  private:
   void select(const std::vector<char>& published, tf2_msgs::TFMessage& msg);
 
-  std::vector<int> moving_all_;                     // bodies on joints with coordinates
-  std::vector<std::string> parent_, child_;         // their frames
-  std::vector<int> moving_;                         // those of them published now
-  std::vector<char> shown_;                         // per body: published now
-  ReusedMessage<tf2_msgs::TFMessage> msg_;          // a transform per body of moving_
+  std::vector<int> moving_all_;              // bodies on joints with coordinates
+  std::vector<std::string> parent_, child_;  // their frames
+  std::vector<int> moving_;                  // those of them published now
+  std::vector<char> shown_;                  // per body: published now
+  ReusedMessage<tf2_msgs::TFMessage> msg_;   // a transform per body of moving_
   ros::Time last_stamp_;
   ros::Publisher publisher_;
 };
