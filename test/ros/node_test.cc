@@ -53,13 +53,7 @@ class NodeTest : public ::testing::Test {
 
 TEST_F(NodeTest, LatchedTopology) {
   mb_kinematics_msgs::LowerBodyArray topology;
-  bool got = false;
-  ros::Subscriber sub = nh_.subscribe<mb_kinematics_msgs::LowerBodyArray>(
-      "lower_body_array", 1, [&](const mb_kinematics_msgs::LowerBodyArray::ConstPtr& m) {
-        topology = *m;
-        got = true;
-      });
-  ASSERT_TRUE(wait_until([&] { return got; }, 5));
+  ASSERT_TRUE(latched_lower_body_array(nh_, topology));
   EXPECT_EQ(topology.header.frame_id, "base_link");
   const std::vector<std::string> names = {"slider", "floater", "camera", "arm1",
                                           "arm2",   "tool",    "finger"};

@@ -70,13 +70,7 @@ class ReloadTest : public ::testing::Test {
   }
   mb_kinematics_msgs::LowerBodyArray latched_topology() {
     mb_kinematics_msgs::LowerBodyArray topology;
-    bool got = false;
-    ros::Subscriber sub = nh_.subscribe<mb_kinematics_msgs::LowerBodyArray>(
-        "lower_body_array", 1, [&](const mb_kinematics_msgs::LowerBodyArray::ConstPtr& m) {
-          topology = *m;
-          got = true;
-        });
-    EXPECT_TRUE(wait_until([&] { return got; }, 5));
+    EXPECT_TRUE(latched_lower_body_array(nh_, topology));
     return topology;
   }
 

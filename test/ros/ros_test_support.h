@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <mb_kinematics_msgs/LowerBodyArray.h>
 #include <ros/message_event.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -126,6 +127,19 @@ inline bool wait_until(const std::function<bool()>& done, double seconds) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return done();
+}
+
+// The latched lower_body_array (relative to nh) into `topology`; false if none came in `seconds`.
+inline bool latched_lower_body_array(ros::NodeHandle& nh,
+                                     mb_kinematics_msgs::LowerBodyArray& topology,
+                                     double seconds = 5) {
+  bool got = false;
+  ros::Subscriber sub = nh.subscribe<mb_kinematics_msgs::LowerBodyArray>(
+      "lower_body_array", 1, [&](const mb_kinematics_msgs::LowerBodyArray::ConstPtr& m) {
+        topology = *m;
+        got = true;
+      });
+  return wait_until([&] { return got; }, seconds);
 }
 
 // Records every body_kinematics message (callbacks on an AsyncSpinner).
