@@ -15,7 +15,9 @@
 
 // The loop over bodies gets every step, sine and Eigen product inlined into it (GCC and Clang
 // would otherwise keep body_update and the 3x3 products out of line, their terms in memory).
-#if defined(__GNUC__)
+// Not under AddressSanitizer: flattening the instrumented code makes each translation unit take
+// a quarter of an hour to compile (scripts/test.sh --sanitize).
+#if defined(__GNUC__) && !defined(__SANITIZE_ADDRESS__)
 #define MBK_FLATTEN __attribute__((flatten))
 #else
 #define MBK_FLATTEN
