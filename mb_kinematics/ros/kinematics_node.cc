@@ -9,6 +9,7 @@
 #include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/state_check.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/ros/outputs/output_table.h"
 
@@ -75,6 +76,11 @@ void log_model(const mbk::Model& model, const std::string& frame) {
         << kMaxLoggedTableCells << " (mbk tables prints it)";
   }
   ROS_INFO_STREAM(out.str());
+  const std::vector<std::string> no_inertia = mbk::bodies_without_inertia(model);
+  if (!no_inertia.empty())  // README, "Whole-system quantities"
+    ROS_INFO_STREAM("mb_kinematics: body_kinematics' system.angular_momentum is left out "
+                    "(angular_momentum_known false): no inertia for "
+                    << no_inertia.size() << " bodies with mass: " << join_names(no_inertia));
 }
 
 }  // namespace
