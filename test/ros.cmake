@@ -14,6 +14,12 @@ add_dependencies(output_allocation_test mb_kinematics_msgs_generate_messages_cpp
 target_link_libraries(output_allocation_test mbk_ros mbk_analysis mbk_io mbk_core gtest_main)
 target_compile_definitions(output_allocation_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+# body_kinematics' system field against the core, with and without inertias (no master).
+catkin_add_gtest(system_fields_test test/ros/system_fields_test.cc test/support/test_models.cc)
+add_dependencies(system_fields_test mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(system_fields_test mbk_ros mbk_analysis mbk_io mbk_core gtest_main)
+target_compile_definitions(system_fields_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
 # The picture shared by the rviz display and ~publish_markers (no master needed).
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers gtest_main)

@@ -100,9 +100,12 @@ void BodyKinematicsDisplay::makeSystemProperties() {
   const SystemStyle d;
   system_ = new rviz::BoolProperty(
       "System Mass Center", true,
-      "A larger sphere at the mass center G of the whole system (when the node fills the "
-      "message's system field).",
+      "The mass center G of the whole system, its velocity, acceleration and ground projection "
+      "(when the node fills the message's system field); each child shows or hides its part.",
       this, SLOT(updateStyle()));
+  system_sphere_ =
+      new rviz::BoolProperty("Sphere", true, "A sphere at G, larger than the bodies' mass centers.",
+                             system_, SLOT(updateStyle()), this);
   system_color_ = new rviz::ColorProperty(
       "Color", QColor::fromRgbF(d.color.r, d.color.g, d.color.b),
       "Color of the sphere and of its projection.", system_, SLOT(updateStyle()), this);
@@ -131,6 +134,7 @@ void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsA
         std::make_unique<SystemKinematicsVisual>(context_->getSceneManager(), scene_node_);
   SystemStyle s;
   s.show = system_->getBool();
+  s.sphere = system_sphere_->getBool();
   s.velocity = system_velocity_->getBool();
   s.acceleration = system_acceleration_->getBool();
   s.projection = system_projection_->getBool();

@@ -81,8 +81,9 @@ class BodyKinematicsDisplay
   boost::circular_buffer<std::shared_ptr<BodyKinematicsVisual>> visuals_;
   std::vector<mb_kinematics_msgs::BodyKinematicsArray::ConstPtr> pending_;
 
-  // The whole system (issue 10): the newest message's, one visual.
-  rviz::BoolProperty *system_, *system_velocity_, *system_acceleration_, *system_projection_;
+  // The whole system (doc/method.md 9): the newest message's, one visual.
+  rviz::BoolProperty *system_, *system_sphere_, *system_velocity_, *system_acceleration_,
+      *system_projection_;
   rviz::ColorProperty* system_color_;
   rviz::FloatProperty* system_radius_;
   std::unique_ptr<SystemKinematicsVisual> system_visual_;

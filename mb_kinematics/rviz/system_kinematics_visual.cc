@@ -73,6 +73,7 @@ bool SystemKinematicsVisual::set(const mb_kinematics_msgs::SystemKinematics& sys
   }
   node_->setVisible(true);
   const float d = 2 * style.radius;
+  sphere_->getRootNode()->setVisible(style.sphere);
   sphere_->setPosition(g);
   sphere_->setScale(Ogre::Vector3(d, d, d));
   sphere_->setColor(style.color);

@@ -1,6 +1,6 @@
-// The whole system in rviz (issue 10): a larger sphere at the system mass center G, arrows for
-// its velocity and acceleration, and its projection on R's x-y plane (a flat disc at z = 0 and a
-// line down to it), from a BodyKinematicsArray's `system` field; nothing when it is not filled.
+// The whole system in rviz (doc/method.md 9): a larger sphere at the system mass center G, arrows
+// for its velocity and acceleration, and its projection on R's x-y plane (a flat disc at z = 0 and
+// a line down to it), from a BodyKinematicsArray's `system` field; nothing when it is not filled.
 #pragma once
 
 #include <OgreColourValue.h>
@@ -18,7 +18,8 @@ class Shape;
 namespace mbk_rviz {
 
 struct SystemStyle {
-  bool show = true, velocity = true, acceleration = true, projection = true;
+  bool show = true;  // false hides all four parts below
+  bool sphere = true, velocity = true, acceleration = true, projection = true;
   Ogre::ColourValue color{0.2f, 1.0f, 0.2f, 1.0f};  // G and its projection
   Ogre::ColourValue velocity_color, acceleration_color;
   float radius = 0.07f;                                     // of the sphere at G (m)
