@@ -1,7 +1,7 @@
 // Partial velocities with respect to the independent generalized speeds: a mimic coordinate
 // (q = m q_s + c, so y = m y_s) is not independent, and its column goes, times m, into its
 // source's. Then omega_k = sum_r omega_kr y_r over the independent speeds r alone (doc/method.md
-// 5).
+// 9).
 #pragma once
 
 #include <vector>

@@ -70,6 +70,13 @@ JointType joint_type_from_string(const std::string& name) {
 
 std::string to_string(JointType type) { return joint_traits(type).name; }
 
+JointType joint_type_from_urdf_type(const std::string& urdf_type) {
+  const std::string name = urdf_type == "revolute" ? "continuous" : urdf_type;
+  for (JointType type : all_joint_types())
+    if (!name.empty() && name == joint_traits(type).urdf_type) return type;
+  throw std::invalid_argument("URDF joint type '" + urdf_type + "' has no joint type here");
+}
+
 const std::vector<std::string>& coordinate_suffixes(JointType type) {
   static const std::vector<std::vector<std::string>> suffixes = [] {
     std::vector<std::vector<std::string>> all;

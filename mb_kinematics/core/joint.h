@@ -64,6 +64,9 @@ const std::vector<JointType>& all_joint_types();  // in JointType order
 // ball_euler, free_123, free_euler, planar. Throws std::invalid_argument for an unknown name.
 JointType joint_type_from_string(const std::string& name);
 std::string to_string(JointType type);
+// The type read from a URDF joint type (JointTraits::urdf_type; "revolute" is read as
+// "continuous", its limits aside). Throws std::invalid_argument for a type without one.
+JointType joint_type_from_urdf_type(const std::string& urdf_type);
 
 // Coordinate suffixes of a joint type, in coordinate order: {} for fixed, {""} for the
 // one-coordinate joints (the coordinate is named after the joint), else e.g. {"x","y","z",...}.

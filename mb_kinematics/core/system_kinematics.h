@@ -1,9 +1,10 @@
-// Whole-system quantities in R from the bodies' kinematics (issue 10): total mass M, the system
-// mass center G with its velocity and acceleration, linear momentum M v_G, and the angular
+// Whole-system quantities in R from the bodies' kinematics (doc/method.md 9): total mass M, the
+// system mass center G with its velocity and acceleration, linear momentum M v_G, and the angular
 // momentum about G, H_G = sum_k S0K I_k S0K^T omega_k + m_k (p_k - p_G) x (v_k - v_G).
 // Computed only when a caller asks, from a Data already filled by either formulation.
 #pragma once
 
+#include <cassert>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,7 @@ bool inertias_known(const Model& model);  // bodies_without_inertia is empty (no
 template <typename S>
 void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics<S>& out,
                        Level level = Level::kAcceleration) {
+  assert(sized_for(data, model) && "system_kinematics: Data made for another model");
   const int n = model.body_count();
   out = SystemKinematics<S>();
   for (int k = 1; k <= n; ++k) out.mass += S(model.bodies[k].mass);
@@ -53,7 +55,7 @@ void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics
     const Vec3<S> spin = s0k * (body.inertia.cast<S>() * (s0k.transpose() * data.omega[k]));
     const Vec3<S> orbit =
         (data.mass_center[k] - out.mass_center).cross(data.mass_center_velocity[k] - out.velocity);
-    out.angular_momentum += spin + S(body.mass) * orbit;  // issue 10: S0K I_k S0K^T omega_k + ...
+    out.angular_momentum += spin + S(body.mass) * orbit;  // doc/method.md 9, H_G
   }
 }
 

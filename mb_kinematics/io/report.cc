@@ -99,7 +99,7 @@ std::string format_lower_body_csv(const std::vector<int>& lower) {
   return out.str();
 }
 
-namespace {  // issue 10: the system quantities and the partial velocities
+namespace {  // doc/method.md 9: the system quantities and the partial velocities
 
 std::string json_vector(const Vec3<double>& v, bool known) {
   return known ? json_array(v.transpose()) : "null";

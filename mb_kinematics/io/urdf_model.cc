@@ -45,23 +45,31 @@ class UrdfdomErrors : public console_bridge::OutputHandler {
   std::string messages_;
 };
 
-JointType joint_type(const urdf::Joint& joint) {
-  switch (joint.type) {
+// urdfdom's joint type as the file spells it.
+const char* urdf_type_name(int type) {
+  switch (type) {
     case urdf::Joint::REVOLUTE:
+      return "revolute";
     case urdf::Joint::CONTINUOUS:
-      return JointType::kRevolute;
+      return "continuous";
     case urdf::Joint::PRISMATIC:
-      return JointType::kPrismatic;
+      return "prismatic";
     case urdf::Joint::FIXED:
-      return JointType::kFixed;
+      return "fixed";
     case urdf::Joint::FLOATING:
-      return JointType::kFree123;
+      return "floating";
     case urdf::Joint::PLANAR:
-      return JointType::kPlanar;
-    case urdf::Joint::UNKNOWN:
-    default:
-      throw std::invalid_argument("joint '" + joint.name + "' has an unknown type");
+      return "planar";
+    default:  // urdf::Joint::UNKNOWN
+      return "";
   }
+}
+
+// Our type for it, from the joint traits table (JointTraits::urdf_type).
+JointType joint_type(const urdf::Joint& joint) {
+  const std::string name = urdf_type_name(joint.type);
+  if (name.empty()) throw std::invalid_argument("joint '" + joint.name + "' has an unknown type");
+  return joint_type_from_urdf_type(name);
 }
 
 // Joint names in the order the file lists them (urdfdom keeps them in a name-sorted map).

@@ -94,7 +94,7 @@ Row formulation_row(const std::string& method, const Scene& scene, int states, i
   return {method, scene.name, t.median, t.min, t.max, error, ""};
 }
 
-// The system quantities (issue 10) from the double recursion, against the same in quad precision
+// The system quantities (doc/method.md 9) from the double recursion, against the same in quad precision
 // (system_error.h); bodies without an inertia get a random one (with_random_inertias) so that
 // the angular momentum is measured too. The time is that of system_kinematics alone.
 Row system_row(const Scene& scene, int states, int repetitions) {

@@ -26,6 +26,25 @@ TEST(JointTraits, EveryTypeHasADistinctNameThatReadsBack) {
   EXPECT_THROW(mbk::joint_type_from_string("hinge"), std::invalid_argument);
 }
 
+// kLast is the last type: a type appended after it (the compiler makes joint_traits handle it)
+// without moving kLast would answer here instead of throwing, and be missing from
+// all_joint_types().
+TEST(JointTraits, NothingAfterTheLastType) {
+  const int after = static_cast<int>(JointType::kLast) + 1;
+  EXPECT_THROW(mbk::joint_traits(static_cast<JointType>(after)), std::invalid_argument);
+}
+
+// Every URDF joint type the reader knows maps to the type whose traits name it.
+TEST(JointTraits, UrdfTypesReadBack) {
+  for (JointType type : mbk::all_joint_types()) {
+    const std::string urdf = mbk::joint_traits(type).urdf_type;
+    if (urdf.empty()) continue;
+    EXPECT_EQ(mbk::joint_type_from_urdf_type(urdf), type) << urdf;
+  }
+  EXPECT_EQ(mbk::joint_type_from_urdf_type("revolute"), JointType::kRevolute);
+  EXPECT_THROW(mbk::joint_type_from_urdf_type("hinge"), std::invalid_argument);
+}
+
 TEST(JointTraits, TranslationsFirstAndEulerParametersLast) {
   for (JointType type : mbk::all_joint_types()) {
     SCOPED_TRACE(mbk::to_string(type));

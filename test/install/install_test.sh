@@ -2,14 +2,16 @@
 # Packaging, checked the way a ROS packager would (README "Packaging"): catkin_lint finds no
 # error in either package; `catkin_make install` of the workspace; then, from install/setup.bash
 # alone (a clean environment), `rosrun mb_kinematics mbk`, `rosmsg show mb_kinematics_msgs/...`,
-# and test/downstream (a package using the core's headers and library and the messages) built in
-# a workspace of its own on top of the install space, and run. Output in WS/install_test.log.
+# and test/downstream (a package using the core's headers and library and the messages), built
+# and installed in the same workspace and run from its install space; then built again in a
+# workspace of its own on top of the install space alone, and run. Output in WS/install_test.log.
 #   test/install/install_test.sh SRC WS
 set -euo pipefail
 src=${1:?usage: install_test.sh SRC WS} ws=${2:?usage: install_test.sh SRC WS}
 log=$ws/install_test.log
 fail() { tail -n 30 "$log"; echo "install test failed: $* (full log: $log)" >&2; exit 1; }
 (cd "$src" && catkin_lint -q . mb_kinematics_msgs) >"$log" 2>&1 || fail "catkin_lint found errors"
+ln -sfn "$src/test/downstream" "$ws/src/mbk_downstream"  # a package of the same workspace
 # A clean environment, so that the install space chains to no devel space.
 env -i HOME="$HOME" PATH=/usr/bin:/bin bash -c 'cd "$1" && catkin_make --force-cmake install -j2' _ "$ws" \
   >>"$log" 2>&1 || fail "catkin_make install"
@@ -21,6 +23,7 @@ env -i HOME="$HOME" PATH=/usr/bin:/bin bash -euo pipefail -c '
   [[ $tables == *"L^1(k)"* ]]
   msg=$(rosmsg show mb_kinematics_msgs/BodyKinematics)
   [[ $msg == *"geometry_msgs/Twist twist"* ]]
+  rosrun mbk_downstream mbk_downstream
   down=$1/downstream_ws
   rm -rf "$down"
   mkdir -p "$down/src"
@@ -28,4 +31,5 @@ env -i HOME="$HOME" PATH=/usr/bin:/bin bash -euo pipefail -c '
   cd "$down" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3
   "$down/devel/lib/mbk_downstream/mbk_downstream"
 ' _ "$ws" "$src" >>"$log" 2>&1 || fail "from install/setup.bash"
-echo "install test: catkin_lint clean, install space runs mbk, rosmsg and a downstream package"
+echo "install test: catkin_lint clean, install space runs mbk, rosmsg and a downstream package" \
+  "(built in the same workspace, and on top of the install space)"

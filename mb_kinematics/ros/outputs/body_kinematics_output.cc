@@ -22,7 +22,7 @@ void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample)
   }
   fill_body_kinematics(stamp, sample.data, msg);
   if (sample.complete)
-    fill_system_kinematics(sample.model, sample.data, msg.system);  // issue 10
+    fill_system_kinematics(sample.model, sample.data, msg.system);  // doc/method.md 9
   else  // over a subset of the bodies it would pass for the system's: not filled
     msg.system = mb_kinematics_msgs::SystemKinematics();
   msg_.publish(publisher_);

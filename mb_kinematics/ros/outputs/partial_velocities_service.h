@@ -1,4 +1,4 @@
-// ~get_partial_velocities (mb_kinematics_msgs/GetPartialVelocities, issue 10): the partial
+// ~get_partial_velocities (mb_kinematics_msgs/GetPartialVelocities, doc/method.md 9): the partial
 // velocity arrays of the named bodies and their time derivatives at the latest sample, sparse
 // (the independent speeds of each body's chain, mimic columns folded into their sources').
 // Keeps a copy of the latest sample's coordinates and speeds (no allocation per sample); the
