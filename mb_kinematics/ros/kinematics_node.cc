@@ -78,9 +78,10 @@ void log_model(const mbk::Model& model, const std::string& frame) {
   ROS_INFO_STREAM(out.str());
   const std::vector<std::string> no_inertia = mbk::bodies_without_inertia(model);
   if (!no_inertia.empty())  // README, "Whole-system quantities"
-    ROS_INFO_STREAM("mb_kinematics: body_kinematics' system.angular_momentum is left out "
-                    "(angular_momentum_known false): no inertia for "
-                    << no_inertia.size() << " bodies with mass: " << join_names(no_inertia));
+    ROS_INFO_STREAM(
+        "mb_kinematics: body_kinematics' system.angular_momentum is left out "
+        "(angular_momentum_known false): no inertia for "
+        << no_inertia.size() << " bodies with mass: " << join_names(no_inertia));
 }
 
 }  // namespace
@@ -122,7 +123,6 @@ void KinematicsNode::start(const mbk::Model& loaded) {
                  params_.max_sample_gap);
   coverage_.emplace(input_model_, params_.missing_coordinates);
   published_.assign(model_.body_count() + 1, 1);
-  pairing_ = AccelerationPairing();
   input_state_ = mbk::JointState<double>(input_model_);
   state_ = mbk::JointState<double>(model_);
   data_ = mbk::Data<double>(model_);
@@ -197,22 +197,19 @@ bool KinematicsNode::add_base(double t, mbk::Level& level) {
 
 void KinematicsNode::on_joint_states(const sensor_msgs::JointStateConstPtr& msg) {
   diagnostics_->received();
-  process(pairing_.add(msg, accelerations_sub_.getNumPublishers() > 0));
+  process(input_->pair(msg, accelerations_sub_.getNumPublishers() > 0));
 }
 
 void KinematicsNode::on_joint_accelerations(
     const mb_kinematics_msgs::JointAccelerationsConstPtr& msg) {
-  AccelerationSample sample;
-  const std::string error = input_->convert(*msg, msg->header.stamp.toSec(), sample);
-  if (!error.empty()) {
+  std::string error;
+  process(input_->pair(*msg, msg->header.stamp.toSec(), error));
+  if (!error.empty())
     warn(InputProblem::kBadAccelerations, "joint_accelerations ignored: " + error);
-    return;
-  }
-  process(pairing_.add(std::move(sample)));
 }
 
-void KinematicsNode::process(const std::vector<AccelerationPairing::Ready>& ready) {
-  for (const AccelerationPairing::Ready& r : ready) {
+void KinematicsNode::process(const std::vector<JointStateInput::Ready>& ready) {
+  for (const JointStateInput::Ready& r : ready) {
     if (r.unpaired)
       diagnostics_->count(InputProblem::kUnpaired,
                           "joint_accelerations missing; accelerations estimated");
@@ -345,8 +342,8 @@ void KinematicsNode::process(const sensor_msgs::JointState& msg) {
   if (!cover(stamp.toSec())) return;
   if (decimated(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
-  mbk::Level level = input_->fill(wanted, pairing_.at(stamp.toSec()), base_ ? input_state_ : state_,
-                                  &coverage_->from_input());
+  mbk::Level level = input_->fill(wanted, input_->paired(stamp.toSec()),
+                                  base_ ? input_state_ : state_, &coverage_->from_input());
   if (base_ && !add_base(stamp.toSec(), level)) return;
   const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
   if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest

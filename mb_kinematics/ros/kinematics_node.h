@@ -1,8 +1,8 @@
 // mb_kinematics_node: a thin adapter from joint_states to the core (doc/method.md 8; README "The
 // node"), in the manner of robot_state_publisher: parameters read in one place, one callback
-// per sample, throttled warnings that say what was wrong. It keeps the input, the pairing with
-// joint_accelerations and the dispatch to its outputs (outputs/output_table.cc); the outputs
-// publish.
+// per sample, throttled warnings that say what was wrong. It keeps the input (with the pairing
+// with joint_accelerations: JointStateInput) and the dispatch to its outputs
+// (outputs/output_table.cc); the outputs publish.
 #pragma once
 
 #include <mb_kinematics_msgs/JointAccelerations.h>
@@ -21,7 +21,6 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
-#include "mb_kinematics/ros/acceleration_pairing.h"
 #include "mb_kinematics/ros/base_odometry_input.h"
 #include "mb_kinematics/ros/coordinate_coverage.h"
 #include "mb_kinematics/ros/input_problem.h"
@@ -48,7 +47,7 @@ class KinematicsNode {
   void start(const mbk::Model& loaded);        // makes everything that depends on the model
   void make_outputs_in_r();                    // the outputs, once R is known
   bool add_base(double t, mbk::Level& level);  // ~base_odometry: state_ from input_state_
-  void process(const std::vector<AccelerationPairing::Ready>& ready);
+  void process(const std::vector<JointStateInput::Ready>& ready);
   void process(const sensor_msgs::JointState& msg);  // one sample: merge, compute, publish
   bool report(const JointStateInput::Update& update);
   bool cover(double t);  // ~missing_coordinates
@@ -67,7 +66,6 @@ class KinematicsNode {
   std::optional<CoordinateCoverage> coverage_;  // over input_model_
   std::vector<char> published_;  // per body of model_ (with ~base_odometry: the base, then
                                  // coverage_'s bodies)
-  AccelerationPairing pairing_;
   mbk::JointState<double> input_state_, state_;  // input_state_: with ~base_odometry only
   mbk::Data<double> data_;
   std::unique_ptr<BaseOdometryInput> base_;  // with ~base_odometry
