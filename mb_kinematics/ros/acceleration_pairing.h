@@ -1,6 +1,7 @@
 // joint_accelerations paired with the joint_states sample of the same stamp, whichever of the
 // two arrives first (doc/method.md 8): a sample waits for its accelerations
 // until they come or the next sample does; then it goes on with estimated accelerations.
+// JointStateInput owns one (joint_state_input.h).
 #pragma once
 
 #include <sensor_msgs/JointState.h>
@@ -8,9 +9,14 @@
 #include <deque>
 #include <vector>
 
-#include "mb_kinematics/ros/joint_state_input.h"
-
 namespace mbk_ros {
+
+// Accelerations of one joint_accelerations message, by coordinate index.
+struct AccelerationSample {
+  double stamp = 0;
+  std::vector<double> value;  // model.nq entries
+  std::vector<char> given;    // 1 where the message named the coordinate
+};
 
 class AccelerationPairing {
  public:

@@ -4,13 +4,15 @@
 #include <cmath>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 
 #include "mb_kinematics/core/base_joint.h"
 
 namespace mbk_ros {
 
-BaseOdometryInput::BaseOdometryInput(const mbk::DerivativeEstimator& prototype, double max_gap)
-    : buffer_(prototype, max_gap), max_gap_(max_gap) {}
+BaseOdometryInput::BaseOdometryInput(const mbk::DerivativeEstimator& prototype, double max_gap,
+                                     std::string topic)
+    : buffer_(prototype, max_gap), max_gap_(max_gap), topic_(std::move(topic)) {}
 
 void BaseOdometryInput::split(const mbk::Model& loaded, mbk::Model& input, mbk::Model& model) {
   if (mbk::has_floating_root(loaded)) {

@@ -18,7 +18,8 @@ namespace mbk_ros {
 
 class BaseOdometryInput {
  public:
-  BaseOdometryInput(const mbk::DerivativeEstimator& prototype, double max_gap);
+  // `topic`: where the messages come from (resolved), for messages.
+  BaseOdometryInput(const mbk::DerivativeEstimator& prototype, double max_gap, std::string topic);
 
   // The models for `loaded`: `input` has the joints of joint_states, `model` the kinematics. A
   // URDF whose root joint is floating keeps it in `model` (its coordinates from the odometry);
@@ -30,6 +31,7 @@ class BaseOdometryInput {
 
   // R: the first accepted message's header.frame_id; "" before it.
   const std::string& frame() const { return frame_; }
+  const std::string& topic() const { return topic_; }
 
   // `state` (of `model`, from split) at time t: the base's coordinates from the odometry
   // (interpolated, or held within the gap), the joints' from `joints` (of `input`). Lowers
@@ -43,7 +45,7 @@ class BaseOdometryInput {
  private:
   mbk::BaseOdometryBuffer buffer_;
   double max_gap_;
-  std::string frame_;
+  std::string topic_, frame_;
 };
 
 }  // namespace mbk_ros

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
-#include "mb_kinematics/ros/kinematics_node.h"
+#include "mb_kinematics/ros/node_params.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "demo_publisher");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "mb_kinematics/core/state_check.h"
 
@@ -187,6 +188,15 @@ std::string JointStateInput::convert(const mb_kinematics_msgs::JointAcceleration
     out.value[it->second] = msg.acceleration[i];
   }
   return "";
+}
+
+const std::vector<JointStateInput::Ready>& JointStateInput::pair(
+    const mb_kinematics_msgs::JointAccelerations& msg, double t, std::string& error) {
+  static const std::vector<Ready> kNone;
+  AccelerationSample sample;
+  error = convert(msg, t, sample);
+  if (!error.empty()) return kNone;
+  return pairing_.add(std::move(sample));
 }
 
 std::vector<std::string> JointStateInput::missing() const {

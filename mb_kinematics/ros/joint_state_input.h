@@ -1,7 +1,8 @@
 // sensor_msgs/JointState into the core's JointState (doc/method.md 8): names
 // matched to coordinates, partial messages from several publishers merged per coordinate,
 // mimic coordinates filled by mbk::apply_mimics, and velocities and accelerations that the
-// messages do not carry estimated per coordinate from its own successive samples.
+// messages do not carry estimated per coordinate from its own successive samples; and the
+// pairing of joint_states samples with the joint_accelerations of their stamp.
 #pragma once
 
 #include <mb_kinematics_msgs/JointAccelerations.h>
@@ -16,16 +17,10 @@
 #include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/ros/acceleration_pairing.h"
 #include "mb_kinematics/ros/input_problem.h"
 
 namespace mbk_ros {
-
-// Accelerations of one joint_accelerations message, by coordinate index.
-struct AccelerationSample {
-  double stamp = 0;
-  std::vector<double> value;  // model.nq entries
-  std::vector<char> given;    // 1 where the message named the coordinate
-};
 
 class JointStateInput {
  public:
@@ -55,6 +50,21 @@ class JointStateInput {
   // unequal lengths, duplicate or unknown names, NaN/Inf.
   std::string convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
                       AccelerationSample& out) const;
+
+  // joint_accelerations paired with joint_states by stamp (acceleration_pairing.h); the lists
+  // returned are valid until the next pair (no allocation per sample).
+  using Ready = AccelerationPairing::Ready;
+  // A joint_states sample; `pairing`: some joint_accelerations publisher is there. The samples
+  // to compute now, oldest first: the pending one (unpaired), then `msg` unless it waits.
+  const std::vector<Ready>& pair(const sensor_msgs::JointStateConstPtr& msg, bool pairing) {
+    return pairing_.add(msg, pairing);
+  }
+  // A joint_accelerations message at time t, converted (convert) and kept: the pending sample
+  // it completes, if any. `error`: why it was refused (then nothing is kept), else "".
+  const std::vector<Ready>& pair(const mb_kinematics_msgs::JointAccelerations& msg, double t,
+                                 std::string& error);
+  // The kept accelerations of stamp t (seconds), or null: for fill().
+  const AccelerationSample* paired(double t) const { return pairing_.at(t); }
 
   // Names of the coordinates (mimics aside) that no accepted message has set yet.
   std::vector<std::string> missing() const;
@@ -98,6 +108,7 @@ class JointStateInput {
   std::vector<double> sign_;                 // +-1: e and -e are one rotation; keep e continuous
   mbk::JointState<double> initial_, trial_;  // the state before any sample; a message's values
   int generation_ = 0;
+  AccelerationPairing pairing_;
 };
 
 }  // namespace mbk_ros

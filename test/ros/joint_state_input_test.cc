@@ -1,9 +1,11 @@
-// JointStateInput without a ROS master: name matching, validation, merging, mimics, estimates.
+// JointStateInput without a ROS master: name matching, validation, merging, mimics, estimates,
+// the pairing with joint_accelerations.
 #include "mb_kinematics/ros/joint_state_input.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <boost/make_shared.hpp>
 #include <cmath>
 #include <limits>
 
@@ -163,6 +165,51 @@ TEST_F(JointStateInputTest, GivenVelocitiesAndPairedAccelerations) {
   EXPECT_NEAR(state_.acceleration[0], 2.0, 1e-12);
   a.name[0] = "nope";
   EXPECT_NE(input_.convert(a, 1.0, sample).find("not in the model"), std::string::npos);
+}
+
+// The pairing with joint_accelerations (acceleration_pairing.h), owned by the input: a sample
+// waits for the accelerations of its stamp while a publisher of them is there, and goes on
+// unpaired when the next sample comes first; without one it goes on at once.
+TEST_F(JointStateInputTest, PairsSamplesWithTheAccelerationsOfTheirStamp) {
+  auto sample = [](double t) {
+    auto m = boost::make_shared<sensor_msgs::JointState>(msg(kAll, t, true));
+    m->header.stamp = ros::Time(t);
+    return sensor_msgs::JointStateConstPtr(m);
+  };
+  mb_kinematics_msgs::JointAccelerations a;
+  a.header.stamp = ros::Time(2.0);
+  a.name = kAll;
+  a.acceleration.assign(kAll.size(), 7.0);
+  const sensor_msgs::JointStateConstPtr one = sample(1.0), two = sample(2.0), three = sample(3.0);
+
+  ASSERT_EQ(input_.pair(one, false).size(), 1u);  // nobody publishes accelerations: at once
+  EXPECT_EQ(input_.pair(one, false)[0].sample, one);
+  EXPECT_FALSE(input_.pair(one, false)[0].unpaired);
+  EXPECT_TRUE(input_.pair(two, true).empty());  // waits for its accelerations
+  std::string error;
+  const auto& completed = input_.pair(a, 2.0, error);
+  EXPECT_EQ(error, "");
+  ASSERT_EQ(completed.size(), 1u);
+  EXPECT_EQ(completed[0].sample, two);
+  EXPECT_FALSE(completed[0].unpaired);
+  ASSERT_NE(input_.paired(2.0), nullptr);
+  EXPECT_EQ(input_.paired(2.0)->value[0], 7.0);
+  EXPECT_EQ(input_.paired(3.0), nullptr);
+  input_.add(*two, 2.0);
+  EXPECT_EQ(input_.fill(Level::kAcceleration, input_.paired(2.0), state_), Level::kAcceleration);
+  EXPECT_EQ(state_.acceleration[0], 7.0);
+
+  EXPECT_TRUE(input_.pair(three, true).empty());
+  const auto& released = input_.pair(sample(4.0), true);  // 3's accelerations did not come
+  ASSERT_EQ(released.size(), 1u);
+  EXPECT_EQ(released[0].sample, three);
+  EXPECT_TRUE(released[0].unpaired);
+
+  a.name[0] = "nope";  // refused: nothing kept, nothing completed
+  a.header.stamp = ros::Time(4.0);
+  EXPECT_TRUE(input_.pair(a, 4.0, error).empty());
+  EXPECT_NE(error.find("not in the model"), std::string::npos);
+  EXPECT_EQ(input_.paired(4.0), nullptr);
 }
 
 // A publisher that flips the sign of its Euler parameters between samples (same rotation):

@@ -30,12 +30,13 @@ std::string report_coverage(const CoordinateCoverage& c,
 
 }  // namespace
 
-DiagnosticsOutput::DiagnosticsOutput(const OutputSetup& setup, ros::NodeHandle pnh)
+DiagnosticsOutput::DiagnosticsOutput(const OutputSetup& setup)
     : model_(setup.model),
       estimator_(setup.params.acceleration_estimator),
+      tally_(setup.tally),
+      coverage_(setup.coverage),
       previous_state_(setup.model),
-      updater_(setup.nh, pnh),
-      window_start_(std::chrono::steady_clock::now()) {
+      updater_(setup.nh, setup.pnh) {
   updater_.setHardwareID("none");
   updater_.add("Joint state input", this, &DiagnosticsOutput::diagnose);
   timer_ = setup.nh.createTimer(ros::Duration(1.0),
@@ -50,67 +51,49 @@ void DiagnosticsOutput::publish(const ros::Time& stamp, const Sample& sample) {
   if (full && previous_stamp_ >= 0 && t > previous_stamp_) {  // no prediction across a jump back
     const double residual =
         mbk::prediction_residual(previous_state_, sample.state, t - previous_stamp_);
-    for (Counters* c : {&total_, &window_}) c->max_residual = std::max(c->max_residual, residual);
+    max_residual_ = std::max(max_residual_, residual);
   }
   previous_state_ = sample.state;
   previous_stamp_ = full ? t : -1;
 }
 
-void DiagnosticsOutput::received() {
-  ++total_.received;
-  ++window_.received;
-}
-
-void DiagnosticsOutput::count(InputProblem problem, const std::string& message) {
-  ++problems_[static_cast<size_t>(problem)];
-  last_problem_ = message;
-  for (Counters* c : {&total_, &window_}) {
-    if (drops_sample(problem)) ++c->dropped;
-    if (problem == InputProblem::kMissingJoints) ++c->incomplete;
-  }
-}
-
-void DiagnosticsOutput::published(double seconds) {
-  for (Counters* c : {&total_, &window_}) {
-    ++c->published;
-    c->update_seconds += seconds;
-    c->max_update_seconds = std::max(c->max_update_seconds, seconds);
-  }
-}
-
 void DiagnosticsOutput::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   const auto now = std::chrono::steady_clock::now();
-  const double elapsed = std::chrono::duration<double>(now - window_start_).count();
-  const double rate = elapsed > 0 ? window_.received / elapsed : 0.0;
-  const double mean = window_.published ? window_.update_seconds / window_.published : 0.0;
+  const InputTally::Counters& window = tally_.window();
+  const InputTally::Counters& total = tally_.total();
+  const std::string& last_problem = tally_.last_problem();
+  const double elapsed = std::chrono::duration<double>(now - tally_.window_start()).count();
+  const double rate = elapsed > 0 ? window.received / elapsed : 0.0;
+  const double mean = window.published ? window.update_seconds / window.published : 0.0;
   status.add("input rate (Hz)", rate);
   status.add("update time per sample, mean (us)", mean * 1e6);
-  status.add("update time per sample, max (us)", window_.max_update_seconds * 1e6);
-  status.add("samples received", total_.received);
-  status.add("samples published", total_.published);
-  status.add("samples dropped (bad input)", total_.dropped);
-  status.add("samples waiting for joints", total_.incomplete);
-  status.add("last problem", last_problem_.empty() ? "none" : last_problem_);
-  for (size_t p = 0; p < problems_.size(); ++p)
-    status.add(diagnostic_key(static_cast<InputProblem>(p)), problems_[p]);
+  status.add("update time per sample, max (us)", window.max_update_seconds * 1e6);
+  status.add("samples received", total.received);
+  status.add("samples published", total.published);
+  status.add("samples dropped (bad input)", total.dropped);
+  status.add("samples waiting for joints", total.incomplete);
+  status.add("last problem", last_problem.empty() ? "none" : last_problem);
+  for (size_t p = 0; p < static_cast<size_t>(InputProblem::kCount); ++p)
+    status.add(diagnostic_key(static_cast<InputProblem>(p)),
+               tally_.problems(static_cast<InputProblem>(p)));
   // Cheap error indicators (mb_kinematics/core/error_indicators.h; README, work-precision).
   status.add("rotation orthonormality drift", data_ ? mbk::orthonormality_drift(*data_) : 0.0);
   status.add("Euler parameter norm error", state_ ? mbk::euler_norm_error(model_, *state_) : 0.0);
-  status.add("estimator residual, max (rad or m)", window_.max_residual);
+  status.add("estimator residual, max (rad or m)", max_residual_);
   status.add("acceleration estimator", estimator_);
-  const std::string missing = coverage_ ? report_coverage(*coverage_, status) : "";
-  if (window_.dropped > 0)
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "dropping samples: " + last_problem_);
-  else if (window_.received == 0)
+  const std::string missing = report_coverage(coverage_, status);
+  if (window.dropped > 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "dropping samples: " + last_problem);
+  else if (window.received == 0)
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no joint_states received");
-  else if (window_.published == 0)
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, last_problem_);
+  else if (window.published == 0)
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, last_problem);
   else if (!missing.empty())
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "publishing; " + missing);
   else
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "publishing");
-  window_ = Counters();
-  window_start_ = now;
+  max_residual_ = 0;
+  tally_.restart_window(now);
 }
 
 }  // namespace mbk_ros

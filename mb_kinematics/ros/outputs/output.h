@@ -1,7 +1,7 @@
-// One output of the node (a topic or a family of topics): what it needs computed, whether
-// anybody listens, and how it publishes a sample. KinematicsNode keeps only input, pairing and
-// dispatch; the outputs it runs are listed in output_table.cc (adding a topic: a new Output
-// and one line there).
+// One output of the node (a topic, a family of topics or a service): its parameter flag (a
+// static enabled(const NodeParams&)), what it needs computed, whether anybody listens, and how it
+// publishes a sample. KinematicsNode keeps only input (node_input.h), pairing and dispatch; the
+// outputs it runs are listed in output_table.cc (adding a topic: a new Output and one line there).
 #pragma once
 
 #include <ros/node_handle.h>
@@ -13,6 +13,8 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/ros/coordinate_coverage.h"
+#include "mb_kinematics/ros/input_tally.h"
 #include "mb_kinematics/ros/node_params.h"
 
 namespace mbk_ros {
@@ -20,9 +22,13 @@ namespace mbk_ros {
 // What an output may use when it is made: it advertises its topics here.
 struct OutputSetup {
   ros::NodeHandle& nh;
+  ros::NodeHandle& pnh;  // the node's private handle
   const NodeParams& params;
   const mbk::Model& model;
-  const std::string& frame;  // R (with ~frame_prefix when it is the model's own)
+  const std::string& frame;  // R (with ~frame_prefix when it is the model's own); "" before it
+  // The input's fate and what is missing (node_input.h), for /diagnostics.
+  InputTally& tally;
+  const CoordinateCoverage& coverage;
   // The tf frame of body k (1..N): ~frame_prefix + its name.
   std::string body_frame(int k) const { return params.frame_prefix + model.bodies[k].name; }
   // Of body k's lower body: R for L(k) = 0.

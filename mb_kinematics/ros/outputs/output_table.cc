@@ -2,6 +2,7 @@
 
 #include "mb_kinematics/ros/outputs/body_kinematics_output.h"
 #include "mb_kinematics/ros/outputs/body_motion_output.h"
+#include "mb_kinematics/ros/outputs/diagnostics_output.h"
 #include "mb_kinematics/ros/outputs/markers_output.h"
 #include "mb_kinematics/ros/outputs/partial_velocities_service.h"
 #include "mb_kinematics/ros/outputs/tf_output.h"
@@ -11,12 +12,13 @@ namespace {
 
 struct OutputKind {
   bool (*enabled)(const NodeParams&);  // its parameter flag
+  bool in_r;                           // it needs R
   std::unique_ptr<Output> (*make)(const OutputSetup&);
 };
 
 template <typename T>
-OutputKind kind() {
-  return {&T::enabled,
+OutputKind kind(bool in_r = true) {
+  return {&T::enabled, in_r,
           [](const OutputSetup& s) -> std::unique_ptr<Output> { return std::make_unique<T>(s); }};
 }
 
@@ -30,14 +32,15 @@ const OutputKind kOutputs[] = {
     kind<BodyTwistOutput>(),
     kind<BodyAccelOutput>(),
     kind<PartialVelocitiesService>(),
+    kind<DiagnosticsOutput>(/*in_r=*/false),  // made at start, before R may be known
 };
 
 }  // namespace
 
-std::vector<std::unique_ptr<Output>> make_outputs(const OutputSetup& setup) {
+std::vector<std::unique_ptr<Output>> make_outputs(const OutputSetup& setup, bool in_r) {
   std::vector<std::unique_ptr<Output>> outputs;
   for (const OutputKind& k : kOutputs)
-    if (k.enabled(setup.params)) outputs.push_back(k.make(setup));
+    if (k.in_r == in_r && k.enabled(setup.params)) outputs.push_back(k.make(setup));
   return outputs;
 }
 

@@ -8,6 +8,8 @@
 
 namespace mbk_ros {
 
-std::vector<std::unique_ptr<Output>> make_outputs(const OutputSetup& setup);
+// `in_r` false: those that need no R (made at start); true: the others, made once R is known
+// (with ~base_odometry, at its first message).
+std::vector<std::unique_ptr<Output>> make_outputs(const OutputSetup& setup, bool in_r);
 
 }  // namespace mbk_ros

@@ -1,0 +1,85 @@
+// The node's input side (README "The node"): the model as the source gives it and as the
+// kinematics use it (with ~base_odometry, a base body on its own joint: BaseOdometryInput::split),
+// joint_states merged and paired with joint_accelerations (JointStateInput), what
+// ~missing_coordinates makes of the coordinates missing (CoordinateCoverage), the base's
+// odometry, R, and the tally of what went wrong (InputTally: warnings and /diagnostics). Per
+// sample it gives a checked state of the kinematics model, or says why not.
+#pragma once
+
+#include <mb_kinematics_msgs/JointAccelerations.h>
+#include <nav_msgs/Odometry.h>
+#include <sensor_msgs/JointState.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+#include "mb_kinematics/ros/base_odometry_input.h"
+#include "mb_kinematics/ros/coordinate_coverage.h"
+#include "mb_kinematics/ros/input_tally.h"
+#include "mb_kinematics/ros/joint_state_input.h"
+#include "mb_kinematics/ros/node_params.h"
+
+namespace mbk_ros {
+
+class NodeInput {
+ public:
+  using Ready = JointStateInput::Ready;
+
+  // `params` must outlive this object; `odometry_topic`: ~base_odometry resolved. Throws
+  // std::invalid_argument for an ~acceleration_estimator with latency.
+  NodeInput(const NodeParams& params, const std::string& odometry_topic);
+  NodeInput(const NodeInput&) = delete;
+  NodeInput& operator=(const NodeInput&) = delete;
+
+  // Everything that depends on the model, made anew (at start and by ~reload): the estimators
+  // and the pairing start empty, the tally from zero; R stays once the odometry gave it.
+  void load(const mbk::Model& loaded);
+
+  const mbk::Model& loaded() const { return loaded_; }  // as the model source gives it
+  const mbk::Model& model() const { return model_; }    // the kinematics' (with the base)
+  const std::string& frame() const { return frame_; }   // R; with ~base_odometry "" until known
+  const CoordinateCoverage& coverage() const { return *coverage_; }
+  InputTally& tally() { return tally_; }
+
+  // The pairing (JointStateInput::pair): the samples to compute now, oldest first.
+  const std::vector<Ready>& pair(const sensor_msgs::JointStateConstPtr& msg, bool pairing) {
+    return input_->pair(msg, pairing);
+  }
+  const std::vector<Ready>& pair(const mb_kinematics_msgs::JointAccelerations& msg);
+
+  // A ~base_odometry message; true when it made R known (the outputs in R may be made now).
+  bool add(const nav_msgs::Odometry& msg);
+
+  // A sample taken in at time t (its stamp, or its time of arrival for stamp 0): false (with
+  // the warning) when nothing is to be published for it (dropped, or waiting).
+  bool add(const Ready& ready, double t);
+  // The state of the sample at t up to `level`, which it lowers while the estimates lag behind;
+  // false (with the warning) if there is none (no base motion, a value check_state refuses).
+  bool fill(double t, mbk::Level& level);
+  const mbk::JointState<double>& state() const { return state_; }
+  // Per body of model() (index k; [0] is R): published with this sample.
+  const std::vector<char>& published();
+
+ private:
+  bool report(const JointStateInput::Update& update);
+  bool cover(double t);  // ~missing_coordinates
+
+  const NodeParams& params_;
+  mbk::Model loaded_;
+  mbk::Model input_model_;                      // the joints of joint_states
+  mbk::Model model_;                            // input_model_, with ~base_odometry after a base
+  std::optional<JointStateInput> input_;        // over input_model_
+  std::optional<CoordinateCoverage> coverage_;  // over input_model_
+  std::vector<char> published_;  // with ~base_odometry: the base, then coverage_'s bodies
+  mbk::JointState<double> input_state_, state_;  // input_state_: with ~base_odometry only
+  std::unique_ptr<BaseOdometryInput> base_;      // with ~base_odometry
+  std::string frame_;
+  InputTally tally_;
+};
+
+}  // namespace mbk_ros
