@@ -8,17 +8,17 @@ target_link_libraries(joint_state_input_test mbk_ros mbk_io mbk_core gtest_main)
 target_compile_definitions(joint_state_input_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # No allocation per sample in the node's output fill functions (no ROS master needed).
-catkin_add_gtest(output_allocation_test test/ros/output_allocation_test.cc
-  test/support/test_models.cc)
+catkin_add_gtest(output_allocation_test test/ros/output_allocation_test.cc)
 add_dependencies(output_allocation_test mb_kinematics_msgs_generate_messages_cpp)
-target_link_libraries(output_allocation_test mbk_ros mbk_analysis mbk_io mbk_core gtest_main)
+target_link_libraries(output_allocation_test mbk_ros mbk_test_models mbk_analysis mbk_io mbk_core
+  gtest_main)
 target_compile_definitions(output_allocation_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # body_kinematics' system field against the core, with and without inertias (no master).
-catkin_add_gtest(system_fields_test test/ros/system_fields_test.cc test/support/test_models.cc)
+catkin_add_gtest(system_fields_test test/ros/system_fields_test.cc)
 add_dependencies(system_fields_test mb_kinematics_msgs_generate_messages_cpp)
-target_link_libraries(system_fields_test mbk_ros mbk_analysis mbk_io mbk_core gtest_main)
-target_compile_definitions(system_fields_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+target_link_libraries(system_fields_test mbk_ros mbk_test_models mbk_analysis mbk_io mbk_core
+  gtest_main)
 
 # The picture shared by the rviz display and ~publish_markers (no master needed).
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)

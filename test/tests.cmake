@@ -1,13 +1,18 @@
 # Every test/core/*_test.cc, test/io/*_test.cc and test/analysis/*_test.cc is a GoogleTest
 # executable of its own; test/peers/*_test.cc also link the peer libraries (Orocos KDL, found
 # in CMakeLists.txt).
+# The test models (test/support/test_models.h), compiled once for every test that uses them.
+add_library(mbk_test_models STATIC test/support/test_models.cc)
+target_compile_definitions(mbk_test_models PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+target_link_libraries(mbk_test_models mbk_analysis mbk_core)
+
 file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/io/*_test.cc
   test/analysis/*_test.cc test/stability/*_test.cc)
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
-  catkin_add_gtest(${name} ${source} test/support/test_models.cc WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(${name} mbk_analysis mbk_io mbk_core gtest_main)
+  catkin_add_gtest(${name} ${source} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${name} mbk_test_models mbk_analysis mbk_io mbk_core gtest_main)
   target_compile_definitions(${name} PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endforeach()
 foreach(source ${MBK_PEER_TESTS})
