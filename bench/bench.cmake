@@ -20,7 +20,14 @@ target_link_libraries(kinematics_benchmark mbk_analysis mbk_io mbk_core benchmar
 target_compile_definitions(kinematics_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 find_package(pinocchio QUIET)
-if(pinocchio_FOUND)
+# Under MBK_MARCH_NATIVE the peer's Eigen objects are laid out for this CPU (wider alignment):
+# the Pinocchio library that builds its models must have been built with -march=native too
+# (README "Speed"), or the benchmark crashes. Say so with MBK_PINOCCHIO_MARCH_NATIVE.
+option(MBK_PINOCCHIO_MARCH_NATIVE "The Pinocchio found was built with -march=native" OFF)
+if(pinocchio_FOUND AND MBK_MARCH_NATIVE AND NOT MBK_PINOCCHIO_MARCH_NATIVE)
+  message(STATUS "kinematics_benchmark: without Pinocchio (MBK_MARCH_NATIVE needs a Pinocchio "
+    "built with -march=native; then add -DMBK_PINOCCHIO_MARCH_NATIVE=ON)")
+elseif(pinocchio_FOUND)
   message(STATUS "kinematics_benchmark: with Pinocchio ${pinocchio_VERSION}")
   target_sources(kinematics_benchmark PRIVATE bench/pinocchio_peer.cc)
   target_link_libraries(kinematics_benchmark pinocchio::pinocchio)
@@ -30,7 +37,9 @@ else()
 endif()
 
 find_package(DART QUIET COMPONENTS utils-urdf)
-if(DART_FOUND)
+if(DART_FOUND AND MBK_MARCH_NATIVE)  # Debian's DART is not built for this CPU (see Pinocchio)
+  message(STATUS "kinematics_benchmark: without DART (Debian's is not built with -march=native)")
+elseif(DART_FOUND)
   message(STATUS "kinematics_benchmark: with DART ${DART_VERSION}")
   target_sources(kinematics_benchmark PRIVATE bench/dart_peer.cc)
   target_link_libraries(kinematics_benchmark ${DART_LIBRARIES})

@@ -5,7 +5,8 @@
   bench/speed_table.py run.json
 
 Per scene: median CPU time per update (ns) of ours and each peer, our full state per body, and
-the same-run ratios (ours / peer: below 1 means ours is faster).
+the same-run ratios (ours / peer: below 1 means ours is faster); first the machine's load
+average as the run recorded it.
 """
 import json
 import sys
@@ -24,6 +25,10 @@ def medians(path):
 
 def main():
     m = medians(sys.argv[1])
+    load = json.load(open(sys.argv[1]))["context"].get("load_avg")
+    if load:
+        print("Load average when the run started (1, 5, 15 min): "
+              + ", ".join(f"{x:.1f}" for x in load) + "\n")
     scenes = []
     for name in m:
         if name.startswith("ours/") and name.endswith("/recursive/full"):

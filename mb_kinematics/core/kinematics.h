@@ -375,10 +375,6 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
   const BodyStep* steps = model.steps.steps.data();
   for (int k = 1; k <= n; ++k) {
     const BodyStep& b = steps[k];
-    if (uses_joint_motion<S>(b.kernel)) {
-      generic_step<L>(model, k, state, data);
-      continue;
-    }
     switch (b.kernel) {
       case JointKernel::kRevoluteX:
         revolute_axis_step<L, 0>(b, k, state, data);
@@ -390,13 +386,19 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         revolute_axis_step<L, 2>(b, k, state, data);
         break;
       case JointKernel::kRevolute:
-        revolute_step<L>(model, b, k, state, data);
+        if constexpr (kFolded<S>)
+          revolute_step<L>(model, b, k, state, data);
+        else
+          generic_step<L>(model, k, state, data);
         break;
       case JointKernel::kPrismatic:
         prismatic_step<L, false>(model, b, k, state, data);
         break;
       case JointKernel::kPrismaticRotated:
-        prismatic_step<L, true>(model, b, k, state, data);
+        if constexpr (kFolded<S>)
+          prismatic_step<L, true>(model, b, k, state, data);
+        else
+          generic_step<L>(model, k, state, data);
         break;
       case JointKernel::kFixed:
         fixed_step<L, false>(model, b, k, state, data);
@@ -405,6 +407,7 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         fixed_step<L, true>(model, b, k, state, data);
         break;
       case JointKernel::kGeneric:
+        generic_step<L>(model, k, state, data);
         break;
     }
   }
