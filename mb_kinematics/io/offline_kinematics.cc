@@ -40,9 +40,13 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
     any_velocity_everywhere_ = any_velocity_everywhere_ || velocity_everywhere_[c];
   constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
   positions_only_.assign(rec_.rows(), !full_.empty());
+  derivatives_given_.assign(rec_.rows(), !full_.empty());
   for (int r = 0; r < rec_.rows(); ++r)
-    for (int c : full_)
-      positions_only_[r] = positions_only_[r] && !(rec_.given[r * nq + c] & kBoth);
+    for (int c : full_) {
+      const std::uint8_t g = rec_.given[r * nq + c] & kBoth;
+      positions_only_[r] = positions_only_[r] && g == 0;
+      derivatives_given_[r] = derivatives_given_[r] && g == kBoth;
+    }
 }
 
 // x'(t) and x''(t) of coordinate c from the weights (over rows, or over a series' rows);
@@ -70,6 +74,12 @@ void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) cons
     if (weights_.valid < 2) valid = 0;
     return;
   }
+  if (derivatives_given_[r]) {  // every coordinate of full_ as recorded (the others set later)
+    state.position = Eigen::Map<const Eigen::VectorXd>(rec_.position.data() + r * nq, nq);
+    state.velocity = Eigen::Map<const Eigen::VectorXd>(rec_.velocity.data() + r * nq, nq);
+    state.acceleration = Eigen::Map<const Eigen::VectorXd>(rec_.acceleration.data() + r * nq, nq);
+    return;
+  }
   for (int c : full_) {
     state.position[c] = rec_.position[r * nq + c];
     state.velocity[c] = given[c] & Recording::kVelocity ? rec_.velocity[r * nq + c] : first_[c];
@@ -87,11 +97,8 @@ void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) cons
 
 std::string OfflineStates::state_at(int r, JointState<double>& state) {
   const int nq = rec_.nq;
-  const std::uint8_t* given = rec_.given.data() + r * nq;
-  constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
-  bool estimate = positions_only_[r];  // does some coordinate of full_ lack a derivative here?
-  for (size_t i = 0; i < full_.size() && !estimate; ++i)
-    estimate = (given[full_[i]] & kBoth) != kBoth;
+  // Does some coordinate of full_ lack a derivative here?
+  const bool estimate = !full_.empty() && !derivatives_given_[r];
   int valid = 2;
   if (estimate) {
     derivative_weights(estimator_, rec_.stamp, segments_, r, weights_);

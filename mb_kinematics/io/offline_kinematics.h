@@ -48,8 +48,9 @@ class OfflineStates {
   std::vector<int> full_;     // coordinates given in every row (share the weights)
   std::vector<int> partial_;  // the others (mimics aside)
   std::vector<char> velocity_everywhere_;
-  std::vector<char> positions_only_;  // per row: no coordinate of full_ has a derivative given
-  std::vector<Series> series_;        // per coordinate in partial_
+  // Per row, over the coordinates of full_: none has a derivative given; all have both.
+  std::vector<char> positions_only_, derivatives_given_;
+  std::vector<Series> series_;  // per coordinate in partial_
   Segments segments_;
   DerivativeWeights weights_, series_weights_;  // of full_'s coordinates, of a Series
   bool any_velocity_everywhere_ = false;
