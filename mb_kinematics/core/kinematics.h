@@ -333,9 +333,9 @@ void fixed_step(const Model& model, const BodyStep& b, int k, const StateView<S>
   body_update<L, false, false>(b, k, t, data);
 }
 
-// Any joint through joint_motion (ball, free, planar; and folded joints of a reference build).
+// A joint through joint_motion, column by column (folded joints of a reference build).
 template <Level L, typename S>
-void generic_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
+void motion_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
   const Body& body = model.bodies[k];
   const BodyStep& b = model.steps.steps[k];
   const S* y = L == Level::kPose ? nullptr : state.y + body.v_index;
@@ -364,6 +364,57 @@ void generic_step(const Model& model, int k, const StateView<S>& state, const Da
     body_update<L, true, true>(b, k, t, data);
   else
     body_update<L, true, false>(b, k, t, data);
+}
+
+// A ball, free or planar joint from its JointRates, the pose as motion_pose has it (bit for bit):
+// S0K = S0J (C_k R_motion), d = S0J (q_k + C_k s); then S0J C_k w, S0J C_k wd, and likewise s_k'
+// and s_k''.
+template <Level L, bool kTranslates, typename S>
+void rates_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
+  const Body& body = model.bodies[k];
+  const BodyStep& b = model.steps.steps[k];
+  JointRates<S> r;
+  joint_rates(body.joint, model.speeds, state.q + body.q_index,
+              L == Level::kPose ? nullptr : state.y + body.v_index,
+              L == Level::kAcceleration ? state.yd + body.v_index : nullptr, r);
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  const bool rotated = body.joint.rotation != Mat3<double>::Identity();
+  const Mat3<S> c = body.joint.rotation.cast<S>();
+  const auto in_bj = [&](const Vec3<S>& v) { return rotated ? Vec3<S>(c * v) : v; };
+  JointTerms<S> t;
+  data.rotation[k] = s0j * (rotated ? Mat3<S>(c * r.motion) : r.motion);
+  if constexpr (kTranslates)
+    t.d = s0j * (b.offset.cast<S>() + in_bj(r.translation));
+  else
+    t.d = times_constant(s0j, b.offset, b.offset_shape);
+  if constexpr (L != Level::kPose) {
+    t.w = s0j * in_bj(r.w);
+    if constexpr (kTranslates) t.sd = s0j * in_bj(r.sd);
+  }
+  if constexpr (L == Level::kAcceleration) {
+    t.wd = s0j * in_bj(r.wd);
+    if constexpr (kTranslates) t.sdd = s0j * in_bj(r.sdd);
+  }
+  body_update<L, true, kTranslates>(b, k, t, data);
+}
+
+// Any joint the kernels of body_step.h leave to joint_motion: ball, free and planar joints in
+// closed form, the others (folded joints of a reference build) column by column.
+template <Level L, typename S>
+void generic_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
+  switch (model.bodies[k].joint.type) {
+    case JointType::kBall123:
+    case JointType::kBallEuler:
+      return rates_step<L, false>(model, k, state, data);
+    case JointType::kFree123:
+    case JointType::kFreeEuler:
+    case JointType::kPlanar:
+      return rates_step<L, true>(model, k, state, data);
+    case JointType::kFixed:
+    case JointType::kRevolute:
+    case JointType::kPrismatic:
+      return motion_step<L>(model, k, state, data);
+  }
 }
 
 template <Level L, typename S>

@@ -1,10 +1,10 @@
 #include "mb_kinematics/core/offline_estimator.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace mbk {
@@ -97,8 +97,10 @@ double default_max_gap(const std::vector<double>& t) {
   return 5 * dt[dt.size() / 2];
 }
 
-// Least squares in s = (t_j - t_i) / scale: c = (A^T A)^-1 A^T x, x'(t_i) = c1 / scale,
-// x''(t_i) = 2 c2 / scale^2; the weights are the rows of (A^T A)^-1 A^T for c1 and c2.
+// Least squares in s = (t_j - t_i) / scale: c = N^-1 A^T x with A_jc = s_j^c and the normal
+// matrix N = A^T A, N_ab = sum_j s_j^(a + b); x'(t_i) = c1 / scale, x''(t_i) = 2 c2 / scale^2, so
+// the weights are A N^-1 e1 / scale and 2 A N^-1 e2 / scale^2. N is solved by Cholesky in fixed
+// arrays (order <= 5): no allocation, no general-size Eigen solver.
 void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
                         const Segments& segments, int i, DerivativeWeights& w) {
   const int seg = segments.segment_of[i];
@@ -113,25 +115,102 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
   w.second.assign(n, 0.0);
   if (order < 1) return;
   const double scale = std::max(t[i] - t[w.begin], t[w.row(n - 1)] - t[i]);
-  using Mat =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOrder + 1, kMaxOrder + 1>;
-  using Row = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kMaxOrder + 1>;
-  Mat normal = Mat::Zero(order + 1, order + 1);
-  Row a(order + 1);
+  double moment[2 * kMaxOrder + 1] = {};  // sum_j s_j^k
   for (int j = 0; j < n; ++j) {
     const double s = (t[w.row(j)] - t[i]) / scale;
+    w.first[j] = s;
     double p = 1;
-    for (int c = 0; c <= order; ++c, p *= s) a[c] = p;
-    normal.noalias() += a.transpose() * a;
+    for (int k = 0; k <= 2 * order; ++k, p *= s) moment[k] += p;
   }
-  const Mat inverse = normal.ldlt().solve(Mat::Identity(order + 1, order + 1));
+  // N = L L^T.
+  double l[kMaxOrder + 1][kMaxOrder + 1];
+  for (int a = 0; a <= order; ++a)
+    for (int b = 0; b <= a; ++b) {
+      double sum = moment[a + b];
+      for (int c = 0; c < b; ++c) sum -= l[a][c] * l[b][c];
+      l[a][b] = a == b ? std::sqrt(sum) : sum / l[b][b];
+    }
+  // g[m] = N^-1 e_(m+1), m = 0, 1: forward then back substitution.
+  double g[2][kMaxOrder + 1];
+  for (int m = 0; m < 2; ++m) {
+    for (int a = 0; a <= order; ++a) {
+      double sum = a == m + 1 ? 1.0 : 0.0;
+      for (int c = 0; c < a; ++c) sum -= l[a][c] * g[m][c];
+      g[m][a] = sum / l[a][a];
+    }
+    for (int a = order; a >= 0; --a) {
+      double sum = g[m][a];
+      for (int c = a + 1; c <= order; ++c) sum -= l[c][a] * g[m][c];
+      g[m][a] = sum / l[a][a];
+    }
+  }
   for (int j = 0; j < n; ++j) {
-    const double s = (t[w.row(j)] - t[i]) / scale;
-    double p = 1;
-    for (int c = 0; c <= order; ++c, p *= s) a[c] = p;
-    w.first[j] = a.dot(inverse.col(1)) / scale;
-    if (order >= 2) w.second[j] = 2 * a.dot(inverse.col(2)) / (scale * scale);
+    const double s = w.first[j];
+    double p = 1, first = 0, second = 0;
+    for (int c = 0; c <= order; ++c, p *= s) first += p * g[0][c], second += p * g[1][c];
+    w.first[j] = first / scale;
+    if (order >= 2) w.second[j] = 2 * second / (scale * scale);
   }
+}
+
+namespace {
+
+// apply_weights with the sums of eight series at a time in registers over the rows, as packs of
+// kWidth doubles that add and multiply lane by lane (GNU vectors: SSE2 registers for 2, AVX2 for
+// 4); the rest one by one. The same products and sums in the same order for every width.
+template <int kWidth>
+__attribute__((always_inline)) inline void apply_packs(const DerivativeWeights& w, const double* x,
+                                                       int ld, int n, double* first,
+                                                       double* second) {
+  typedef double Pack __attribute__((vector_size(kWidth * sizeof(double))));
+  constexpr int kPacks = 8 / kWidth;
+  int c0 = 0;
+  for (; c0 + 8 <= n; c0 += 8) {
+    Pack f[kPacks] = {}, s[kPacks] = {};
+    for (int j = 0; j < w.count; ++j) {
+      const double* row = x + static_cast<std::ptrdiff_t>(w.row(j)) * ld + c0;
+      for (int p = 0; p < kPacks; ++p) {
+        Pack r;
+        std::memcpy(&r, row + p * kWidth, sizeof r);
+        f[p] += w.first[j] * r;
+        if (second) s[p] += w.second[j] * r;
+      }
+    }
+    for (int p = 0; p < kPacks; ++p)
+      for (int i = 0; i < kWidth; ++i) {
+        first[c0 + p * kWidth + i] = f[p][i];
+        if (second) second[c0 + p * kWidth + i] = s[p][i];
+      }
+  }
+  for (; c0 < n; ++c0) {
+    double f = 0, s = 0;
+    for (int j = 0; j < w.count; ++j) {
+      const double v = x[static_cast<std::ptrdiff_t>(w.row(j)) * ld + c0];
+      f += w.first[j] * v;
+      if (second) s += w.second[j] * v;
+    }
+    first[c0] = f;
+    if (second) second[c0] = s;
+  }
+}
+
+#if defined(__x86_64__)
+// x86-64 CPUs with AVX2 (without FMA, so bit for bit the SSE2 results) take packs of four.
+__attribute__((target("avx2"))) void apply_avx2(const DerivativeWeights& w, const double* x, int ld,
+                                                int n, double* first, double* second) {
+  apply_packs<4>(w, x, ld, n, first, second);
+}
+#endif
+
+}  // namespace
+
+void apply_weights(const DerivativeWeights& w, const double* x, int ld, int n, double* first,
+                   double* second) {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return apply_avx2(w, x, ld, n, first, second);
+#endif
+  apply_packs<2>(w, x, ld, n, first, second);
 }
 
 void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,

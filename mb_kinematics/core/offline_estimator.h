@@ -50,6 +50,12 @@ Segments find_segments(const std::vector<double>& t, double max_gap);
 void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
                         const Segments& segments, int i, DerivativeWeights& w);
 
+// The estimates of n series sampled together and stored row by row (x[r * ld + c]: series c at
+// sample r) at once: first[c] = sum_j w.first[j] x[w.row(j) * ld + c], likewise second with
+// w.second unless it is nullptr. The same sums, in the same order, as one series at a time.
+void apply_weights(const DerivativeWeights& w, const double* x, int ld, int n, double* first,
+                   double* second);
+
 // 5 x the median interval of t: what counts as a gap unless the user says otherwise.
 double default_max_gap(const std::vector<double>& t);
 

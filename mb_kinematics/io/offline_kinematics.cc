@@ -38,6 +38,15 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
   segments_ = find_segments(rec_.stamp, max_gap_);
   for (int c : full_)
     any_velocity_everywhere_ = any_velocity_everywhere_ || velocity_everywhere_[c];
+  constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
+  positions_only_.assign(rec_.rows(), !full_.empty());
+  derivatives_given_.assign(rec_.rows(), !full_.empty());
+  for (int r = 0; r < rec_.rows(); ++r)
+    for (int c : full_) {
+      const std::uint8_t g = rec_.given[r * nq + c] & kBoth;
+      positions_only_[r] = positions_only_[r] && g == 0;
+      derivatives_given_[r] = derivatives_given_[r] && g == kBoth;
+    }
 }
 
 // x'(t) and x''(t) of coordinate c from the weights (over rows, or over a series' rows);
@@ -54,28 +63,22 @@ void OfflineStates::derivatives(const DerivativeWeights& w, const std::vector<in
   }
 }
 
-std::string OfflineStates::state_at(int r, JointState<double>& state) {
+// The coordinates of full_ at row r; valid drops to 0 where the fit lacks a needed derivative.
+void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) const {
   const int nq = rec_.nq;
   const std::uint8_t* given = rec_.given.data() + r * nq;
-  constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
-  bool estimate = false;  // does some coordinate given everywhere lack a derivative here?
-  for (int c : full_) estimate = estimate || (given[c] & kBoth) != kBoth;
-  int valid = 2;
-  if (estimate) {
-    derivative_weights(estimator_, rec_.stamp, segments_, r, weights_);
-    // One pass over the window's rows for all coordinates (positions, and given velocities).
-    first_.setZero();
-    second_.setZero();
-    velocity_first_.setZero();
-    for (int j = 0; j < weights_.count; ++j) {
-      const int row = weights_.row(j);
-      const Eigen::Map<const Eigen::VectorXd> p(rec_.position.data() + row * nq, nq);
-      first_.noalias() += weights_.first[j] * p;
-      second_.noalias() += weights_.second[j] * p;
-      if (!any_velocity_everywhere_) continue;
-      const Eigen::Map<const Eigen::VectorXd> v(rec_.velocity.data() + row * nq, nq);
-      velocity_first_.noalias() += weights_.first[j] * v;
-    }
+  if (positions_only_[r]) {  // every coordinate of full_ from the fit (the others are set later)
+    state.position = Eigen::Map<const Eigen::VectorXd>(rec_.position.data() + r * nq, nq);
+    state.velocity = first_;
+    state.acceleration = second_;
+    if (weights_.valid < 2) valid = 0;
+    return;
+  }
+  if (derivatives_given_[r]) {  // every coordinate of full_ as recorded (the others set later)
+    state.position = Eigen::Map<const Eigen::VectorXd>(rec_.position.data() + r * nq, nq);
+    state.velocity = Eigen::Map<const Eigen::VectorXd>(rec_.velocity.data() + r * nq, nq);
+    state.acceleration = Eigen::Map<const Eigen::VectorXd>(rec_.acceleration.data() + r * nq, nq);
+    return;
   }
   for (int c : full_) {
     state.position[c] = rec_.position[r * nq + c];
@@ -90,7 +93,22 @@ std::string OfflineStates::state_at(int r, JointState<double>& state) {
                                                                                               : 2);
     if (need > weights_.valid) valid = 0;
   }
-  DerivativeWeights w;
+}
+
+std::string OfflineStates::state_at(int r, JointState<double>& state) {
+  const int nq = rec_.nq;
+  // Does some coordinate of full_ lack a derivative here?
+  const bool estimate = !full_.empty() && !derivatives_given_[r];
+  int valid = 2;
+  if (estimate) {
+    derivative_weights(estimator_, rec_.stamp, segments_, r, weights_);
+    // One pass over the window's rows for all coordinates (positions, and given velocities).
+    apply_weights(weights_, rec_.position.data(), nq, nq, first_.data(), second_.data());
+    if (any_velocity_everywhere_)
+      apply_weights(weights_, rec_.velocity.data(), nq, nq, velocity_first_.data(), nullptr);
+  }
+  fill_full(r, state, valid);
+  DerivativeWeights& w = series_weights_;
   for (size_t i = 0; i < partial_.size(); ++i) {
     const int c = partial_[i];
     Series& s = series_[i];

@@ -37,6 +37,7 @@ class OfflineStates {
     double velocity = 0, acceleration = 0;
     int valid = 0;
   };
+  void fill_full(int r, JointState<double>& state, int& valid) const;
   void derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c, bool velocity,
                    double& first, double& second) const;
 
@@ -47,9 +48,11 @@ class OfflineStates {
   std::vector<int> full_;     // coordinates given in every row (share the weights)
   std::vector<int> partial_;  // the others (mimics aside)
   std::vector<char> velocity_everywhere_;
+  // Per row, over the coordinates of full_: none has a derivative given; all have both.
+  std::vector<char> positions_only_, derivatives_given_;
   std::vector<Series> series_;  // per coordinate in partial_
   Segments segments_;
-  DerivativeWeights weights_;
+  DerivativeWeights weights_, series_weights_;  // of full_'s coordinates, of a Series
   bool any_velocity_everywhere_ = false;
   Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
 };
