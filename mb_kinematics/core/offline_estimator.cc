@@ -155,43 +155,41 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
 
 namespace {
 
-// apply_weights with the sums of eight series at a time in registers over the rows, as packs of
-// kWidth doubles that add and multiply lane by lane (GNU vectors: SSE2 registers for 2, AVX2 for
-// 4); the rest one by one. The same products and sums in the same order for every width.
+// apply_weights on series [c0, c0 + kPacks kWidth), their sums in registers over the rows, as
+// packs of kWidth doubles that add and multiply lane by lane (GNU vectors: SSE2 registers for
+// kWidth 2, AVX2 for 4). The same products and sums in the same order for every width.
+template <int kWidth, int kPacks>
+__attribute__((always_inline)) inline void apply_block(const DerivativeWeights& w, const double* x,
+                                                       int ld, int c0, double* first,
+                                                       double* second) {
+  typedef double Pack __attribute__((vector_size(kWidth * sizeof(double))));
+  Pack f[kPacks] = {}, s[kPacks] = {};
+  for (int j = 0; j < w.count; ++j) {
+    const double* row = x + static_cast<std::ptrdiff_t>(w.row(j)) * ld + c0;
+    for (int p = 0; p < kPacks; ++p) {
+      Pack r;
+      std::memcpy(&r, row + p * kWidth, sizeof r);
+      f[p] += w.first[j] * r;
+      if (second) s[p] += w.second[j] * r;
+    }
+  }
+  for (int p = 0; p < kPacks; ++p)
+    for (int i = 0; i < kWidth; ++i) {
+      first[c0 + p * kWidth + i] = f[p][i];
+      if (second) second[c0 + p * kWidth + i] = s[p][i];
+    }
+}
+
+// Four packs at a time, then one, then one series (a pack of one).
 template <int kWidth>
 __attribute__((always_inline)) inline void apply_packs(const DerivativeWeights& w, const double* x,
                                                        int ld, int n, double* first,
                                                        double* second) {
-  typedef double Pack __attribute__((vector_size(kWidth * sizeof(double))));
-  constexpr int kPacks = 8 / kWidth;
   int c0 = 0;
-  for (; c0 + 8 <= n; c0 += 8) {
-    Pack f[kPacks] = {}, s[kPacks] = {};
-    for (int j = 0; j < w.count; ++j) {
-      const double* row = x + static_cast<std::ptrdiff_t>(w.row(j)) * ld + c0;
-      for (int p = 0; p < kPacks; ++p) {
-        Pack r;
-        std::memcpy(&r, row + p * kWidth, sizeof r);
-        f[p] += w.first[j] * r;
-        if (second) s[p] += w.second[j] * r;
-      }
-    }
-    for (int p = 0; p < kPacks; ++p)
-      for (int i = 0; i < kWidth; ++i) {
-        first[c0 + p * kWidth + i] = f[p][i];
-        if (second) second[c0 + p * kWidth + i] = s[p][i];
-      }
-  }
-  for (; c0 < n; ++c0) {
-    double f = 0, s = 0;
-    for (int j = 0; j < w.count; ++j) {
-      const double v = x[static_cast<std::ptrdiff_t>(w.row(j)) * ld + c0];
-      f += w.first[j] * v;
-      if (second) s += w.second[j] * v;
-    }
-    first[c0] = f;
-    if (second) second[c0] = s;
-  }
+  for (; c0 + 4 * kWidth <= n; c0 += 4 * kWidth)
+    apply_block<kWidth, 4>(w, x, ld, c0, first, second);
+  for (; c0 + kWidth <= n; c0 += kWidth) apply_block<kWidth, 1>(w, x, ld, c0, first, second);
+  for (; c0 < n; ++c0) apply_block<1, 1>(w, x, ld, c0, first, second);
 }
 
 #if defined(__x86_64__)
