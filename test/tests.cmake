@@ -1,6 +1,7 @@
 # Every test/core/*_test.cc, test/io/*_test.cc and test/analysis/*_test.cc is a GoogleTest
 # executable of its own; test/peers/*_test.cc also link the peer libraries (Orocos KDL, found
-# in CMakeLists.txt).
+# below).
+
 # The test models (test/support/test_models.h), compiled once for every test that uses them.
 add_library(mbk_test_models STATIC test/support/test_models.cc)
 target_compile_definitions(mbk_test_models PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -9,6 +10,10 @@ target_link_libraries(mbk_test_models mbk_analysis mbk_core)
 file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/io/*_test.cc
   test/analysis/*_test.cc test/stability/*_test.cc)
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
+# Found here, not only by bench/bench.cmake: a build without the benchmarks (MBK_BENCHMARKS off,
+# as scripts/test.sh --sanitize builds) still links the peer tests.
+find_package(orocos_kdl REQUIRED)
+find_package(kdl_parser REQUIRED)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
   catkin_add_gtest(${name} ${source} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
@@ -20,9 +25,6 @@ foreach(source ${MBK_PEER_TESTS})
   target_include_directories(${name} SYSTEM PRIVATE ${orocos_kdl_INCLUDE_DIRS}
     ${kdl_parser_INCLUDE_DIRS})
   target_link_libraries(${name} ${orocos_kdl_LIBRARIES} ${kdl_parser_LIBRARIES})
-  # Debian's KDL exports no typeinfo for its classes, which UBSan's vptr check needs
-  # (scripts/test.sh --sanitize); a no-op in other builds.
-  target_compile_options(${name} PRIVATE -fno-sanitize=vptr)
 endforeach()
 
 # The fuzz smoke (README "Reliability"): each libFuzzer harness of test/fuzz/ from its seeds with
