@@ -1,14 +1,12 @@
 # kinematics_benchmark (Google Benchmark): ours against Orocos KDL, and against Pinocchio and
 # DART when CMake finds them. Like the tests, benchmarks and their peers are test dependencies
-# (package.xml): without benchmark, KDL or kdl_parser, no benchmark.
+# (package.xml): without Google Benchmark, no benchmark.
 #   Pinocchio 3.x is not in Debian: build it yourself and point CMake at it, e.g.
 #   `source scripts/common.sh; mbk_build -DCMAKE_PREFIX_PATH=<its install prefix>`.
 #   DART: Debian's libdart-dev and libdart-utils-urdf-dev (scripts/common.sh installs them).
-find_package(benchmark QUIET)
-find_package(orocos_kdl QUIET)
-find_package(kdl_parser QUIET)
-if(NOT (benchmark_FOUND AND orocos_kdl_FOUND AND kdl_parser_FOUND))
-  message(STATUS "kinematics_benchmark: not built (needs benchmark, orocos_kdl, kdl_parser)")
+find_package(benchmark QUIET)  # orocos_kdl and kdl_parser: found in CMakeLists.txt
+if(NOT benchmark_FOUND)
+  message(STATUS "kinematics_benchmark: not built (needs Google Benchmark)")
   return()
 endif()
 

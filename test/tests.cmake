@@ -1,6 +1,6 @@
 # Every test/core/*_test.cc, test/io/*_test.cc and test/analysis/*_test.cc is a GoogleTest
 # executable of its own; test/peers/*_test.cc also link the peer libraries (Orocos KDL, found
-# below).
+# in CMakeLists.txt also when the benchmarks are not built).
 
 # The test models (test/support/test_models.h), compiled once for every test that uses them.
 add_library(mbk_test_models STATIC test/support/test_models.cc)
@@ -10,10 +10,6 @@ target_link_libraries(mbk_test_models mbk_analysis mbk_core)
 file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/io/*_test.cc
   test/analysis/*_test.cc test/stability/*_test.cc)
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
-# Found here, not only by bench/bench.cmake: a build without the benchmarks (MBK_BENCHMARKS off,
-# as scripts/test.sh --sanitize builds) still links the peer tests.
-find_package(orocos_kdl REQUIRED)
-find_package(kdl_parser REQUIRED)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
   catkin_add_gtest(${name} ${source} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
