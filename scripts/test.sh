@@ -23,6 +23,9 @@ if [ -n "$sanitize" ]; then
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
   export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  # Debian's nodelet manager is not instrumented: the ASan runtime must come first when it loads
+  # our library (test/ros/nodelet.test).
+  export MBK_SANITIZER_PRELOAD="env LD_PRELOAD=$(g++ -print-file-name=libasan.so)"
 fi
 mbk_install_deps
 mbk_build "${build_args[@]}"
