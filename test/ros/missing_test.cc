@@ -11,7 +11,6 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <mb_kinematics_msgs/GetPartialVelocities.h>
 #include <rosgraph_msgs/Log.h>
-#include <sys/wait.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <atomic>
@@ -301,18 +300,6 @@ TEST_F(MissingTest, WaitPublishesNothingUntilEveryJointHasCome) {
   ASSERT_TRUE(recorder_->wait_for(last));
   expect_kinematics(recorder_->at(last).at(0), model_,
                     expected_kinematics(model_, trajectory.at(6 * kDt)), kTol);
-}
-
-// Runs the node with `arguments` until it exits; returns its exit code (-1 if it did not exit
-// normally) and puts what it printed into `output`.
-int run_node(const std::string& arguments, std::string& output) {
-  const std::string command = std::string(MBK_NODE_PATH) + " " + arguments + " 2>&1 > /dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return -1;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 TEST(MissingStartup, BadValueExitsNamingTheAllowedOnes) {

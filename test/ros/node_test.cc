@@ -295,18 +295,6 @@ TEST(DecimatedNodeTest, PublishFrequencyDecimatesOutputsNotEstimates) {
   EXPECT_EQ(recorder.count(), 4u);
 }
 
-// Runs the node with `arguments` until it exits; returns its exit code (-1 if it did not exit
-// normally) and puts what it printed to stderr into `output`.
-int run_node(const std::string& arguments, std::string& output) {
-  const std::string command = std::string(MBK_NODE_PATH) + " " + arguments + " 2>&1 > /dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return -1;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 // A robot_description that does not parse: a clear error and a non-zero exit.
 TEST(StartupTest, BadRobotDescriptionExitsNonZero) {
   ros::NodeHandle nh;

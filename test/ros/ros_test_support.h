@@ -11,9 +11,11 @@
 #include <ros/message_event.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
+#include <sys/wait.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <chrono>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -216,5 +218,18 @@ class TfRecorder {
   std::map<std::string, std::set<std::string>> by_publisher_, by_child_;
   ros::Subscriber tf_, tf_static_;
 };
+
+// Runs mb_kinematics_node (MBK_NODE_PATH, test/ros.cmake) with `arguments` until it exits;
+// returns its exit code (-1 if it did not exit normally) and puts what it printed to stderr into
+// `output`.
+inline int run_node(const std::string& arguments, std::string& output) {
+  const std::string command = std::string(MBK_NODE_PATH) + " " + arguments + " 2>&1 > /dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
 
 }  // namespace mbk_ros_test
