@@ -36,6 +36,7 @@ OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
     : model_(model), rec_(recording), base_(base) {
   for (int i = 0; i < std::max(1, threads); ++i)
     workers_.emplace_back(model, recording, estimator, max_gap);
+  seconds_.assign(workers_.size(), 0.0);
 }
 
 int OfflineBatch::rows_per_block(size_t bytes) const {
@@ -69,19 +70,18 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
 
 double OfflineBatch::compute(int begin, int end, std::vector<OfflineRow>& rows) {
   const int n = end - begin, t = threads();
-  std::vector<double> seconds(t, 0.0);
   // Worker i takes the i-th run of the block's rows: its rows keep increasing across blocks.
   const auto work = [&](int i) {
     const auto t0 = std::chrono::steady_clock::now();
     for (int j = n * i / t; j < n * (i + 1) / t; ++j) compute_row(workers_[i], begin + j, rows[j]);
-    seconds[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    seconds_[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   std::vector<std::thread> helpers;
   for (int i = 1; i < t; ++i) helpers.emplace_back(work, i);
   work(0);
   for (std::thread& h : helpers) h.join();
   double sum = 0;
-  for (double s : seconds) sum += s;
+  for (double s : seconds_) sum += s;
   return sum;
 }
 

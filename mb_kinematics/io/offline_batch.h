@@ -38,7 +38,8 @@ class OfflineBatch {
                double max_gap, const FloatingBaseTrack* base, int threads);
 
   // Rows [begin, end) into rows[0, end - begin) (rows.size() >= end - begin). Calls must come
-  // in increasing, non-overlapping ranges. Returns the seconds the workers spent, summed.
+  // in increasing, non-overlapping ranges. Returns the seconds the workers spent, summed. With
+  // one thread nothing is allocated once the first block is done (except a dropped row's message).
   double compute(int begin, int end, std::vector<OfflineRow>& rows);
 
   double max_gap() const { return workers_.front().max_gap(); }
@@ -53,6 +54,7 @@ class OfflineBatch {
   const Recording& rec_;
   const FloatingBaseTrack* base_;
   std::vector<OfflineStates> workers_;
+  std::vector<double> seconds_;  // per worker, of the last compute()
 };
 
 // std::thread::hardware_concurrency(), at least 1.
