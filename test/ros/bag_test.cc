@@ -397,4 +397,24 @@ TEST(BagTest, TheMbkCommandRunsIt) {
   EXPECT_NE(line.find("the bag has /joint_states"), std::string::npos) << line;
 }
 
+TEST(BagTest, ThreadsOptionIsACountFromOne) {
+  const auto parse = [](std::vector<const char*> args) {
+    args.insert(args.begin(), {"mbk", "bag", "in.bag", "--model", "m.yaml", "--out", "o.bag"});
+    return mbk_offline::parse_bag_options(static_cast<int>(args.size()),
+                                          const_cast<char**>(args.data()));
+  };
+  EXPECT_EQ(parse({}).threads, 0);  // one per CPU
+  EXPECT_EQ(parse({"--threads", "3"}).threads, 3);
+  for (const char* bad : {"0", "-2", "two", "3.5", "5000"}) {
+    try {
+      parse({"--threads", bad});
+      ADD_FAILURE() << "--threads " << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--threads needs a count from 1 to 1024"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
