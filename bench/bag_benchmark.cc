@@ -5,10 +5,12 @@
 //                                     OUT.bag; counters: samples/s end to end and the seconds
 //                                     spent reading, computing and writing per 1000 samples
 //   bag/human/<rate>Hz/bag_and_csv_out   the same with the tidy CSV too
-//   compute/<model>/<estimated|given> OfflineStates::state_at + forward_kinematics per sample at
-//                                     1 kHz, derivatives estimated (default estimator) or given;
-//                                     counter x_real_time = samples/s / 1000
-//   compute/tree100/kinematics_only   forward_kinematics alone on the same states
+//   compute/<model>/<estimated|given>/threads:T   the computation as mbk bag runs it
+//                                     (OfflineBatch: estimates, state checks, forward_kinematics)
+//                                     on T threads, for 5 s at 1 kHz, derivatives estimated
+//                                     (default estimator) or given; real (wall) time; counter
+//                                     x_real_time = samples/s / 1000
+//   kinematics_only/tree100           forward_kinematics alone on the same states, one thread
 // Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1).
 #include <benchmark/benchmark.h>
 #include <rosbag/bag.h>
@@ -20,7 +22,7 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/io/offline_kinematics.h"
+#include "mb_kinematics/io/offline_batch.h"
 #include "mb_kinematics/offline/bag_command.h"
 
 namespace {
@@ -81,30 +83,42 @@ mbk::Recording recording(const mbk::Model& model, double rate, double seconds, b
   return r;
 }
 
-// kinematics_only: forward_kinematics on the recorded states alone (no OfflineStates), to split
+// forward_kinematics on the recorded states alone (no estimates, checks or threads), to split
 // the computation's time between the estimates and the kinematics.
-void compute(benchmark::State& state, const mbk::Model& model, bool given, bool kinematics_only) {
-  const mbk::Recording rec = recording(model, 1000, 5, given);
-  const mbk::OfflineEstimator e = mbk::make_offline_estimator(mbk::default_offline_estimator());
+void kinematics_only(benchmark::State& state, const mbk::Model& model) {
+  const mbk::Recording rec = recording(model, 1000, 5, true);
   mbk::JointState<double> s(model);
   mbk::Data<double> d(model);
   long samples = 0;
   for (auto _ : state) {
-    mbk::OfflineStates states(model, rec, e, 0);
     for (int r = 0; r < rec.rows(); ++r) {
-      if (kinematics_only) {
-        s.position =
-            Eigen::Map<const Eigen::VectorXd>(rec.position.data() + r * model.nq, model.nq);
-        s.velocity =
-            Eigen::Map<const Eigen::VectorXd>(rec.velocity.data() + r * model.nq, model.nq);
-        s.acceleration =
-            Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
-      } else {
-        states.state_at(r, s);
-      }
+      s.position = Eigen::Map<const Eigen::VectorXd>(rec.position.data() + r * model.nq, model.nq);
+      s.velocity = Eigen::Map<const Eigen::VectorXd>(rec.velocity.data() + r * model.nq, model.nq);
+      s.acceleration =
+          Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
       mbk::forward_kinematics(model, s, d, mbk::Level::kAcceleration);
       benchmark::DoNotOptimize(d.mass_center_acceleration.back());
     }
+    samples += rec.rows();
+  }
+  state.SetItemsProcessed(samples);
+  state.counters["x_real_time"] = benchmark::Counter(samples / 1000.0, benchmark::Counter::kIsRate);
+}
+
+// The computation as mbk bag runs it (OfflineBatch: estimates, checks, kinematics) on
+// state.range(0) threads, block by block, without writing; real time, since threads run at once.
+void compute(benchmark::State& state, const mbk::Model& model, bool given) {
+  const mbk::Recording rec = recording(model, 1000, 5, given);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator(mbk::default_offline_estimator());
+  const int threads = static_cast<int>(state.range(0));
+  const int block = mbk::OfflineBatch(model, rec, e, 0, nullptr, threads).rows_per_block(16 << 20);
+  std::vector<mbk::OfflineRow> rows(block, mbk::OfflineRow(model));
+  long samples = 0;
+  for (auto _ : state) {
+    mbk::OfflineBatch batch(model, rec, e, 0, nullptr, threads);
+    for (int begin = 0; begin < rec.rows(); begin += block)
+      batch.compute(begin, std::min(begin + block, rec.rows()), rows);
+    benchmark::DoNotOptimize(rows.back().data.mass_center_acceleration.back());
     samples += rec.rows();
   }
   state.SetItemsProcessed(samples);
@@ -125,12 +139,24 @@ BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchma
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_and_csv_out, 1000.0, true)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, human / estimated, human(), false, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false, false)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, tree100 / kinematics_only, tree100(), true, true)
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(compute, human / estimated, human(), false)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(kinematics_only, tree100, tree100())->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

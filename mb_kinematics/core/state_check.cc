@@ -25,14 +25,34 @@ std::string check_value(double x, bool bounded) {
   return "";
 }
 
-}  // namespace
+// Every value finite and within kMaxStateMagnitude (angles too), every |e|^2 of Euler parameters
+// at least kMinEulerNormSquared: the common case, checked without names or strings. False
+// leaves the verdict to first_problem (an angle beyond the limit is fine there).
+bool plainly_valid(const Model& model, const JointState<double>& state) {
+  // first_euler_parameter of every joint type, looked up once.
+  static const std::vector<int> first_e = [] {
+    std::vector<int> first;
+    for (JointType type : all_joint_types()) first.push_back(first_euler_parameter(type));
+    return first;
+  }();
+  const auto within = [](const Eigen::VectorXd& x) {
+    // x * 0 sums to NaN if some x is Inf or NaN: two vectorized passes, no branch per number.
+    return x.size() == 0 ||
+           ((x.array() * 0.0).sum() == 0.0 && x.cwiseAbs().maxCoeff() <= kMaxStateMagnitude);
+  };
+  if (!within(state.position) || !within(state.velocity) || !within(state.acceleration))
+    return false;
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const int first = first_e[static_cast<size_t>(model.bodies[k].joint.type)];
+    if (first < 0) continue;
+    const int e = model.bodies[k].q_index + first;
+    if (!(state.position.segment<4>(e).squaredNorm() >= kMinEulerNormSquared)) return false;
+  }
+  return true;
+}
 
-std::string check_state(const Model& model, const JointState<double>& state) {
-  if (state.position.size() != model.nq || state.velocity.size() != model.nv ||
-      state.acceleration.size() != model.nv)
-    return "state sized for another model (" + std::to_string(state.position.size()) +
-           " coordinates, " + std::to_string(state.velocity.size()) + " speeds; the model has " +
-           std::to_string(model.nq) + " and " + std::to_string(model.nv) + ")";
+// The first value that is wrong, named, or "".
+std::string first_problem(const Model& model, const JointState<double>& state) {
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     const JointType type = body.joint.type;
@@ -45,7 +65,7 @@ std::string check_state(const Model& model, const JointState<double>& state) {
         return where(model, k, "coordinate", model.coordinate_names[body.q_index + i]) + problem;
     }
     for (int i = 0; i < nv; ++i) {
-      const std::string name = model.speed_names[body.v_index + i];
+      const std::string& name = model.speed_names[body.v_index + i];
       std::string problem = check_value(state.velocity[body.v_index + i], true);
       if (!problem.empty()) return where(model, k, "speed", name) + problem;
       problem = check_value(state.acceleration[body.v_index + i], true);
@@ -63,6 +83,17 @@ std::string check_state(const Model& model, const JointState<double>& state) {
     }
   }
   return "";
+}
+
+}  // namespace
+
+std::string check_state(const Model& model, const JointState<double>& state) {
+  if (state.position.size() != model.nq || state.velocity.size() != model.nv ||
+      state.acceleration.size() != model.nv)
+    return "state sized for another model (" + std::to_string(state.position.size()) +
+           " coordinates, " + std::to_string(state.velocity.size()) + " speeds; the model has " +
+           std::to_string(model.nq) + " and " + std::to_string(model.nv) + ")";
+  return plainly_valid(model, state) ? "" : first_problem(model, state);
 }
 
 }  // namespace mbk

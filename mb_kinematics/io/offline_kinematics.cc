@@ -95,6 +95,21 @@ void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) cons
   }
 }
 
+// The derivatives of partial_[i]'s coordinate at its own sample `entry`, held until its next.
+void OfflineStates::estimate_series(size_t i, size_t entry) {
+  const int c = partial_[i];
+  Series& s = series_[i];
+  DerivativeWeights& w = series_weights_;
+  derivative_weights(estimator_, s.t, s.segments, static_cast<int>(entry), w);
+  derivatives(w, &s.row, c, velocity_everywhere_[c], s.velocity, s.acceleration);
+  s.valid = w.valid;
+  const int r = s.row[entry];
+  const std::uint8_t g = rec_.given[r * rec_.nq + c];
+  if (g & Recording::kVelocity) s.velocity = rec_.velocity[r * rec_.nq + c];
+  if (g & Recording::kAcceleration)
+    s.acceleration = rec_.acceleration[r * rec_.nq + c], s.valid = 2;
+}
+
 std::string OfflineStates::state_at(int r, JointState<double>& state) {
   const int nq = rec_.nq;
   // Does some coordinate of full_ lack a derivative here?
@@ -108,19 +123,17 @@ std::string OfflineStates::state_at(int r, JointState<double>& state) {
       apply_weights(weights_, rec_.velocity.data(), nq, nq, velocity_first_.data(), nullptr);
   }
   fill_full(r, state, valid);
-  DerivativeWeights& w = series_weights_;
   for (size_t i = 0; i < partial_.size(); ++i) {
     const int c = partial_[i];
     Series& s = series_[i];
-    if (s.next < s.row.size() && s.row[s.next] == r) {  // a sample of its own: estimate
-      derivative_weights(estimator_, s.t, s.segments, static_cast<int>(s.next), w);
-      derivatives(w, &s.row, c, velocity_everywhere_[c], s.velocity, s.acceleration);
-      s.valid = w.valid;
-      const std::uint8_t g = rec_.given[r * nq + c];
-      if (g & Recording::kVelocity) s.velocity = rec_.velocity[r * nq + c];
-      if (g & Recording::kAcceleration) s.acceleration = rec_.acceleration[r * nq + c], s.valid = 2;
-      ++s.next;
-    }  // else the last sample's values hold
+    // Rows skipped since the last call (a worker starting mid-recording): the last sample before
+    // r is the one whose values hold.
+    size_t k = s.next;
+    while (k < s.row.size() && s.row[k] < r) ++k;
+    if (k > s.next) estimate_series(i, k - 1);
+    s.next = k;
+    if (s.next < s.row.size() && s.row[s.next] == r) estimate_series(i, s.next++);
+    // else the last sample's values hold
     state.position[c] = rec_.position[r * nq + c];
     state.velocity[c] = s.velocity;
     state.acceleration[c] = s.acceleration;

@@ -21,8 +21,9 @@ class OfflineStates {
   OfflineStates(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
                 double max_gap);
 
-  // Fills `state` for row r (rows in increasing order, each once); returns "" or why the row
-  // cannot be computed (too few samples around it for the derivatives).
+  // Fills `state` for row r; returns "" or why the row cannot be computed (too few samples
+  // around it for the derivatives). Rows in increasing order, each at most once; rows may be
+  // skipped (a worker of OfflineBatch takes its own runs of rows), with the same results.
   std::string state_at(int r, JointState<double>& state);
 
   double max_gap() const { return max_gap_; }
@@ -37,6 +38,7 @@ class OfflineStates {
     double velocity = 0, acceleration = 0;
     int valid = 0;
   };
+  void estimate_series(size_t i, size_t entry);
   void fill_full(int r, JointState<double>& state, int& valid) const;
   void derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c, bool velocity,
                    double& first, double& second) const;

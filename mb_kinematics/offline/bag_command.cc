@@ -4,12 +4,11 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 
-#include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/offline_estimator.h"
-#include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/io/offline_kinematics.h"
+#include "mb_kinematics/io/offline_batch.h"
 #include "mb_kinematics/io/progress.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/io/trajectory_csv.h"
@@ -29,12 +28,6 @@ bool ends_with(const std::string& s, const std::string& end) {
   return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
 }
 
-bool finite(const mbk::Data<double>& d, int k) {
-  return d.rotation[k].allFinite() && d.origin[k].allFinite() && d.mass_center[k].allFinite() &&
-         d.omega[k].allFinite() && d.mass_center_velocity[k].allFinite() && d.alpha[k].allFinite() &&
-         d.mass_center_acceleration[k].allFinite();
-}
-
 // The node's model rules: coordinate-derivative speeds (JointState velocities are q').
 mbk::Model load(const std::string& path) {
   mbk::Model model = mbk::load_model_file(path);
@@ -43,6 +36,68 @@ mbk::Model load(const std::string& path) {
     mbk::finalize_model(model);
   }
   return model;
+}
+
+// OUT.bag and/or OUT.csv.
+struct Outputs {
+  std::unique_ptr<BagOutput> bag;
+  std::unique_ptr<mbk::TidyCsvWriter> csv;
+  bool floating = false;
+
+  void write(const mbk::OfflineRow& row) {
+    if (bag) bag->write(row.stamp, row.state, row.data, floating ? &row.base : nullptr);
+    if (csv) csv->write(row.stamp, row.data);
+  }
+  void close() {
+    if (bag) bag->close();
+    if (csv) csv->close();
+  }
+};
+
+// The odometry of a floating base with its accelerations from the offline estimator.
+mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
+                                  const mbk::OfflineEstimator& estimator, double max_gap) {
+  mbk::FloatingBaseTrack track;
+  std::vector<double> t;
+  for (const auto& b : samples) t.push_back(b.t);
+  std::vector<int> valid;
+  mbk::base_accelerations(samples, estimator, max_gap > 0 ? max_gap : mbk::default_max_gap(t),
+                          track.linear_acceleration, track.angular_acceleration, valid);
+  track.samples = std::move(samples);
+  return track;
+}
+
+// Every row, computed by the batch's threads a block at a time while this thread writes the
+// block before (two blocks of results), written in order; drops are counted in order.
+void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int rows, Outputs& out,
+                       bool progress, BagSummary& s) {
+  mbk::Progress bar("computing", progress);
+  const int block = batch.rows_per_block(16 << 20);
+  std::vector<mbk::OfflineRow> ready(block, mbk::OfflineRow(model)), next = ready;
+  if (rows > 0) s.compute_seconds += batch.compute(0, std::min(block, rows), ready);
+  for (int begin = 0; begin < rows; begin += block) {
+    const int end = std::min(begin + block, rows);
+    std::thread ahead;
+    if (end < rows)
+      ahead = std::thread(
+          [&, end] { s.compute_seconds += batch.compute(end, std::min(end + block, rows), next); });
+    const auto t0 = Clock::now();
+    for (int r = begin; r < end; ++r) {
+      const mbk::OfflineRow& row = ready[r - begin];
+      if (row.drop_reason.empty())
+        out.write(row), ++s.written;
+      else
+        s.log.drop(row.drop_reason, row.drop_detail);
+    }
+    s.write_seconds += since(t0);
+    bar.update(end, rows);
+    if (ahead.joinable()) ahead.join();
+    std::swap(ready, next);
+  }
+  bar.finish();
+  const auto t_close = Clock::now();
+  out.close();
+  s.write_seconds += since(t_close);
 }
 
 }  // namespace
@@ -69,6 +124,13 @@ BagOptions parse_bag_options(int argc, char** argv) {
       if (*end != '\0' || !(o.max_gap >= 0))
         throw std::invalid_argument("--max-gap needs seconds >= 0, not '" + std::string(argv[i]) +
                                     "'");
+    } else if (arg == "--threads" && i + 1 < argc) {
+      char* end = nullptr;
+      const long n = std::strtol(argv[++i], &end, 10);
+      if (*end != '\0' || n < 1 || n > 1024)
+        throw std::invalid_argument("--threads needs a count from 1 to 1024, not '" +
+                                    std::string(argv[i]) + "'");
+      o.threads = static_cast<int>(n);
     } else if (arg.rfind("--", 0) != 0 && o.input.empty()) {
       o.input = arg;
     } else {
@@ -107,70 +169,22 @@ BagSummary run_bag(const BagOptions& o) {
   s.read = builder.samples_read();
   s.log = builder.log();
   s.read_seconds = since(wall);
-  mbk::OfflineStates states(model, rec, estimator, o.max_gap);
-  s.max_gap = states.max_gap();
   const bool floating = !o.base_odometry.empty();
   if (floating && base.samples.empty())
     throw std::invalid_argument(o.input + ": no usable message on '" + o.base_odometry + "'");
-  std::vector<mbk::Vec3<double>> base_linear, base_angular;
-  std::vector<int> base_valid;
-  if (floating)
-    mbk::base_accelerations(base.samples, estimator,
-                            o.max_gap > 0 ? o.max_gap : mbk::default_max_gap([&] {
-                              std::vector<double> t;
-                              for (const auto& b : base.samples) t.push_back(b.t);
-                              return t;
-                            }()),
-                            base_linear, base_angular, base_valid);
-  mbk::BaseMotion motion;
-  std::unique_ptr<BagOutput> bag;
-  std::unique_ptr<mbk::TidyCsvWriter> csv;
+  const mbk::FloatingBaseTrack track =
+      floating ? base_track(std::move(base.samples), estimator, o.max_gap)
+               : mbk::FloatingBaseTrack{};
+  mbk::OfflineBatch batch(model, rec, estimator, o.max_gap, floating ? &track : nullptr,
+                          o.threads > 0 ? o.threads : mbk::default_thread_count());
+  s.max_gap = batch.max_gap();
+  s.threads = batch.threads();
+  Outputs out;
   if (!o.out_bag.empty())
-    bag = std::make_unique<BagOutput>(o.out_bag, model, o.frame_prefix, base.frame);
-  if (!o.out_csv.empty()) csv = std::make_unique<mbk::TidyCsvWriter>(o.out_csv, model);
-  mbk::JointState<double> state(model);
-  mbk::Data<double> data(model);
-  mbk::Progress bar("computing", o.progress);
-  for (int r = 0; r < rec.rows(); ++r) {
-    const auto t0 = Clock::now();
-    const std::string where = "sample at t = " + std::to_string(rec.stamp[r]);
-    std::string problem = states.state_at(r, state);
-    if (!problem.empty()) {
-      s.log.drop("too few samples for derivatives", where + ": " + problem);
-      continue;
-    }
-    problem = mbk::check_state(model, state);  // NaN/Inf, |e| ~ 0, overflow
-    if (!problem.empty()) {
-      s.log.drop("state rejected (mbk::check_state)", where + ": " + problem);
-      continue;
-    }
-    mbk::forward_kinematics(model, state, data, mbk::Level::kAcceleration);
-    if (floating) {
-      if (!mbk::interpolate_base(base.samples, base_linear, base_angular, rec.stamp[r], motion)) {
-        s.log.drop("outside the base odometry's time span", where);
-        continue;
-      }
-      mbk::apply_floating_base(motion, data);
-    }
-    bool ok = true;
-    for (int k = 1; k <= model.body_count() && ok; ++k) ok = finite(data, k);
-    if (!ok) {
-      s.log.drop("kinematics not finite", where);
-      continue;
-    }
-    const auto t1 = Clock::now();
-    if (bag) bag->write(rec.stamp[r], state, data, floating ? &motion : nullptr);
-    if (csv) csv->write(rec.stamp[r], data);
-    ++s.written;
-    s.compute_seconds += std::chrono::duration<double>(t1 - t0).count();
-    s.write_seconds += since(t1);
-    bar.update(r + 1, rec.rows());
-  }
-  bar.finish();
-  const auto t_close = Clock::now();
-  if (bag) bag->close();
-  if (csv) csv->close();
-  s.write_seconds += since(t_close);
+    out.bag = std::make_unique<BagOutput>(o.out_bag, model, o.frame_prefix, base.frame);
+  if (!o.out_csv.empty()) out.csv = std::make_unique<mbk::TidyCsvWriter>(o.out_csv, model);
+  out.floating = floating;
+  compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.wall_seconds = since(wall);
   return s;
 }
@@ -191,8 +205,10 @@ std::string format_summary(const BagSummary& s) {
            " (first: " + s.log.example.at(n.first) + ")\n";
   const double rate = s.wall_seconds > 0 ? s.written / s.wall_seconds : 0;
   std::snprintf(line, sizeof line,
-                "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s, write %.3f s\n",
-                s.wall_seconds, rate, s.read_seconds, s.compute_seconds, s.write_seconds);
+                "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s (%d threads, summed; "
+                "beside the writing), write %.3f s\n",
+                s.wall_seconds, rate, s.read_seconds, s.compute_seconds, s.threads,
+                s.write_seconds);
   out += line;
   return out;
 }

@@ -20,12 +20,15 @@ struct BagOptions {
   std::string frame_prefix;
   double max_gap = 0;     // seconds; 0: 5 x the median interval
   bool progress = false;  // draw a progress bar on stderr
+  int threads = 0;        // computing threads; 0: one per CPU (default_thread_count)
 };
 
 struct BagSummary {
   long read = 0, written = 0;
   mbk::DropLog log;
+  // compute_seconds: summed over the computing threads, which run while this thread writes.
   double read_seconds = 0, compute_seconds = 0, write_seconds = 0, wall_seconds = 0;
+  int threads = 1;
   std::string estimator;
   double max_gap = 0;
 };

@@ -38,7 +38,7 @@ const char kUsage[] =
     "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
     "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
     "P]\n"
-    "           [--max-gap S]\n";
+    "           [--max-gap S] [--threads N]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {

@@ -1,7 +1,7 @@
 // mbk_bag: `mbk bag` (mbk runs it, so that mbk itself stays free of ROS libraries).
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
 //       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
-//       [--frame-prefix P] [--max-gap S]
+//       [--frame-prefix P] [--max-gap S] [--threads N]
 #include <iostream>
 #include <stdexcept>
 

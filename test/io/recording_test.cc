@@ -175,4 +175,33 @@ TEST(OfflineStatesTest, EstimatesFromOwnSamplesAndDropsLoneSamples) {
   EXPECT_NE(states.state_at(40, s).find("too few samples"), std::string::npos);
 }
 
+// A worker of OfflineBatch starts mid-recording: skipping rows gives the same states, bit for
+// bit, as visiting every row (J2's held values come from its last own sample before the start).
+TEST(OfflineStatesTest, SkippingRowsGivesTheSameStates) {
+  const mbk::Model model = two_joints();
+  mbk::RecordingBuilder b(model);
+  for (int i = 0; i < 40; ++i) {
+    const double t = 0.01 * i;
+    if (i % 3 == 0)
+      b.add(t, {"J1", "J2"}, {std::sin(t), std::cos(3 * t)}, {}, "s");
+    else
+      b.add(t, {"J1"}, {std::sin(t)}, {}, "s");
+  }
+  const mbk::Recording r = b.finish();
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_9_4");
+  mbk::OfflineStates every(model, r, e, 0);
+  std::vector<mbk::JointState<double>> expected(40, mbk::JointState<double>(model));
+  for (int row = 0; row < 40; ++row) ASSERT_EQ(every.state_at(row, expected[row]), "");
+  for (int start : {1, 2, 4, 17, 39}) {
+    mbk::OfflineStates skipping(model, r, e, 0);
+    mbk::JointState<double> s(model);
+    for (int row = start; row < 40; row += 1 + row % 4) {  // irregular jumps forward
+      ASSERT_EQ(skipping.state_at(row, s), "");
+      EXPECT_EQ(s.position, expected[row].position) << start << " " << row;
+      EXPECT_EQ(s.velocity, expected[row].velocity) << start << " " << row;
+      EXPECT_EQ(s.acceleration, expected[row].acceleration) << start << " " << row;
+    }
+  }
+}
+
 }  // namespace

@@ -166,6 +166,40 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   EXPECT_EQ(from_bag, from_csv);
 }
 
+std::string read_file(const std::string& path) {
+  std::ifstream f(path);
+  std::stringstream text;
+  text << f.rdbuf();
+  return text.str();
+}
+
+// The rows are computed by several threads, block by block, while the caller writes: the output
+// must be the same, byte for byte, whatever the number of threads. 1201 samples: three blocks
+// of 512 rows; every third message names half the joints (their own sample series); the last,
+// after a long gap, is too lonely for derivatives (dropped and counted).
+TEST(BagTest, AnyNumberOfThreadsWritesTheSameOutput) {
+  const std::string in =
+      write_bag("threads.bag", 100, 12.01, [](int i, sensor_msgs::JointState& js) {
+        if (i % 3 == 1) js.name.resize(js.name.size() / 2), js.position.resize(js.name.size());
+        if (i == 1200) js.header.stamp = ros::Time(100.0);
+      });
+  std::string first;
+  for (int threads : {1, 2, 5}) {
+    mbk_offline::BagOptions o = options(in, "");
+    o.out_csv = temp("threads_" + std::to_string(threads) + ".csv");
+    o.threads = threads;
+    const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+    EXPECT_EQ(s.threads, threads);
+    EXPECT_EQ(s.read, 1201);
+    EXPECT_EQ(s.written, 1200) << threads;
+    EXPECT_EQ(s.log.drops.at("too few samples for derivatives"), 1) << threads;
+    const std::string csv = read_file(o.out_csv);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 1200 * 17) << threads;
+    if (first.empty()) first = csv;
+    EXPECT_TRUE(csv == first) << threads << " threads: the CSV differs from one thread's";
+  }
+}
+
 TEST(BagTest, MissingTopicNamesTheTopicsTheBagHas) {
   const std::string in = write_bag("topics.bag", 10, 1.0);
   mbk_offline::BagOptions o = options(in, temp("x.bag"));
@@ -296,7 +330,8 @@ TEST(BagTest, BaseOdometryCarriesTheModel) {
       worst_p = std::max(worst_p, (v3(b.mass_center) - expected.mass_center[k]).norm());
       worst_v = std::max(worst_v, (v3(b.twist.linear) - expected.mass_center_velocity[k]).norm());
       if (t > 1.4 && t < 3.6)  // the base's acceleration is estimated: away from the ends
-        worst_a = std::max(worst_a, (v3(b.accel.linear) - expected.mass_center_acceleration[k]).norm());
+        worst_a =
+            std::max(worst_a, (v3(b.accel.linear) - expected.mass_center_acceleration[k]).norm());
     }
   }
   // Linear interpolation half way between odometry samples: chord errors of (w h)^2 / 8 times
@@ -360,6 +395,26 @@ TEST(BagTest, TheMbkCommandRunsIt) {
   std::getline(err2, line);
   EXPECT_EQ(line.rfind("mbk: error: ", 0), 0u) << line;
   EXPECT_NE(line.find("the bag has /joint_states"), std::string::npos) << line;
+}
+
+TEST(BagTest, ThreadsOptionIsACountFromOne) {
+  const auto parse = [](std::vector<const char*> args) {
+    args.insert(args.begin(), {"mbk", "bag", "in.bag", "--model", "m.yaml", "--out", "o.bag"});
+    return mbk_offline::parse_bag_options(static_cast<int>(args.size()),
+                                          const_cast<char**>(args.data()));
+  };
+  EXPECT_EQ(parse({}).threads, 0);  // one per CPU
+  EXPECT_EQ(parse({"--threads", "3"}).threads, 3);
+  for (const char* bad : {"0", "-2", "two", "3.5", "5000"}) {
+    try {
+      parse({"--threads", bad});
+      ADD_FAILURE() << "--threads " << bad << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--threads needs a count from 1 to 1024"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace

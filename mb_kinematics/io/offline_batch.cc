@@ -1,0 +1,88 @@
+#include "mb_kinematics/io/offline_batch.h"
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/state_check.h"
+
+namespace mbk {
+namespace {
+
+// Every value of bodies 1..N in one of Data's arrays finite (one pass over its numbers).
+template <typename Array>
+bool finite(const std::vector<Array>& a) {
+  constexpr int size = Array::SizeAtCompileTime;
+  static_assert(sizeof(Array) == size * sizeof(double), "Data's arrays hold bare numbers");
+  if (a.size() < 2) return true;
+  const Eigen::Index n = size * (static_cast<Eigen::Index>(a.size()) - 1);
+  // x * 0 is 0 for a finite x and NaN for Inf or NaN: one vectorized sum, no branch per number.
+  return (Eigen::Map<const Eigen::ArrayXd>(a[1].data(), n) * 0.0).sum() == 0.0;
+}
+
+bool finite(const Data<double>& d) {
+  return finite(d.rotation) && finite(d.origin) && finite(d.mass_center) && finite(d.omega) &&
+         finite(d.mass_center_velocity) && finite(d.alpha) && finite(d.mass_center_acceleration);
+}
+
+}  // namespace
+
+int default_thread_count() { return std::max(1u, std::thread::hardware_concurrency()); }
+
+OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
+                           const OfflineEstimator& estimator, double max_gap,
+                           const FloatingBaseTrack* base, int threads)
+    : model_(model), rec_(recording), base_(base) {
+  for (int i = 0; i < std::max(1, threads); ++i)
+    workers_.emplace_back(model, recording, estimator, max_gap);
+  seconds_.assign(workers_.size(), 0.0);
+}
+
+int OfflineBatch::rows_per_block(size_t bytes) const {
+  const size_t row = sizeof(OfflineRow) +
+                     model_.bodies.size() * (sizeof(Mat3<double>) + 8 * sizeof(Vec3<double>)) +
+                     3 * model_.nq * sizeof(double);
+  const int floor = 4 * threads();
+  return std::max(floor, static_cast<int>(std::min<size_t>(512, bytes / row)));
+}
+
+void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) const {
+  out.stamp = rec_.stamp[r];
+  out.drop_reason.clear();
+  const auto drop = [&](const char* reason, const std::string& detail) {
+    out.drop_reason = reason;
+    out.drop_detail = "sample at t = " + std::to_string(out.stamp) + detail;
+  };
+  std::string problem = states.state_at(r, out.state);
+  if (!problem.empty()) return drop("too few samples for derivatives", ": " + problem);
+  problem = check_state(model_, out.state);  // NaN/Inf, |e| ~ 0, overflow
+  if (!problem.empty()) return drop("state rejected (mbk::check_state)", ": " + problem);
+  forward_kinematics(model_, out.state, out.data, Level::kAcceleration);
+  if (base_) {
+    if (!interpolate_base(base_->samples, base_->linear_acceleration, base_->angular_acceleration,
+                          out.stamp, out.base))
+      return drop("outside the base odometry's time span", "");
+    apply_floating_base(out.base, out.data);
+  }
+  if (!finite(out.data)) return drop("kinematics not finite", "");
+}
+
+double OfflineBatch::compute(int begin, int end, std::vector<OfflineRow>& rows) {
+  const int n = end - begin, t = threads();
+  // Worker i takes the i-th run of the block's rows: its rows keep increasing across blocks.
+  const auto work = [&](int i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int j = n * i / t; j < n * (i + 1) / t; ++j) compute_row(workers_[i], begin + j, rows[j]);
+    seconds_[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  std::vector<std::thread> helpers;
+  for (int i = 1; i < t; ++i) helpers.emplace_back(work, i);
+  work(0);
+  for (std::thread& h : helpers) h.join();
+  double sum = 0;
+  for (double s : seconds_) sum += s;
+  return sum;
+}
+
+}  // namespace mbk
