@@ -7,6 +7,7 @@
 #include <ros/node_handle.h>
 #include <ros/time.h>
 
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct OutputSetup {
   // The input's fate and what is missing (node_input.h), for /diagnostics.
   InputTally& tally;
   const CoordinateCoverage& coverage;
+  // Held while the node takes in and publishes a sample (in roscpp's network thread:
+  // immediate_callback_queue.h): an output's own callbacks (a service, a timer) lock it too.
+  std::mutex& mutex;
   // The tf frame of body k (1..N): ~frame_prefix + its name.
   std::string body_frame(int k) const { return params.frame_prefix + model.bodies[k].name; }
   // Of body k's lower body: R for L(k) = 0.
