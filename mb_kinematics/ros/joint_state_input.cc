@@ -158,29 +158,21 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
   return update;
 }
 
-// Adds the coordinate's new sample at t to its estimators. An estimator whose estimates go
-// non-finite or beyond what check_state accepts (an angle of 1e300 rad, say, is a valid angle
-// but no motion) restarts from this sample: false then.
+// Adds the coordinate's new sample at t to the estimator of its derivatives: that of the given
+// velocities when the message has them, else that of the positions; the other starts again (a
+// gap in its stream). An estimator whose estimates go non-finite or beyond what check_state
+// accepts (an angle of 1e300 rad, say, is a valid angle but no motion) restarts from this
+// sample: false then.
 bool JointStateInput::take(Coordinate& c, double t) {
   c.stamp = t;
-  bool sound_history = true;
-  c.position_history->add(t, c.position);
-  if (!sound(*c.position_history, 2)) {
-    c.position_history->reset();
-    c.position_history->add(t, c.position);
-    sound_history = false;
-  }
-  if (!c.velocity_given) {
-    c.velocity_history->reset();  // a gap in the given velocities: start again
-    return sound_history;
-  }
-  c.velocity_history->add(t, c.velocity);
-  if (!sound(*c.velocity_history, 1)) {
-    c.velocity_history->reset();
-    c.velocity_history->add(t, c.velocity);
-    sound_history = false;
-  }
-  return sound_history;
+  mbk::DerivativeEstimator& used = c.velocity_given ? *c.velocity_history : *c.position_history;
+  (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  const double value = c.velocity_given ? c.velocity : c.position;
+  used.add(t, value);
+  if (sound(used, c.velocity_given ? 1 : 2)) return true;
+  used.reset();
+  used.add(t, value);
+  return false;
 }
 
 std::string JointStateInput::convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
