@@ -2,7 +2,9 @@
 # The node's load against robot_state_publisher on the same stream (README "Speed", "The node"):
 # its own master (roscore -p PORT on 127.0.0.1, stopped at the end), mb_kinematics_node,
 # robot_state_publisher (_ignore_timestamp:=true: tf for every sample), demo_publisher at RATE
-# on MODEL, and load_monitor (subscribed to body_kinematics and /tf). After a warm-up it reads
+# on MODEL, and load_monitor (subscribed to body_kinematics and /tf; it counts the messages whose
+# stamps lie in the window, so that one delayed at the window's edges is not taken for one
+# lost, and ends 1 s after the window, for those still on their way). After a warm-up it reads
 # /proc/<pid>/stat of the node and of robot_state_publisher over a window, and prints both CPU
 # shares (% of one core), their ratio, the node's RSS and the message rates received; with /tf
 # listened also the CPU per sample each one published (us per /tf message: robot_state_publisher

@@ -42,6 +42,21 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
     coordinates_[i].velocity_history = prototype.clone();
   }
   for (const mbk::Mimic& m : model.mimics) coordinates_[m.coordinate].mimic = true;
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const mbk::Body& body = model.bodies[k];
+    if (mbk::uses_euler_parameters(body.joint.type))
+      euler_.push_back(body.q_index + mbk::first_euler_parameter(body.joint.type));
+  }
+}
+
+void JointStateInput::look_up(const std::vector<std::string>& names) {
+  if (names == names_) return;  // a full compare: cheaper than a hash lookup per name
+  names_ = names;
+  name_index_.resize(names.size());
+  for (size_t i = 0; i < names.size(); ++i) {
+    auto it = index_.find(names[i]);
+    name_index_[i] = it == index_.end() ? -1 : it->second;
+  }
 }
 
 std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update& update) {
@@ -52,16 +67,17 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
   if (!msg.velocity.empty() && msg.velocity.size() != n)
     return std::to_string(n) + " names but " + std::to_string(msg.velocity.size()) + " velocities";
   ++generation_;
+  look_up(msg.name);
   for (size_t i = 0; i < n; ++i) {
-    auto it = index_.find(msg.name[i]);
-    if (it == index_.end()) {
+    const int j = name_index_[i];
+    if (j < 0) {
       update.unknown.push_back(msg.name[i]);
       continue;
     }
     update.problem = InputProblem::kDuplicateName;
-    if (seen_[it->second] == generation_) return "joint '" + msg.name[i] + "' is named twice";
-    seen_[it->second] = generation_;
-    message_index_[it->second] = i;
+    if (seen_[j] == generation_) return "joint '" + msg.name[i] + "' is named twice";
+    seen_[j] = generation_;
+    message_index_[j] = i;
     update.problem = InputProblem::kNonFinite;
     if (!std::isfinite(msg.position[i]))
       return "joint '" + msg.name[i] + "': position is " + describe(msg.position[i]);
@@ -80,10 +96,10 @@ std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Up
   trial_.velocity.setZero();
   trial_.acceleration.setZero();
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    auto it = index_.find(msg.name[i]);
-    if (it == index_.end() || coordinates_[it->second].mimic) continue;
-    trial_.position[it->second] = msg.position[i];
-    if (!msg.velocity.empty()) trial_.velocity[it->second] = msg.velocity[i];
+    const int j = name_index_[i];
+    if (j < 0 || coordinates_[j].mimic) continue;
+    trial_.position[j] = msg.position[i];
+    if (!msg.velocity.empty()) trial_.velocity[j] = msg.velocity[i];
   }
   mbk::apply_mimics(model_, trial_);
   const std::string error = mbk::check_state(model_, trial_);
@@ -102,10 +118,7 @@ std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Up
 // continuous.
 int JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
   int flipped = 0;
-  for (int k = 1; k <= model_.body_count(); ++k) {
-    const mbk::Body& body = model_.bodies[k];
-    if (!mbk::uses_euler_parameters(body.joint.type)) continue;
-    const int e = body.q_index + mbk::first_euler_parameter(body.joint.type);
+  for (const int e : euler_) {
     double dot = 0;
     bool all = true;
     for (int i = e; i < e + 4; ++i) {
@@ -124,9 +137,9 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
   if (!update.error.empty()) return update;
   update.flipped = align_euler_signs(msg);
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    auto it = index_.find(msg.name[i]);
-    if (it == index_.end() || coordinates_[it->second].mimic) continue;  // mimics: computed
-    Coordinate& c = coordinates_[it->second];
+    const int j = name_index_[i];
+    if (j < 0 || coordinates_[j].mimic) continue;  // mimics: computed
+    Coordinate& c = coordinates_[j];
     if (c.has_value && t < c.stamp) {  // e.g. a bag looping: the old history means nothing
       c.position_history->reset();
       c.velocity_history->reset();
@@ -136,38 +149,30 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
       c.velocity_history->reset();
     }
     c.has_value = true;
-    c.position = sign_[it->second] * msg.position[i];
+    c.position = sign_[j] * msg.position[i];
     c.velocity_given = !msg.velocity.empty();
-    if (c.velocity_given) c.velocity = sign_[it->second] * msg.velocity[i];
+    if (c.velocity_given) c.velocity = sign_[j] * msg.velocity[i];
     if (!take(c, t)) update.estimator_reset.push_back(msg.name[i]);
     ++update.used;
   }
   return update;
 }
 
-// Adds the coordinate's new sample at t to its estimators. An estimator whose estimates go
-// non-finite or beyond what check_state accepts (an angle of 1e300 rad, say, is a valid angle
-// but no motion) restarts from this sample: false then.
+// Adds the coordinate's new sample at t to the estimator of its derivatives: that of the given
+// velocities when the message has them, else that of the positions; the other starts again (a
+// gap in its stream). An estimator whose estimates go non-finite or beyond what check_state
+// accepts (an angle of 1e300 rad, say, is a valid angle but no motion) restarts from this
+// sample: false then.
 bool JointStateInput::take(Coordinate& c, double t) {
   c.stamp = t;
-  bool sound_history = true;
-  c.position_history->add(t, c.position);
-  if (!sound(*c.position_history, 2)) {
-    c.position_history->reset();
-    c.position_history->add(t, c.position);
-    sound_history = false;
-  }
-  if (!c.velocity_given) {
-    c.velocity_history->reset();  // a gap in the given velocities: start again
-    return sound_history;
-  }
-  c.velocity_history->add(t, c.velocity);
-  if (!sound(*c.velocity_history, 1)) {
-    c.velocity_history->reset();
-    c.velocity_history->add(t, c.velocity);
-    sound_history = false;
-  }
-  return sound_history;
+  mbk::DerivativeEstimator& used = c.velocity_given ? *c.velocity_history : *c.position_history;
+  (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  const double value = c.velocity_given ? c.velocity : c.position;
+  used.add(t, value);
+  if (sound(used, c.velocity_given ? 1 : 2)) return true;
+  used.reset();
+  used.add(t, value);
+  return false;
 }
 
 std::string JointStateInput::convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,

@@ -94,6 +94,7 @@ class JointStateInput {
     double position = 0, velocity = 0, stamp = 0;
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
+  void look_up(const std::vector<std::string>& names);
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
   int align_euler_signs(const sensor_msgs::JointState& msg);
@@ -102,6 +103,11 @@ class JointStateInput {
   const mbk::Model& model_;
   double max_gap_;
   std::unordered_map<std::string, int> index_;
+  // The current message's names and their coordinates (-1: not in the model), looked up again
+  // only when a message's names differ from the previous one's (a publisher sends one list).
+  std::vector<std::string> names_;
+  std::vector<int> name_index_;
+  std::vector<int> euler_;  // the first coordinate of each joint with Euler parameters
   std::vector<Coordinate> coordinates_;
   std::vector<int> seen_;  // message generation that last named each coordinate (duplicates)
   std::vector<size_t> message_index_;        // where the current message names each coordinate

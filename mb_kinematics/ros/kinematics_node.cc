@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <mutex>
 #include <sstream>
 #include <string>
 
@@ -13,6 +14,24 @@
 
 namespace mbk_ros {
 namespace {
+
+// Every value of one quantity, over R and the bodies, finite: one scan of its array.
+template <typename M>
+bool finite(const std::vector<M>& v) {
+  static_assert(sizeof(M) == sizeof(double) * M::SizeAtCompileTime, "M: a packed fixed matrix");
+  return Eigen::Map<const Eigen::ArrayXd>(v.front().data(), v.size() * M::SizeAtCompileTime)
+      .allFinite();
+}
+
+bool finite(const mbk::Data<double>& d, mbk::Level level) {
+  bool ok = finite(d.rotation) && finite(d.origin) && finite(d.mass_center);
+  if (level != mbk::Level::kPose)
+    ok = ok && finite(d.omega) && finite(d.mass_center_velocity) && finite(d.origin_velocity);
+  if (level == mbk::Level::kAcceleration)
+    ok = ok && finite(d.alpha) && finite(d.mass_center_acceleration) &&
+         finite(d.origin_acceleration);
+  return ok;
+}
 
 bool finite(const mbk::Data<double>& d, int k, mbk::Level level) {
   bool ok = d.rotation[k].allFinite() && d.origin[k].allFinite() && d.mass_center[k].allFinite();
@@ -64,15 +83,23 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       input_(params_, params_.base_odometry.empty() ? "" : nh.resolveName(params_.base_odometry)),
       data_(input_.model()) {
   start(load_node_model(params_));
-  const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-  joint_states_sub_ = nh_.subscribe("joint_states", params_.queue_size,
-                                    &KinematicsNode::on_joint_states, this, hints);
-  accelerations_sub_ = nh_.subscribe("joint_accelerations", params_.queue_size,
-                                     &KinematicsNode::on_joint_accelerations, this, hints);
+  joint_states_sub_ = subscribe("joint_states", &KinematicsNode::on_joint_states);
+  accelerations_sub_ = subscribe("joint_accelerations", &KinematicsNode::on_joint_accelerations);
   if (!params_.base_odometry.empty())
-    odometry_sub_ = nh_.subscribe(params_.base_odometry, params_.queue_size,
-                                  &KinematicsNode::on_odometry, this, hints);
+    odometry_sub_ = subscribe(params_.base_odometry, &KinematicsNode::on_odometry);
   reload_service_ = pnh_.advertiseService("reload", &KinematicsNode::on_reload, this);
+}
+
+template <typename M>
+ros::Subscriber KinematicsNode::subscribe(
+    const std::string& topic, void (KinematicsNode::*callback)(const boost::shared_ptr<const M>&)) {
+  ros::SubscribeOptions options;
+  options.init<M>(
+      topic, params_.queue_size,
+      [this, callback](const boost::shared_ptr<const M>& msg) { (this->*callback)(msg); });
+  options.transport_hints = ros::TransportHints().tcpNoDelay();
+  options.callback_queue = &queue_;
+  return nh_.subscribe(options);
 }
 
 // Everything that depends on the model, made anew (at start and by ~reload); the outputs that
@@ -87,7 +114,14 @@ void KinematicsNode::start(const mbk::Model& loaded) {
 }
 
 OutputSetup KinematicsNode::setup() {
-  return {nh_, pnh_, params_, input_.model(), input_.frame(), input_.tally(), input_.coverage()};
+  return {nh_,
+          pnh_,
+          params_,
+          input_.model(),
+          input_.frame(),
+          input_.tally(),
+          input_.coverage(),
+          queue_.mutex()};
 }
 
 // The outputs in R, before those made at start: at start, or with ~base_odometry at its first
@@ -106,6 +140,7 @@ void KinematicsNode::make_outputs_in_r() {
 // lacks), leaves the running one in place (README, "~reload"). The services end first, the
 // topics once the new ones are advertised (`retired`), so that subscribers stay connected.
 bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  std::lock_guard<std::mutex> lock(queue_.mutex());
   const NodeParams running_params = params_;
   const mbk::Model running = input_.loaded();
   Outputs retired;
@@ -165,6 +200,7 @@ bool KinematicsNode::compute(mbk::Level level) {
   if (!needed) return true;
   const mbk::Model& model = input_.model();
   mbk::forward_kinematics(model, input_.state(), data_, level);
+  if (finite(data_, level)) return true;  // else the first body not finite is named
   for (int k = 1; k <= model.body_count(); ++k) {
     if (finite(data_, k, level)) continue;
     input_.tally().warn(InputProblem::kKinematicsNotFinite,

@@ -12,10 +12,12 @@
 #include <std_srvs/Trigger.h>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/ros/immediate_callback_queue.h"
 #include "mb_kinematics/ros/node_input.h"
 #include "mb_kinematics/ros/node_params.h"
 #include "mb_kinematics/ros/outputs/output.h"
@@ -32,6 +34,10 @@ class KinematicsNode {
  private:
   using Outputs = std::vector<std::unique_ptr<Output>>;
 
+  // An input subscription on queue_, with TCP_NODELAY.
+  template <typename M>
+  ros::Subscriber subscribe(const std::string& topic,
+                            void (KinematicsNode::*callback)(const boost::shared_ptr<const M>&));
   void on_joint_states(const sensor_msgs::JointStateConstPtr& msg);
   void on_joint_accelerations(const mb_kinematics_msgs::JointAccelerationsConstPtr& msg);
   void on_odometry(const nav_msgs::OdometryConstPtr& msg);
@@ -52,8 +58,9 @@ class KinematicsNode {
   NodeInput input_;
   mbk::Data<double> data_;  // of input_.model()
   Outputs outputs_;
-  std::vector<char> active_;  // per output: listened to for the current sample
-  PublishRate rate_;          // ~publish_frequency
+  std::vector<char> active_;      // per output: listened to for the current sample
+  PublishRate rate_;              // ~publish_frequency
+  ImmediateCallbackQueue queue_;  // the input's callbacks; the others lock its mutex
   ros::Subscriber joint_states_sub_, accelerations_sub_, odometry_sub_;
   ros::ServiceServer reload_service_;
 };

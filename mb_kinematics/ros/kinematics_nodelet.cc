@@ -13,7 +13,8 @@ namespace mbk_ros {
 
 class KinematicsNodelet : public nodelet::Nodelet {
  private:
-  // Callbacks run one at a time on the manager's single-threaded queue (getNodeHandle()).
+  // The input's callbacks run as messages arrive (immediate_callback_queue.h), the others on the
+  // manager's single-threaded queue (getNodeHandle()); all of them one at a time.
   void onInit() override {
     try {
       node_ = std::make_unique<KinematicsNode>(getNodeHandle(), getPrivateNodeHandle());

@@ -88,6 +88,28 @@ TEST_F(JointStateInputTest, MergesPartialMessages) {
   EXPECT_EQ(state_.position[model_.coordinate_index("slider_joint")], -0.5);
 }
 
+// The names are looked up again when they change (the input keeps the previous message's
+// lookup): the same names in another order, then one of them replaced by an unknown one.
+TEST_F(JointStateInputTest, NamesInAnotherOrderOrReplacedAreLookedUpAgain) {
+  sensor_msgs::JointState m = msg(kAll, 0);
+  for (size_t i = 0; i < kAll.size(); ++i) m.position[i] = 0.1 * i;
+  ASSERT_EQ(input_.add(m, 1).error, "");
+  std::reverse(m.name.begin(), m.name.end());
+  ASSERT_EQ(input_.add(m, 2).error, "");
+  input_.fill(Level::kPose, nullptr, state_);
+  for (size_t i = 0; i < kAll.size(); ++i)
+    EXPECT_DOUBLE_EQ(state_.position[model_.coordinate_index(kAll[i])], 0.1 * (kAll.size() - 1 - i))
+        << kAll[i];
+  m.name[0] = "gripper";  // was arm2_joint: it keeps its value
+  m.position.assign(kAll.size(), 0.3);
+  const auto update = input_.add(m, 3);
+  EXPECT_EQ(update.unknown, std::vector<std::string>({"gripper"}));
+  EXPECT_EQ(update.used, static_cast<int>(kAll.size()) - 1);
+  input_.fill(Level::kPose, nullptr, state_);
+  EXPECT_DOUBLE_EQ(state_.position[model_.coordinate_index("arm2_joint")], 0.0);
+  EXPECT_DOUBLE_EQ(state_.position[model_.coordinate_index("arm1_joint")], 0.3);
+}
+
 // q = t^2 sampled at irregular times: the 3-point estimates are exact.
 TEST_F(JointStateInputTest, EstimatesDerivativesAndRestartsOnBackwardsStamps) {
   const double times[] = {10.0, 10.03, 10.04};

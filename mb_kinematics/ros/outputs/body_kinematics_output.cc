@@ -8,8 +8,8 @@
 namespace mbk_ros {
 
 BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
-    : publisher_(
-          setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics", 10)),
+    : publisher_(setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics",
+                                                                             kSampleQueueSize)),
       shown_(setup.model.body_count() + 1, 1) {
   init_body_kinematics(setup.model, setup.frame, msg_.next());
 }

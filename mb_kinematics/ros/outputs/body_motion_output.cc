@@ -35,9 +35,10 @@ BodyMotionOutput::BodyMotionOutput(const OutputSetup& setup, Kind kind)
         std::find(only.begin(), only.end(), setup.model.bodies[k].name) == only.end())
       continue;
     const std::string base = "body/" + body_topic_name(setup.model.bodies[k].name);
-    publishers_[k] = kind == Kind::kTwist
-                         ? setup.nh.advertise<geometry_msgs::TwistStamped>(base + "/twist", 10)
-                         : setup.nh.advertise<geometry_msgs::AccelStamped>(base + "/accel", 10);
+    publishers_[k] =
+        kind == Kind::kTwist
+            ? setup.nh.advertise<geometry_msgs::TwistStamped>(base + "/twist", kSampleQueueSize)
+            : setup.nh.advertise<geometry_msgs::AccelStamped>(base + "/accel", kSampleQueueSize);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "mb_kinematics/ros/outputs/diagnostics_output.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "mb_kinematics/core/error_indicators.h"
 
@@ -40,7 +41,10 @@ DiagnosticsOutput::DiagnosticsOutput(const OutputSetup& setup)
   updater_.setHardwareID("none");
   updater_.add("Joint state input", this, &DiagnosticsOutput::diagnose);
   timer_ = setup.nh.createTimer(ros::Duration(1.0),
-                                [this](const ros::TimerEvent&) { updater_.update(); });
+                                [this, &mutex = setup.mutex](const ros::TimerEvent&) {
+                                  std::lock_guard<std::mutex> lock(mutex);
+                                  updater_.update();
+                                });
 }
 
 void DiagnosticsOutput::publish(const ros::Time& stamp, const Sample& sample) {

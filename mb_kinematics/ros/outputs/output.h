@@ -7,6 +7,8 @@
 #include <ros/node_handle.h>
 #include <ros/time.h>
 
+#include <cstdint>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,10 @@
 
 namespace mbk_ros {
 
+// The publisher queue of a topic published per sample: a consumer that stalls for up to 0.1 s at
+// 1 kHz misses nothing (as tf2_ros's /tf; README "The node's load").
+constexpr uint32_t kSampleQueueSize = 100;
+
 // What an output may use when it is made: it advertises its topics here.
 struct OutputSetup {
   ros::NodeHandle& nh;
@@ -29,6 +35,9 @@ struct OutputSetup {
   // The input's fate and what is missing (node_input.h), for /diagnostics.
   InputTally& tally;
   const CoordinateCoverage& coverage;
+  // Held while the node takes in and publishes a sample (in roscpp's network thread:
+  // immediate_callback_queue.h): an output's own callbacks (a service, a timer) lock it too.
+  std::mutex& mutex;
   // The tf frame of body k (1..N): ~frame_prefix + its name.
   std::string body_frame(int k) const { return params.frame_prefix + model.bodies[k].name; }
   // Of body k's lower body: R for L(k) = 0.

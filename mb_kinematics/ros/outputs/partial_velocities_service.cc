@@ -34,6 +34,7 @@ bool fill_body(const mbk::Model& model, const mbk::PartialVelocities<double>& pv
 
 PartialVelocitiesService::PartialVelocitiesService(const OutputSetup& setup)
     : model_(setup.model),
+      mutex_(setup.mutex),
       frame_(setup.frame),
       latest_(setup.model),
       published_(setup.model.body_count() + 1, 1) {
@@ -53,6 +54,7 @@ void PartialVelocitiesService::publish(const ros::Time& stamp, const Sample& sam
 bool PartialVelocitiesService::answer(
     mb_kinematics_msgs::GetPartialVelocities::Request& request,
     mb_kinematics_msgs::GetPartialVelocities::Response& response) {
+  std::lock_guard<std::mutex> lock(mutex_);
   response.header.stamp = stamp_;
   response.header.frame_id = frame_;
   if (!has_sample_) {

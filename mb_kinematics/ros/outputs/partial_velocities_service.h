@@ -8,6 +8,8 @@
 #include <mb_kinematics_msgs/GetPartialVelocities.h>
 #include <ros/service_server.h>
 
+#include <mutex>
+#include <string>
 #include <vector>
 
 #include "mb_kinematics/ros/outputs/output.h"
@@ -29,6 +31,7 @@ class PartialVelocitiesService : public Output {
               mb_kinematics_msgs::GetPartialVelocities::Response& response);
 
   const mbk::Model& model_;
+  std::mutex& mutex_;  // the node's (OutputSetup::mutex), held in answer()
   std::string frame_;
   mbk::JointState<double> latest_;
   std::vector<char> published_;  // per body, of the latest sample (~missing_coordinates skip)

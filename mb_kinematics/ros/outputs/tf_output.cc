@@ -17,7 +17,7 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 
 TfOutput::TfOutput(const OutputSetup& setup)
     : shown_(setup.model.body_count() + 1, 0),
-      publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", 100)) {
+      publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", kSampleQueueSize)) {
   const mbk::Model& model = setup.model;
   // With ~base_odometry, body 1 is the base: R -> base comes from the odometry's source.
   const bool base_tf = setup.params.base_odometry.empty() || setup.params.publish_base_tf;
