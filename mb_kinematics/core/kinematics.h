@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "mb_kinematics/core/body_step.h"
 #include "mb_kinematics/core/data.h"
@@ -21,6 +22,14 @@
 #define MBK_FLATTEN __attribute__((flatten))
 #else
 #define MBK_FLATTEN
+#endif
+
+// On x86-64 CPUs with AVX2, the update in double runs as code compiled for them, chosen at run
+// time (the build stays portable): the same SSE2 operations in VEX form, whose three operands
+// spare the register copies of the two-operand form (about a fifth of the instructions). Without
+// FMA, so the same roundings: the results are the same bit for bit.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__) && !defined(__SANITIZE_ADDRESS__)
+#define MBK_AVX2_DISPATCH 1
 #endif
 
 namespace mbk {
@@ -585,6 +594,29 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
   }
 }
 
+#ifdef MBK_AVX2_DISPATCH
+template <Level L>
+__attribute__((target("avx2"))) MBK_FLATTEN void forward_kinematics_avx2(
+    const Model& model, const JointState<double>& state, Data<double>& data) {
+  forward_kinematics_at<L>(model, state, data);
+}
+
+inline bool has_avx2() {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+}
+#endif
+
+// forward_kinematics_at, for AVX2 where it pays (MBK_AVX2_DISPATCH).
+template <Level L, typename S>
+void forward_kinematics_on_cpu(const Model& model, const JointState<S>& state, Data<S>& data) {
+#ifdef MBK_AVX2_DISPATCH
+  if constexpr (std::is_same_v<S, double>)
+    if (has_avx2()) return forward_kinematics_avx2<L>(model, state, data);
+#endif
+  forward_kinematics_at<L>(model, state, data);
+}
+
 }  // namespace detail
 
 // Computes, for every body k = 1..N in increasing order (so L(k) is done first), its
@@ -595,11 +627,11 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
   assert(sized_for(data, model) && "forward_kinematics: Data made for another model");
   switch (level) {
     case Level::kPose:
-      return detail::forward_kinematics_at<Level::kPose>(model, state, data);
+      return detail::forward_kinematics_on_cpu<Level::kPose>(model, state, data);
     case Level::kVelocity:
-      return detail::forward_kinematics_at<Level::kVelocity>(model, state, data);
+      return detail::forward_kinematics_on_cpu<Level::kVelocity>(model, state, data);
     case Level::kAcceleration:
-      return detail::forward_kinematics_at<Level::kAcceleration>(model, state, data);
+      return detail::forward_kinematics_on_cpu<Level::kAcceleration>(model, state, data);
   }
 }
 
