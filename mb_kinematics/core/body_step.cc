@@ -65,6 +65,31 @@ void add_planar_matrices(const Joint& joint, std::vector<Mat3<double>>& matrices
   matrices.push_back(plane);
 }
 
+// The angles a kernel turns by, as offsets from the joint's first coordinate.
+std::vector<int> angle_offsets(JointKernel kernel) {
+  switch (kernel) {
+    case JointKernel::kRevoluteX:
+    case JointKernel::kRevoluteY:
+    case JointKernel::kRevoluteZ:
+    case JointKernel::kRevolute:
+      return {0};
+    case JointKernel::kBall123:
+      return {0, 1, 2};
+    case JointKernel::kFree123:
+      return {3, 4, 5};
+    case JointKernel::kPlanar:
+      return {2};
+    case JointKernel::kFixed:
+    case JointKernel::kFixedRotated:
+    case JointKernel::kPrismatic:
+    case JointKernel::kPrismaticRotated:
+    case JointKernel::kBallEuler:
+    case JointKernel::kFreeEuler:
+      break;
+  }
+  return {};
+}
+
 bool is_ball_or_free(JointKernel kernel) {
   return kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
          kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
@@ -88,6 +113,10 @@ BodySteps make_body_steps(const Model& model) {
     step.offset_shape = shape_of(step.offset);
     step.mass_center_shape = shape_of(step.mass_center);
     step.axis = body.joint.rotation * body.joint.axis;
+    for (int offset : angle_offsets(step.kernel)) {
+      if (step.angle < 0) step.angle = static_cast<int>(out.angles.size());
+      out.angles.push_back(body.q_index + offset);
+    }
     const bool rotated = body.joint.rotation != Mat3<double>::Identity();
     if (step.kernel == JointKernel::kFixedRotated ||
         step.kernel == JointKernel::kPrismaticRotated ||

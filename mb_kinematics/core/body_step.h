@@ -49,6 +49,7 @@ struct BodyStep {
   // This body's first constant in BodySteps::matrices: C_k (fixed, prismatic, ball and free
   // joints with C_k != I), P0 P1 P2 (revolute), P0 P1 P2 [C u1, C u2, C a] (planar); else -1.
   int matrices = -1;
+  int angle = -1;  // its first angle in BodySteps::angles (revolute, 1-2-3 and planar joints)
   Vec3<double> offset = Vec3<double>::Zero();       // q_k, in Bj
   Vec3<double> mass_center = Vec3<double>::Zero();  // r_k, in Bk
   Vec3<double> axis = Vec3<double>::Zero();         // C_k a, in Bj: w_k / q' or s_k' / q'
@@ -57,6 +58,9 @@ struct BodyStep {
 struct BodySteps {
   std::vector<BodyStep> steps;  // steps[k] for body Bk; steps[0] unused
   std::vector<Mat3<double>> matrices;
+  // The coordinate of every angle the kernels turn by, body by body: forward_kinematics takes
+  // their sines and cosines together (Data::sine, Data::cosine) before the bodies.
+  std::vector<int> angles;
 };
 
 // The steps of a model whose bodies, joints and indices are final (finalize_model calls it).

@@ -50,13 +50,17 @@ Mat3<S> rotation_123(S alpha, S beta, S gamma) {
 }
 
 // Rotation of Euler parameters e = (e1, e2, e3, e4), e4 scalar, divided by |e|^2 so that an
-// unnormalized e gives the rotation of e / |e|.
+// unnormalized e gives the rotation of e / |e|: (e4^2 - |v|^2) I + 2 v v^T + 2 e4 [v]x, entry by
+// entry without the zero terms.
 template <typename S>
 Mat3<S> rotation_euler(const S* e) {
-  const Vec3<S> v(e[0], e[1], e[2]);
+  const Vec3<S> v(e[0], e[1], e[2]), w = S(2) * v;  // w = 2 v
   const S n2 = v.squaredNorm() + e[3] * e[3];
-  Mat3<S> r = (e[3] * e[3] - v.squaredNorm()) * Mat3<S>::Identity() + S(2) * v * v.transpose() +
-              S(2) * e[3] * skew(v);
+  const S d = e[3] * e[3] - v.squaredNorm(), f = S(2) * e[3];
+  Mat3<S> r;
+  r << d + w.x() * v.x(), w.x() * v.y() - f * v.z(), w.x() * v.z() + f * v.y(),  //
+      w.y() * v.x() + f * v.z(), d + w.y() * v.y(), w.y() * v.z() - f * v.x(),   //
+      w.z() * v.x() - f * v.y(), w.z() * v.y() + f * v.x(), d + w.z() * v.z();
   return r / n2;
 }
 

@@ -53,6 +53,7 @@ struct DataView {
   Mat3<S>* rotation;
   Vec3<S>*origin, *mass_center, *omega, *alpha, *mass_center_velocity, *mass_center_acceleration,
       *origin_velocity, *origin_acceleration;
+  const S *sine, *cosine;  // of BodySteps::angles (angle_sines)
   explicit DataView(Data<S>& d)
       : rotation(d.rotation.data()),
         origin(d.origin.data()),
@@ -62,7 +63,9 @@ struct DataView {
         mass_center_velocity(d.mass_center_velocity.data()),
         mass_center_acceleration(d.mass_center_acceleration.data()),
         origin_velocity(d.origin_velocity.data()),
-        origin_acceleration(d.origin_acceleration.data()) {}
+        origin_acceleration(d.origin_acceleration.data()),
+        sine(d.sine.data()),
+        cosine(d.cosine.data()) {}
 };
 
 // q, y and y' of a JointState (doc/method.md 8).
@@ -72,6 +75,16 @@ struct StateView {
   explicit StateView(const JointState<S>& s)
       : q(s.position.data()), y(s.velocity.data()), yd(s.acceleration.data()) {}
 };
+
+// The sines and cosines of every angle the kernels turn by (BodySteps::angles), together in one
+// loop (sin_cos over an array, bit for bit the one-angle sin_cos).
+template <typename S>
+void angle_sines(const Model& model, const S* q, Data<S>& data) {
+  const std::vector<int>& angles = model.steps.angles;
+  const int n = static_cast<int>(angles.size());
+  for (int i = 0; i < n; ++i) data.angle[i] = q[angles[i]];
+  sin_cos(data.angle.data(), n, data.sine.data(), data.cosine.data());
+}
 
 // m v for a constant v of the given shape (body_step.h): bit for bit m * v, whose zero terms
 // change no sum.
@@ -188,30 +201,27 @@ void turn_columns(const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
 
 // Revolute joint about coordinate axis I, C_k = I.
 template <int I, typename S>
-void axis_pose(const BodyStep& b, int k, const S* q, const DataView<S>& data, Vec3<S>& d) {
+void axis_pose(const BodyStep& b, int k, const DataView<S>& data, Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
-  S c, s;
-  sin_cos(q[b.q_index], s, c);
-  turn_columns<I>(s0j, c, s, data.rotation[k]);
+  turn_columns<I>(s0j, data.cosine[b.angle], data.sine[b.angle], data.rotation[k]);
   d = times_constant(s0j, b.offset, b.offset_shape);
 }
 
-// S0K = S0J SJK for a turn by angle about any axis a with any C_k: SJK = P0 + cos q P1 +
-// sin q P2 (p: P0 P1 P2, body_step.cc).
+// S0K = S0J SJK for a turn (cos c, sin s) about any axis a with any C_k: SJK = P0 + c P1 +
+// s P2 (p: P0 P1 P2, body_step.cc).
 template <typename S>
-void folded_turn(const Mat3<double>* p, const Mat3<S>& s0j, S angle, Mat3<S>& s0k) {
-  S c, s;
-  sin_cos(angle, s, c);
+void folded_turn(const Mat3<double>* p, const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
   const Mat3<S> sjk = p[0].cast<S>() + c * p[1].cast<S>() + s * p[2].cast<S>();
   s0k = s0j * sjk;
 }
 
 // Revolute joint about any axis a with any C_k.
 template <typename S>
-void revolute_pose(const Model& model, const BodyStep& b, int k, const S* q,
-                   const DataView<S>& data, Vec3<S>& d) {
+void revolute_pose(const Model& model, const BodyStep& b, int k, const DataView<S>& data,
+                   Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
-  folded_turn(model.steps.matrices.data() + b.matrices, s0j, q[b.q_index], data.rotation[k]);
+  folded_turn(model.steps.matrices.data() + b.matrices, s0j, data.cosine[b.angle],
+              data.sine[b.angle], data.rotation[k]);
   d = times_constant(s0j, b.offset, b.offset_shape);
 }
 
@@ -223,7 +233,7 @@ void planar_pose(const Model& model, const BodyStep& b, int k, const S* q, const
   const Mat3<double>* p = model.steps.matrices.data() + b.matrices;
   const Mat3<S>& s0j = data.rotation[b.lower];
   const S* x = q + b.q_index;
-  folded_turn(p, s0j, x[2], data.rotation[k]);
+  folded_turn(p, s0j, data.cosine[b.angle], data.sine[b.angle], data.rotation[k]);
   d = s0j * (b.offset.cast<S>() + p[3].col(0).cast<S>() * x[0] + p[3].col(1).cast<S>() * x[1]);
 }
 
@@ -236,15 +246,13 @@ struct BallFrame {
 };
 
 // 1-2-3 angles (eq. 4.4.9-4.4.12): S0K = M A(alpha) B(beta) C(gamma), one column turn per angle.
+// c, s: the angles' cosines and sines.
 template <typename S>
-void angles_123_pose(const S* q, BallFrame<S>& f, Mat3<S>& s0k) {
-  S c, s;
-  sin_cos(q[0], s, c);
-  turn_columns<0>(f.m, c, s, f.ma);
-  sin_cos(q[1], s, f.cos_beta);
-  turn_columns<1>(f.ma, f.cos_beta, s, f.mab);
-  sin_cos(q[2], s, c);
-  turn_columns<2>(f.mab, c, s, s0k);
+void angles_123_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
+  turn_columns<0>(f.m, c[0], s[0], f.ma);
+  f.cos_beta = c[1];
+  turn_columns<1>(f.ma, c[1], s[1], f.mab);
+  turn_columns<2>(f.mab, c[2], s[2], s0k);
 }
 
 template <JointKernel K>
@@ -263,7 +271,7 @@ void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const D
   const S* angles = kFreeJoint<K> ? x + 3 : x;
   f.m = b.matrices < 0 ? s0j : Mat3<S>(s0j * model.steps.matrices[b.matrices].cast<S>());
   if constexpr (kAngles123<K>)
-    angles_123_pose(angles, f, data.rotation[k]);
+    angles_123_pose(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
   else
     data.rotation[k] = f.m * rotation_euler(angles);
   d = times_constant(s0j, b.offset, b.offset_shape);
@@ -320,16 +328,16 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
   } else {
     switch (b.kernel) {
       case JointKernel::kRevoluteX:
-        axis_pose<0>(b, k, q, data, d);
+        axis_pose<0>(b, k, data, d);
         break;
       case JointKernel::kRevoluteY:
-        axis_pose<1>(b, k, q, data, d);
+        axis_pose<1>(b, k, data, d);
         break;
       case JointKernel::kRevoluteZ:
-        axis_pose<2>(b, k, q, data, d);
+        axis_pose<2>(b, k, data, d);
         break;
       case JointKernel::kRevolute:
-        revolute_pose(model, b, k, q, data, d);
+        revolute_pose(model, b, k, data, d);
         break;
       case JointKernel::kPrismatic:
         rigid_pose<false, true>(model, b, k, q, data, d);
@@ -372,7 +380,7 @@ template <Level L, int I, typename S>
 void revolute_axis_step(const BodyStep& b, int k, const StateView<S>& state,
                         const DataView<S>& data) {
   JointTerms<S> t;
-  axis_pose<I>(b, k, state.q, data, t.d);
+  axis_pose<I>(b, k, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.y[b.v_index];
   if constexpr (L == Level::kAcceleration) t.wd = s0j.col(I) * state.yd[b.v_index];
@@ -384,7 +392,7 @@ template <Level L, typename S>
 void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                    const DataView<S>& data) {
   JointTerms<S> t;
-  revolute_pose(model, b, k, state.q, data, t.d);
+  revolute_pose(model, b, k, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
     t.w = u * state.y[b.v_index];
@@ -536,6 +544,7 @@ template <Level L, typename S>
 MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& joint_state,
                                        Data<S>& all) {
   const StateView<S> state(joint_state);
+  angle_sines(model, state.q, all);
   const DataView<S> data(all);
   const int n = model.body_count();
   const BodyStep* steps = model.steps.steps.data();

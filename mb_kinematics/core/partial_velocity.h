@@ -61,6 +61,7 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
   const bool accelerations = level == Level::kAcceleration;
   const S* y = state.velocity.data();
   const S* yd = state.acceleration.data();
+  detail::angle_sines(model, state.position.data(), data);  // for pose_step
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     const int j = body.lower;
