@@ -1,4 +1,5 @@
-// The sine and cosine of one angle together (one reduction for both), inline. For double:
+// The sine and cosine of one angle together (one reduction for both), inline, and of an array of
+// angles in one loop that vectorizes. For double:
 // Cody-Waite reduction by pi/2 (for |x| < 2^19 pi/2), then fdlibm's kernels on [-pi/4, pi/4]
 // with the reduction's tail (error below 1 ulp); larger or non-finite angles, and every other
 // scalar, take std::sin and std::cos.
