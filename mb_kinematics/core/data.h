@@ -43,7 +43,8 @@ struct Data {
 template <typename S>
 bool sized_for(const Data<S>& data, const Model& model) {
   return data.rotation.size() == model.bodies.size() &&
-         data.mass_center_acceleration.size() == model.bodies.size();
+         data.mass_center_acceleration.size() == model.bodies.size() &&
+         data.sine.size() == model.steps.angles.size();
 }
 
 }  // namespace mbk
