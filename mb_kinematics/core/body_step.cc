@@ -1,5 +1,6 @@
 #include "mb_kinematics/core/body_step.h"
 
+#include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/model.h"
 
 namespace mbk {
@@ -24,13 +25,17 @@ JointKernel kernel_of(const Joint& joint) {
     case JointType::kPrismatic:
       return rotated ? JointKernel::kPrismaticRotated : JointKernel::kPrismatic;
     case JointType::kBall123:
+      return JointKernel::kBall123;
     case JointType::kBallEuler:
+      return JointKernel::kBallEuler;
     case JointType::kFree123:
+      return JointKernel::kFree123;
     case JointType::kFreeEuler:
+      return JointKernel::kFreeEuler;
     case JointType::kPlanar:
-      return JointKernel::kGeneric;
+      return JointKernel::kPlanar;
   }
-  return JointKernel::kGeneric;  // not reached: every JointType is a case above
+  return JointKernel::kFixed;  // not reached: every JointType is a case above
 }
 
 VectorShape shape_of(const Vec3<double>& v) {
@@ -47,6 +52,47 @@ void add_revolute_matrices(const Joint& joint, std::vector<Mat3<double>>& matric
   matrices.push_back(c * aat);
   matrices.push_back(c * (Mat3<double>::Identity() - aat));
   matrices.push_back(c * skew(joint.axis));
+}
+
+// A planar joint's P0 P1 P2 about its normal a, then [C u1, C u2, C a]: its plane's axes and
+// normal in Bj (u1, u2 as joint_motion takes them).
+void add_planar_matrices(const Joint& joint, std::vector<Mat3<double>>& matrices) {
+  add_revolute_matrices(joint, matrices);
+  Vec3<double> u1, u2;
+  detail::plane_basis(joint.axis, u1, u2);
+  Mat3<double> plane;  // each column as joint_motion carries it into Bj (bit for bit)
+  plane << joint.rotation * u1, joint.rotation * u2, joint.rotation * joint.axis;
+  matrices.push_back(plane);
+}
+
+// The angles a kernel turns by, as offsets from the joint's first coordinate.
+std::vector<int> angle_offsets(JointKernel kernel) {
+  switch (kernel) {
+    case JointKernel::kRevoluteX:
+    case JointKernel::kRevoluteY:
+    case JointKernel::kRevoluteZ:
+    case JointKernel::kRevolute:
+      return {0};
+    case JointKernel::kBall123:
+      return {0, 1, 2};
+    case JointKernel::kFree123:
+      return {3, 4, 5};
+    case JointKernel::kPlanar:
+      return {2};
+    case JointKernel::kFixed:
+    case JointKernel::kFixedRotated:
+    case JointKernel::kPrismatic:
+    case JointKernel::kPrismaticRotated:
+    case JointKernel::kBallEuler:
+    case JointKernel::kFreeEuler:
+      break;
+  }
+  return {};
+}
+
+bool is_ball_or_free(JointKernel kernel) {
+  return kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
+         kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
 }
 
 }  // namespace
@@ -67,13 +113,22 @@ BodySteps make_body_steps(const Model& model) {
     step.offset_shape = shape_of(step.offset);
     step.mass_center_shape = shape_of(step.mass_center);
     step.axis = body.joint.rotation * body.joint.axis;
+    for (int offset : angle_offsets(step.kernel)) {
+      if (step.angle < 0) step.angle = static_cast<int>(out.angles.size());
+      out.angles.push_back(body.q_index + offset);
+    }
+    const bool rotated = body.joint.rotation != Mat3<double>::Identity();
     if (step.kernel == JointKernel::kFixedRotated ||
-        step.kernel == JointKernel::kPrismaticRotated) {
+        step.kernel == JointKernel::kPrismaticRotated ||
+        (is_ball_or_free(step.kernel) && rotated)) {
       step.matrices = static_cast<int>(out.matrices.size());
       out.matrices.push_back(body.joint.rotation);
     } else if (step.kernel == JointKernel::kRevolute) {
       step.matrices = static_cast<int>(out.matrices.size());
       add_revolute_matrices(body.joint, out.matrices);
+    } else if (step.kernel == JointKernel::kPlanar) {
+      step.matrices = static_cast<int>(out.matrices.size());
+      add_planar_matrices(body.joint, out.matrices);
     }
   }
   return out;

@@ -27,7 +27,11 @@ enum class JointKernel : std::uint8_t {
   kRevolute,          // any axis a, C_k: SJK = C_k R(a, q) = P0 + cos q P1 + sin q P2
   kPrismatic,         // C_k = I: SJK = I, s_k = a q
   kPrismaticRotated,  // SJK = C_k, s_k = (C_k a) q
-  kGeneric,           // ball, free and planar joints: joint_motion()
+  kBall123,           // SJK = C_k A(alpha) B(beta) C(gamma): one column turn per angle
+  kBallEuler,         // SJK = C_k R(e), Euler parameters
+  kFree123,           // s_k = C_k (x, y, z), then kBall123
+  kFreeEuler,         // s_k = C_k (x, y, z), then kBallEuler
+  kPlanar,            // SJK = P0 + cos q P1 + sin q P2 about the normal, s_k = x C u1 + y C u2
 };
 
 // Which entries of a constant vector (q_k, r_k) are nonzero, so that S0J q_k takes a column of
@@ -35,14 +39,17 @@ enum class JointKernel : std::uint8_t {
 enum class VectorShape : std::uint8_t { kZero, kX, kY, kZ, kDense };
 
 struct BodyStep {
-  JointKernel kernel = JointKernel::kGeneric;
+  JointKernel kernel = JointKernel::kFixed;
   bool reorthonormalize = false;                   // depth is a multiple of kReorthonormalizeEvery
   VectorShape offset_shape = VectorShape::kDense;  // of offset
   VectorShape mass_center_shape = VectorShape::kDense;  // of mass_center
   int lower = 0;                                        // L(k)
   int q_index = 0;
   int v_index = 0;
-  int matrices = -1;  // this body's first constant in BodySteps::matrices (C_k, or P0 P1 P2)
+  // This body's first constant in BodySteps::matrices: C_k (fixed, prismatic, ball and free
+  // joints with C_k != I), P0 P1 P2 (revolute), P0 P1 P2 [C u1, C u2, C a] (planar); else -1.
+  int matrices = -1;
+  int angle = -1;  // its first angle in BodySteps::angles (revolute, 1-2-3 and planar joints)
   Vec3<double> offset = Vec3<double>::Zero();       // q_k, in Bj
   Vec3<double> mass_center = Vec3<double>::Zero();  // r_k, in Bk
   Vec3<double> axis = Vec3<double>::Zero();         // C_k a, in Bj: w_k / q' or s_k' / q'
@@ -51,6 +58,9 @@ struct BodyStep {
 struct BodySteps {
   std::vector<BodyStep> steps;  // steps[k] for body Bk; steps[0] unused
   std::vector<Mat3<double>> matrices;
+  // The coordinate of every angle the kernels turn by, body by body: forward_kinematics takes
+  // their sines and cosines together (Data::sine, Data::cosine) before the bodies.
+  std::vector<int> angles;
 };
 
 // The steps of a model whose bodies, joints and indices are final (finalize_model calls it).

@@ -24,6 +24,8 @@ struct Data {
   std::vector<Vec3<S>> mass_center_acceleration;  // a_k: acceleration of G_k
   std::vector<Vec3<S>> origin_velocity;           // velocity of O_k
   std::vector<Vec3<S>> origin_acceleration;       // acceleration of O_k
+  // forward_kinematics' workspace: the angles of BodySteps::angles, their sines and cosines.
+  std::vector<S> angle, sine, cosine;
 
   explicit Data(const Model& model) {
     const size_t n = model.bodies.size();
@@ -31,6 +33,7 @@ struct Data {
     for (auto* v : {&origin, &mass_center, &omega, &alpha, &mass_center_velocity,
                     &mass_center_acceleration, &origin_velocity, &origin_acceleration})
       v->assign(n, Vec3<S>::Zero());
+    for (auto* v : {&angle, &sine, &cosine}) v->assign(model.steps.angles.size(), S(0));
   }
 };
 
@@ -40,7 +43,8 @@ struct Data {
 template <typename S>
 bool sized_for(const Data<S>& data, const Model& model) {
   return data.rotation.size() == model.bodies.size() &&
-         data.mass_center_acceleration.size() == model.bodies.size();
+         data.mass_center_acceleration.size() == model.bodies.size() &&
+         data.sine.size() == model.steps.angles.size();
 }
 
 }  // namespace mbk

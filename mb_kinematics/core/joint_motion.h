@@ -50,13 +50,17 @@ Mat3<S> rotation_123(S alpha, S beta, S gamma) {
 }
 
 // Rotation of Euler parameters e = (e1, e2, e3, e4), e4 scalar, divided by |e|^2 so that an
-// unnormalized e gives the rotation of e / |e|.
+// unnormalized e gives the rotation of e / |e|: (e4^2 - |v|^2) I + 2 v v^T + 2 e4 [v]x, entry by
+// entry without the zero terms.
 template <typename S>
 Mat3<S> rotation_euler(const S* e) {
-  const Vec3<S> v(e[0], e[1], e[2]);
+  const Vec3<S> v(e[0], e[1], e[2]), w = S(2) * v;  // w = 2 v
   const S n2 = v.squaredNorm() + e[3] * e[3];
-  Mat3<S> r = (e[3] * e[3] - v.squaredNorm()) * Mat3<S>::Identity() + S(2) * v * v.transpose() +
-              S(2) * e[3] * skew(v);
+  const S d = e[3] * e[3] - v.squaredNorm(), f = S(2) * e[3];
+  Mat3<S> r;
+  r << d + w.x() * v.x(), w.x() * v.y() - f * v.z(), w.x() * v.z() + f * v.y(),  //
+      w.y() * v.x() + f * v.z(), d + w.y() * v.y(), w.y() * v.z() - f * v.x(),   //
+      w.z() * v.x() - f * v.y(), w.z() * v.y() + f * v.x(), d + w.z() * v.z();
   return r / n2;
 }
 
@@ -122,96 +126,27 @@ void plane_basis(const Vec3<S>& normal, Vec3<S>& u1, Vec3<S>& u2) {
   u1 = u2.cross(normal);
 }
 
-}  // namespace detail
-
-// A ball, free or planar joint's motion in its own frame (before C_k) with its speeds summed, for
-// forward_kinematics: R_motion, s, and the sums over joint_motion's columns in closed form,
-// w = sum angular[c] y_c, wd = sum (angular[c] y_c' + angular_dot[c] y_c), sd = sum linear[c] y_c,
-// sdd = sum linear[c] y_c'. R_motion and s are joint_motion's, bit for bit.
+// Euler parameters e = (v, e4), in the joint frame: w = 2 (e4 v' - e4' v + v x v') / |e|^2 and
+// its derivative w' = 2 (e4 v'' - e4'' v + v x v'') / |e|^2 - (|e|^2)' / |e|^2 w (the v' terms
+// cancel), with coordinate-derivative speeds; w = y with angular velocity speeds. yd: nullptr
+// when w' is not wanted.
 template <typename S>
-struct JointRates {
-  Mat3<S> motion;
-  Vec3<S> translation = Vec3<S>::Zero();
-  Vec3<S> w, wd, sd, sdd;
-};
-
-namespace detail {
-
-// 1-2-3 angles: w = e1 a' + a1 b' + a2 g' with a1 = A e2, a2 = A B e3 (eq. 4.4.13-4.4.16); the
-// columns turn with the rates before them, a1' = (e1 a') x a1 and a2' = (e1 a' + a1 b') x a2,
-// so wd = sum a_c y_c' + (e1 a') x (a1 b') + (e1 a' + a1 b') x (a2 g') (eq. 4.5).
-template <typename S>
-void angles_123_rates(const S* q, const S* y, const S* yd, JointRates<S>& out) {
-  S ca, sa, cb, sb, cg, sg;
-  sin_cos(q[0], sa, ca);
-  sin_cos(q[1], sb, cb);
-  sin_cos(q[2], sg, cg);
-  out.motion = rotation_123(ca, sa, cb, sb, cg, sg);
-  if (!y) return;
-  const Vec3<S> a1(S(0), ca, sa), a2(sb, -sa * cb, ca * cb);
-  const Vec3<S> w0(y[0], S(0), S(0)), w1 = a1 * y[1], w2 = a2 * y[2], w01 = w0 + w1;
-  out.w = w01 + w2;
-  if (!yd) return;
-  out.wd = Vec3<S>(yd[0], S(0), S(0)) + a1 * yd[1] + a2 * yd[2] + w0.cross(w1) + w01.cross(w2);
-}
-
-// Euler parameters e = (v, e4): w = 2 (e4 v' - e4' v + v x v') / |e|^2 and its derivative
-// w' = 2 (e4 v'' - e4'' v + v x v'') / |e|^2 - (|e|^2)' / |e|^2 w (the v' terms cancel), with
-// coordinate-derivative speeds; w = y with angular velocity speeds.
-template <typename S>
-void euler_rates(const S* e, const S* y, const S* yd, SpeedKind speeds, JointRates<S>& out) {
-  out.motion = rotation_euler(e);
-  if (!y) return;
+void euler_rates(const S* e, const S* y, const S* yd, SpeedKind speeds, Vec3<S>& w, Vec3<S>& wd) {
   if (speeds == SpeedKind::kAngularVelocity) {
-    out.w = Vec3<S>(y[0], y[1], y[2]);
-    if (yd) out.wd = Vec3<S>(yd[0], yd[1], yd[2]);
+    w = Vec3<S>(y[0], y[1], y[2]);
+    if (yd) wd = Vec3<S>(yd[0], yd[1], yd[2]);
     return;
   }
   const Vec3<S> v(e[0], e[1], e[2]), vd(y[0], y[1], y[2]);
   const S n2 = v.squaredNorm() + e[3] * e[3];
-  out.w = S(2) / n2 * (e[3] * vd - y[3] * v + v.cross(vd));
+  w = S(2) / n2 * (e[3] * vd - y[3] * v + v.cross(vd));
   if (!yd) return;
   const Vec3<S> vdd(yd[0], yd[1], yd[2]);
   const S n2_dot = S(2) * (v.dot(vd) + e[3] * y[3]);
-  out.wd = S(2) / n2 * (e[3] * vdd - yd[3] * v + v.cross(vdd)) - n2_dot / n2 * out.w;
+  wd = S(2) / n2 * (e[3] * vdd - yd[3] * v + v.cross(vdd)) - n2_dot / n2 * w;
 }
 
 }  // namespace detail
-
-// JointRates of a ball, free or planar joint (other types: nothing). q: the joint's coordinates;
-// y, yd: its speeds and their rates, or nullptr when not wanted.
-template <typename S>
-void joint_rates(const Joint& joint, SpeedKind speeds, const S* q, const S* y, const S* yd,
-                 JointRates<S>& out) {
-  switch (joint.type) {
-    case JointType::kBall123:
-      return detail::angles_123_rates(q, y, yd, out);
-    case JointType::kBallEuler:
-      return detail::euler_rates(q, y, yd, speeds, out);
-    case JointType::kFree123:
-    case JointType::kFreeEuler:  // translations along the joint frame's axes, then the ball
-      out.translation = Vec3<S>(q[0], q[1], q[2]);
-      if (y) out.sd = Vec3<S>(y[0], y[1], y[2]);
-      if (yd) out.sdd = Vec3<S>(yd[0], yd[1], yd[2]);
-      if (joint.type == JointType::kFree123)
-        return detail::angles_123_rates(q + 3, y ? y + 3 : nullptr, yd ? yd + 3 : nullptr, out);
-      return detail::euler_rates(q + 3, y ? y + 3 : nullptr, yd ? yd + 3 : nullptr, speeds, out);
-    case JointType::kPlanar: {
-      const Vec3<S> axis = joint.axis.cast<S>();
-      Vec3<S> u1, u2;
-      detail::plane_basis(axis, u1, u2);
-      out.translation = q[0] * u1 + q[1] * u2;
-      out.motion = rotation_axis(axis, q[2]);
-      if (y) out.sd = u1 * y[0] + u2 * y[1], out.w = axis * y[2];
-      if (yd) out.sdd = u1 * yd[0] + u2 * yd[1], out.wd = axis * yd[2];
-      return;
-    }
-    case JointType::kFixed:
-    case JointType::kRevolute:
-    case JointType::kPrismatic:
-      return;
-  }
-}
 
 // Fills `out` for one joint. q: the joint's coordinates; qd: its speeds, or nullptr when only
 // the pose is wanted (then the columns are left unset).

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "mb_kinematics/core/body_step.h"
 #include "mb_kinematics/core/data.h"
@@ -21,6 +22,14 @@
 #define MBK_FLATTEN __attribute__((flatten))
 #else
 #define MBK_FLATTEN
+#endif
+
+// On x86-64 CPUs with AVX2, the update in double runs as code compiled for them, chosen at run
+// time (the build stays portable): the same SSE2 operations in VEX form, whose three operands
+// spare the register copies of the two-operand form (about a fifth of the instructions). Without
+// FMA, so the same roundings: the results are the same bit for bit.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__AVX2__) && !defined(__SANITIZE_ADDRESS__)
+#define MBK_AVX2_DISPATCH 1
 #endif
 
 namespace mbk {
@@ -44,6 +53,7 @@ struct DataView {
   Mat3<S>* rotation;
   Vec3<S>*origin, *mass_center, *omega, *alpha, *mass_center_velocity, *mass_center_acceleration,
       *origin_velocity, *origin_acceleration;
+  const S *sine, *cosine;  // of BodySteps::angles (angle_sines)
   explicit DataView(Data<S>& d)
       : rotation(d.rotation.data()),
         origin(d.origin.data()),
@@ -53,7 +63,9 @@ struct DataView {
         mass_center_velocity(d.mass_center_velocity.data()),
         mass_center_acceleration(d.mass_center_acceleration.data()),
         origin_velocity(d.origin_velocity.data()),
-        origin_acceleration(d.origin_acceleration.data()) {}
+        origin_acceleration(d.origin_acceleration.data()),
+        sine(d.sine.data()),
+        cosine(d.cosine.data()) {}
 };
 
 // q, y and y' of a JointState (doc/method.md 8).
@@ -63,6 +75,16 @@ struct StateView {
   explicit StateView(const JointState<S>& s)
       : q(s.position.data()), y(s.velocity.data()), yd(s.acceleration.data()) {}
 };
+
+// The sines and cosines of every angle the kernels turn by (BodySteps::angles), together in one
+// loop (sin_cos over an array, bit for bit the one-angle sin_cos).
+template <typename S>
+void angle_sines(const Model& model, const S* q, Data<S>& data) {
+  const std::vector<int>& angles = model.steps.angles;
+  const int n = static_cast<int>(angles.size());
+  for (int i = 0; i < n; ++i) data.angle[i] = q[angles[i]];
+  sin_cos(data.angle.data(), n, data.sine.data(), data.cosine.data());
+}
 
 // m v for a constant v of the given shape (body_step.h): bit for bit m * v, whose zero terms
 // change no sum.
@@ -179,25 +201,81 @@ void turn_columns(const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
 
 // Revolute joint about coordinate axis I, C_k = I.
 template <int I, typename S>
-void axis_pose(const BodyStep& b, int k, const S* q, const DataView<S>& data, Vec3<S>& d) {
+void axis_pose(const BodyStep& b, int k, const DataView<S>& data, Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
-  S c, s;
-  sin_cos(q[b.q_index], s, c);
-  turn_columns<I>(s0j, c, s, data.rotation[k]);
+  turn_columns<I>(s0j, data.cosine[b.angle], data.sine[b.angle], data.rotation[k]);
   d = times_constant(s0j, b.offset, b.offset_shape);
 }
 
-// Revolute joint about any axis a with any C_k: SJK = P0 + cos q P1 + sin q P2 (body_step.cc).
+// S0K = S0J SJK for a turn (cos c, sin s) about any axis a with any C_k: SJK = P0 + c P1 +
+// s P2 (p: P0 P1 P2, body_step.cc).
 template <typename S>
-void revolute_pose(const Model& model, const BodyStep& b, int k, const S* q,
-                   const DataView<S>& data, Vec3<S>& d) {
+void folded_turn(const Mat3<double>* p, const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
+  const Mat3<S> sjk = p[0].cast<S>() + c * p[1].cast<S>() + s * p[2].cast<S>();
+  s0k = s0j * sjk;
+}
+
+// Revolute joint about any axis a with any C_k.
+template <typename S>
+void revolute_pose(const Model& model, const BodyStep& b, int k, const DataView<S>& data,
+                   Vec3<S>& d) {
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  folded_turn(model.steps.matrices.data() + b.matrices, s0j, data.cosine[b.angle],
+              data.sine[b.angle], data.rotation[k]);
+  d = times_constant(s0j, b.offset, b.offset_shape);
+}
+
+// Planar joint (x, y, gamma): the turn about the normal as a revolute joint's, and
+// d = S0J (q_k + x C u1 + y C u2) with the plane's axes folded at load (body_step.cc).
+template <typename S>
+void planar_pose(const Model& model, const BodyStep& b, int k, const S* q, const DataView<S>& data,
+                 Vec3<S>& d) {
   const Mat3<double>* p = model.steps.matrices.data() + b.matrices;
   const Mat3<S>& s0j = data.rotation[b.lower];
-  S c, s;
-  sin_cos(q[b.q_index], s, c);
-  const Mat3<S> sjk = p[0].cast<S>() + c * p[1].cast<S>() + s * p[2].cast<S>();
-  data.rotation[k] = s0j * sjk;
+  const S* x = q + b.q_index;
+  folded_turn(p, s0j, data.cosine[b.angle], data.sine[b.angle], data.rotation[k]);
+  d = s0j * (b.offset.cast<S>() + p[3].col(0).cast<S>() * x[0] + p[3].col(1).cast<S>() * x[1]);
+}
+
+// A ball or free joint's frames in R components: M = S0J C_k, and for 1-2-3 angles the turns
+// M A (after alpha) and M A B (after beta); cos beta.
+template <typename S>
+struct BallFrame {
+  Mat3<S> m, ma, mab;
+  S cos_beta;
+};
+
+// 1-2-3 angles (eq. 4.4.9-4.4.12): S0K = M A(alpha) B(beta) C(gamma), one column turn per angle.
+// c, s: the angles' cosines and sines.
+template <typename S>
+void angles_123_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
+  turn_columns<0>(f.m, c[0], s[0], f.ma);
+  f.cos_beta = c[1];
+  turn_columns<1>(f.ma, c[1], s[1], f.mab);
+  turn_columns<2>(f.mab, c[2], s[2], s0k);
+}
+
+template <JointKernel K>
+constexpr bool kFreeJoint = K == JointKernel::kFree123 || K == JointKernel::kFreeEuler;
+template <JointKernel K>
+constexpr bool kAngles123 = K == JointKernel::kBall123 || K == JointKernel::kFree123;
+
+// Ball and free joints: M = S0J C_k, S0K = M R with R of the 1-2-3 angles or the Euler
+// parameters, d = S0J q_k + M s with s = (x, y, z) for free joints (along the joint frame's
+// axes).
+template <JointKernel K, typename S>
+void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const DataView<S>& data,
+               BallFrame<S>& f, Vec3<S>& d) {
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  const S* x = q + b.q_index;
+  const S* angles = kFreeJoint<K> ? x + 3 : x;
+  f.m = b.matrices < 0 ? s0j : Mat3<S>(s0j * model.steps.matrices[b.matrices].cast<S>());
+  if constexpr (kAngles123<K>)
+    angles_123_pose(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
+  else
+    data.rotation[k] = f.m * rotation_euler(angles);
   d = times_constant(s0j, b.offset, b.offset_shape);
+  if constexpr (kFreeJoint<K>) d += f.m * Vec3<S>(x[0], x[1], x[2]);
 }
 
 // Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
@@ -224,25 +302,25 @@ void motion_pose(const BodyStep& b, int k, const JointMotion<S>& m, const DataVi
   d = s0j * (b.offset.cast<S>() + m.translation);  // S0J (q_k + s_k)
 }
 
-// Constants folded in double (P0 P1 P2, C_k a) serve double and float; wider reference builds
-// take those joints through joint_motion, on the model's own C_k and axis.
+// Constants folded in double (P0 P1 P2, C_k a, the plane's axes) serve double and float;
+// wider reference builds take those joints through joint_motion, on the model's own C_k and axis.
 template <typename S>
 constexpr bool kFolded = std::numeric_limits<S>::digits <= std::numeric_limits<double>::digits;
 
 // Whether body k's kernel runs through joint_motion.
 template <typename S>
 bool uses_joint_motion(JointKernel kernel) {
-  return kernel == JointKernel::kGeneric ||
-         (!kFolded<S> &&
-          (kernel == JointKernel::kRevolute || kernel == JointKernel::kPrismaticRotated));
+  return !kFolded<S> &&
+         (kernel == JointKernel::kRevolute || kernel == JointKernel::kPrismaticRotated ||
+          kernel == JointKernel::kPlanar);
 }
 
 // Orientation, origin and mass center of body k by its kernel (m: its joint_motion, used when
-// uses_joint_motion); also returns d = S0J (q_k + s_k) and rho = S0K r_k. For
-// partial_velocity_kinematics.
+// uses_joint_motion); also returns d = S0J (q_k + s_k), rho = S0K r_k and, for ball and free
+// joints, their frames f. For partial_velocity_kinematics.
 template <typename S>
 void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, Data<S>& all,
-               Vec3<S>& d, Vec3<S>& rho) {
+               Vec3<S>& d, Vec3<S>& rho, BallFrame<S>& f) {
   const DataView<S> data(all);
   const BodyStep& b = model.steps.steps[k];
   if (uses_joint_motion<S>(b.kernel)) {
@@ -250,16 +328,16 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
   } else {
     switch (b.kernel) {
       case JointKernel::kRevoluteX:
-        axis_pose<0>(b, k, q, data, d);
+        axis_pose<0>(b, k, data, d);
         break;
       case JointKernel::kRevoluteY:
-        axis_pose<1>(b, k, q, data, d);
+        axis_pose<1>(b, k, data, d);
         break;
       case JointKernel::kRevoluteZ:
-        axis_pose<2>(b, k, q, data, d);
+        axis_pose<2>(b, k, data, d);
         break;
       case JointKernel::kRevolute:
-        revolute_pose(model, b, k, q, data, d);
+        revolute_pose(model, b, k, data, d);
         break;
       case JointKernel::kPrismatic:
         rigid_pose<false, true>(model, b, k, q, data, d);
@@ -273,7 +351,20 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
       case JointKernel::kFixedRotated:
         rigid_pose<true, false>(model, b, k, q, data, d);
         break;
-      case JointKernel::kGeneric:
+      case JointKernel::kBall123:
+        ball_pose<JointKernel::kBall123>(model, b, k, q, data, f, d);
+        break;
+      case JointKernel::kBallEuler:
+        ball_pose<JointKernel::kBallEuler>(model, b, k, q, data, f, d);
+        break;
+      case JointKernel::kFree123:
+        ball_pose<JointKernel::kFree123>(model, b, k, q, data, f, d);
+        break;
+      case JointKernel::kFreeEuler:
+        ball_pose<JointKernel::kFreeEuler>(model, b, k, q, data, f, d);
+        break;
+      case JointKernel::kPlanar:
+        planar_pose(model, b, k, q, data, d);
         break;
     }
   }
@@ -289,7 +380,7 @@ template <Level L, int I, typename S>
 void revolute_axis_step(const BodyStep& b, int k, const StateView<S>& state,
                         const DataView<S>& data) {
   JointTerms<S> t;
-  axis_pose<I>(b, k, state.q, data, t.d);
+  axis_pose<I>(b, k, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.y[b.v_index];
   if constexpr (L == Level::kAcceleration) t.wd = s0j.col(I) * state.yd[b.v_index];
@@ -301,7 +392,7 @@ template <Level L, typename S>
 void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                    const DataView<S>& data) {
   JointTerms<S> t;
-  revolute_pose(model, b, k, state.q, data, t.d);
+  revolute_pose(model, b, k, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
     t.w = u * state.y[b.v_index];
@@ -366,61 +457,94 @@ void motion_step(const Model& model, int k, const StateView<S>& state, const Dat
     body_update<L, true, false>(b, k, t, data);
 }
 
-// A ball, free or planar joint from its JointRates, the pose as motion_pose has it (bit for bit):
-// S0K = S0J (C_k R_motion), d = S0J (q_k + C_k s); then S0J C_k w, S0J C_k wd, and likewise s_k'
-// and s_k''.
-template <Level L, bool kTranslates, typename S>
-void rates_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
-  const Body& body = model.bodies[k];
-  const BodyStep& b = model.steps.steps[k];
-  JointRates<S> r;
-  joint_rates(body.joint, model.speeds, state.q + body.q_index,
-              L == Level::kPose ? nullptr : state.y + body.v_index,
-              L == Level::kAcceleration ? state.yd + body.v_index : nullptr, r);
-  const Mat3<S>& s0j = data.rotation[b.lower];
-  const bool rotated = body.joint.rotation != Mat3<double>::Identity();
-  const Mat3<S> c = body.joint.rotation.cast<S>();
-  const auto in_bj = [&](const Vec3<S>& v) { return rotated ? Vec3<S>(c * v) : v; };
-  JointTerms<S> t;
-  data.rotation[k] = s0j * (rotated ? Mat3<S>(c * r.motion) : r.motion);
-  if constexpr (kTranslates)
-    t.d = s0j * (b.offset.cast<S>() + in_bj(r.translation));
-  else
-    t.d = times_constant(s0j, b.offset, b.offset_shape);
-  if constexpr (L != Level::kPose) {
-    t.w = s0j * in_bj(r.w);
-    if constexpr (kTranslates) t.sd = s0j * in_bj(r.sd);
-  }
+// w_k and the w_k' part of 1-2-3 angles in R (eq. 4.4.13-4.4.16): the columns e1, A e2, A B e3
+// carried by M are a0 = M e1, a1 = (M A) e2, a2 = (M A B) e3, and their rates (eq. 4.5) are
+// a1' = alpha' (M A) e3 and a2' = -cos beta alpha' a1 + beta' (M A B) e1 (A' = A [e1]x alpha',
+// B' = B [e2]x beta'); linear in M, as C_k (angular_dot) carries them in joint_motion.
+template <Level L, typename S>
+void angles_123_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
+  const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1), a2 = f.mab.col(2);
+  t.w = a0 * y[0] + a1 * y[1] + a2 * y[2];
   if constexpr (L == Level::kAcceleration) {
-    t.wd = s0j * in_bj(r.wd);
-    if constexpr (kTranslates) t.sdd = s0j * in_bj(r.sdd);
+    const Vec3<S> a1_dot = f.ma.col(2) * y[0];
+    const Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
+    t.wd = a0 * yd[0] + a1 * yd[1] + a2 * yd[2] + a1_dot * y[1] + a2_dot * y[2];
   }
-  body_update<L, true, kTranslates>(b, k, t, data);
 }
 
-// Any joint the kernels of body_step.h leave to joint_motion: ball, free and planar joints in
-// closed form, the others (folded joints of a reference build) column by column.
-template <Level L, typename S>
-void generic_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
-  switch (model.bodies[k].joint.type) {
-    case JointType::kBall123:
-    case JointType::kBallEuler:
-      return rates_step<L, false>(model, k, state, data);
-    case JointType::kFree123:
-    case JointType::kFreeEuler:
-    case JointType::kPlanar:
-      return rates_step<L, true>(model, k, state, data);
-    case JointType::kFixed:
-    case JointType::kRevolute:
-    case JointType::kPrismatic:
-      return motion_step<L>(model, k, state, data);
+// Ball and free joints (ball_pose): the rates of the angles in R (1-2-3 angles from their
+// columns, Euler parameters in the joint frame and then M), and s_k' = M (x', y', z').
+template <Level L, JointKernel K, typename S>
+void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+               const DataView<S>& data) {
+  JointTerms<S> t;
+  BallFrame<S> f;
+  ball_pose<K>(model, b, k, state.q, data, f, t.d);
+  if constexpr (L != Level::kPose) {
+    constexpr int kAngular = kFreeJoint<K> ? 3 : 0;  // the angles' first coordinate and speed
+    const S *y = state.y + b.v_index, *yd = state.yd + b.v_index;
+    if constexpr (kAngles123<K>) {
+      angles_123_rates<L>(f, y + kAngular, yd + kAngular, t);
+    } else {
+      Vec3<S> w, wd = Vec3<S>::Zero();  // wd: set only at kAcceleration
+      detail::euler_rates(state.q + b.q_index + kAngular, y + kAngular,
+                          L == Level::kAcceleration ? yd + kAngular : nullptr, model.speeds, w, wd);
+      t.w = f.m * w;
+      if constexpr (L == Level::kAcceleration) t.wd = f.m * wd;
+    }
+    if constexpr (kFreeJoint<K>) {
+      t.sd = f.m * Vec3<S>(y[0], y[1], y[2]);
+      if constexpr (L == Level::kAcceleration) t.sdd = f.m * Vec3<S>(yd[0], yd[1], yd[2]);
+    }
   }
+  body_update<L, true, kFreeJoint<K>>(b, k, t, data);
+}
+
+// Column c of a ball or free joint's speeds in R, as ball_step sums them for a unit speed y_c
+// (bit for bit): M e_c for a translation, else a_c (1-2-3 angles) or M times the Euler
+// parameters' column. For partial_velocity_kinematics; f from pose_step, e: the Euler
+// parameters.
+template <typename S>
+Vec3<S> ball_column(JointKernel kernel, SpeedKind speeds, const BallFrame<S>& f, const S* e,
+                    int c) {
+  const bool free = kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
+  const int angle = free ? c - 3 : c;
+  if (angle < 0) return f.m * Vec3<S>::Unit(c);
+  if (kernel == JointKernel::kBall123 || kernel == JointKernel::kFree123)
+    return angle == 0 ? Vec3<S>(f.m.col(0)) : angle == 1 ? f.ma.col(1) : f.mab.col(2);
+  Vec3<S> angular[4];
+  detail::euler_columns<S>(e, nullptr, speeds, angular, nullptr);
+  return f.m * angular[angle];
+}
+
+// Planar joint (planar_pose): w = (S0J C a) gamma', s_k' = S0J (C u1 x' + C u2 y').
+template <Level L, typename S>
+void planar_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                 const DataView<S>& data) {
+  JointTerms<S> t;
+  planar_pose(model, b, k, state.q, data, t.d);
+  if constexpr (L != Level::kPose) {
+    const Mat3<S>& s0j = data.rotation[b.lower];
+    const Vec3<S> u1 = model.steps.matrices[b.matrices + 3].col(0).cast<S>();
+    const Vec3<S> u2 = model.steps.matrices[b.matrices + 3].col(1).cast<S>();
+    const Vec3<S> n = s0j * b.axis.cast<S>();
+    const S* y = state.y + b.v_index;
+    t.w = n * y[2];
+    t.sd = s0j * (u1 * y[0] + u2 * y[1]);
+    if constexpr (L == Level::kAcceleration) {
+      const S* yd = state.yd + b.v_index;
+      t.wd = n * yd[2];
+      t.sdd = s0j * (u1 * yd[0] + u2 * yd[1]);
+    }
+  }
+  body_update<L, true, true>(b, k, t, data);
 }
 
 template <Level L, typename S>
 MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& joint_state,
                                        Data<S>& all) {
   const StateView<S> state(joint_state);
+  angle_sines(model, state.q, all);
   const DataView<S> data(all);
   const int n = model.body_count();
   const BodyStep* steps = model.steps.steps.data();
@@ -440,7 +564,7 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         if constexpr (kFolded<S>)
           revolute_step<L>(model, b, k, state, data);
         else
-          generic_step<L>(model, k, state, data);
+          motion_step<L>(model, k, state, data);
         break;
       case JointKernel::kPrismatic:
         prismatic_step<L, false>(model, b, k, state, data);
@@ -449,7 +573,7 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         if constexpr (kFolded<S>)
           prismatic_step<L, true>(model, b, k, state, data);
         else
-          generic_step<L>(model, k, state, data);
+          motion_step<L>(model, k, state, data);
         break;
       case JointKernel::kFixed:
         fixed_step<L, false>(model, b, k, state, data);
@@ -457,11 +581,49 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
       case JointKernel::kFixedRotated:
         fixed_step<L, true>(model, b, k, state, data);
         break;
-      case JointKernel::kGeneric:
-        generic_step<L>(model, k, state, data);
+      case JointKernel::kBall123:
+        ball_step<L, JointKernel::kBall123>(model, b, k, state, data);
+        break;
+      case JointKernel::kBallEuler:
+        ball_step<L, JointKernel::kBallEuler>(model, b, k, state, data);
+        break;
+      case JointKernel::kFree123:
+        ball_step<L, JointKernel::kFree123>(model, b, k, state, data);
+        break;
+      case JointKernel::kFreeEuler:
+        ball_step<L, JointKernel::kFreeEuler>(model, b, k, state, data);
+        break;
+      case JointKernel::kPlanar:
+        if constexpr (kFolded<S>)
+          planar_step<L>(model, b, k, state, data);
+        else
+          motion_step<L>(model, k, state, data);
         break;
     }
   }
+}
+
+#ifdef MBK_AVX2_DISPATCH
+template <Level L>
+__attribute__((target("avx2"))) MBK_FLATTEN void forward_kinematics_avx2(
+    const Model& model, const JointState<double>& state, Data<double>& data) {
+  forward_kinematics_at<L>(model, state, data);
+}
+
+inline bool has_avx2() {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+}
+#endif
+
+// forward_kinematics_at, for AVX2 where it pays (MBK_AVX2_DISPATCH).
+template <Level L, typename S>
+void forward_kinematics_on_cpu(const Model& model, const JointState<S>& state, Data<S>& data) {
+#ifdef MBK_AVX2_DISPATCH
+  if constexpr (std::is_same_v<S, double>)
+    if (has_avx2()) return forward_kinematics_avx2<L>(model, state, data);
+#endif
+  forward_kinematics_at<L>(model, state, data);
 }
 
 }  // namespace detail
@@ -474,11 +636,11 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
   assert(sized_for(data, model) && "forward_kinematics: Data made for another model");
   switch (level) {
     case Level::kPose:
-      return detail::forward_kinematics_at<Level::kPose>(model, state, data);
+      return detail::forward_kinematics_on_cpu<Level::kPose>(model, state, data);
     case Level::kVelocity:
-      return detail::forward_kinematics_at<Level::kVelocity>(model, state, data);
+      return detail::forward_kinematics_on_cpu<Level::kVelocity>(model, state, data);
     case Level::kAcceleration:
-      return detail::forward_kinematics_at<Level::kAcceleration>(model, state, data);
+      return detail::forward_kinematics_on_cpu<Level::kAcceleration>(model, state, data);
   }
 }
 

@@ -61,13 +61,15 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
   const bool accelerations = level == Level::kAcceleration;
   const S* y = state.velocity.data();
   const S* yd = state.acceleration.data();
+  detail::angle_sines(model, state.position.data(), data);  // for pose_step
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     const int j = body.lower;
     joint_motion(body.joint, model.speeds, state.position.data() + body.q_index,
                  velocities ? y + body.v_index : nullptr, m);
-    Vec3<S> d, rho;
-    detail::pose_step(model, k, state.position.data(), m, data, d, rho);
+    Vec3<S> d = Vec3<S>::Zero(), rho;  // d: set by pose_step (zero for GCC's warning)
+    detail::BallFrame<S> f;
+    detail::pose_step(model, k, state.position.data(), m, data, d, rho, f);
     if (!velocities) continue;
 
     const Mat3<S>& s0j = data.rotation[j];
@@ -85,11 +87,18 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                        pv.omega_dot[bj + i].cross(d) +
                                        pv.omega[bj + i].cross(d_dot);
     }
-    for (int c = 0; c < m.speeds; ++c) {  // the joint's own columns
+    const JointKernel kernel = model.steps.steps[k].kernel;
+    const bool ball = kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
+                      kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
+    const S* e = state.position.data() + body.q_index + m.linear_speeds;  // Euler parameters
+    for (int c = 0; c < m.speeds; ++c) {                                  // the joint's own columns
       const int i = bk + nj + c;
       const bool linear = c < m.linear_speeds;
-      pv.omega[i] = linear ? Vec3<S>::Zero() : Vec3<S>(s0j * m.angular[c]);
-      pv.origin_velocity[i] = linear ? Vec3<S>(s0j * m.linear[c]) : Vec3<S>::Zero();
+      // In R as the recursion sums them (ball and free joints: through M = S0J C_k).
+      const Vec3<S> column = ball ? detail::ball_column(kernel, model.speeds, f, e, c)
+                                  : Vec3<S>(s0j * (linear ? m.linear[c] : m.angular[c]));
+      pv.omega[i] = linear ? Vec3<S>::Zero() : column;
+      pv.origin_velocity[i] = linear ? column : Vec3<S>::Zero();
       if (!accelerations) continue;
       pv.omega_dot[i] =
           linear ? Vec3<S>::Zero() : Vec3<S>(omega_j.cross(pv.omega[i]) + s0j * m.angular_dot[c]);

@@ -1,10 +1,13 @@
-// The sine and cosine of one angle together (one reduction for both), inline. For double:
+// The sine and cosine of one angle together (one reduction for both), inline, and of an array of
+// angles in one loop that vectorizes. For double:
 // Cody-Waite reduction by pi/2 (for |x| < 2^19 pi/2), then fdlibm's kernels on [-pi/4, pi/4]
 // with the reduction's tail (error below 1 ulp); larger or non-finite angles, and every other
 // scalar, take std::sin and std::cos.
 #pragma once
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <type_traits>
 
 namespace mbk {
@@ -31,6 +34,32 @@ inline double kernel_cos(double x, double y) {
   return u + (((1.0 - u) - hz) + (z * r - x * y));
 }
 
+// 2^19 pi/2: below it, |n| < 2^19 in sin_cos_reduced, so n * pio2_1 is exact.
+constexpr double kReducedBound = 823549.6;
+
+// sin and cos of |x| < kReducedBound without a branch (a loop over angles vectorizes; other x
+// give some number). x = n pi/2
+// + (y0 + y1): pi/2 = pio2_1 + pio2_2 + pio2_2t, the first two of 33 bits (fdlibm
+// __ieee754_rem_pio2, its second round); y0 + y1 within 1e-20 of the remainder.
+inline void sin_cos_reduced(double x, double& s, double& c) {
+  constexpr double invpio2 = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
+                   pio2_2 = 6.07710050630396597660e-11, pio2_2t = 2.02226624879595063154e-21;
+  constexpr double round = 0x1.8p52;  // adding and taking it away rounds to an integer
+  const double t = x * invpio2 + round, n = t - round;
+  const double r1 = x - n * pio2_1;  // exact (Sterbenz)
+  double w = n * pio2_2;
+  const double r = r1 - w;
+  w = n * pio2_2t - ((r1 - r) - w);
+  const double y0 = r - w, y1 = (r - y0) - w;
+  const double ks = kernel_sin(y0, y1), kc = kernel_cos(y0, y1);
+  std::uint64_t bits;  // t's last bits hold n (|n| < 2^51): its quadrant, for any x without UB
+  std::memcpy(&bits, &t, sizeof bits);
+  const std::uint32_t quadrant = static_cast<std::uint32_t>(bits) & 3;
+  const double ss = quadrant & 1 ? kc : ks, cc = quadrant & 1 ? ks : kc;
+  s = quadrant & 2 ? -ss : ss;
+  c = (quadrant + 1) & 2 ? -cc : cc;
+}
+
 }  // namespace detail
 
 template <typename S>
@@ -38,28 +67,24 @@ void sin_cos(S x, S& s, S& c) {
   using std::cos;
   using std::sin;
   if constexpr (std::is_same_v<S, double>) {
-    if (std::abs(x) < 823549.6) {  // 2^19 pi/2: |n| < 2^19, so n * pio2_1 is exact
-      // x = n pi/2 + (y0 + y1): pi/2 = pio2_1 + pio2_2 + pio2_2t, the first two of 33 bits
-      // (fdlibm __ieee754_rem_pio2, its second round); y0 + y1 within 1e-20 of the remainder.
-      constexpr double invpio2 = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
-                       pio2_2 = 6.07710050630396597660e-11, pio2_2t = 2.02226624879595063154e-21;
-      constexpr double round = 0x1.8p52;  // adding and taking it away rounds to an integer
-      const double n = (x * invpio2 + round) - round;
-      const double r1 = x - n * pio2_1;  // exact (Sterbenz)
-      double w = n * pio2_2;
-      const double r = r1 - w;
-      w = n * pio2_2t - ((r1 - r) - w);
-      const double y0 = r - w, y1 = (r - y0) - w;
-      const double ks = detail::kernel_sin(y0, y1), kc = detail::kernel_cos(y0, y1);
-      const int quadrant = static_cast<int>(static_cast<long long>(n) & 3);
-      const double ss = quadrant & 1 ? kc : ks, cc = quadrant & 1 ? ks : kc;
-      s = quadrant & 2 ? -ss : ss;
-      c = (quadrant + 1) & 2 ? -cc : cc;
-      return;
-    }
+    if (std::abs(x) < detail::kReducedBound) return detail::sin_cos_reduced(x, s, c);
   }
   s = sin(x);
   c = cos(x);
+}
+
+// sin_cos of x[0..n-1] into s and c (arrays apart from x), bit for bit: for double, one loop
+// without branches over every angle (the compiler vectorizes it), then libm for the rare large
+// or non-finite ones.
+template <typename S>
+void sin_cos(const S* x, int n, S* s, S* c) {
+  if constexpr (std::is_same_v<S, double>) {
+    for (int i = 0; i < n; ++i) detail::sin_cos_reduced(x[i], s[i], c[i]);
+    for (int i = 0; i < n; ++i)
+      if (!(std::abs(x[i]) < detail::kReducedBound)) s[i] = std::sin(x[i]), c[i] = std::cos(x[i]);
+  } else {
+    for (int i = 0; i < n; ++i) sin_cos(x[i], s[i], c[i]);
+  }
 }
 
 }  // namespace mbk

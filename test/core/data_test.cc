@@ -10,4 +10,7 @@ TEST(Data, SizedForItsOwnModelOnly) {
   EXPECT_TRUE(mbk::sized_for(data, three));
   EXPECT_FALSE(mbk::sized_for(data, four));
   EXPECT_TRUE(mbk::sized_for(mbk::Data<float>(four), four));
+  // The same bodies on joints without angles: the angles' sines and cosines would not fit.
+  const mbk::Model fixed = mbk::make_bare_model({0, 1, 2}, mbk::JointType::kFixed);
+  EXPECT_FALSE(mbk::sized_for(mbk::Data<double>(fixed), three));
 }

@@ -222,6 +222,25 @@ TEST(Formulations, LowerLevelsMatchFullUpdate) {
   EXPECT_EQ(vel.partial.mass_center_velocity, full.partial.mass_center_velocity);
 }
 
+// The update chosen for the CPU (AVX2 where it has it, kinematics.h) is the portable one, bit for
+// bit: no FMA or reordering crept into it.
+TEST(Formulations, CpuDispatchIsThePortableUpdate) {
+  const mbk::Model model = mbk_test::random_tree(40, 3);
+  const mbk::JointState<double> state = mbk_test::Trajectory(model, 4).at<double>(0.7);
+  mbk::Data<double> chosen(model), portable(model);
+  mbk::forward_kinematics(model, state, chosen);
+  mbk::detail::forward_kinematics_at<mbk::Level::kAcceleration>(model, state, portable);
+  EXPECT_EQ(chosen.rotation, portable.rotation);
+  EXPECT_EQ(chosen.origin, portable.origin);
+  EXPECT_EQ(chosen.mass_center, portable.mass_center);
+  EXPECT_EQ(chosen.omega, portable.omega);
+  EXPECT_EQ(chosen.alpha, portable.alpha);
+  EXPECT_EQ(chosen.mass_center_velocity, portable.mass_center_velocity);
+  EXPECT_EQ(chosen.mass_center_acceleration, portable.mass_center_acceleration);
+  EXPECT_EQ(chosen.origin_velocity, portable.origin_velocity);
+  EXPECT_EQ(chosen.origin_acceleration, portable.origin_acceleration);
+}
+
 // ---- The scalar template: double against long double, both formulations.
 
 template <typename S>
