@@ -111,7 +111,7 @@ void compute(benchmark::State& state, const mbk::Model& model, bool given) {
   const mbk::Recording rec = recording(model, 1000, 5, given);
   const mbk::OfflineEstimator e = mbk::make_offline_estimator(mbk::default_offline_estimator());
   const int threads = static_cast<int>(state.range(0));
-  const int block = mbk::OfflineBatch(model, rec, e, 0, nullptr, threads).rows_per_block(16 << 20);
+  const int block = mbk::OfflineBatch(model, rec, e, 0, nullptr, threads).rows_per_block(4 << 20);
   std::vector<mbk::OfflineRow> rows(block, mbk::OfflineRow(model));
   long samples = 0;
   for (auto _ : state) {

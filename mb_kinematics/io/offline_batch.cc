@@ -34,8 +34,10 @@ OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
                            const OfflineEstimator& estimator, double max_gap,
                            const FloatingBaseTrack* base, int threads)
     : model_(model), rec_(recording), base_(base) {
-  for (int i = 0; i < std::max(1, threads); ++i)
-    workers_.emplace_back(model, recording, estimator, max_gap);
+  workers_.reserve(std::max(1, threads));
+  workers_.emplace_back(model, recording, estimator, max_gap);
+  while (static_cast<int>(workers_.size()) < threads)
+    workers_.push_back(workers_.front());  // a copy: no second scan of the rows
   seconds_.assign(workers_.size(), 0.0);
 }
 

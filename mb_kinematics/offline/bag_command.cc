@@ -72,7 +72,7 @@ mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
 void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int rows, Outputs& out,
                        bool progress, BagSummary& s) {
   mbk::Progress bar("computing", progress);
-  const int block = batch.rows_per_block(16 << 20);
+  const int block = batch.rows_per_block(4 << 20);
   std::vector<mbk::OfflineRow> ready(block, mbk::OfflineRow(model)), next = ready;
   if (rows > 0) s.compute_seconds += batch.compute(0, std::min(block, rows), ready);
   for (int begin = 0; begin < rows; begin += block) {
