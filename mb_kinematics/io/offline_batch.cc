@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <thread>
 
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/state_check.h"
@@ -38,7 +37,16 @@ OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
   workers_.emplace_back(model, recording, estimator, max_gap);
   while (static_cast<int>(workers_.size()) < threads)
     workers_.push_back(workers_.front());  // a copy: no second scan of the rows
-  seconds_.assign(workers_.size(), 0.0);
+  for (int i = 0; i < this->threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);
+}
+
+OfflineBatch::~OfflineBatch() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  started_.notify_all();
+  for (std::thread& t : threads_) t.join();
 }
 
 int OfflineBatch::rows_per_block(size_t bytes) const {
@@ -70,21 +78,49 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
   if (!finite(out.data)) return drop("kinematics not finite", "");
 }
 
-double OfflineBatch::compute(int begin, int end, std::vector<OfflineRow>& rows) {
-  const int n = end - begin, t = threads();
-  // Worker i takes the i-th run of the block's rows: its rows keep increasing across blocks.
-  const auto work = [&](int i) {
+void OfflineBatch::start(int begin, int end, std::vector<OfflineRow>& rows) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  finished_.wait(lock, [&] { return running_ == 0; });  // one block at a time
+  begin_ = begin;
+  rows_in_block_ = std::max(0, end - begin);
+  // About eight chunks per worker: small enough to share out a held-up worker's rows, large
+  // enough that a worker seldom skips rows (OfflineStates then catches up its partial series).
+  chunk_ = std::max(1, rows_in_block_ / (8 * threads()));
+  out_ = &rows;
+  next_chunk_ = 0;
+  seconds_ = 0;
+  running_ = threads();
+  ++block_;
+  started_.notify_all();
+}
+
+double OfflineBatch::finish() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  finished_.wait(lock, [&] { return running_ == 0; });
+  return seconds_;
+}
+
+void OfflineBatch::work(int worker) {
+  long done = 0;  // the last block this worker ran
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      started_.wait(lock, [&] { return stop_ || block_ != done; });
+      if (stop_) return;
+      done = block_;
+    }
+    // The block's fields stay as start() set them until every worker is done with it.
     const auto t0 = std::chrono::steady_clock::now();
-    for (int j = n * i / t; j < n * (i + 1) / t; ++j) compute_row(workers_[i], begin + j, rows[j]);
-    seconds_[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  std::vector<std::thread> helpers;
-  for (int i = 1; i < t; ++i) helpers.emplace_back(work, i);
-  work(0);
-  for (std::thread& h : helpers) h.join();
-  double sum = 0;
-  for (double s : seconds_) sum += s;
-  return sum;
+    const int chunks = (rows_in_block_ + chunk_ - 1) / chunk_;
+    for (int c = next_chunk_++; c < chunks; c = next_chunk_++)
+      for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j)
+        compute_row(workers_[worker], begin_ + j, (*out_)[j]);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::lock_guard<std::mutex> lock(mutex_);
+    seconds_ += seconds;
+    if (--running_ == 0) finished_.notify_all();
+  }
 }
 
 }  // namespace mbk

@@ -1,10 +1,17 @@
-// The offline kinematics of a recording's rows (mbk bag), block by block on several threads:
-// each worker owns an OfflineStates and computes its own run of each block's rows (state,
-// checks, forward_kinematics, the floating base), so every row's result is the same whatever
-// the number of threads. The caller writes the rows of a block in order. ROS-free.
+// The offline kinematics of a recording's rows (mbk bag), block by block on a pool of threads
+// started once: each worker owns an OfflineStates and takes the block's rows a chunk at a time,
+// chunks in increasing order (state, checks, forward_kinematics, the floating base), so every
+// row's result is the same whatever the number of threads and whichever worker computes it.
+// A worker held up (a loaded machine) leaves its chunks to the others instead of holding up the
+// block. The caller writes the rows of a block in order, while the pool computes the next one.
+// ROS-free.
 #pragma once
 
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
@@ -32,15 +39,24 @@ struct FloatingBaseTrack {
 
 class OfflineBatch {
  public:
-  // `model`, `recording` and `base` (nullptr: a fixed base) must outlive this object. threads
-  // >= 1.
+  // `model`, `recording` and `base` (nullptr: a fixed base) must outlive this object. Starts
+  // `threads` (>= 1) workers, which wait for blocks.
   OfflineBatch(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
                double max_gap, const FloatingBaseTrack* base, int threads);
+  ~OfflineBatch();  // ends the workers
+  OfflineBatch(const OfflineBatch&) = delete;
+  OfflineBatch& operator=(const OfflineBatch&) = delete;
 
-  // Rows [begin, end) into rows[0, end - begin) (rows.size() >= end - begin). Calls must come
-  // in increasing, non-overlapping ranges. Returns the seconds the workers spent, summed. With
-  // one thread nothing is allocated once the first block is done (except a dropped row's message).
-  double compute(int begin, int end, std::vector<OfflineRow>& rows);
+  // Starts rows [begin, end) into rows[0, end - begin) (rows.size() >= end - begin) on the
+  // workers and returns; finish() waits for them and returns the seconds they spent, summed.
+  // One block at a time; blocks must come in increasing, non-overlapping ranges. Nothing is
+  // allocated once the first block is done (except a dropped row's message).
+  void start(int begin, int end, std::vector<OfflineRow>& rows);
+  double finish();
+  double compute(int begin, int end, std::vector<OfflineRow>& rows) {
+    start(begin, end, rows);
+    return finish();
+  }
 
   double max_gap() const { return workers_.front().max_gap(); }
   int threads() const { return static_cast<int>(workers_.size()); }
@@ -49,12 +65,24 @@ class OfflineBatch {
 
  private:
   void compute_row(OfflineStates& states, int r, OfflineRow& out) const;
+  void work(int worker);  // a worker's loop: wait for a block, take its chunks, repeat
 
   const Model& model_;
   const Recording& rec_;
   const FloatingBaseTrack* base_;
   std::vector<OfflineStates> workers_;
-  std::vector<double> seconds_;  // per worker, of the last compute()
+
+  // The block in flight, set by start() under mutex_.
+  int begin_ = 0, rows_in_block_ = 0, chunk_ = 1;
+  std::vector<OfflineRow>* out_ = nullptr;
+  std::atomic<int> next_chunk_{0};
+  std::mutex mutex_;
+  std::condition_variable started_, finished_;
+  long block_ = 0;   // blocks started; a worker runs each once
+  int running_ = 0;  // workers still on the block
+  bool stop_ = false;
+  double seconds_ = 0;  // the workers', on the block, summed
+  std::vector<std::thread> threads_;
 };
 
 // std::thread::hardware_concurrency(), at least 1.

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
-#include <thread>
 
 #include "mb_kinematics/core/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
@@ -67,7 +66,7 @@ mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
   return track;
 }
 
-// Every row, computed by the batch's threads a block at a time while this thread writes the
+// Every row, computed by the batch's workers a block at a time while this thread writes the
 // block before (two blocks of results), written in order; drops are counted in order.
 void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int rows, Outputs& out,
                        bool progress, BagSummary& s) {
@@ -77,10 +76,7 @@ void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int ro
   if (rows > 0) s.compute_seconds += batch.compute(0, std::min(block, rows), ready);
   for (int begin = 0; begin < rows; begin += block) {
     const int end = std::min(begin + block, rows);
-    std::thread ahead;
-    if (end < rows)
-      ahead = std::thread(
-          [&, end] { s.compute_seconds += batch.compute(end, std::min(end + block, rows), next); });
+    if (end < rows) batch.start(end, std::min(end + block, rows), next);
     const auto t0 = Clock::now();
     for (int r = begin; r < end; ++r) {
       const mbk::OfflineRow& row = ready[r - begin];
@@ -91,7 +87,7 @@ void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int ro
     }
     s.write_seconds += since(t0);
     bar.update(end, rows);
-    if (ahead.joinable()) ahead.join();
+    if (end < rows) s.compute_seconds += batch.finish();
     std::swap(ready, next);
   }
   bar.finish();

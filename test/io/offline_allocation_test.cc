@@ -1,7 +1,8 @@
 // mbk bag's computation allocates nothing per row (README "Recorded data"): once OfflineBatch has
 // done its first block, estimates (of coordinates given in every row and of those with their
-// own samples), state checks and kinematics of further rows reuse what exists. Counted with the
-// replaced operator new and malloc of test/support/allocation_counter.h.
+// own samples), state checks and kinematics of further rows reuse what exists, and so does the
+// pool of workers (started once, not per block). Counted with the replaced operator new and
+// malloc of test/support/allocation_counter.h, from every thread.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,11 +31,13 @@ mbk::Recording recording(const mbk::Model& model, int rows) {
   return r;
 }
 
-TEST(OfflineAllocation, NoneWhileComputingRowsAfterTheFirstBlock) {
+class OfflineAllocation : public ::testing::TestWithParam<int> {};
+
+TEST_P(OfflineAllocation, NoneWhileComputingRowsAfterTheFirstBlock) {
   const mbk::Model model = mbk_test::random_tree(30, 1);
   const mbk::Recording rec = recording(model, 600);
   mbk::OfflineBatch batch(model, rec, mbk::make_offline_estimator("centered_0.1s_4"), 0, nullptr,
-                          1);
+                          GetParam());
   std::vector<mbk::OfflineRow> rows(200, mbk::OfflineRow(model));
   batch.compute(0, 200, rows);
   const mbk_test::AllocationCounts before = mbk_test::allocation_counts();
@@ -49,5 +52,7 @@ TEST(OfflineAllocation, NoneWhileComputingRowsAfterTheFirstBlock) {
   EXPECT_EQ(rows.front().stamp, rec.stamp[200]);
   EXPECT_EQ(rows.back().stamp, rec.stamp[399]);
 }
+
+INSTANTIATE_TEST_SUITE_P(Threads, OfflineAllocation, ::testing::Values(1, 3));
 
 }  // namespace

@@ -1,0 +1,99 @@
+// OfflineBatch (io/offline_batch.h): its pool of workers gives every row the same result, bit
+// for bit, whatever the number of threads, the blocks' sizes and which worker takes which
+// chunk; dropped rows keep their reason; start() returns while the block is computed.
+#include "mb_kinematics/io/offline_batch.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "test/support/test_models.h"
+
+namespace {
+
+// 1 kHz positions of a random tree; coordinate 0 only in every third row (a series of its
+// own), and a NaN at row 250 (a row check_state drops).
+mbk::Recording recording(const mbk::Model& model, int rows) {
+  const mbk_test::Trajectory trajectory(model, 2);
+  mbk::Recording r;
+  r.nq = model.nq;
+  for (int i = 0; i < rows; ++i) {
+    const double t = 1e-3 * i;
+    const mbk::JointState<double> s = trajectory.at<double>(t);
+    r.stamp.push_back(t);
+    for (int c = 0; c < model.nq; ++c) {
+      const bool nan = i == 250 && c == 1;
+      r.position.push_back(nan ? std::numeric_limits<double>::quiet_NaN() : s.position[c]);
+      r.velocity.push_back(0), r.acceleration.push_back(0);
+      r.given.push_back(c == 0 && i % 3 ? 0 : mbk::Recording::kPosition);
+    }
+  }
+  return r;
+}
+
+// Every row of the recording through `batch`, in blocks of the given sizes (cycled).
+std::vector<mbk::OfflineRow> run(mbk::OfflineBatch& batch, const mbk::Model& model, int rows,
+                                 const std::vector<int>& blocks) {
+  std::vector<mbk::OfflineRow> all, block(64, mbk::OfflineRow(model));
+  for (int begin = 0, b = 0; begin < rows; ++b) {
+    const int end = std::min(rows, begin + blocks[b % blocks.size()]);
+    batch.compute(begin, end, block);
+    all.insert(all.end(), block.begin(), block.begin() + (end - begin));
+    begin = end;
+  }
+  return all;
+}
+
+void expect_same(const mbk::OfflineRow& a, const mbk::OfflineRow& b, int r) {
+  ASSERT_EQ(a.stamp, b.stamp) << r;
+  ASSERT_EQ(a.drop_reason, b.drop_reason) << r;
+  if (!a.drop_reason.empty()) return;
+  EXPECT_EQ(a.state.velocity, b.state.velocity) << r;
+  EXPECT_EQ(a.state.acceleration, b.state.acceleration) << r;
+  for (size_t k = 1; k < a.data.rotation.size(); ++k) {
+    ASSERT_EQ(a.data.rotation[k], b.data.rotation[k]) << r << " body " << k;
+    ASSERT_EQ(a.data.alpha[k], b.data.alpha[k]) << r << " body " << k;
+    ASSERT_EQ(a.data.mass_center_acceleration[k], b.data.mass_center_acceleration[k])
+        << r << " body " << k;
+  }
+}
+
+TEST(OfflineBatchTest, EveryThreadCountAndBlockSplitGivesTheSameRows) {
+  const mbk::Model model = mbk_test::random_tree(12, 3);
+  const int rows = 400;
+  const mbk::Recording rec = recording(model, rows);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_0.05s_4");
+  mbk::OfflineBatch one(model, rec, e, 0, nullptr, 1);
+  const std::vector<mbk::OfflineRow> expected = run(one, model, rows, {64});
+  ASSERT_EQ(static_cast<int>(expected.size()), rows);
+  EXPECT_NE(expected[250].drop_reason, "");  // the NaN row
+  EXPECT_EQ(expected[320].drop_reason, "");  // beyond the window of the NaN
+  for (int threads : {2, 3, 7})
+    for (const std::vector<int>& blocks : std::vector<std::vector<int>>{{64}, {1, 7, 13}, {5}}) {
+      mbk::OfflineBatch batch(model, rec, e, 0, nullptr, threads);
+      const std::vector<mbk::OfflineRow> got = run(batch, model, rows, blocks);
+      ASSERT_EQ(got.size(), expected.size());
+      for (int r = 0; r < rows; ++r) expect_same(got[r], expected[r], r);
+    }
+}
+
+// The caller works (writes the block before) between start() and finish(); finish() returns
+// the workers' seconds, and a batch ends cleanly whether or not it ever ran a block.
+TEST(OfflineBatchTest, StartReturnsAndFinishWaits) {
+  const mbk::Model model = mbk_test::random_tree(12, 3);
+  const mbk::Recording rec = recording(model, 200);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_0.05s_4");
+  { mbk::OfflineBatch idle(model, rec, e, 0, nullptr, 4); }
+  mbk::OfflineBatch batch(model, rec, e, 0, nullptr, 2);
+  std::vector<mbk::OfflineRow> rows(100, mbk::OfflineRow(model));
+  batch.start(100, 200, rows);
+  const double seconds = batch.finish();
+  EXPECT_GT(seconds, 0);
+  EXPECT_EQ(rows.front().stamp, rec.stamp[100]);
+  EXPECT_EQ(rows.back().stamp, rec.stamp[199]);
+  EXPECT_EQ(rows.back().drop_reason, "");
+  EXPECT_EQ(batch.finish(), seconds) << "a second finish() waits for nothing";
+}
+
+}  // namespace
