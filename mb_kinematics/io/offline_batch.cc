@@ -3,29 +3,11 @@
 #include <algorithm>
 #include <chrono>
 
+#include "mb_kinematics/core/finite_kinematics.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/state_check.h"
 
 namespace mbk {
-namespace {
-
-// Every value of bodies 1..N in one of Data's arrays finite (one pass over its numbers).
-template <typename Array>
-bool finite(const std::vector<Array>& a) {
-  constexpr int size = Array::SizeAtCompileTime;
-  static_assert(sizeof(Array) == size * sizeof(double), "Data's arrays hold bare numbers");
-  if (a.size() < 2) return true;
-  const Eigen::Index n = size * (static_cast<Eigen::Index>(a.size()) - 1);
-  // x * 0 is 0 for a finite x and NaN for Inf or NaN: one vectorized sum, no branch per number.
-  return (Eigen::Map<const Eigen::ArrayXd>(a[1].data(), n) * 0.0).sum() == 0.0;
-}
-
-bool finite(const Data<double>& d) {
-  return finite(d.rotation) && finite(d.origin) && finite(d.mass_center) && finite(d.omega) &&
-         finite(d.mass_center_velocity) && finite(d.alpha) && finite(d.mass_center_acceleration);
-}
-
-}  // namespace
 
 int default_thread_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
@@ -75,7 +57,7 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
       return drop("outside the base odometry's time span", "");
     apply_floating_base(out.base, out.data);
   }
-  if (!finite(out.data)) return drop("kinematics not finite", "");
+  if (!finite_kinematics(out.data, Level::kAcceleration)) return drop("kinematics not finite", "");
 }
 
 void OfflineBatch::start(int begin, int end, std::vector<OfflineRow>& rows) {

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "mb_kinematics/core/finite_kinematics.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/report.h"
@@ -14,35 +15,6 @@
 
 namespace mbk_ros {
 namespace {
-
-// Every value of one quantity, over R and the bodies, finite: one scan of its array.
-template <typename M>
-bool finite(const std::vector<M>& v) {
-  static_assert(sizeof(M) == sizeof(double) * M::SizeAtCompileTime, "M: a packed fixed matrix");
-  return Eigen::Map<const Eigen::ArrayXd>(v.front().data(), v.size() * M::SizeAtCompileTime)
-      .allFinite();
-}
-
-bool finite(const mbk::Data<double>& d, mbk::Level level) {
-  bool ok = finite(d.rotation) && finite(d.origin) && finite(d.mass_center);
-  if (level != mbk::Level::kPose)
-    ok = ok && finite(d.omega) && finite(d.mass_center_velocity) && finite(d.origin_velocity);
-  if (level == mbk::Level::kAcceleration)
-    ok = ok && finite(d.alpha) && finite(d.mass_center_acceleration) &&
-         finite(d.origin_acceleration);
-  return ok;
-}
-
-bool finite(const mbk::Data<double>& d, int k, mbk::Level level) {
-  bool ok = d.rotation[k].allFinite() && d.origin[k].allFinite() && d.mass_center[k].allFinite();
-  if (level != mbk::Level::kPose)
-    ok = ok && d.omega[k].allFinite() && d.mass_center_velocity[k].allFinite() &&
-         d.origin_velocity[k].allFinite();
-  if (level == mbk::Level::kAcceleration)
-    ok = ok && d.alpha[k].allFinite() && d.mass_center_acceleration[k].allFinite() &&
-         d.origin_acceleration[k].allFinite();
-  return ok;
-}
 
 constexpr double kThrottle = 5.0;  // seconds between repeats of the estimating notice
 
@@ -200,9 +172,9 @@ bool KinematicsNode::compute(mbk::Level level) {
   if (!needed) return true;
   const mbk::Model& model = input_.model();
   mbk::forward_kinematics(model, input_.state(), data_, level);
-  if (finite(data_, level)) return true;  // else the first body not finite is named
+  if (mbk::finite_kinematics(data_, level)) return true;  // else the first body not finite is named
   for (int k = 1; k <= model.body_count(); ++k) {
-    if (finite(data_, k, level)) continue;
+    if (mbk::finite_kinematics(data_, k, level)) continue;
     input_.tally().warn(InputProblem::kKinematicsNotFinite,
                         "kinematics of body '" + model.bodies[k].name + "' not finite; dropped");
     return false;
