@@ -11,7 +11,8 @@
 //                                     (default estimator) or given; real (wall) time; counter
 //                                     x_real_time = samples/s / 1000
 //   kinematics_only/tree100           forward_kinematics alone on the same states, one thread
-// Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1).
+// Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1) (joints of
+// every type, 349 coordinates); revolute100 = the same tree with every joint revolute (100).
 #include <benchmark/benchmark.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/JointState.h>
@@ -134,6 +135,10 @@ const mbk::Model& tree100() {
   static const mbk::Model m = mbk::make_random_tree(100, 1);
   return m;
 }
+const mbk::Model& revolute100() {
+  static const mbk::Model m = mbk::make_random_revolute_tree(100, 1);
+  return m;
+}
 
 BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)->Unit(benchmark::kMillisecond);
@@ -151,6 +156,12 @@ BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(compute, revolute100 / estimated, revolute100(), false)
     ->ArgName("threads")
     ->Arg(1)
     ->Arg(2)

@@ -46,6 +46,13 @@ Model make_random_tree(int n, unsigned seed, SpeedKind speeds) {
   return model;
 }
 
+Model make_random_revolute_tree(int n, unsigned seed) {
+  Model model = make_random_tree(n, seed);
+  for (int k = 1; k <= n; ++k) model.bodies[k].joint.type = JointType::kRevolute;
+  finalize_model(model);
+  return model;
+}
+
 Model with_euler_parameters(const Model& model, SpeedKind speeds) {
   Model out = model;
   out.speeds = speeds;

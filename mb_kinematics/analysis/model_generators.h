@@ -18,6 +18,9 @@ Model make_chain(int n, JointType type);
 // earlier body (branches); joints of every type with random axes, offsets and C_k.
 Model make_random_tree(int n, unsigned seed, SpeedKind speeds = SpeedKind::kCoordinateDerivatives);
 
+// make_random_tree's shapes, axes, offsets and C_k with every joint revolute (n coordinates).
+Model make_random_revolute_tree(int n, unsigned seed);
+
 // The same model with every 1-2-3 angle joint replaced by its Euler-parameter twin
 // (ball_123 -> ball_euler, free_123 -> free_euler), with the given speeds.
 Model with_euler_parameters(const Model& model, SpeedKind speeds);
