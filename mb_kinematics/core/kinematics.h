@@ -594,31 +594,32 @@ MBK_AVX2 PointMotion carried(const PointMotion& p, const BodySpin& s, V4 r) {
 
 // m v for a constant v of the given shape (times_constant above).
 MBK_AVX2 inline V4 times_constant(const Cols& m, const Vec3<double>& v, VectorShape shape) {
+  if (shape == VectorShape::kDense) return times(m, v.data());  // first: random offsets
   switch (shape) {
     case VectorShape::kZero:
       return V4{};
     case VectorShape::kX:
-      return m.c0 * splat(v.x());
+      return m.c0 * splat_at(v.data());
     case VectorShape::kY:
-      return m.c1 * splat(v.y());
+      return m.c1 * splat_at(v.data() + 1);
     case VectorShape::kZ:
-      return m.c2 * splat(v.z());
+      return m.c2 * splat_at(v.data() + 2);
     case VectorShape::kDense:
       break;
   }
-  return times(m, v.x(), v.y(), v.z());
+  return times(m, v.data());
 }
 
 // omega_k = omega_j + w (eq. 4.4.6), alpha_k = alpha_j + wd + omega_j x w (eq. 4.5.1), with
-// w = u q', wd = u q'': u = S0J w_k / q', the joint's axis in R.
+// w = u q', wd = u q'': u = S0J w_k / q', the joint's axis in R; v: the joint's speed.
 template <Level L>
-MBK_AVX2 BodySpin turned_spin(const BodySpin& j, V4 u, double y, double yd) {
+MBK_AVX2 BodySpin turned_spin(const BodySpin& j, V4 u, const StateView<double>& state, int v) {
   BodySpin k;
   if constexpr (L != Level::kPose) {
-    const V4 w = u * splat(y);
+    const V4 w = u * splat_at(state.y + v);
     k.omega = j.omega + w;
     if constexpr (L == Level::kAcceleration)
-      k.alpha = (j.alpha + u * splat(yd)) + cross(j.omega, w);
+      k.alpha = (j.alpha + u * splat_at(state.yd + v)) + cross(j.omega, w);
   }
   return k;
 }
@@ -642,9 +643,7 @@ MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const C
   BodySpin spin_j;
   if constexpr (L != Level::kPose) spin_j.omega = load3(data.omega[j].data());
   if constexpr (L == Level::kAcceleration) spin_j.alpha = load3(data.alpha[j].data());
-  const double y = L == Level::kPose ? 0.0 : state.y[b.v_index];
-  const double yd = L == Level::kAcceleration ? state.yd[b.v_index] : 0.0;
-  const BodySpin spin_k = turned_spin<L>(spin_j, u, y, yd);
+  const BodySpin spin_k = turned_spin<L>(spin_j, u, state, b.v_index);
   if constexpr (L != Level::kPose) store3(data.omega[k].data(), spin_k.omega);
   if constexpr (L == Level::kAcceleration) store3(data.alpha[k].data(), spin_k.alpha);
   const PointArrays origins{data.origin, data.origin_velocity, data.origin_acceleration};
@@ -658,27 +657,29 @@ MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const C
   store_point<L>(centers, k, point);
 }
 
-// S0K = S0J SJK for a turn (c, s) about coordinate axis I (turn_columns).
+// S0K = S0J SJK for a turn (cos, sin at c, s) about coordinate axis I (turn_columns).
 template <int I>
-MBK_AVX2 Cols turn_columns(const Cols& s0j, double c, double s) {
+MBK_AVX2 Cols turn_columns(const Cols& s0j, const double* c, const double* s) {
   constexpr int a = (I + 1) % 3, b = (I + 2) % 3;
-  const V4 turned_a = splat(c) * col<a>(s0j) + splat(s) * col<b>(s0j);
-  const V4 turned_b = splat(c) * col<b>(s0j) - splat(s) * col<a>(s0j);
+  const V4 cos = splat_at(c), sin = splat_at(s);
+  const V4 turned_a = cos * col<a>(s0j) + sin * col<b>(s0j);
+  const V4 turned_b = cos * col<b>(s0j) - sin * col<a>(s0j);
   if constexpr (I == 0) return {s0j.c0, turned_a, turned_b};
   if constexpr (I == 1) return {turned_b, s0j.c1, turned_a};
   if constexpr (I == 2) return {turned_a, turned_b, s0j.c2};
 }
 
 // Column i of S0J SJK with SJK = P0 + c P1 + s P2 (folded_turn); p: P0 P1 P2 padded.
-MBK_AVX2 inline V4 folded_column(const PaddedMat3* p, int i, const Cols& s0j, double c, double s) {
-  const V4 sjk =
-      (load4(p[0].col[i]) + splat(c) * load4(p[1].col[i])) + splat(s) * load4(p[2].col[i]);
-  return times(s0j, sjk[0], sjk[1], sjk[2]);
+MBK_AVX2 inline V4 folded_column(const PaddedMat3* p, int i, const Cols& s0j, V4 cos, V4 sin) {
+  const V4 sjk = (load4(p[0].col[i]) + cos * load4(p[1].col[i])) + sin * load4(p[2].col[i]);
+  return times(s0j, sjk);
 }
 
-MBK_AVX2 inline Cols folded_turn(const PaddedMat3* p, const Cols& s0j, double c, double s) {
-  return {folded_column(p, 0, s0j, c, s), folded_column(p, 1, s0j, c, s),
-          folded_column(p, 2, s0j, c, s)};
+MBK_AVX2 inline Cols folded_turn(const PaddedMat3* p, const Cols& s0j, const double* c,
+                                 const double* s) {
+  const V4 cos = splat_at(c), sin = splat_at(s);
+  return {folded_column(p, 0, s0j, cos, sin), folded_column(p, 1, s0j, cos, sin),
+          folded_column(p, 2, s0j, cos, sin)};
 }
 
 // Revolute joint about coordinate axis I, C_k = I: u = column I of S0J.
@@ -686,7 +687,7 @@ template <Level L, int I>
 MBK_AVX2 void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
                                  const DataView<double>& data) {
   const Cols s0j = load_cols(data.rotation[b.lower]);
-  const Cols s0k = turn_columns<I>(s0j, data.cosine[b.angle], data.sine[b.angle]);
+  const Cols s0k = turn_columns<I>(s0j, data.cosine + b.angle, data.sine + b.angle);
   revolute_update<L>(b, k, s0j, s0k, col<I>(s0j), state, data);
 }
 
@@ -695,9 +696,9 @@ template <Level L>
 MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
                             const StateView<double>& state, const DataView<double>& data) {
   const Cols s0j = load_cols(data.rotation[b.lower]);
-  const Cols s0k = folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine[b.angle],
-                               data.sine[b.angle]);
-  const V4 u = L == Level::kPose ? V4{} : times(s0j, b.axis.x(), b.axis.y(), b.axis.z());
+  const Cols s0k = folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
+                               data.sine + b.angle);
+  const V4 u = L == Level::kPose ? V4{} : times(s0j, b.axis.data());
   revolute_update<L>(b, k, s0j, s0k, u, state, data);
 }
 

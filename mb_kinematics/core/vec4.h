@@ -6,6 +6,9 @@
 #pragma once
 
 #include <cstring>
+#ifdef MBK_AVX2_DISPATCH
+#include <immintrin.h>
+#endif
 
 #include "mb_kinematics/core/types.h"
 
@@ -18,15 +21,19 @@ namespace mbk {
 namespace detail {
 namespace v4 {
 
-// Aligned as double: loads and stores need no alignment, and GCC has no 32-byte-aligned
-// argument to warn about (-Wpsabi) in builds without AVX.
 typedef double V4 __attribute__((vector_size(32)));
 
 MBK_AVX2 inline V4 splat(double x) { return V4{x, x, x, x}; }
 
-// Lane 3 repeats z: any number does, and this one needs no zeroing move (GCC's vmovq xmm, xmm
-// for a zero lane, which Valgrind 3.19 cannot decode).
-MBK_AVX2 inline V4 load3(const double* p) { return V4{p[0], p[1], p[2], p[2]}; }
+// *p in every lane: one load (vbroadcastsd), where GCC makes two of splat(*p).
+MBK_AVX2 inline V4 splat_at(const double* p) { return (V4)_mm256_broadcast_sd(p); }
+
+// Lane 3 zero. Two loads, of 16 and 8 bytes, that match store3's stores (a load of what the
+// body before stored is forwarded from the store buffer), and an insert.
+MBK_AVX2 inline V4 load3(const double* p) {
+  const __m256d xy = _mm256_castpd128_pd256(_mm_loadu_pd(p));
+  return (V4)_mm256_insertf128_pd(xy, _mm_load_sd(p + 2), 1);
+}
 
 MBK_AVX2 inline void store3(double* p, V4 v) {
   p[0] = v[0];
@@ -86,9 +93,14 @@ MBK_AVX2 inline void store_cols(Mat3<double>& m, const Cols& c) {
 // rows) sum each coordinate: (a0 + a1) + a2 for x and y, a0 + (a1 + a2) = (a2 + a1) + a0 for z.
 MBK_AVX2 inline V4 sum3(V4 a0, V4 a1, V4 a2) { return (z_of(a0, a2) + a1) + z_of(a2, a0); }
 
-// m v with v's coordinates x, y, z.
-MBK_AVX2 inline V4 times(const Cols& m, double x, double y, double z) {
-  return sum3(m.c0 * splat(x), m.c1 * splat(y), m.c2 * splat(z));
+// m v with v's coordinates v[0], v[1], v[2] in memory.
+MBK_AVX2 inline V4 times(const Cols& m, const double* v) {
+  return sum3(m.c0 * splat_at(v), m.c1 * splat_at(v + 1), m.c2 * splat_at(v + 2));
+}
+
+// m v with v's coordinates in a register.
+MBK_AVX2 inline V4 times(const Cols& m, V4 v) {
+  return sum3(m.c0 * splat(v[0]), m.c1 * splat(v[1]), m.c2 * splat(v[2]));
 }
 
 }  // namespace v4
