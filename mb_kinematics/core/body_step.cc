@@ -90,6 +90,15 @@ std::vector<int> angle_offsets(JointKernel kernel) {
   return {};
 }
 
+PaddedMat3 padded(const Mat3<double>& m) {
+  PaddedMat3 out;
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) out.col[c][r] = m(r, c);
+    out.col[c][3] = 0.0;
+  }
+  return out;
+}
+
 bool is_ball_or_free(JointKernel kernel) {
   return kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
          kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
@@ -131,6 +140,7 @@ BodySteps make_body_steps(const Model& model) {
       add_planar_matrices(body.joint, out.matrices);
     }
   }
+  for (const Mat3<double>& m : out.matrices) out.padded.push_back(padded(m));
   return out;
 }
 

@@ -55,9 +55,16 @@ struct BodyStep {
   Vec3<double> axis = Vec3<double>::Zero();         // C_k a, in Bj: w_k / q' or s_k' / q'
 };
 
+// A 3x3 matrix with each column padded to four doubles, 32-byte aligned: a column is one load
+// for the vectorized kernels (vec4.h).
+struct alignas(32) PaddedMat3 {
+  double col[3][4];
+};
+
 struct BodySteps {
   std::vector<BodyStep> steps;  // steps[k] for body Bk; steps[0] unused
   std::vector<Mat3<double>> matrices;
+  std::vector<PaddedMat3> padded;  // padded[i]: matrices[i], columns padded
   // The coordinate of every angle the kernels turn by, body by body: forward_kinematics takes
   // their sines and cosines together (Data::sine, Data::cosine) before the bodies.
   std::vector<int> angles;

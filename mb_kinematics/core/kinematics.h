@@ -32,6 +32,8 @@
 #define MBK_AVX2_DISPATCH 1
 #endif
 
+#include "mb_kinematics/core/vec4.h"  // its kernels, for the AVX2 copy
+
 namespace mbk {
 namespace detail {
 
@@ -540,7 +542,202 @@ void planar_step(const Model& model, const BodyStep& b, int k, const StateView<S
   body_update<L, true, true>(b, k, t, data);
 }
 
-template <Level L, typename S>
+#ifdef MBK_VEC4
+// The revolute kernels of the AVX2 copy on four-lane vectors (vec4.h): the sums of the kernels
+// above, term for term and in the same order, so the same results bit for bit, in fewer
+// instructions.
+namespace v4 {
+
+// A point's position, velocity and acceleration, and a body's omega and alpha, in registers.
+struct PointMotion {
+  V4 p{}, v{}, a{};
+};
+struct BodySpin {
+  V4 omega{}, alpha{};
+};
+
+// Where Data keeps a point's motion (the origins', or the mass centers').
+struct PointArrays {
+  Vec3<double>*p, *v, *a;
+};
+
+template <Level L>
+MBK_AVX2 PointMotion load_point(const PointArrays& arrays, int k) {
+  PointMotion m;
+  m.p = load3(arrays.p[k].data());
+  if constexpr (L != Level::kPose) m.v = load3(arrays.v[k].data());
+  if constexpr (L == Level::kAcceleration) m.a = load3(arrays.a[k].data());
+  return m;
+}
+
+template <Level L>
+MBK_AVX2 void store_point(const PointArrays& arrays, int k, const PointMotion& m) {
+  store3(arrays.p[k].data(), m.p);
+  if constexpr (L != Level::kPose) store3(arrays.v[k].data(), m.v);
+  if constexpr (L == Level::kAcceleration) store3(arrays.a[k].data(), m.a);
+}
+
+// Q = P + r fixed in a body of omega and alpha s (eq. 4.6.2 and its derivatives):
+// Q' = P' + omega x r, Q'' = P'' + alpha x r + omega x (omega x r).
+template <Level L>
+MBK_AVX2 PointMotion carried(const PointMotion& p, const BodySpin& s, V4 r) {
+  PointMotion q;
+  q.p = p.p + r;
+  if constexpr (L != Level::kPose) {
+    const V4 omega_r = cross(s.omega, r);
+    q.v = p.v + omega_r;
+    if constexpr (L == Level::kAcceleration)
+      q.a = (p.a + cross(s.alpha, r)) + cross(s.omega, omega_r);
+  }
+  return q;
+}
+
+// m v for a constant v of the given shape (times_constant above).
+MBK_AVX2 inline V4 times_constant(const Cols& m, const Vec3<double>& v, VectorShape shape) {
+  if (shape == VectorShape::kDense) return times(m, v.data());  // first: random offsets
+  switch (shape) {
+    case VectorShape::kZero:
+      return V4{};
+    case VectorShape::kX:
+      return m.c0 * splat_at(v.data());
+    case VectorShape::kY:
+      return m.c1 * splat_at(v.data() + 1);
+    case VectorShape::kZ:
+      return m.c2 * splat_at(v.data() + 2);
+    case VectorShape::kDense:
+      break;
+  }
+  return times(m, v.data());
+}
+
+// omega_k = omega_j + w (eq. 4.4.6), alpha_k = alpha_j + wd + omega_j x w (eq. 4.5.1), with
+// w = u q', wd = u q'': u = S0J w_k / q', the joint's axis in R; v: the joint's speed.
+template <Level L>
+MBK_AVX2 BodySpin turned_spin(const BodySpin& j, V4 u, const StateView<double>& state, int v) {
+  BodySpin k;
+  if constexpr (L != Level::kPose) {
+    const V4 w = u * splat_at(state.y + v);
+    k.omega = j.omega + w;
+    if constexpr (L == Level::kAcceleration)
+      k.alpha = (j.alpha + u * splat_at(state.yd + v)) + cross(j.omega, w);
+  }
+  return k;
+}
+
+// Stores S0K (reorthonormalized at its depth, body_update) and returns S0K r_k.
+MBK_AVX2 inline V4 store_rotation(const BodyStep& b, int k, const Cols& s0k,
+                                  const DataView<double>& data) {
+  store_cols(data.rotation[k], s0k);
+  if (!b.reorthonormalize) return times_constant(s0k, b.mass_center, b.mass_center_shape);
+  reorthonormalize(data.rotation[k]);
+  return times_constant(load_cols(data.rotation[k]), b.mass_center, b.mass_center_shape);
+}
+
+// Body k of a revolute joint (body_update): S0K, its spin from u (turned_spin), O_k = O_j +
+// S0J q_k and G_k = O_k + S0K r_k with their motion (carried; r = 0 leaves the point's).
+template <Level L>
+MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const Cols& s0k, V4 u,
+                              const StateView<double>& state, const DataView<double>& data) {
+  const int j = b.lower;
+  const V4 rho = store_rotation(b, k, s0k, data);
+  BodySpin spin_j;
+  if constexpr (L != Level::kPose) spin_j.omega = load3(data.omega[j].data());
+  if constexpr (L == Level::kAcceleration) spin_j.alpha = load3(data.alpha[j].data());
+  const BodySpin spin_k = turned_spin<L>(spin_j, u, state, b.v_index);
+  if constexpr (L != Level::kPose) store3(data.omega[k].data(), spin_k.omega);
+  if constexpr (L == Level::kAcceleration) store3(data.alpha[k].data(), spin_k.alpha);
+  const PointArrays origins{data.origin, data.origin_velocity, data.origin_acceleration};
+  const PointArrays centers{data.mass_center, data.mass_center_velocity,
+                            data.mass_center_acceleration};
+  PointMotion point = load_point<L>(origins, j);
+  if (b.offset_shape != VectorShape::kZero)
+    point = carried<L>(point, spin_j, times_constant(s0j, b.offset, b.offset_shape));
+  store_point<L>(origins, k, point);
+  if (b.mass_center_shape != VectorShape::kZero) point = carried<L>(point, spin_k, rho);
+  store_point<L>(centers, k, point);
+}
+
+// S0K = S0J SJK for a turn (cos, sin at c, s) about coordinate axis I (turn_columns).
+template <int I>
+MBK_AVX2 Cols turn_columns(const Cols& s0j, const double* c, const double* s) {
+  constexpr int a = (I + 1) % 3, b = (I + 2) % 3;
+  const V4 cos = splat_at(c), sin = splat_at(s);
+  const V4 turned_a = cos * col<a>(s0j) + sin * col<b>(s0j);
+  const V4 turned_b = cos * col<b>(s0j) - sin * col<a>(s0j);
+  if constexpr (I == 0) return {s0j.c0, turned_a, turned_b};
+  if constexpr (I == 1) return {turned_b, s0j.c1, turned_a};
+  if constexpr (I == 2) return {turned_a, turned_b, s0j.c2};
+}
+
+// Column i of S0J SJK with SJK = P0 + c P1 + s P2 (folded_turn); p: P0 P1 P2 padded.
+MBK_AVX2 inline V4 folded_column(const PaddedMat3* p, int i, const Cols& s0j, V4 cos, V4 sin) {
+  const V4 sjk = (load4(p[0].col[i]) + cos * load4(p[1].col[i])) + sin * load4(p[2].col[i]);
+  return times(s0j, sjk);
+}
+
+MBK_AVX2 inline Cols folded_turn(const PaddedMat3* p, const Cols& s0j, const double* c,
+                                 const double* s) {
+  const V4 cos = splat_at(c), sin = splat_at(s);
+  return {folded_column(p, 0, s0j, cos, sin), folded_column(p, 1, s0j, cos, sin),
+          folded_column(p, 2, s0j, cos, sin)};
+}
+
+// Revolute joint about coordinate axis I, C_k = I: u = column I of S0J.
+template <Level L, int I>
+MBK_AVX2 void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
+                                 const DataView<double>& data) {
+  const Cols s0j = load_cols(data.rotation[b.lower]);
+  const Cols s0k = turn_columns<I>(s0j, data.cosine + b.angle, data.sine + b.angle);
+  revolute_update<L>(b, k, s0j, s0k, col<I>(s0j), state, data);
+}
+
+// Revolute joint about any axis with any C_k: u = S0J (C_k a).
+template <Level L>
+MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
+                            const StateView<double>& state, const DataView<double>& data) {
+  const Cols s0j = load_cols(data.rotation[b.lower]);
+  const Cols s0k = folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
+                               data.sine + b.angle);
+  const V4 u = L == Level::kPose ? V4{} : times(s0j, b.axis.data());
+  revolute_update<L>(b, k, s0j, s0k, u, state, data);
+}
+
+}  // namespace v4
+#endif  // MBK_VEC4
+
+// Revolute joint about coordinate axis I, C_k = I: v4 for velocities and accelerations; the
+// pose alone (two columns turned, a column or two added) takes fewer instructions in Eigen's
+// code, which GCC vectorizes itself.
+// kAvx2: in the AVX2 copy (double).
+template <Level L, int I, bool kAvx2, typename S>
+void axis_step(const BodyStep& b, int k, const StateView<S>& state, const DataView<S>& data) {
+#ifdef MBK_VEC4
+  if constexpr (kAvx2 && L != Level::kPose) {
+    v4::revolute_axis_step<L, I>(b, k, state, data);
+    return;
+  }
+#endif
+  revolute_axis_step<L, I>(b, k, state, data);
+}
+
+// Revolute joint about any axis: v4, Eigen, or joint_motion (reference builds: kFolded).
+template <Level L, bool kAvx2, typename S>
+void any_axis_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                   const DataView<S>& data) {
+#ifdef MBK_VEC4
+  if constexpr (kAvx2) {
+    v4::revolute_step<L>(model, b, k, state, data);
+    return;
+  }
+#endif
+  if constexpr (kFolded<S>)
+    revolute_step<L>(model, b, k, state, data);
+  else
+    motion_step<L>(model, k, state, data);
+}
+
+// kAvx2: the AVX2 copy's (forward_kinematics_avx2), double only.
+template <Level L, typename S, bool kAvx2 = false>
 MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& joint_state,
                                        Data<S>& all) {
   const StateView<S> state(joint_state);
@@ -552,19 +749,16 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
     const BodyStep& b = steps[k];
     switch (b.kernel) {
       case JointKernel::kRevoluteX:
-        revolute_axis_step<L, 0>(b, k, state, data);
+        axis_step<L, 0, kAvx2>(b, k, state, data);
         break;
       case JointKernel::kRevoluteY:
-        revolute_axis_step<L, 1>(b, k, state, data);
+        axis_step<L, 1, kAvx2>(b, k, state, data);
         break;
       case JointKernel::kRevoluteZ:
-        revolute_axis_step<L, 2>(b, k, state, data);
+        axis_step<L, 2, kAvx2>(b, k, state, data);
         break;
       case JointKernel::kRevolute:
-        if constexpr (kFolded<S>)
-          revolute_step<L>(model, b, k, state, data);
-        else
-          motion_step<L>(model, k, state, data);
+        any_axis_step<L, kAvx2>(model, b, k, state, data);
         break;
       case JointKernel::kPrismatic:
         prismatic_step<L, false>(model, b, k, state, data);
@@ -607,7 +801,7 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
 template <Level L>
 __attribute__((target("avx2"))) MBK_FLATTEN void forward_kinematics_avx2(
     const Model& model, const JointState<double>& state, Data<double>& data) {
-  forward_kinematics_at<L>(model, state, data);
+  forward_kinematics_at<L, double, true>(model, state, data);
 }
 
 inline bool has_avx2() {
