@@ -50,7 +50,8 @@ class OfflineBatch {
   // Starts rows [begin, end) into rows[0, end - begin) (rows.size() >= end - begin) on the
   // workers and returns; finish() waits for them and returns the seconds they spent, summed.
   // One block at a time; blocks must come in increasing, non-overlapping ranges. Nothing is
-  // allocated once the first block is done (except a dropped row's message).
+  // allocated per row once each worker has computed one (except a dropped row's message); with
+  // one thread, once the first block is done.
   void start(int begin, int end, std::vector<OfflineRow>& rows);
   double finish();
   double compute(int begin, int end, std::vector<OfflineRow>& rows) {
