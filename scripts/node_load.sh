@@ -12,7 +12,7 @@
 #
 #   scripts/node_load.sh [--rate HZ] [--bodies N | --model FILE.urdf] [--seconds S]
 #                        [--warmup S] [--runs R] [--port PORT] [--nodelet]
-#                        [--accelerations] [--no-tf-listener]
+#                        [--accelerations] [--no-tf-listener] [--floor]
 #
 # --bodies N (default 100) writes a random tree of N links on continuous joints (seeded, so
 # every run loads the same URDF). --runs R repeats the measurement and prints the medians.
@@ -20,10 +20,13 @@
 # demo_publisher sends joint_states with velocities, the stream robot_state_publisher gets;
 # --accelerations adds its joint_accelerations (the node then estimates nothing).
 # --no-tf-listener: load_monitor leaves /tf unsubscribed (nobody then serializes tf).
+# --floor: transport_floor in place of the node: the same input and messages, no computation
+# (what roscpp alone costs per sample; its CPU is printed as the node's).
 # Builds nothing: run scripts/test.sh (or mbk_build) first.
 set -euo pipefail
 
 RATE=1000 BODIES=100 MODEL="" SECONDS_=10 WARMUP=5 RUNS=1 PORT=11471 NODELET=0 ACCEL=false TF=true
+FLOOR=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --rate) RATE=$2; shift 2 ;;
@@ -36,6 +39,7 @@ while [ $# -gt 0 ]; do
     --nodelet) NODELET=1; shift ;;
     --accelerations) ACCEL=true; shift ;;
     --no-tf-listener) TF=false; shift ;;
+    --floor) FLOOR=1; shift ;;
     *) echo "node_load.sh: unknown argument '$1' (see the header of $0)" >&2; exit 2 ;;
   esac
 done
@@ -100,6 +104,10 @@ if [ "$NODELET" = 1 ]; then
   /usr/lib/nodelet/nodelet load mb_kinematics/KinematicsNodelet manager __name:=mb_kinematics \
     >"$TMP/load.log" 2>&1 &
   PIDS+=($NODE $!)
+elif [ "$FLOOR" = 1 ]; then
+  "$BIN/transport_floor" __name:=mb_kinematics >"$TMP/node.log" 2>&1 &
+  NODE=$!
+  PIDS+=($NODE)
 else
   "$BIN/mb_kinematics_node" __name:=mb_kinematics >"$TMP/node.log" 2>&1 &
   NODE=$!
@@ -116,7 +124,7 @@ rss_mb() { awk '/VmRSS/ { printf "%.1f", $2 / 1024 }' "/proc/$1/status"; }
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 HZ=$(getconf CLK_TCK)
 
-echo "node_load: $(grep -c '<link' "$MODEL") links, demo_publisher at $RATE Hz (joint_accelerations: $ACCEL), /tf listened: $TF, window $SECONDS_ s after $WARMUP s, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "node_load: $([ "$FLOOR" = 1 ] && echo "transport_floor in place of the node, ")$(grep -c '<link' "$MODEL") links, demo_publisher at $RATE Hz (joint_accelerations: $ACCEL), /tf listened: $TF, window $SECONDS_ s after $WARMUP s, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
 for run in $(seq "$RUNS"); do
   "$BIN/demo_publisher" _rate:="$RATE" _publish_accelerations:="$ACCEL" >"$TMP/pub.log" 2>&1 &
   PUB=$!

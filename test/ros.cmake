@@ -42,3 +42,8 @@ add_dependencies(bag_test mbk mbk_bag mb_kinematics_msgs_generate_messages_cpp)
 target_link_libraries(bag_test mbk_offline mbk_analysis mbk_io mbk_core gtest_main)
 target_compile_definitions(bag_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   MBK_MBK_PATH="$<TARGET_FILE:mbk>")
+
+# scripts/node_load.sh end to end on its own master (port 11523), the node and transport_floor
+# (MBK_WORKSPACE: test/tests.cmake).
+add_test(NAME node_load_smoke COMMAND ${PROJECT_SOURCE_DIR}/test/ros/node_load_smoke.sh)
+set_tests_properties(node_load_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 120)
