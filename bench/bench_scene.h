@@ -15,7 +15,7 @@ namespace mbk_bench {
 struct Scene {
   std::string name;
   mbk::Model model;
-  std::string urdf;  // the same model as URDF; empty: ours only
+  std::string urdf;  // the same model as URDF; empty: no KDL and DART (they read URDF only)
   bool parse_urdf;   // peers load `urdf` with their parsers (else a peer builds `model`)
   bool peers;        // run the peers (their memory or time grows faster than N: at most
                      // 1000 bodies; Pinocchio's Data alone holds N x N matrices)

@@ -7,6 +7,8 @@
 //   pinocchio/<scene>/pose            forwardKinematics(q)       (only when CMake found
 //   pinocchio/<scene>/full            forwardKinematics(q, v, a)  Pinocchio: bench/bench.cmake)
 //                                     and every body's mass-center kinematics (pinocchio_peer.h)
+//   pinocchio/<scene>/full_own_coordinates   the same from Pinocchio's own q, v, a (no
+//                                     conversion of our coordinates in the loop)
 //   dart/<scene>/full                 DART: the same full state, read body by body (dart_peer.h)
 //   kdl/<scene>/tree_pose_all_links   TreeFkSolverPos_recursive::JntToCart for every link
 //                                     (what robot_state_publisher's users get: poses only)
@@ -14,7 +16,8 @@
 //   kdl/<scene>/chain_vel_longest     ChainFkSolverVel_recursive, tip twist of the longest chain
 //   (KDL has no forward acceleration solver.)
 //
-// Scenes: human = config/human_body.yaml (16 bodies, ball joints as such: ours only);
+// Scenes: human = config/human_body.yaml (16 bodies, its ball and free joints as such: ours and
+// Pinocchio's spherical and free-flyer joints);
 // human_urdf = config/human_body.urdf (37 links: ball and free joints expanded into one-axis
 // joints); humanoid29 = 29 revolute joints shaped like Pinocchio's simple_humanoid (legs of 6,
 // waist of 3, arms of 7); random64 = a random tree of 64 revolute joints with random axes,
@@ -299,7 +302,7 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Scene>> scenes;
   const std::string human_urdf = read_file(source_path("config/human_body.urdf"));
   scenes.push_back(std::make_unique<Scene>(Scene{
-      "human", mbk::load_model_file(source_path("config/human_body.yaml")), "", false, false}));
+      "human", mbk::load_model_file(source_path("config/human_body.yaml")), "", false, true}));
   scenes.push_back(urdf_scene("human_urdf", human_urdf));
   scenes.push_back(urdf_scene("humanoid29", mbk::write_urdf(humanoid29(), "humanoid29")));
   scenes.push_back(
@@ -325,11 +328,12 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(("ours/" + scene->name + "/pv/" + level_name).c_str(),
                                      ours_partial_velocity, model, level);
     }
-    if (!scene->peers) continue;  // the human scene: the peers run on its URDF (human_urdf)
+    if (!scene->peers) continue;
 #ifdef MBK_WITH_PINOCCHIO
     if (model->body_count() <= 100)  // its Data holds N^3 tensors: 32 GB at N = 1000
       mbk_bench::register_pinocchio(*scene);
 #endif
+    if (scene->urdf.empty()) continue;  // the human scene: DART and KDL read URDF (human_urdf)
 #ifdef MBK_WITH_DART
     mbk_bench::register_dart(*scene);
 #endif
