@@ -5,8 +5,9 @@
   bench/speed_table.py run.json
 
 Per scene: median CPU time per update (ns) of ours and each peer, our full state per body, and
-the same-run ratios (ours / peer: below 1 means ours is faster); first the machine's load
-average as the run recorded it.
+the same-run ratios (ours / peer: below 1 means ours is faster); Pinocchio's full state both with
+our coordinates converted in the loop and from its own (full_own_coordinates); first the
+machine's load average as the run recorded it.
 """
 import json
 import sys
@@ -44,16 +45,18 @@ def main():
         return "-" if a is None or b is None else f"{a / b:.2f}"
 
     print("| scene | bodies | ours: pose | ours: full | full per body | Pinocchio: pose | "
-          "Pinocchio: full | DART: full | full / Pinocchio full | pose / Pinocchio pose | "
-          "full / DART full |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+          "Pinocchio: full | Pinocchio: full, own coordinates | DART: full | "
+          "full / Pinocchio full | full / Pinocchio full, own coordinates | "
+          "pose / Pinocchio pose | full / DART full |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for s in scenes:
         pose, full = t(f"ours/{s}/recursive/pose"), t(f"ours/{s}/recursive/full")
         bodies = m[f"ours/{s}/recursive/full"][1]
         pp, pf, df = t(f"pinocchio/{s}/pose"), t(f"pinocchio/{s}/full"), t(f"dart/{s}/full")
+        po = t(f"pinocchio/{s}/full_own_coordinates")
         print(f"| {s} | {bodies:,.0f} | {ns(pose)} | {ns(full)} | {full / bodies:.1f} | {ns(pp)} | "
-              f"{ns(pf)} | {ns(df)} | {ratio(full, pf)} | {ratio(pose, pp)} | {ratio(full, df)} |")
-
+              f"{ns(pf)} | {ns(po)} | {ns(df)} | {ratio(full, pf)} | {ratio(full, po)} | "
+              f"{ratio(pose, pp)} | {ratio(full, df)} |")
 
 if __name__ == "__main__":
     main()
