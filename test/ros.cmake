@@ -20,6 +20,10 @@ add_dependencies(system_fields_test mb_kinematics_msgs_generate_messages_cpp)
 target_link_libraries(system_fields_test mbk_ros mbk_test_models mbk_analysis mbk_io mbk_core
   gtest_main)
 
+# The heap's freed pages back to the system after the model is read (no master needed).
+catkin_add_gtest(heap_trim_test test/ros/heap_trim_test.cc)
+target_link_libraries(heap_trim_test gtest_main)
+
 # The picture shared by the rviz display and ~publish_markers (no master needed).
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers gtest_main)

@@ -11,6 +11,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/report.h"
+#include "mb_kinematics/ros/heap_trim.h"
 #include "mb_kinematics/ros/outputs/output_table.h"
 
 namespace mbk_ros {
@@ -83,6 +84,7 @@ void KinematicsNode::start(const mbk::Model& loaded) {
   rate_ = PublishRate(params_.publish_frequency);
   outputs_ = make_outputs(setup(), false);
   make_outputs_in_r();
+  release_freed_heap();  // what reading the model freed (its XML)
 }
 
 OutputSetup KinematicsNode::setup() {
