@@ -36,21 +36,39 @@ bool KalmanEstimator::add(double t, double x) {
     return forward;
   }
   s_before_ = s_, p_before_ = p_, t_before_ = t_;
-  const double dt = t - t_;
-  Eigen::Matrix3d f;  // constant acceleration over dt
-  f << 1, dt, dt * dt / 2, 0, 1, dt, 0, 0, 1;
-  Eigen::Matrix3d q;  // white jerk (discretized)
-  const double d2 = dt * dt, d3 = d2 * dt;
-  q << d3 * d2 / 20, d2 * d2 / 8, d3 / 6, d2 * d2 / 8, d3 / 3, d2 / 2, d3 / 6, d2 / 2, dt;
-  s_ = f * s_;
-  p_ = f * p_ * f.transpose() + q_ * q;
+  predict(t - t_);
   const double innovation = x - s_[0], variance = p_(0, 0) + r_;
-  const Eigen::Vector3d gain = p_.col(0) / variance;
+  const Eigen::Vector3d row = p_.col(0), gain = row / variance;  // row 0 of P, as column 0
   s_ += gain * innovation;
-  p_ -= gain * p_.row(0);
+  // P <- P - gain P.row(0), on the upper triangle (P symmetric).
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j) p_(j, i) = p_(i, j) = p_(i, j) - gain[i] * row[j];
   t_ = t;
   ++count_;
   return forward;
+}
+
+// s <- F s, P <- F P F^T + q Q over dt, with F = [1 dt h; 0 1 dt; 0 0 1] (constant
+// acceleration, h = dt^2 / 2) and Q the white jerk's discretized covariance. F P F^T multiplied
+// out on the upper triangle of the symmetric P: a third of the products of the 3x3 form (the
+// node runs one filter per coordinate and sample; README "The node's load").
+void KalmanEstimator::predict(double dt) {
+  const double h = dt * dt / 2, d2 = dt * dt, d3 = d2 * dt;
+  s_[0] += dt * s_[1] + h * s_[2];
+  s_[1] += dt * s_[2];
+  Eigen::Matrix3d& p = p_;
+  // Rows of A = F P: a0j = p0j + dt p1j + h p2j, a1j = p1j + dt p2j (j >= row), a2j = p2j.
+  const double a00 = p(0, 0) + dt * p(1, 0) + h * p(2, 0);
+  const double a01 = p(0, 1) + dt * p(1, 1) + h * p(2, 1);
+  const double a02 = p(0, 2) + dt * p(1, 2) + h * p(2, 2);
+  const double a11 = p(1, 1) + dt * p(2, 1), a12 = p(1, 2) + dt * p(2, 2);
+  // (A F^T)ij = ai0 + dt ai1 + h ai2, ai1 + dt ai2, ai2 for j = 0, 1, 2.
+  p(0, 0) = a00 + dt * a01 + h * a02 + q_ * (d3 * d2 / 20);
+  p(0, 1) = p(1, 0) = a01 + dt * a02 + q_ * (d2 * d2 / 8);
+  p(0, 2) = p(2, 0) = a02 + q_ * (d3 / 6);
+  p(1, 1) = a11 + dt * a12 + q_ * (d3 / 3);
+  p(1, 2) = p(2, 1) = a12 + q_ * (d2 / 2);
+  p(2, 2) += q_ * dt;
 }
 
 int KalmanEstimator::estimate(double& first, double& second) const {

@@ -21,6 +21,8 @@ class KalmanEstimator : public DerivativeEstimator {
   int estimate(double& first, double& second) const override;
 
  private:
+  void predict(double dt);  // the state and covariance dt later, before the measurement
+
   double q_, r_;
   int count_ = 0;  // samples since the last reset (estimates need 3)
   double t_ = 0;
