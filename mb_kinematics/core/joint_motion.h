@@ -227,4 +227,38 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
   }
 }
 
+// SJK of `joint` as a unit quaternion, without the matrix (the tf output's form): C_k's, given
+// as `offset` (its quaternion, made once), times the motion's. q: the joint's coordinates.
+template <typename S>
+Eigen::Quaternion<S> joint_quaternion(const Joint& joint, const Eigen::Quaternion<S>& offset,
+                                      const S* q) {
+  const Vec3<S> axis = joint.axis.cast<S>();
+  const auto turn = [](const Vec3<S>& a, S angle) {  // angle about the unit vector a
+    S s, c;
+    sin_cos(angle / S(2), s, c);
+    return Eigen::Quaternion<S>(c, s * a.x(), s * a.y(), s * a.z());
+  };
+  switch (joint.type) {
+    case JointType::kFixed:
+    case JointType::kPrismatic:
+      return offset;
+    case JointType::kRevolute:
+      return offset * turn(axis, q[0]);
+    case JointType::kPlanar:
+      return offset * turn(axis, q[2]);
+    case JointType::kBall123:
+    case JointType::kFree123: {
+      const S* a = joint.type == JointType::kFree123 ? q + 3 : q;  // A(alpha) B(beta) C(gamma)
+      return offset * turn(Vec3<S>::UnitX(), a[0]) * turn(Vec3<S>::UnitY(), a[1]) *
+             turn(Vec3<S>::UnitZ(), a[2]);
+    }
+    case JointType::kBallEuler:
+    case JointType::kFreeEuler: {
+      const S* e = joint.type == JointType::kFreeEuler ? q + 3 : q;  // e4: the scalar part
+      return offset * Eigen::Quaternion<S>(e[3], e[0], e[1], e[2]).normalized();
+    }
+  }
+  return offset;
+}
+
 }  // namespace mbk

@@ -2,6 +2,9 @@
 // every joint type: a new type whose table entry and motion disagree fails here.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+#include <limits>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -78,6 +81,35 @@ TEST(JointTraits, MatchJointMotion) {
       EXPECT_EQ(m.linear_speeds, mbk::translation_count(type));
       EXPECT_EQ(m.translation.isZero(), mbk::translation_count(type) == 0);
       EXPECT_EQ(m.rotation.isIdentity(), m.speeds == m.linear_speeds);
+    }
+  }
+}
+
+// joint_quaternion (the tf output's SJK) is joint_motion's rotation, for every type, with and
+// without an offset rotation C_k, at random coordinates (Euler parameters not normalized).
+TEST(JointQuaternion, IsJointMotionsRotation) {
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  const Eigen::Matrix3d tilted =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  for (JointType type : mbk::all_joint_types()) {
+    for (const Eigen::Matrix3d& c : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), tilted}) {
+      SCOPED_TRACE(mbk::to_string(type));
+      mbk::Joint joint;
+      joint.type = type;
+      joint.axis = Eigen::Vector3d(0.3, -0.4, 0.2).normalized();
+      joint.rotation = c;
+      for (int trial = 0; trial < 20; ++trial) {
+        std::vector<double> q(mbk::coordinate_count(type));
+        for (double& x : q) x = u(rng);
+        mbk::JointMotion<double> m;
+        mbk::joint_motion<double>(joint, SpeedKind::kCoordinateDerivatives, q.data(), nullptr, m);
+        const Eigen::Quaterniond r = mbk::joint_quaternion(joint, Eigen::Quaterniond(c), q.data());
+        EXPECT_NEAR(r.norm(), 1.0, 1e-15);
+        // Within rounding: each side multiplies a few rotations (5.5 eps at most seen here).
+        EXPECT_LT((r.toRotationMatrix() - m.rotation).cwiseAbs().maxCoeff(), 16 * kEps);
+      }
     }
   }
 }

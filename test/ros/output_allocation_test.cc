@@ -42,13 +42,14 @@ TEST(OutputAllocation, NoneInFillTransforms) {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const mbk::Model model = mbk_test::random_tree(100, seed);
     const mbk_test::Trajectory trajectory(model, seed);
-    std::vector<int> moving;
+    std::vector<mbk_ros::TfJoint> moving;
     for (int k = 1; k <= model.body_count(); ++k)
-      if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) moving.push_back(k);
+      if (mbk::coordinate_count(model.bodies[k].joint.type) > 0)
+        moving.push_back(mbk_ros::tf_joint(model, k));
     std::vector<geometry_msgs::TransformStamped> transforms(moving.size());
     for (size_t i = 0; i < moving.size(); ++i) {
-      transforms[i].header.frame_id = frame(model.bodies[moving[i]].lower);
-      transforms[i].child_frame_id = frame(moving[i]);
+      transforms[i].header.frame_id = frame(model.bodies[moving[i].body].lower);
+      transforms[i].child_frame_id = frame(moving[i].body);
     }
     const std::vector<mbk::JointState<double>> states = {trajectory.at<double>(0.1),
                                                          trajectory.at<double>(0.2)};
@@ -61,7 +62,7 @@ TEST(OutputAllocation, NoneInFillTransforms) {
     // The fill did its work: the last sample's stamp and frames as set.
     ASSERT_FALSE(transforms.empty());
     EXPECT_EQ(transforms.back().header.stamp, ros::Time(4.0));
-    EXPECT_EQ(transforms.back().child_frame_id, frame(moving.back()));
+    EXPECT_EQ(transforms.back().child_frame_id, frame(moving.back().body));
   }
 }
 

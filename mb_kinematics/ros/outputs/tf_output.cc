@@ -15,6 +15,14 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 
 }  // namespace
 
+TfJoint tf_joint(const mbk::Model& model, int body) {
+  const mbk::Joint& joint = model.bodies[body].joint;
+  bool translates = false;
+  for (const mbk::Coordinate& c : mbk::joint_traits(joint.type).coordinates)
+    translates = translates || c.kind == mbk::CoordinateKind::kTranslation;
+  return {body, Eigen::Quaterniond(joint.rotation), translates};
+}
+
 TfOutput::TfOutput(const OutputSetup& setup)
     : shown_(setup.model.body_count() + 1, 0),
       publisher_(setup.nh.advertise<tf2_msgs::TFMessage>("/tf", kSampleQueueSize)) {
@@ -27,16 +35,17 @@ TfOutput::TfOutput(const OutputSetup& setup)
     parent_.push_back(setup.lower_frame(k));
     child_.push_back(setup.body_frame(k));
   }
-  select(std::vector<char>(shown_.size(), 1), msg_.next());
+  select(model, std::vector<char>(shown_.size(), 1), msg_.next());
 }
 
 // The transforms of the published bodies, their frames set (~missing_coordinates skip).
-void TfOutput::select(const std::vector<char>& published, tf2_msgs::TFMessage& msg) {
+void TfOutput::select(const mbk::Model& model, const std::vector<char>& published,
+                      tf2_msgs::TFMessage& msg) {
   moving_.clear();
   msg.transforms.clear();
   for (size_t i = 0; i < moving_all_.size(); ++i) {
     if (!published[moving_all_[i]]) continue;
-    moving_.push_back(moving_all_[i]);
+    moving_.push_back(tf_joint(model, moving_all_[i]));
     msg.transforms.emplace_back();
     msg.transforms.back().header.frame_id = parent_[i];
     msg.transforms.back().child_frame_id = child_[i];
@@ -45,22 +54,32 @@ void TfOutput::select(const std::vector<char>& published, tf2_msgs::TFMessage& m
 }
 
 void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
-                     const std::vector<int>& moving, const ros::Time& stamp,
+                     const std::vector<TfJoint>& moving, const ros::Time& stamp,
                      std::vector<geometry_msgs::TransformStamped>& transforms) {
   mbk::JointMotion<double> m;
   for (size_t i = 0; i < moving.size(); ++i) {
-    const mbk::Body& body = model.bodies[moving[i]];
-    mbk::joint_motion<double>(body.joint, model.speeds, state.position.data() + body.q_index,
-                              nullptr, m);
+    const mbk::Body& body = model.bodies[moving[i].body];
+    const double* q = state.position.data() + body.q_index;
+    geometry_msgs::Transform& out = transforms[i].transform;
     transforms[i].header.stamp = stamp;
-    set_transform(body, m, transforms[i].transform);
+    const Eigen::Quaterniond r = mbk::joint_quaternion(body.joint, moving[i].offset, q);
+    out.rotation.x = r.x();
+    out.rotation.y = r.y();
+    out.rotation.z = r.z();
+    out.rotation.w = r.w();
+    if (!moving[i].translates) {
+      set_vector(body.joint.offset, out.translation);
+      continue;
+    }
+    mbk::joint_motion<double>(body.joint, model.speeds, q, nullptr, m);
+    set_vector(body.joint.offset + m.translation, out.translation);
   }
 }
 
 void TfOutput::publish(const ros::Time& stamp, const Sample& sample) {
   if (stamp == last_stamp_) return;  // tf2 rejects repeated stamps
   tf2_msgs::TFMessage& msg = msg_.next();
-  if (sample.published != shown_) select(sample.published, msg);
+  if (sample.published != shown_) select(sample.model, sample.published, msg);
   if (moving_.empty()) return;
   last_stamp_ = stamp;
   fill_transforms(sample.model, sample.state, moving_, stamp, msg.transforms);

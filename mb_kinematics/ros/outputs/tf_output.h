@@ -15,10 +15,19 @@
 
 namespace mbk_ros {
 
+// A body on a joint with coordinates, as /tf publishes it: SJK from the joint's quaternion
+// (mbk::joint_quaternion) after C_k's, made once; s_k only for joints that translate.
+struct TfJoint {
+  int body;
+  Eigen::Quaterniond offset;  // C_k
+  bool translates;            // prismatic, planar, free: s_k from mbk::joint_motion
+};
+TfJoint tf_joint(const mbk::Model& model, int body);
+
 // The relative transforms of the `moving` bodies at `stamp` into `transforms` (one per moving
 // body, frames already set): nothing allocated.
 void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
-                     const std::vector<int>& moving, const ros::Time& stamp,
+                     const std::vector<TfJoint>& moving, const ros::Time& stamp,
                      std::vector<geometry_msgs::TransformStamped>& transforms);
 
 // The joints with coordinates, every sample (with ~base_odometry, the base's only with
@@ -35,11 +44,12 @@ class TfOutput : public Output {
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
  private:
-  void select(const std::vector<char>& published, tf2_msgs::TFMessage& msg);
+  void select(const mbk::Model& model, const std::vector<char>& published,
+              tf2_msgs::TFMessage& msg);
 
   std::vector<int> moving_all_;              // bodies on joints with coordinates
   std::vector<std::string> parent_, child_;  // their frames
-  std::vector<int> moving_;                  // those of them published now
+  std::vector<TfJoint> moving_;              // those of them published now
   std::vector<char> shown_;                  // per body: published now
   ReusedMessage<tf2_msgs::TFMessage> msg_;   // a transform per body of moving_
   ros::Time last_stamp_;
