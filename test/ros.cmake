@@ -7,6 +7,11 @@ add_dependencies(joint_state_input_test mb_kinematics_msgs_generate_messages_cpp
 target_link_libraries(joint_state_input_test mbk_ros mbk_io mbk_core gtest_main)
 target_compile_definitions(joint_state_input_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+# The input side's models, with and without ~base_odometry (no ROS master needed).
+catkin_add_gtest(node_input_test test/ros/node_input_test.cc)
+add_dependencies(node_input_test mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(node_input_test mbk_ros mbk_test_models mbk_io mbk_core gtest_main)
+
 # No allocation per sample in the node's output fill functions (no ROS master needed).
 catkin_add_gtest(output_allocation_test test/ros/output_allocation_test.cc)
 add_dependencies(output_allocation_test mb_kinematics_msgs_generate_messages_cpp)

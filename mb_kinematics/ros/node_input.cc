@@ -34,7 +34,7 @@ std::unique_ptr<mbk::DerivativeEstimator> zero_latency_estimator(const std::stri
 }  // namespace
 
 NodeInput::NodeInput(const NodeParams& params, const std::string& odometry_topic)
-    : params_(params), input_state_(model_), state_(model_) {
+    : params_(params), input_state_(loaded_), state_(loaded_) {
   if (!params_.base_odometry.empty())
     base_ =
         std::make_unique<BaseOdometryInput>(*zero_latency_estimator(params_.acceleration_estimator),
@@ -43,19 +43,21 @@ NodeInput::NodeInput(const NodeParams& params, const std::string& odometry_topic
 
 void NodeInput::load(const mbk::Model& loaded) {
   loaded_ = loaded;
-  if (base_)
-    BaseOdometryInput::split(loaded_, input_model_, model_);
-  else
-    input_model_ = model_ = loaded_;
-  input_.emplace(input_model_, *zero_latency_estimator(params_.acceleration_estimator),
+  input_model_ = model_ = &loaded_;
+  if (base_) {
+    BaseOdometryInput::split(loaded_, split_input_, split_model_);
+    input_model_ = &split_input_;
+    model_ = &split_model_;
+  }
+  input_.emplace(*input_model_, *zero_latency_estimator(params_.acceleration_estimator),
                  params_.max_sample_gap);
-  coverage_.emplace(input_model_, params_.missing_coordinates);
-  published_.assign(model_.body_count() + 1, 1);
-  input_state_ = mbk::JointState<double>(input_model_);
-  state_ = mbk::JointState<double>(model_);
+  coverage_.emplace(*input_model_, params_.missing_coordinates);
+  published_.assign(model_->body_count() + 1, 1);
+  input_state_ = mbk::JointState<double>(*input_model_);
+  state_ = mbk::JointState<double>(*model_);
   if (base_) base_->reset();
   frame_ = base_                      ? base_->frame()
-           : params_.frame_id.empty() ? params_.frame_prefix + model_.frame
+           : params_.frame_id.empty() ? params_.frame_prefix + model_->frame
                                       : params_.frame_id;
   tally_.restart();
 }
@@ -148,13 +150,13 @@ bool NodeInput::fill(double t, mbk::Level& level) {
   level = input_->fill(level, input_->paired(t), base_ ? input_state_ : state_,
                        &coverage_->from_input());
   if (base_) {  // the base's coordinates from the odometry at t, the joints' after them
-    const std::string why = base_->fill(t, model_, input_state_, state_, level);
+    const std::string why = base_->fill(t, *model_, input_state_, state_, level);
     if (!why.empty()) {
       tally_.warn(InputProblem::kNoBaseMotion, "joint_states sample dropped: " + why);
       return false;
     }
   }
-  const std::string bad = mbk::check_state(model_, state_);  // NaN/Inf, zero quaternions, ...
+  const std::string bad = mbk::check_state(*model_, state_);  // NaN/Inf, zero quaternions, ...
   if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest
     tally_.warn(bad.find("not finite") != std::string::npos ? InputProblem::kNonFinite
                                                             : InputProblem::kTooLarge,

@@ -41,7 +41,7 @@ class NodeInput {
   void load(const mbk::Model& loaded);
 
   const mbk::Model& loaded() const { return loaded_; }  // as the model source gives it
-  const mbk::Model& model() const { return model_; }    // the kinematics' (with the base)
+  const mbk::Model& model() const { return *model_; }   // the kinematics' (with the base)
   const std::string& frame() const { return frame_; }   // R; with ~base_odometry "" until known
   const CoordinateCoverage& coverage() const { return *coverage_; }
   InputTally& tally() { return tally_; }
@@ -71,8 +71,11 @@ class NodeInput {
 
   const NodeParams& params_;
   mbk::Model loaded_;
-  mbk::Model input_model_;                      // the joints of joint_states
-  mbk::Model model_;                            // input_model_, with ~base_odometry after a base
+  // With ~base_odometry the loaded model split in two (BaseOdometryInput::split); without, both
+  // are loaded_ itself, not copies (a model of 10,000 bodies takes 4 MB).
+  mbk::Model split_input_, split_model_;
+  const mbk::Model* input_model_ = &loaded_;    // the joints of joint_states
+  const mbk::Model* model_ = &loaded_;          // input_model_, with ~base_odometry after a base
   std::optional<JointStateInput> input_;        // over input_model_
   std::optional<CoordinateCoverage> coverage_;  // over input_model_
   std::vector<char> published_;  // with ~base_odometry: the base, then coverage_'s bodies
