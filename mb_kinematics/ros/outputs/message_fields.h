@@ -16,12 +16,16 @@ void set_vector(const mbk::Vec3<double>& v, T& out) {
 }
 
 template <typename T>
-void set_quaternion(const mbk::Mat3<double>& rotation, T& out) {
-  const Eigen::Quaterniond q(rotation);
+void set_quaternion(const Eigen::Quaterniond& q, T& out) {
   out.x = q.x();
   out.y = q.y();
   out.z = q.z();
   out.w = q.w();
+}
+
+template <typename T>
+void set_quaternion(const mbk::Mat3<double>& rotation, T& out) {
+  set_quaternion(Eigen::Quaterniond(rotation), out);
 }
 
 }  // namespace mbk_ros

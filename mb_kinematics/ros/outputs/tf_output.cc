@@ -17,10 +17,7 @@ void set_transform(const mbk::Body& body, const mbk::JointMotion<double>& m,
 
 TfJoint tf_joint(const mbk::Model& model, int body) {
   const mbk::Joint& joint = model.bodies[body].joint;
-  bool translates = false;
-  for (const mbk::Coordinate& c : mbk::joint_traits(joint.type).coordinates)
-    translates = translates || c.kind == mbk::CoordinateKind::kTranslation;
-  return {body, Eigen::Quaterniond(joint.rotation), translates};
+  return {body, Eigen::Quaterniond(joint.rotation), mbk::translation_count(joint.type) > 0};
 }
 
 TfOutput::TfOutput(const OutputSetup& setup)
@@ -62,11 +59,7 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
     const double* q = state.position.data() + body.q_index;
     geometry_msgs::Transform& out = transforms[i].transform;
     transforms[i].header.stamp = stamp;
-    const Eigen::Quaterniond r = mbk::joint_quaternion(body.joint, moving[i].offset, q);
-    out.rotation.x = r.x();
-    out.rotation.y = r.y();
-    out.rotation.z = r.z();
-    out.rotation.w = r.w();
+    set_quaternion(mbk::joint_quaternion(body.joint, moving[i].offset, q), out.rotation);
     if (!moving[i].translates) {
       set_vector(body.joint.offset, out.translation);
       continue;

@@ -20,7 +20,7 @@ namespace mbk_ros {
 struct TfJoint {
   int body;
   Eigen::Quaterniond offset;  // C_k
-  bool translates;            // prismatic, planar, free: s_k from mbk::joint_motion
+  bool translates;            // prismatic, planar, free joints: s_k from mbk::joint_motion
 };
 TfJoint tf_joint(const mbk::Model& model, int body);
 
