@@ -18,14 +18,19 @@ const std::vector<AccelerationPairing::Ready>& AccelerationPairing::add(
   return ready_;
 }
 
-const std::vector<AccelerationPairing::Ready>& AccelerationPairing::add(
-    AccelerationSample accelerations) {
-  if (!kept_.empty() && accelerations.stamp < kept_.back().stamp)
-    kept_.clear();  // stamps went backwards (a bag looping)
-  kept_.push_back(std::move(accelerations));
-  if (kept_.size() > kKept) kept_.pop_front();
+const std::vector<AccelerationPairing::Ready>& AccelerationPairing::add_next() {
+  if (!kept_.empty() && next_.stamp < newest().stamp) {  // stamps went backwards (a bag looping)
+    kept_.clear();
+    oldest_ = 0;
+  }
+  if (kept_.size() < kKept) {
+    kept_.push_back(std::move(next_));
+  } else {
+    std::swap(kept_[oldest_], next_);
+    oldest_ = (oldest_ + 1) % kKept;
+  }
   ready_.clear();
-  if (pending_ && pending_->header.stamp.toSec() == kept_.back().stamp) {
+  if (pending_ && pending_->header.stamp.toSec() == newest().stamp) {
     ready_.push_back({pending_, false});
     pending_.reset();
   }

@@ -6,7 +6,6 @@
 
 #include <sensor_msgs/JointState.h>
 
-#include <deque>
 #include <vector>
 
 namespace mbk_ros {
@@ -20,6 +19,8 @@ struct AccelerationSample {
 
 class AccelerationPairing {
  public:
+  AccelerationPairing() { kept_.reserve(kKept); }
+
   struct Ready {  // a sample that can be computed now
     sensor_msgs::JointStateConstPtr sample;
     bool unpaired;  // true: its accelerations did not come (they are estimated)
@@ -31,17 +32,27 @@ class AccelerationPairing {
   // allocation per sample).
   const std::vector<Ready>& add(const sensor_msgs::JointStateConstPtr& msg, bool pairing);
 
-  // A converted joint_accelerations message; returns the pending sample it completes, if any
-  // (likewise until the next add).
-  const std::vector<Ready>& add(AccelerationSample accelerations);
+  // Where to convert the next joint_accelerations message into (kept only by add_next: a
+  // message refused leaves the kept ones as they were).
+  AccelerationSample& next() { return next_; }
+  // Keeps next(), converted, in place of the oldest kept (their storage swapped: no allocation
+  // once kKept messages have come); returns the pending sample it completes, if any (likewise
+  // until the next add).
+  const std::vector<Ready>& add_next();
 
   // The kept accelerations of stamp t (seconds), or null.
   const AccelerationSample* at(double t) const;
 
  private:
   static constexpr size_t kKept = 16;  // the latest few, by stamp
+  const AccelerationSample& newest() const {
+    return kept_[(oldest_ + kept_.size() - 1) % kept_.size()];
+  }
+
   sensor_msgs::JointStateConstPtr pending_;
-  std::deque<AccelerationSample> kept_;
+  std::vector<AccelerationSample> kept_;  // a ring of at most kKept, oldest at oldest_
+  size_t oldest_ = 0;
+  AccelerationSample next_;
   std::vector<Ready> ready_;  // what add returns (at most two)
 };
 

@@ -49,14 +49,16 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
   }
 }
 
-void JointStateInput::look_up(const std::vector<std::string>& names) {
-  if (names == names_) return;  // a full compare: cheaper than a hash lookup per name
-  names_ = names;
-  name_index_.resize(names.size());
+const std::vector<int>& JointStateInput::look_up(const std::vector<std::string>& names,
+                                                 NameLookup& cache) const {
+  if (names == cache.names) return cache.index;  // a full compare: cheaper than hashing each
+  cache.names = names;
+  cache.index.resize(names.size());
   for (size_t i = 0; i < names.size(); ++i) {
     auto it = index_.find(names[i]);
-    name_index_[i] = it == index_.end() ? -1 : it->second;
+    cache.index[i] = it == index_.end() ? -1 : it->second;
   }
+  return cache.index;
 }
 
 std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update& update) {
@@ -67,9 +69,9 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
   if (!msg.velocity.empty() && msg.velocity.size() != n)
     return std::to_string(n) + " names but " + std::to_string(msg.velocity.size()) + " velocities";
   ++generation_;
-  look_up(msg.name);
+  const std::vector<int>& name_index = look_up(msg.name, state_names_);
   for (size_t i = 0; i < n; ++i) {
-    const int j = name_index_[i];
+    const int j = name_index[i];
     if (j < 0) {
       update.unknown.push_back(msg.name[i]);
       continue;
@@ -96,7 +98,7 @@ std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Up
   trial_.velocity.setZero();
   trial_.acceleration.setZero();
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    const int j = name_index_[i];
+    const int j = state_names_.index[i];
     if (j < 0 || coordinates_[j].mimic) continue;
     trial_.position[j] = msg.position[i];
     if (!msg.velocity.empty()) trial_.velocity[j] = msg.velocity[i];
@@ -137,7 +139,7 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
   if (!update.error.empty()) return update;
   update.flipped = align_euler_signs(msg);
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    const int j = name_index_[i];
+    const int j = state_names_.index[i];
     if (j < 0 || coordinates_[j].mimic) continue;  // mimics: computed
     Coordinate& c = coordinates_[j];
     if (c.has_value && t < c.stamp) {  // e.g. a bag looping: the old history means nothing
@@ -176,21 +178,22 @@ bool JointStateInput::take(Coordinate& c, double t) {
 }
 
 std::string JointStateInput::convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
-                                     AccelerationSample& out) const {
+                                     AccelerationSample& out) {
   if (msg.acceleration.size() != msg.name.size())
     return std::to_string(msg.name.size()) + " names but " +
            std::to_string(msg.acceleration.size()) + " accelerations";
   out.stamp = t;
   out.value.assign(model_.nq, 0.0);
   out.given.assign(model_.nq, 0);
+  const std::vector<int>& index = look_up(msg.name, acceleration_names_);
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    auto it = index_.find(msg.name[i]);
-    if (it == index_.end()) return "joint '" + msg.name[i] + "' is not in the model";
-    if (out.given[it->second]) return "joint '" + msg.name[i] + "' is named twice";
+    const int j = index[i];
+    if (j < 0) return "joint '" + msg.name[i] + "' is not in the model";
+    if (out.given[j]) return "joint '" + msg.name[i] + "' is named twice";
     if (!std::isfinite(msg.acceleration[i]))
       return "joint '" + msg.name[i] + "': acceleration is " + describe(msg.acceleration[i]);
-    out.given[it->second] = 1;
-    out.value[it->second] = msg.acceleration[i];
+    out.given[j] = 1;
+    out.value[j] = msg.acceleration[i];
   }
   return "";
 }
@@ -198,10 +201,9 @@ std::string JointStateInput::convert(const mb_kinematics_msgs::JointAcceleration
 const std::vector<JointStateInput::Ready>& JointStateInput::pair(
     const mb_kinematics_msgs::JointAccelerations& msg, double t, std::string& error) {
   static const std::vector<Ready> kNone;
-  AccelerationSample sample;
-  error = convert(msg, t, sample);
+  error = convert(msg, t, pairing_.next());
   if (!error.empty()) return kNone;
-  return pairing_.add(std::move(sample));
+  return pairing_.add_next();
 }
 
 std::vector<std::string> JointStateInput::missing() const {

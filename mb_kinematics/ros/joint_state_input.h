@@ -47,9 +47,10 @@ class JointStateInput {
   Update add(const sensor_msgs::JointState& msg, double t);
 
   // Converts a joint_accelerations message; returns an error (and leaves `out` unspecified) for
-  // unequal lengths, duplicate or unknown names, NaN/Inf.
+  // unequal lengths, duplicate or unknown names, NaN/Inf. No allocation once `out` has the
+  // model's size.
   std::string convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
-                      AccelerationSample& out) const;
+                      AccelerationSample& out);
 
   // joint_accelerations paired with joint_states by stamp (acceleration_pairing.h); the lists
   // returned are valid until the next pair (no allocation per sample).
@@ -60,7 +61,8 @@ class JointStateInput {
     return pairing_.add(msg, pairing);
   }
   // A joint_accelerations message at time t, converted (convert) and kept: the pending sample
-  // it completes, if any. `error`: why it was refused (then nothing is kept), else "".
+  // it completes, if any. `error`: why it was refused (then nothing is kept), else "". No
+  // allocation once the pairing keeps its most messages (acceleration_pairing.h).
   const std::vector<Ready>& pair(const mb_kinematics_msgs::JointAccelerations& msg, double t,
                                  std::string& error);
   // The kept accelerations of stamp t (seconds), or null: for fill().
@@ -94,7 +96,13 @@ class JointStateInput {
     double position = 0, velocity = 0, stamp = 0;
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
-  void look_up(const std::vector<std::string>& names);
+  // A message's names and their coordinates (-1: not in the model), looked up again only when a
+  // message's names differ from the previous one's (a publisher sends one list).
+  struct NameLookup {
+    std::vector<std::string> names;
+    std::vector<int> index;
+  };
+  const std::vector<int>& look_up(const std::vector<std::string>& names, NameLookup& cache) const;
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
   int align_euler_signs(const sensor_msgs::JointState& msg);
@@ -103,11 +111,9 @@ class JointStateInput {
   const mbk::Model& model_;
   double max_gap_;
   std::unordered_map<std::string, int> index_;
-  // The current message's names and their coordinates (-1: not in the model), looked up again
-  // only when a message's names differ from the previous one's (a publisher sends one list).
-  std::vector<std::string> names_;
-  std::vector<int> name_index_;
-  std::vector<int> euler_;  // the first coordinate of each joint with Euler parameters
+  NameLookup state_names_;         // of joint_states
+  NameLookup acceleration_names_;  // of joint_accelerations
+  std::vector<int> euler_;         // the first coordinate of each joint with Euler parameters
   std::vector<Coordinate> coordinates_;
   std::vector<int> seen_;  // message generation that last named each coordinate (duplicates)
   std::vector<size_t> message_index_;        // where the current message names each coordinate

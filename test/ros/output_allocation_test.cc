@@ -1,15 +1,18 @@
 // No allocation per sample in the node's output fill functions (README "The node"): once the
 // messages are made (names and frames set), filling tf, body_kinematics and its system field
-// allocates nothing. No ROS master: the fill functions only (the publishers reuse the filled
-// messages, outputs/reused_message.h).
+// allocates nothing; nor does pairing joint_accelerations on the input side. No ROS master: the
+// fill functions only (the publishers reuse the filled messages, outputs/reused_message.h).
 #include <gtest/gtest.h>
 
+#include <boost/make_shared.hpp>
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/joint.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/ros/body_kinematics_fill.h"
+#include "mb_kinematics/ros/joint_state_input.h"
 #include "mb_kinematics/ros/outputs/system_fields.h"
 #include "mb_kinematics/ros/outputs/tf_output.h"
 #include "test/support/allocation_counter.h"
@@ -86,6 +89,44 @@ TEST(OutputAllocation, NoneInFillBodyKinematicsAndSystem) {
     EXPECT_EQ(msg.bodies.back().pose.position.x, data.origin[model.body_count()].x());
     EXPECT_EQ(msg.header.stamp, ros::Time(4.0));
   }
+}
+
+// The input side's joint_accelerations path: once the pairing keeps its most messages (16), a
+// message converted, kept and paired with its joint_states sample allocates nothing (the
+// pairing swaps the oldest kept message's storage in; the names are looked up once per list).
+TEST(OutputAllocation, NoneInPairingAccelerations) {
+  const mbk::Model model = mbk_test::random_tree(100, 1);
+  mbk_ros::JointStateInput input(model, *mbk::make_derivative_estimator("kalman_smooth"));
+  std::vector<sensor_msgs::JointStateConstPtr> samples;
+  std::vector<mb_kinematics_msgs::JointAccelerations> accelerations(40);
+  for (int i = 0; i < 40; ++i) {
+    auto js = boost::make_shared<sensor_msgs::JointState>();
+    js->header.stamp = ros::Time(1.0 + i);
+    js->name = model.coordinate_names;
+    js->position.assign(model.nq, 0.1 * i);
+    samples.push_back(js);
+    accelerations[i].header.stamp = js->header.stamp;
+    accelerations[i].name = model.coordinate_names;
+    accelerations[i].acceleration.assign(model.nq, 0.5);
+  }
+  std::string error;
+  auto run = [&](int i) {  // the sample first, waiting; then its accelerations complete it
+    const bool waits = input.pair(samples[i], true).empty();
+    const auto& ready = input.pair(accelerations[i], 1.0 + i, error);
+    return waits && error.empty() && ready.size() == 1 && ready[0].sample == samples[i] &&
+           input.paired(1.0 + i) != nullptr;
+  };
+  for (int i = 0; i < 20; ++i) ASSERT_TRUE(run(i)) << i << ": " << error;
+  const AllocationCounts before = allocation_counts();
+  bool paired = true;
+  for (int i = 20; i < 40; ++i) paired = run(i) && paired;
+  const AllocationCounts after = allocation_counts();
+  expect_none(before, after, "pairing joint_accelerations");
+  EXPECT_TRUE(paired);
+  ASSERT_NE(input.paired(40.0), nullptr);
+  EXPECT_EQ(input.paired(40.0)->value[3], 0.5);
+  EXPECT_NE(input.paired(25.0), nullptr);  // the 16 latest stamps (25 to 40) are kept
+  EXPECT_EQ(input.paired(24.0), nullptr);
 }
 
 }  // namespace
