@@ -53,7 +53,7 @@ bool KalmanEstimator::add(double t, double x) {
 // out on the upper triangle of the symmetric P: a third of the products of the 3x3 form (the
 // node runs one filter per coordinate and sample; README "The node's load").
 void KalmanEstimator::predict(double dt) {
-  const double h = dt * dt / 2, d2 = dt * dt, d3 = d2 * dt;
+  const double d2 = dt * dt, h = d2 / 2, d3 = d2 * dt;
   s_[0] += dt * s_[1] + h * s_[2];
   s_[1] += dt * s_[2];
   Eigen::Matrix3d& p = p_;

@@ -31,10 +31,10 @@ int main(int argc, char** argv) {
   mbk_ros::ReusedMessage<mb_kinematics_msgs::BodyKinematicsArray> bodies;
   for (int k = 1; k <= model.body_count(); ++k) {
     if (mbk::coordinate_count(model.bodies[k].joint.type) == 0) continue;
-    tf.next().transforms.emplace_back();
+    geometry_msgs::TransformStamped& t = tf.next().transforms.emplace_back();
     const int j = model.bodies[k].lower;
-    tf.next().transforms.back().header.frame_id = j ? model.bodies[j].name : model.frame;
-    tf.next().transforms.back().child_frame_id = model.bodies[k].name;
+    t.header.frame_id = j ? model.bodies[j].name : model.frame;
+    t.child_frame_id = model.bodies[k].name;
   }
   mbk_ros::init_body_kinematics(model, model.frame, bodies.next());
   const ros::Publisher tf_pub = nh.advertise<tf2_msgs::TFMessage>("/tf", mbk_ros::kSampleQueueSize);
