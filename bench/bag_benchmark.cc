@@ -1,4 +1,4 @@
-// mbk bag (README "Recorded data"): the whole offline path, and its computation alone.
+// mbk bag (doc/recorded_data.md): the whole offline path, and its computation alone.
 //
 //   bag/human/<rate>Hz/bag_out        run_bag on a 10 s bag of the demo trajectories (human body
 //                                     model, positions only): read, estimate, kinematics, write

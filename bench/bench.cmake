@@ -20,7 +20,7 @@ target_compile_definitions(kinematics_benchmark PRIVATE MBK_SOURCE_DIR="${PROJEC
 find_package(pinocchio QUIET)
 # Under MBK_MARCH_NATIVE the peer's Eigen objects are laid out for this CPU (wider alignment):
 # the Pinocchio library that builds its models must have been built with -march=native too
-# (README "Speed"), or the benchmark crashes. Say so with MBK_PINOCCHIO_MARCH_NATIVE.
+# (doc/speed.md), or the benchmark crashes. Say so with MBK_PINOCCHIO_MARCH_NATIVE.
 option(MBK_PINOCCHIO_MARCH_NATIVE "The Pinocchio found was built with -march=native" OFF)
 if(pinocchio_FOUND AND MBK_MARCH_NATIVE AND NOT MBK_PINOCCHIO_MARCH_NATIVE)
   message(STATUS "kinematics_benchmark: without Pinocchio (MBK_MARCH_NATIVE needs a Pinocchio "

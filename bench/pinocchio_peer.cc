@@ -39,7 +39,7 @@ struct PinRun {
 };
 
 // Joint by joint from our model (revolute, ball and free 1-2-3 joints): Pinocchio's URDF parser
-// does not cope with long chains, and URDF has no ball joint (README "Speed"). A ball joint is
+// does not cope with long chains, and URDF has no ball joint (doc/speed.md). A ball joint is
 // Pinocchio's spherical joint, a free joint its free flyer.
 pinocchio::Model build_from(const mbk::Model& model) {
   pinocchio::Model pin;
@@ -258,7 +258,7 @@ void register_pinocchio(const Scene& scene) {
         }
         st.counters["bodies"] = bodies;
       });
-  // The same without the conversion: Pinocchio given its own q, v and a (README "Speed").
+  // The same without the conversion: Pinocchio given its own q, v and a (doc/speed.md).
   benchmark::RegisterBenchmark(("pinocchio/" + scene.name + "/full_own_coordinates").c_str(),
                                [r, bodies](benchmark::State& st) {
                                  to_configuration(*r, true);

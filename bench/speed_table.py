@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's speed table from one kinematics_benchmark run.
+"""doc/speed.md's speed table from one kinematics_benchmark run.
 
   kinematics_benchmark --benchmark_repetitions=5 --benchmark_out=run.json
   bench/speed_table.py run.json

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes the loaders with libFuzzer (README "Reliability"): builds test/fuzz/ with clang-14
+# Fuzzes the loaders with libFuzzer (doc/reliability.md): builds test/fuzz/ with clang-14
 # (ASan, UBSan, LeakSanitizer) outside catkin, then runs each harness for SECONDS seconds
 # (default 60) on its corpus, seeded from the shipped configs and test/io/data, plus the inputs
 # of past findings (test/fuzz/regressions/<harness>/). Any crash, hang (10 s), leak or sanitizer

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The node's load against robot_state_publisher on the same stream (README "Speed", "The node"):
+# The node's load against robot_state_publisher on the same stream (doc/speed.md "The node's load"):
 # its own master (roscore -p PORT on 127.0.0.1, stopped at the end), mb_kinematics_node,
 # robot_state_publisher (_ignore_timestamp:=true: tf for every sample), demo_publisher at RATE
 # on MODEL, and load_monitor (subscribed to body_kinematics and /tf; it counts the messages whose

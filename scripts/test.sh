@@ -7,7 +7,7 @@
 # own leaks suppressed by test/lsan.supp) in a workspace of its own, <workspace>-sanitize; the
 # rviz plugin and its screenshot test (rviz itself is not instrumented), the benchmarks (not
 # tests) and the fuzz smoke (its harnesses always are) are left out, and it is built with -O1
-# -g (README "Reliability").
+# -g (doc/reliability.md).
 sanitize=${1:-}
 [ -z "$sanitize" ] || [ "$sanitize" = --sanitize ] || { echo "usage: scripts/test.sh [--sanitize]" >&2; exit 2; }
 source "$(dirname "$0")/common.sh"

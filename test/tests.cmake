@@ -23,9 +23,15 @@ foreach(source ${MBK_PEER_TESTS})
   target_link_libraries(${name} ${orocos_kdl_LIBRARIES} ${kdl_parser_LIBRARIES})
 endforeach()
 
-# The fuzz smoke (README "Reliability"): each libFuzzer harness of test/fuzz/ from its seeds with
+# The fuzz smoke (doc/reliability.md): each libFuzzer harness of test/fuzz/ from its seeds with
 # a fixed seed and number of runs (about 5 s each, the same inputs every time); fails on any
 # crash, hang, leak or sanitizer report. scripts/test.sh builds them first.
 get_filename_component(MBK_WORKSPACE ${CMAKE_BINARY_DIR} DIRECTORY)
 add_test(NAME fuzz_smoke COMMAND ${PROJECT_SOURCE_DIR}/scripts/fuzz.sh --smoke)
 set_tests_properties(fuzz_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 300)
+
+# The docs (doc/ and the README's front page): every relative link and #anchor of README.md and
+# doc/*.md resolves, and the README's Quick start blocks run against this workspace on a ROS
+# master of the test's own (test/doc/doc_check.py; needs mbk, mb_kinematics_node, demo_publisher).
+add_test(NAME doc_check COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/doc/doc_check.py)
+set_tests_properties(doc_check PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 90)

@@ -1,4 +1,4 @@
-// The floating base as a free joint of the model (README "Floating base from odometry"): the
+// The floating base as a free joint of the model (doc/node.md "Floating base from odometry"): the
 // node gives the model a body on a free joint from R (or uses a URDF's floating root joint) and
 // turns the base's motion (core/floating_base.h) into that joint's coordinates, so that the
 // unchanged recursion (doc/method.md 4) gives every body's kinematics in R, base included, and

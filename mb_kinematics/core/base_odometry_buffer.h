@@ -1,8 +1,8 @@
-// The node's online buffer of a floating base's odometry (README "Floating base from odometry"):
-// the newest BaseSamples (core/floating_base.h) with the base's acceleration from an online
-// DerivativeEstimator on the velocities in R, read at a joint sample's stamp by interpolate_base
-// (pose by slerp, twist linearly) or held within a gap beyond the first or last sample. mbk bag
-// reads the same BaseSample/BaseMotion offline. ROS-free (Eigen only).
+// The node's online buffer of a floating base's odometry (doc/node.md "Floating base from
+// odometry"): the newest BaseSamples (core/floating_base.h) with the base's acceleration from an
+// online DerivativeEstimator on the velocities in R, read at a joint sample's stamp by
+// interpolate_base (pose by slerp, twist linearly) or held within a gap beyond the first or last
+// sample. mbk bag reads the same BaseSample/BaseMotion offline. ROS-free (Eigen only).
 #pragma once
 
 #include <memory>

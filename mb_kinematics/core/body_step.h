@@ -13,8 +13,8 @@ namespace mbk {
 struct Model;
 
 namespace detail {
-// Every this many joints of depth, S0K gets one Newton-Schulz step back to orthonormal (README,
-// "Numerical stability"; kinematics.h).
+// Every this many joints of depth, S0K gets one Newton-Schulz step back to orthonormal
+// (doc/stability.md; kinematics.h).
 constexpr int kReorthonormalizeEvery = 32;
 }  // namespace detail
 

@@ -27,9 +27,9 @@ class DerivativeEstimator {
   virtual int latency() const { return 0; }
 };
 
-// Estimators by name (derivative_estimator_names() lists the studied ones; README's
-// work-precision report compares them; the node's default is "kalman_smooth", README "The
-// node"). "backward_difference": the derivatives at the newest sample of the quadratic through
+// Estimators by name (derivative_estimator_names() lists the studied ones; doc/error_vs_runtime.md
+// compares them; the node's default is "kalman_smooth", doc/node.md).
+// "backward_difference": the derivatives at the newest sample of the quadratic through
 // the last three samples (non-uniform 3-point backward difference; exact for quadratics, first
 // derivative O(h^2), second O(h)); with two samples, the first derivative of the line through
 // them. Throws std::invalid_argument naming the known estimators.

@@ -1,5 +1,5 @@
-// Cheap indicators of numerical trouble that a running node can report (README, "Work-precision
-// report"): each is O(N) or O(nq) and needs no reference computation.
+// Cheap indicators of numerical trouble that a running node can report (doc/error_vs_runtime.md):
+// each is O(N) or O(nq) and needs no reference computation.
 #pragma once
 
 #include "mb_kinematics/core/data.h"

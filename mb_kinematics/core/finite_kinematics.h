@@ -1,5 +1,5 @@
 // Whether forward_kinematics' results are finite: the node and mbk bag drop a sample whose
-// kinematics is not (README "Numerical stability") rather than publish NaN or Inf. ROS-free.
+// kinematics is not (doc/stability.md) rather than publish NaN or Inf. ROS-free.
 #pragma once
 
 #include "mb_kinematics/core/data.h"

@@ -4,7 +4,7 @@
 
 namespace mbk {
 
-// The table of joint facts (doc/method.md 2; coordinates as in README "Coordinates and
+// The table of joint facts (doc/method.md 2; coordinates as in doc/conventions.md "Coordinates and
 // conventions").
 const JointTraits& joint_traits(JointType type) {
   constexpr CoordinateKind a = CoordinateKind::kAngle, t = CoordinateKind::kTranslation,

@@ -51,7 +51,7 @@ bool KalmanEstimator::add(double t, double x) {
 // s <- F s, P <- F P F^T + q Q over dt, with F = [1 dt h; 0 1 dt; 0 0 1] (constant
 // acceleration, h = dt^2 / 2) and Q the white jerk's discretized covariance. F P F^T multiplied
 // out on the upper triangle of the symmetric P: a third of the products of the 3x3 form (the
-// node runs one filter per coordinate and sample; README "The node's load").
+// node runs one filter per coordinate and sample; doc/speed.md "The node's load").
 void KalmanEstimator::predict(double dt) {
   const double d2 = dt * dt, h = d2 / 2, d3 = d2 * dt;
   s_[0] += dt * s_[1] + h * s_[2];

@@ -39,7 +39,7 @@ namespace detail {
 
 // Every kReorthonormalizeEvery joints of depth (body_step.h), S0K gets one Newton-Schulz step
 // back to orthonormal: R <- R (3 I - R^T R) / 2. Rounding makes S0K = S0J SJK drift from
-// orthonormal by about eps per joint, linearly with depth (README, "Numerical stability"); one
+// orthonormal by about eps per joint, linearly with depth (doc/stability.md); one
 // step squares the drift away at the cost of two 3x3 products, here once per 32 levels (cheap on
 // long chains, and never on the human model, whose depth is at most 6).
 template <typename S>

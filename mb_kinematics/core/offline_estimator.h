@@ -22,7 +22,7 @@ struct OfflineEstimator {
 // "centered_<N>_<order>" (N samples, odd) or "centered_<seconds>s_<order>"; throws
 // std::invalid_argument naming the known forms.
 OfflineEstimator make_offline_estimator(const std::string& name);
-// The studied ones (README's work-precision report), the default first.
+// The studied ones (work-precision report, doc/error_vs_runtime.md), the default first.
 const std::vector<std::string>& offline_estimator_names();
 const char* default_offline_estimator();
 

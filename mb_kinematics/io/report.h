@@ -29,11 +29,11 @@ std::string format_lower_body_csv(const std::vector<int>& lower);
 // not UTF-8 become U+FFFD (JSON text is Unicode).
 std::string json_string(const std::string& text);
 
-// The `mbk eval` JSON (README "`mbk`"; doc/method.md 8). Throws std::runtime_error naming the body if a value is not
-// finite (nothing is printed then). `system` adds "system" (doc/method.md 9: null vectors when M = 0,
-// a null angular momentum and "missing_inertia" when bodies lack inertias); `pv` adds per body
-// "partial_omega", "partial_velocity", "partial_omega_dot", "partial_velocity_dot", keyed by
-// independent speed name (core/independent_speeds.h).
+// The `mbk eval` JSON (doc/mbk.md; doc/method.md 8). Throws std::runtime_error naming the body if a
+// value is not finite (nothing is printed then). `system` adds "system" (doc/method.md 9: null
+// vectors when M = 0, a null angular momentum and "missing_inertia" when bodies lack inertias);
+// `pv` adds per body "partial_omega", "partial_velocity", "partial_omega_dot",
+// "partial_velocity_dot", keyed by independent speed name (core/independent_speeds.h).
 std::string format_eval_json(const Model& model, const Data<double>& data,
                              const SystemKinematics<double>* system = nullptr,
                              const PartialVelocities<double>* pv = nullptr);

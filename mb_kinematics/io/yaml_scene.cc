@@ -99,7 +99,8 @@ void read_inertia(const YAML::Node& node, Body& body, int k) {
 }
 
 Model read_scene(const YAML::Node& root) {
-  if (!root.IsMap()) throw SceneError(root, "a scene is a map with 'bodies' (see README.md)");
+  if (!root.IsMap())
+    throw SceneError(root, "a scene is a map with 'bodies' (see doc/conventions.md)");
   Model model;
   if (root["frame"]) {
     model.frame = root["frame"].Scalar();

@@ -1,4 +1,4 @@
-// YAML scene files (config/*.yaml) into a Model. The format is documented in README.md.
+// YAML scene files (config/*.yaml) into a Model. The format is documented in doc/conventions.md.
 #pragma once
 
 #include <string>

@@ -1,5 +1,5 @@
 // mbk bag: the kinematics of every sample of a recording (a rosbag or a trajectory CSV) into a
-// bag and/or a tidy CSV, with zero-phase derivative estimates (README "Recorded data").
+// bag and/or a tidy CSV, with zero-phase derivative estimates (doc/recorded_data.md).
 #pragma once
 
 #include <map>

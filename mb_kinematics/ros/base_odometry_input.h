@@ -1,5 +1,5 @@
 // ~base_odometry: nav_msgs/Odometry of a floating base into the core's BaseOdometryBuffer
-// (README "Floating base from odometry"). The first accepted message fixes R (its
+// (doc/node.md "Floating base from odometry"). The first accepted message fixes R (its
 // header.frame_id, used as it is); messages in another frame, with NaN/Inf or a zero
 // quaternion are refused with the reason. The base is a body of the kinematics model on a free
 // joint (core/base_joint.h) whose coordinates come from the odometry at each sample's stamp.

@@ -1,4 +1,4 @@
-// Freed heap memory back to the operating system (README "The node's load", RSS). Reading a
+// Freed heap memory back to the operating system (doc/speed.md "The node's load", RSS). Reading a
 // robot_description builds XML trees that are freed once the model is made (about 60 MB for
 // 10,000 links), but glibc keeps freed memory between live blocks in the process for good: the
 // node's RSS would stay at its load-time peak. malloc_trim returns those pages.

@@ -1,5 +1,5 @@
-// The queue of the node's input subscriptions (README "The node's load"): each callback runs at
-// once in the thread that queues it (roscpp's network thread for a remote publisher, the
+// The queue of the node's input subscriptions (doc/speed.md "The node's load"): each callback runs
+// at once in the thread that queues it (roscpp's network thread for a remote publisher, the
 // publisher's own thread for one in the same process), one at a time under mutex(). The
 // default queue would hand every message from the network thread to the spinner thread, and
 // the spinner would wake the network thread again to send what it publishes: two thread

@@ -1,5 +1,5 @@
 // The classes of input the node drops, repairs or waits on, each counted on /diagnostics so
-// that an operator sees what was refused and why (README, "The node": bad input).
+// that an operator sees what was refused and why (doc/node.md: bad input).
 #pragma once
 
 namespace mbk_ros {

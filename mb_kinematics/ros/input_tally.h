@@ -1,4 +1,4 @@
-// The fate of the node's input (README "The node": bad input): samples received, published and
+// The fate of the node's input (doc/node.md: bad input): samples received, published and
 // dropped, a count per class of problem (input_problem.h) and the last one, for /diagnostics
 // (outputs/diagnostics_output.h); and the warnings in the log, at most one per class every 5 s.
 #pragma once

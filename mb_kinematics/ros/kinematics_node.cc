@@ -20,7 +20,7 @@ namespace {
 constexpr double kThrottle = 5.0;  // seconds between repeats of the estimating notice
 
 // The lower body arrays table has N columns and (max depth + 1) rows: logged whole up to this
-// many cells (e.g. 100 bodies of depth up to 99), else a summary (README, "The node").
+// many cells (e.g. 100 bodies of depth up to 99), else a summary (doc/node.md).
 constexpr long kMaxLoggedTableCells = 10000;
 
 void log_model(const mbk::Model& model, const std::string& frame) {
@@ -40,7 +40,7 @@ void log_model(const mbk::Model& model, const std::string& frame) {
   }
   ROS_INFO_STREAM(out.str());
   const std::vector<std::string> no_inertia = mbk::bodies_without_inertia(model);
-  if (!no_inertia.empty())  // README, "Whole-system quantities"
+  if (!no_inertia.empty())  // doc/node.md, system
     ROS_INFO_STREAM(
         "mb_kinematics: body_kinematics' system.angular_momentum is left out "
         "(angular_momentum_known false): no inertia for "
@@ -111,7 +111,7 @@ void KinematicsNode::make_outputs_in_r() {
 }
 
 // A model that does not load, or whose outputs cannot be made (a ~per_body_topics name it
-// lacks), leaves the running one in place (README, "~reload"). The services end first, the
+// lacks), leaves the running one in place (doc/node.md, "~reload"). The services end first, the
 // topics once the new ones are advertised (`retired`), so that subscribers stay connected.
 bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   std::lock_guard<std::mutex> lock(queue_.mutex());

@@ -1,5 +1,5 @@
-// mb_kinematics_node: a thin adapter from joint_states to the core (doc/method.md 8; README "The
-// node"), in the manner of robot_state_publisher: parameters read in one place, one callback
+// mb_kinematics_node: a thin adapter from joint_states to the core (doc/method.md 8; doc/node.md),
+// in the manner of robot_state_publisher: parameters read in one place, one callback
 // per sample, throttled warnings that say what was wrong. It keeps the input (subscriptions and
 // NodeInput: node_input.h), the pairing with joint_accelerations (in JointStateInput) and the
 // dispatch to its outputs (outputs/output_table.cc); the outputs publish.

@@ -1,6 +1,6 @@
 // mb_kinematics/KinematicsNodelet: mb_kinematics_node as a nodelet (nodelet_plugins.xml), the
 // same KinematicsNode on the nodelet's handles, for consumers in the same process: they get
-// body_kinematics and /tf by shared pointer, without serialization (README "The node").
+// body_kinematics and /tf by shared pointer, without serialization (doc/node.md).
 #include <nodelet/nodelet.h>
 
 #include <exception>

@@ -1,4 +1,4 @@
-// mb_kinematics_node: see kinematics_node.h and the README's parameter table.
+// mb_kinematics_node: see kinematics_node.h and the parameter table of doc/node.md.
 #include <ros/ros.h>
 
 #include <exception>

@@ -20,7 +20,7 @@ std::string zero_latency_names() {
   return out + "savitzky_golay_end_<window>_<order>";
 }
 
-// The centered Savitzky-Golay fits and the central difference lag (README, work-precision
+// The centered Savitzky-Golay fits and the central difference lag (doc/error_vs_runtime.md
 // report): the node refuses them.
 std::unique_ptr<mbk::DerivativeEstimator> zero_latency_estimator(const std::string& name) {
   std::unique_ptr<mbk::DerivativeEstimator> estimator = mbk::make_derivative_estimator(name);

@@ -1,4 +1,4 @@
-// The node's input side (README "The node"): the model as the source gives it and as the
+// The node's input side (doc/node.md): the model as the source gives it and as the
 // kinematics use it (with ~base_odometry, a base body on its own joint: BaseOdometryInput::split),
 // joint_states merged and paired with joint_accelerations (JointStateInput), what
 // ~missing_coordinates makes of the coordinates missing (CoordinateCoverage), the base's

@@ -1,5 +1,6 @@
 // Every parameter of mb_kinematics_node, read in one place (read_node_params), and the model
-// they name (load_node_model). The README's parameter table lists the same names and defaults.
+// they name (load_node_model). The parameter table of doc/node.md lists the same names and
+// defaults.
 #pragma once
 
 #include <ros/node_handle.h>

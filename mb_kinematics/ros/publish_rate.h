@@ -1,4 +1,4 @@
-// ~publish_frequency (README "The node"): the outputs at most this often, by the samples'
+// ~publish_frequency (doc/node.md): the outputs at most this often, by the samples'
 // stamps; every sample still goes through the input (its estimators take it in).
 #pragma once
 

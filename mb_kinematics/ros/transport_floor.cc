@@ -1,5 +1,5 @@
 // transport_floor: the node's ROS transport without its computation, for scripts/node_load.sh
-// --floor (README "The node's load"). It takes joint_states as mb_kinematics_node does (the
+// --floor (doc/speed.md "The node's load"). It takes joint_states as mb_kinematics_node does (the
 // same immediate callback queue, tcpNoDelay) and, for each message, publishes on /tf and
 // body_kinematics messages of the node's shape for robot_description (a transform per moving
 // joint, every body with its name), their values left at zero and only their stamps set: what

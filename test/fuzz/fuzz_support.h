@@ -1,4 +1,4 @@
-// Shared by the fuzz harnesses (README "Reliability"): what every input must give. Bad input is
+// Shared by the fuzz harnesses (doc/reliability.md): what every input must give. Bad input is
 // one std::invalid_argument with a one-line message; anything else (another exception, a crash,
 // a sanitizer report, a leak) is a finding: the harness aborts so that libFuzzer keeps it.
 #pragma once

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Packaging, checked the way a ROS packager would (README "Packaging"): catkin_lint finds no
+# Packaging, checked the way a ROS packager would (doc/building.md): catkin_lint finds no
 # error in either package; `catkin_make install` of the workspace; then, from install/setup.bash
 # alone (a clean environment), `rosrun mb_kinematics mbk`, `rosmsg show mb_kinematics_msgs/...`,
 # and test/downstream (a package using the core's headers and library and the messages), built

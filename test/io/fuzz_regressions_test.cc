@@ -1,6 +1,6 @@
 // The inputs the fuzz harnesses (test/fuzz/) once failed on, kept in test/fuzz/regressions/
 // <harness>/, replayed in the ordinary build: each loads, or is refused with one
-// std::invalid_argument of one line (README "Reliability").
+// std::invalid_argument of one line (doc/reliability.md).
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// mbk bag's computation allocates nothing per row (README "Recorded data"): once OfflineBatch has
+// mbk bag's computation allocates nothing per row (doc/recorded_data.md): once OfflineBatch has
 // done its first block, estimates (of coordinates given in every row and of those with their
 // own samples), state checks and kinematics of further rows reuse what exists, and so does the
 // pool of workers (started once, not per block). With one worker: several take chunks as they

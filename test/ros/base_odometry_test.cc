@@ -21,7 +21,7 @@ namespace {
 constexpr double kTol = 1e-6;
 const double kDt = 0.02;
 
-// The input counters of /mb_kinematics on /diagnostics (README: a key per class of input).
+// The input counters of /mb_kinematics on /diagnostics (doc/node.md: a key per class of input).
 class InputCounters {
  public:
   explicit InputCounters(ros::NodeHandle& nh)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/node_load.sh end to end, short and slow (README "The node's load"): the node, then
+# scripts/node_load.sh end to end, short and slow (doc/speed.md "The node's load"): the node, then
 # transport_floor in its place (--floor), each at 200 Hz on a 20-body tree. Fails unless each
 # run prints its CPU shares and load_monitor counted every joint_states sample of the window on
 # body_kinematics and on the node's /tf.

@@ -1,4 +1,4 @@
-// No allocation per sample in the node's output fill functions (README "The node"): once the
+// No allocation per sample in the node's output fill functions (doc/node.md): once the
 // messages are made (names and frames set), filling tf, body_kinematics and its system field
 // allocates nothing; nor does pairing joint_accelerations on the input side. No ROS master: the
 // fill functions only (the publishers reuse the filled messages, outputs/reused_message.h).

@@ -1,4 +1,4 @@
-// body_kinematics' system field (README "Whole-system quantities", system_fields.h) as the core
+// body_kinematics' system field (doc/node.md, system, system_fields.h) as the core
 // computes it, and what it says when it cannot know the angular momentum: a body with mass but
 // no inertia leaves angular_momentum_known false and angular_momentum zero (nothing invented),
 // and a massless model leaves the field unfilled. No ROS master: the fill function only.

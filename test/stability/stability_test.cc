@@ -1,5 +1,5 @@
 // Numerical stability: every case of each group of mbk::stability_cases within the bound
-// derived next to it in mb_kinematics/analysis/stability.cc (README, "Numerical stability").
+// derived next to it in mb_kinematics/analysis/stability.cc (doc/stability.md).
 // One test per group; a failure names the case, the quantity and the derivation's note.
 #include "mb_kinematics/analysis/stability.h"
 

@@ -80,7 +80,7 @@ void DiagnosticsOutput::diagnose(diagnostic_updater::DiagnosticStatusWrapper& st
   for (size_t p = 0; p < static_cast<size_t>(InputProblem::kCount); ++p)
     status.add(diagnostic_key(static_cast<InputProblem>(p)),
                tally_.problems(static_cast<InputProblem>(p)));
-  // Cheap error indicators (mb_kinematics/core/error_indicators.h; README, work-precision).
+  // Cheap error indicators (mb_kinematics/core/error_indicators.h; doc/error_vs_runtime.md).
   status.add("rotation orthonormality drift", data_ ? mbk::orthonormality_drift(*data_) : 0.0);
   status.add("Euler parameter norm error", state_ ? mbk::euler_norm_error(model_, *state_) : 0.0);
   status.add("estimator residual, max (rad or m)", max_residual_);

@@ -1,6 +1,6 @@
 // /diagnostics (diagnostic_updater, every ~diagnostic_period): the input rate, the update time
 // per sample, what was received, published and dropped, the last problem, and the cheap error
-// indicators of the README's "Error against run time" (error_indicators.h), and a count per
+// indicators of doc/error_vs_runtime.md (error_indicators.h), and a count per
 // class of dropped, ignored, repaired or waiting input (input_problem.h): the node's input
 // tallies its fate (input_tally.h), this reports it with what ~missing_coordinates makes of the
 // coordinates missing (coordinate_coverage.h); publish() takes each computed sample's

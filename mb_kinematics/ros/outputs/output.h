@@ -22,7 +22,7 @@
 namespace mbk_ros {
 
 // The publisher queue of a topic published per sample: a consumer that stalls for up to 0.1 s at
-// 1 kHz misses nothing (as tf2_ros's /tf; README "The node's load").
+// 1 kHz misses nothing (as tf2_ros's /tf; doc/speed.md "The node's load").
 constexpr uint32_t kSampleQueueSize = 100;
 
 // What an output may use when it is made: it advertises its topics here.
