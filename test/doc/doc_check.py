@@ -6,7 +6,7 @@
 (b) The fenced ```bash blocks of the README's "Quick start" section run, in order, as one
     bash script (set -e) in a temporary directory, against the workspace MBK_WS, on a ROS
     master of the test's own (a free port); after each block the commands it left running
-    (ending in `&`) are stopped with SIGINT. The whole script must end within --timeout s.
+    (ending in `&`) are stopped with SIGTERM (a background job of a non-interactive shell ignores SIGINT). The whole script must end within --timeout s.
 
 Usage: doc_check.py [--root DIR] [--links-only] [--timeout S]
 """
@@ -112,7 +112,7 @@ def free_port():
 
 
 def script_of(blocks):
-    parts = ["set -e", "stop() { for j in $(jobs -p); do kill -INT $j 2>/dev/null || true; done; wait || true; }",
+    parts = ["set -e", "stop() { for j in $(jobs -p); do kill -TERM $j 2>/dev/null || true; done; wait || true; }",
              "trap stop EXIT"]
     for i, block in enumerate(blocks):
         parts.append("echo '--- quick start block %d' >&2" % (i + 1))
@@ -135,7 +135,7 @@ def run_quick_start(root, ws, timeout):
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
         try:
             for _ in range(100):
-                if subprocess.call(["rosnode", "list"], env=env, stdout=subprocess.DEVNULL,
+                if subprocess.call(["rostopic", "list"], env=env, stdout=subprocess.DEVNULL,
                                    stderr=subprocess.DEVNULL) == 0:
                     break
                 time.sleep(0.2)
