@@ -23,8 +23,8 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/io/offline_batch.h"
 #include "mb_kinematics/offline/bag_command.h"
+#include "mb_kinematics/offline/offline_batch.h"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <memory>
 #include <random>
 
-#include "mb_kinematics/core/derivative_estimator.h"
-#include "mb_kinematics/core/offline_estimator.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 
 namespace mbk {
 

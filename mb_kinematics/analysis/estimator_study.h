@@ -31,7 +31,7 @@ std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, boo
 EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& waves, double rate,
                               double jitter, double noise, double seconds, int repetitions);
 
-// The same stream through an offline estimator (core/offline_estimator.h) as mbk bag runs it:
+// The same stream through an offline estimator (estimation/offline_estimator.h) as mbk bag runs it:
 // weights once per sample for all coordinates; the error over every sample, the recording's
 // ends included (no warm-up); the run time per sample and coordinate includes the weights.
 EstimatorResult run_offline_estimator(const std::string& name, const std::vector<Wave>& waves,

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "mb_kinematics/io/rpy.h"
+#include "mb_kinematics/core/rpy.h"
 
 namespace mbk {
 Model make_chain(int n, JointType type) {

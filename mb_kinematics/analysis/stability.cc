@@ -8,10 +8,10 @@
 
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/analysis/quad.h"
-#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/error_indicators.h"
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/state_check.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 
 namespace mbk {
 

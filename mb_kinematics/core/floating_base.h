@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/offline_estimator.h"
 #include "mb_kinematics/core/types.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 
 namespace mbk {
 

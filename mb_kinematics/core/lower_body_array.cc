@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 

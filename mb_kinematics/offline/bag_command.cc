@@ -5,14 +5,14 @@
 #include <memory>
 #include <stdexcept>
 
-#include "mb_kinematics/core/offline_estimator.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/io/offline_batch.h"
-#include "mb_kinematics/io/progress.h"
 #include "mb_kinematics/io/tidy_csv.h"
-#include "mb_kinematics/io/trajectory_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
+#include "mb_kinematics/offline/offline_batch.h"
+#include "mb_kinematics/offline/progress.h"
+#include "mb_kinematics/offline/trajectory_csv.h"
 
 namespace mbk_offline {
 namespace {

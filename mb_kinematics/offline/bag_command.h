@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-#include "mb_kinematics/io/recording.h"
+#include "mb_kinematics/offline/recording.h"
 
 namespace mbk_offline {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mb_kinematics/core/floating_base.h"
-#include "mb_kinematics/io/recording.h"
+#include "mb_kinematics/offline/recording.h"
 
 namespace mbk_offline {
 

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "mb_kinematics/ros/body_kinematics_fill.h"
+#include "mb_kinematics/messages/body_kinematics.h"
 
 namespace mbk_offline {
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "mb_kinematics/core/floating_base.h"
-#include "mb_kinematics/offline/kinematics_msg.h"
+#include "mb_kinematics/messages/tf.h"
 
 namespace mbk_offline {
 

@@ -9,10 +9,10 @@
 
 #include <string>
 
-#include "mb_kinematics/core/base_odometry_buffer.h"
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/estimation/base_odometry_buffer.h"
 
 namespace mbk_ros {
 

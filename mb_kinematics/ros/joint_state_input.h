@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 #include "mb_kinematics/ros/acceleration_pairing.h"
 #include "mb_kinematics/ros/input_problem.h"
 

@@ -5,8 +5,8 @@
 
 #include <stdexcept>
 
-#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/state_check.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 
 namespace mbk_ros {
 namespace {

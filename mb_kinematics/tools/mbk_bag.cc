@@ -5,8 +5,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "mb_kinematics/io/progress.h"
 #include "mb_kinematics/offline/bag_command.h"
+#include "mb_kinematics/offline/progress.h"
 
 int main(int argc, char** argv) {
   try {

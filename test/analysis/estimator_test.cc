@@ -6,9 +6,9 @@
 #include <random>
 
 #include "mb_kinematics/analysis/estimator_study.h"
-#include "mb_kinematics/core/derivative_estimator.h"
-#include "mb_kinematics/core/kalman_estimator.h"
-#include "mb_kinematics/core/polynomial_fit_estimator.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/estimation/kalman_estimator.h"
+#include "mb_kinematics/estimation/polynomial_fit_estimator.h"
 #include "mb_kinematics/io/load_model.h"
 
 namespace {

@@ -1,6 +1,7 @@
-// The node's odometry buffer (core/base_odometry_buffer.h): it interpolates, holds and refuses
-// as documented, and its estimator gives the acceleration of motions it differentiates exactly.
-#include "mb_kinematics/core/base_odometry_buffer.h"
+// The node's odometry buffer (estimation/base_odometry_buffer.h): it interpolates, holds and
+// refuses as documented, and its estimator gives the acceleration of motions it differentiates
+// exactly.
+#include "mb_kinematics/estimation/base_odometry_buffer.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // The 3-point backward-difference estimator against closed forms (doc/method.md 8).
-#include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
-// The zero-phase offline estimator (core/offline_estimator.h): exact on polynomials of its order
-// at every sample, ends and gaps included; centred where it can be; what it refuses.
-#include "mb_kinematics/core/offline_estimator.h"
+// The zero-phase offline estimator (estimation/offline_estimator.h): exact on polynomials of its
+// order at every sample, ends and gaps included; centred where it can be; what it refuses.
+#include "mb_kinematics/estimation/offline_estimator.h"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/ros/joint_state_input.h"
 #include "test/fuzz/fuzz_support.h"

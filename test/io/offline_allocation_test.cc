@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "mb_kinematics/io/offline_batch.h"
+#include "mb_kinematics/offline/offline_batch.h"
 #include "test/support/allocation_counter.h"
 #include "test/support/test_models.h"
 

@@ -1,7 +1,7 @@
-// OfflineBatch (io/offline_batch.h): its pool of workers gives every row the same result, bit
+// OfflineBatch (offline/offline_batch.h): its pool of workers gives every row the same result, bit
 // for bit, whatever the number of threads, the blocks' sizes and which worker takes which
 // chunk; dropped rows keep their reason; start() returns while the block is computed.
-#include "mb_kinematics/io/offline_batch.h"
+#include "mb_kinematics/offline/offline_batch.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
-// Recorded samples into a table (io/recording.h), trajectory CSV input, tidy CSV output, and the
-// offline states (io/offline_kinematics.h): every bad sample is a counted drop or a clear error.
-#include "mb_kinematics/io/recording.h"
+// Recorded samples into a table (offline/recording.h), trajectory CSV input, tidy CSV output, and
+// the offline states (offline/offline_kinematics.h): every bad sample is a counted drop or a clear
+// error.
+#include "mb_kinematics/offline/recording.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +12,9 @@
 
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/lower_body_array.h"
-#include "mb_kinematics/io/offline_kinematics.h"
 #include "mb_kinematics/io/tidy_csv.h"
-#include "mb_kinematics/io/trajectory_csv.h"
+#include "mb_kinematics/offline/offline_kinematics.h"
+#include "mb_kinematics/offline/trajectory_csv.h"
 
 namespace {
 

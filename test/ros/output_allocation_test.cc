@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/joint.h"
 #include "mb_kinematics/core/kinematics.h"
-#include "mb_kinematics/ros/body_kinematics_fill.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/messages/body_kinematics.h"
+#include "mb_kinematics/messages/system.h"
 #include "mb_kinematics/ros/joint_state_input.h"
-#include "mb_kinematics/ros/outputs/system_fields.h"
 #include "mb_kinematics/ros/outputs/tf_output.h"
 #include "test/support/allocation_counter.h"
 #include "test/support/test_models.h"

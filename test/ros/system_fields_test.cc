@@ -1,14 +1,13 @@
-// body_kinematics' system field (doc/node.md, system, system_fields.h) as the core
+// body_kinematics' system field (doc/node.md, system, messages/system.h) as the core
 // computes it, and what it says when it cannot know the angular momentum: a body with mass but
 // no inertia leaves angular_momentum_known false and angular_momentum zero (nothing invented),
 // and a massless model leaves the field unfilled. No ROS master: the fill function only.
-#include "mb_kinematics/ros/outputs/system_fields.h"
-
 #include <gtest/gtest.h>
 
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/messages/system.h"
 #include "test/support/test_models.h"
 
 namespace {

@@ -2,8 +2,8 @@
 
 #include <mb_kinematics_msgs/LowerBodyArray.h>
 
-#include "mb_kinematics/ros/outputs/message_fields.h"
-#include "mb_kinematics/ros/outputs/system_fields.h"
+#include "mb_kinematics/messages/fields.h"
+#include "mb_kinematics/messages/system.h"
 
 namespace mbk_ros {
 

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "mb_kinematics/ros/body_kinematics_fill.h"
+#include "mb_kinematics/messages/body_kinematics.h"
 #include "mb_kinematics/ros/outputs/output.h"
 #include "mb_kinematics/ros/outputs/reused_message.h"
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/body_velocity.h"
-#include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
 

@@ -2,7 +2,7 @@
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/partial_velocity.h"
-#include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
 namespace {

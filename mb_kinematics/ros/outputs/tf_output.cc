@@ -1,7 +1,7 @@
 #include "mb_kinematics/ros/outputs/tf_output.h"
 
 #include "mb_kinematics/core/joint_motion.h"
-#include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
 namespace {

@@ -1,4 +1,4 @@
-#include "mb_kinematics/core/kalman_estimator.h"
+#include "mb_kinematics/estimation/kalman_estimator.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "mb_kinematics/io/offline_kinematics.h"
+#include "mb_kinematics/offline/offline_kinematics.h"
 
 namespace mbk {
 

@@ -17,7 +17,7 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/core/state.h"
-#include "mb_kinematics/io/offline_kinematics.h"
+#include "mb_kinematics/offline/offline_kinematics.h"
 
 namespace mbk {
 

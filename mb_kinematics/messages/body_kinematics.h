@@ -11,7 +11,7 @@
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
-#include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
 

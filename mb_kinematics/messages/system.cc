@@ -1,7 +1,7 @@
-#include "mb_kinematics/ros/outputs/system_fields.h"
+#include "mb_kinematics/messages/system.h"
 
 #include "mb_kinematics/core/system_kinematics.h"
-#include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
 

@@ -13,7 +13,7 @@
 
 #include "mb_kinematics/core/joint.h"
 #include "mb_kinematics/io/urdf_model.h"
-#include "mb_kinematics/ros/body_kinematics_fill.h"
+#include "mb_kinematics/messages/body_kinematics.h"
 #include "mb_kinematics/ros/immediate_callback_queue.h"
 #include "mb_kinematics/ros/outputs/output.h"
 #include "mb_kinematics/ros/outputs/reused_message.h"

@@ -1,4 +1,4 @@
-#include "mb_kinematics/core/offline_estimator.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 
 #include <algorithm>
 #include <cmath>

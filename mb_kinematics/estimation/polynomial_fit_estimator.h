@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-#include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 
 namespace mbk {
 

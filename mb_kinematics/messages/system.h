@@ -1,5 +1,5 @@
-// The `system` field of body_kinematics (mb_kinematics_msgs/SystemKinematics, doc/method.md 9): total
-// mass, system mass center and its motion, linear momentum, and the angular momentum about G
+// The `system` field of body_kinematics (mb_kinematics_msgs/SystemKinematics, doc/method.md 9):
+// total mass, system mass center and its motion, linear momentum, and the angular momentum about G
 // when every body with mass has an inertia. Filled by BodyKinematicsOutput, so computed only
 // while body_kinematics has a subscriber.
 #pragma once

@@ -1,4 +1,4 @@
-#include "mb_kinematics/io/offline_batch.h"
+#include "mb_kinematics/offline/offline_batch.h"
 
 #include <algorithm>
 #include <chrono>

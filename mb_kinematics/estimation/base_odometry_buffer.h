@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/derivative_estimator.h"
 #include "mb_kinematics/core/floating_base.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 
 namespace mbk {
 

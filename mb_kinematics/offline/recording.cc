@@ -1,4 +1,4 @@
-#include "mb_kinematics/io/recording.h"
+#include "mb_kinematics/offline/recording.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "mb_kinematics/core/base_odometry_buffer.h"
+#include "mb_kinematics/estimation/base_odometry_buffer.h"
 
 #include <algorithm>
 #include <cmath>

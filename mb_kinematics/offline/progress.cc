@@ -1,4 +1,4 @@
-#include "mb_kinematics/io/progress.h"
+#include "mb_kinematics/offline/progress.h"
 
 #include <unistd.h>
 

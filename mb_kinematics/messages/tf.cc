@@ -1,7 +1,7 @@
-#include "mb_kinematics/offline/kinematics_msg.h"
+#include "mb_kinematics/messages/tf.h"
 
 #include "mb_kinematics/core/joint_motion.h"
-#include "mb_kinematics/ros/outputs/message_fields.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_offline {
 using mbk_ros::set_quaternion;

@@ -1,6 +1,6 @@
 // tf transforms from the core's Data, made as the node makes them (doc/method.md 8): a frame per
 // moving body, parent = its lower body's frame (q_k + s_k and SJK); fixed joints separately, for
-// /tf_static. body_kinematics is filled by the node's own mb_kinematics/ros/body_kinematics_fill.h.
+// /tf_static. body_kinematics is filled by the node's own mb_kinematics/messages/body_kinematics.h.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>

@@ -1,11 +1,11 @@
-#include "mb_kinematics/core/derivative_estimator.h"
+#include "mb_kinematics/estimation/derivative_estimator.h"
 
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-#include "mb_kinematics/core/kalman_estimator.h"
-#include "mb_kinematics/core/polynomial_fit_estimator.h"
+#include "mb_kinematics/estimation/kalman_estimator.h"
+#include "mb_kinematics/estimation/polynomial_fit_estimator.h"
 
 namespace mbk {
 namespace {

@@ -1,4 +1,4 @@
-#include "mb_kinematics/core/polynomial_fit_estimator.h"
+#include "mb_kinematics/estimation/polynomial_fit_estimator.h"
 
 #include <Eigen/QR>
 #include <cmath>

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "mb_kinematics/core/utf8.h"
+#include "mb_kinematics/io/utf8.h"
 
 namespace mbk {
 

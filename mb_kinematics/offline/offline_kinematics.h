@@ -1,6 +1,6 @@
 // The joint state of every row of a Recording, for the offline kinematics (mbk bag): positions
 // as recorded, velocities and accelerations as recorded where given, else from the zero-phase
-// estimator (core/offline_estimator.h) over that coordinate's own samples: accelerations from
+// estimator (estimation/offline_estimator.h) over that coordinate's own samples: accelerations from
 // the given velocities when a coordinate has them at every sample, else from the positions.
 // ROS-free.
 #pragma once
@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/offline_estimator.h"
 #include "mb_kinematics/core/state.h"
-#include "mb_kinematics/io/recording.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
+#include "mb_kinematics/offline/recording.h"
 
 namespace mbk {
 

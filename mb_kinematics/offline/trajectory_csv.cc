@@ -1,4 +1,4 @@
-#include "mb_kinematics/io/trajectory_csv.h"
+#include "mb_kinematics/offline/trajectory_csv.h"
 
 #include <cerrno>
 #include <cstdlib>
