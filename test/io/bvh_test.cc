@@ -203,11 +203,12 @@ TEST(Bvh, ReadsAOneMegabyteFile) {
     for (int c = 0; c < columns; ++c) ASSERT_EQ(bvh.value(f, c), f * columns + c + 0.25);
 }
 
-// A hierarchy nested deeper than any call stack allows for recursion is read.
+// A hierarchy nested deeper than any call stack allows for recursion is read; braces need no
+// space around them.
 TEST(Bvh, ReadsADeepHierarchy) {
   const int depth = 100000;
-  std::string text = "HIERARCHY\nROOT r {\nCHANNELS 1 Xposition\n";
-  for (int j = 0; j < depth; ++j) text += "JOINT j {\n";
+  std::string text = "HIERARCHY\nROOT r{CHANNELS 1 Xposition\n";
+  for (int j = 0; j < depth; ++j) text += "JOINT j{\n";
   text += std::string(depth + 1, '}') + "\nMOTION\nFrames: 1\nFrame Time: 1\n7\n";
   const mbk::BvhFile bvh = mbk::parse_bvh(text, "deep.bvh");
   EXPECT_EQ(bvh.segments.size(), static_cast<size_t>(depth + 1));
