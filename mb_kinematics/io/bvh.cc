@@ -196,6 +196,8 @@ void read_hierarchy(Scanner& in, BvhFile& bvh) {
       open.pop_back();
       open_line.pop_back();
       continue;
+    } else if (token == "ROOT" && !inside) {
+      in.fail(line, "a second ROOT: one skeleton per file is read");
     } else {
       in.fail(line, "unexpected " + Scanner::quoted(token) +
                         (inside ? " inside " + bvh.segments[open.back()].name

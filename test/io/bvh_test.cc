@@ -143,6 +143,7 @@ TEST(Bvh, ErrorsNameTheFileAndLine) {
       {with_line(7, "  OFFSET 3.5 0 0"), {"walk.bvh:7:", "expected '{' after JOINT LeftUpLeg"}},
       {with_line(19, ""), {"walk.bvh:25:", "missing '}' of Hips (opened at line 2)"}},
       {with_line(25, "}\n}"), {"walk.bvh:26:", "unexpected '}' outside every ROOT"}},
+      {with_line(25, "}\nROOT Other\n{\n}"), {"walk.bvh:26:", "a second ROOT"}},
       {with_line(16, "        OFFSET 0 -16 0 0"),
        {"walk.bvh:16:", "expected '}' after End Site of LeftLeg's OFFSET, got '0'"}},
       {with_line(26, ""), {"walk.bvh:26:", "unexpected 'Frames:' outside every ROOT"}},
