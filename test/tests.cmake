@@ -13,7 +13,7 @@ file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
   catkin_add_gtest(${name} ${source} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(${name} mbk_test_models mbk_analysis mbk_io mbk_core gtest_main)
+  target_link_libraries(${name} mbk_test_models mbk_analysis mbk_engine mbk_io mbk_core gtest_main)
   target_compile_definitions(${name} PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endforeach()
 foreach(source ${MBK_PEER_TESTS})
@@ -29,3 +29,7 @@ endforeach()
 get_filename_component(MBK_WORKSPACE ${CMAKE_BINARY_DIR} DIRECTORY)
 add_test(NAME fuzz_smoke COMMAND ${PROJECT_SOURCE_DIR}/scripts/fuzz.sh --smoke)
 set_tests_properties(fuzz_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 300)
+
+# The layers of mb_kinematics/ (doc/architecture.md): no #include from a lower layer to a higher
+# one, no ROS in core/ or estimation/ (scripts/check_layers.py, tested on planted includes).
+add_test(NAME layer_includes COMMAND python3 ${PROJECT_SOURCE_DIR}/test/layers_test.py)

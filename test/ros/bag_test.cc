@@ -79,6 +79,20 @@ std::string error_of(const mbk_offline::BagOptions& o) {
   return "";
 }
 
+// The demo trajectory's exact kinematics at t.
+mbk::Data<double> exact_kinematics(const mbk::Model& model, const std::vector<mbk::Wave>& waves,
+                                   double t) {
+  mbk::JointState<double> exact(model);
+  for (int c = 0; c < model.nq; ++c) {
+    exact.position[c] = waves[c].at(t, 0);
+    exact.velocity[c] = waves[c].at(t, 1);
+    exact.acceleration[c] = waves[c].at(t, 2);
+  }
+  mbk::Data<double> d(model);
+  mbk::forward_kinematics(model, exact, d, mbk::Level::kAcceleration);
+  return d;
+}
+
 TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
   const std::string in = write_bag("demo.bag", 100, 3.0);
   mbk_offline::BagOptions o = options(in, temp("demo_out.bag"));
@@ -104,14 +118,7 @@ TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
     ASSERT_EQ(msg->header.stamp, ros::Time(t));
     ASSERT_EQ(m.getTime(), ros::Time(t));
     ASSERT_EQ(msg->header.frame_id, "p/" + model.frame);
-    mbk::JointState<double> exact(model);
-    for (int c = 0; c < model.nq; ++c) {
-      exact.position[c] = waves[c].at(t, 0);
-      exact.velocity[c] = waves[c].at(t, 1);
-      exact.acceleration[c] = waves[c].at(t, 2);
-    }
-    mbk::Data<double> d(model);
-    mbk::forward_kinematics(model, exact, d, mbk::Level::kAcceleration);
+    const mbk::Data<double> d = exact_kinematics(model, waves, t);
     ASSERT_EQ(msg->bodies.size(), 16u);
     for (int k = 1; k <= 16; ++k) {
       const auto& b = msg->bodies[k - 1];
@@ -394,14 +401,7 @@ TEST(BagTest, SystemFieldFilledAsTheNodeFillsIt) {
   for (const rosbag::MessageInstance& m : view) {
     const auto msg = m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>();
     const double t = 1.0 + i++ / 100.0;
-    mbk::JointState<double> exact(model);
-    for (int c = 0; c < model.nq; ++c) {
-      exact.position[c] = waves[c].at(t, 0);
-      exact.velocity[c] = waves[c].at(t, 1);
-      exact.acceleration[c] = waves[c].at(t, 2);
-    }
-    mbk::Data<double> d(model);
-    mbk::forward_kinematics(model, exact, d, mbk::Level::kAcceleration);
+    const mbk::Data<double> d = exact_kinematics(model, waves, t);
     mbk::SystemKinematics<double> s;
     mbk::system_kinematics(model, d, s);
     const auto v3 = [](const auto& x) { return mbk::Vec3<double>(x.x, x.y, x.z); };
