@@ -13,7 +13,7 @@ file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
   catkin_add_gtest(${name} ${source} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
-  target_link_libraries(${name} mbk_test_models mbk_analysis mbk_io mbk_core gtest_main)
+  target_link_libraries(${name} mbk_test_models mbk_analysis mbk_engine mbk_io mbk_core gtest_main)
   target_compile_definitions(${name} PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 endforeach()
 foreach(source ${MBK_PEER_TESTS})
@@ -35,3 +35,6 @@ set_tests_properties(fuzz_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} T
 # master of the test's own (test/doc/doc_check.py; needs mbk, mb_kinematics_node, demo_publisher).
 add_test(NAME doc_check COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/doc/doc_check.py)
 set_tests_properties(doc_check PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 90)
+# The layers of mb_kinematics/ (doc/architecture.md): no #include from a lower layer to a higher
+# one, no ROS in core/ or estimation/ (scripts/check_layers.py, tested on planted includes).
+add_test(NAME layer_includes COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/layers_test.py)

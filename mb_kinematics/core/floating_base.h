@@ -3,8 +3,8 @@
 // moves with the odometry pose, its twist given in the odometry's child frame (the root frame).
 // Poses are interpolated by slerp, twists linearly, at each joint sample's stamp; the base's
 // accelerations are the time derivatives of its twist in R, from an estimator over the
-// odometry stream. Then every body's kinematics is carried from the root frame into R.
-// ROS-free (Eigen only).
+// odometry stream (estimation/base_accelerations.h). Then every body's kinematics is carried from
+// the root frame into R. ROS-free (Eigen only).
 #pragma once
 
 #include <Eigen/Geometry>
@@ -12,7 +12,6 @@
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/types.h"
-#include "mb_kinematics/estimation/offline_estimator.h"
 
 namespace mbk {
 
@@ -32,13 +31,6 @@ struct BaseMotion {
                acceleration = Vec3<double>::Zero(), omega = Vec3<double>::Zero(),
                alpha = Vec3<double>::Zero();
 };
-
-// The base's accelerations in R at every sample (`samples` in increasing time): the offline
-// estimator's first derivatives of the R-component velocities and angular velocities. Samples
-// in runs too short for an estimate get zeros and `valid` 0.
-void base_accelerations(const std::vector<BaseSample>& samples, const OfflineEstimator& estimator,
-                        double max_gap, std::vector<Vec3<double>>& linear_acceleration,
-                        std::vector<Vec3<double>>& angular_acceleration, std::vector<int>& valid);
 
 // The base at time t: slerp of the poses and linear interpolation of the twists (turned into
 // R) and of the accelerations between the samples around t. False if t is outside

@@ -4,8 +4,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "mb_kinematics/io/printable.h"
-
 namespace mbk {
 
 void validate_lower_body_array(const std::vector<int>& lower) {
@@ -19,26 +17,6 @@ void validate_lower_body_array(const std::vector<int>& lower) {
       throw std::invalid_argument(msg.str());
     }
   }
-}
-
-std::vector<int> parse_lower_body_array(const std::string& text) {
-  std::vector<int> lower;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    size_t used = 0;
-    int value = 0;
-    try {
-      value = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || item.find_first_not_of(" \t", used) != std::string::npos)
-      throw std::invalid_argument("lower body array: entry " + std::to_string(lower.size() + 1) +
-                                  " ('" + printable(item) + "') is not an integer");
-    lower.push_back(value);
-  }
-  return lower;
 }
 
 int lower_body_power(const std::vector<int>& lower, int k, int t) {

@@ -12,10 +12,6 @@ namespace mbk {
 // when the array is empty or some L(k) is not in 0..k-1.
 void validate_lower_body_array(const std::vector<int>& lower);
 
-// Parses "0,1,2,1" (spaces allowed) into a lower body array; throws std::invalid_argument
-// naming the bad entry. The result is not validated: call validate_lower_body_array.
-std::vector<int> parse_lower_body_array(const std::string& text);
-
 // L^t(k) for a valid array; L^0(k) = k; 0 once the chain has reached R.
 int lower_body_power(const std::vector<int>& lower, int k, int t);
 

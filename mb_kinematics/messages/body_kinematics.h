@@ -1,6 +1,6 @@
 // body_kinematics (mb_kinematics_msgs/BodyKinematicsArray) from the core's Data: every body's
 // pose, mass center, twist (omega_k, velocity of G_k) and accel (alpha_k, acceleration of G_k),
-// all in R. Message headers only, so that the node and `mbk bag` fill it the same way.
+// all in R, and the system's: the node and `mbk bag` fill it the same way.
 #pragma once
 
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
@@ -12,8 +12,9 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/messages/fields.h"
+#include "mb_kinematics/messages/system.h"
 
-namespace mbk_ros {
+namespace mbk_messages {
 
 // Names, indices and lower bodies of `msg`, once: the per-sample fill leaves them.
 inline void init_body_kinematics(const mbk::Model& model, const std::string& frame,
@@ -59,4 +60,17 @@ inline void fill_body_kinematics(const ros::Time& stamp, const mbk::Data<double>
   }
 }
 
-}  // namespace mbk_ros
+// One sample's body_kinematics: the bodies' values and, when the message holds every body
+// (`complete`), the system's (doc/method.md 9); over a subset of the bodies it would pass for
+// the system's, so then `system` is left unfilled. No allocation.
+inline void fill_kinematics(const ros::Time& stamp, const mbk::Model& model,
+                            const mbk::Data<double>& data, bool complete,
+                            mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  fill_body_kinematics(stamp, data, msg);
+  if (complete)
+    fill_system_kinematics(model, data, msg.system);
+  else
+    msg.system = mb_kinematics_msgs::SystemKinematics();
+}
+
+}  // namespace mbk_messages

@@ -1,11 +1,11 @@
-// Eigen values into geometry_msgs fields, shared by the outputs.
+// Eigen values into geometry_msgs fields, for the node's outputs and mbk bag alike.
 #pragma once
 
 #include <Eigen/Geometry>
 
 #include "mb_kinematics/core/types.h"
 
-namespace mbk_ros {
+namespace mbk_messages {
 
 // x, y, z of a Vector3, Point or the like.
 template <typename T>
@@ -28,4 +28,4 @@ void set_quaternion(const mbk::Mat3<double>& rotation, T& out) {
   set_quaternion(Eigen::Quaterniond(rotation), out);
 }
 
-}  // namespace mbk_ros
+}  // namespace mbk_messages

@@ -3,7 +3,7 @@
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/messages/fields.h"
 
-namespace mbk_ros {
+namespace mbk_messages {
 
 void fill_system_kinematics(const mbk::Model& model, const mbk::Data<double>& data,
                             mb_kinematics_msgs::SystemKinematics& msg) {
@@ -19,4 +19,4 @@ void fill_system_kinematics(const mbk::Model& model, const mbk::Data<double>& da
   set_vector(s.angular_momentum, msg.angular_momentum);
 }
 
-}  // namespace mbk_ros
+}  // namespace mbk_messages

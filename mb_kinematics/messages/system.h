@@ -1,7 +1,7 @@
 // The `system` field of body_kinematics (mb_kinematics_msgs/SystemKinematics, doc/method.md 9):
 // total mass, system mass center and its motion, linear momentum, and the angular momentum about G
-// when every body with mass has an inertia. Filled by BodyKinematicsOutput, so computed only
-// while body_kinematics has a subscriber.
+// when every body with mass has an inertia. Filled by fill_kinematics (body_kinematics.h), for
+// the node while body_kinematics has a subscriber and for mbk bag's output bag.
 #pragma once
 
 #include <mb_kinematics_msgs/SystemKinematics.h>
@@ -9,11 +9,11 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 
-namespace mbk_ros {
+namespace mbk_messages {
 
 // From a Data at Level kAcceleration. `filled` is false for a model of total mass 0 (no mass
 // center); angular_momentum_known false leaves angular_momentum zero. No allocation.
 void fill_system_kinematics(const mbk::Model& model, const mbk::Data<double>& data,
                             mb_kinematics_msgs::SystemKinematics& msg);
 
-}  // namespace mbk_ros
+}  // namespace mbk_messages

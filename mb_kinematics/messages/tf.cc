@@ -3,46 +3,64 @@
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/messages/fields.h"
 
-namespace mbk_offline {
-using mbk_ros::set_quaternion;
-using mbk_ros::set_vector;
+namespace mbk_messages {
 
-TfFrames::TfFrames(const mbk::Model& model, const std::string& prefix)
-    : model_(model), prefix_(prefix), root_(prefix + model.frame) {
-  for (int k = 1; k <= model.body_count(); ++k)
-    if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) moving_.push_back(k);
-  transforms_.resize(moving_.size());
-  for (size_t i = 0; i < moving_.size(); ++i) {
-    const mbk::Body& body = model.bodies[moving_[i]];
-    transforms_[i].header.frame_id = body.lower ? prefix + model.bodies[body.lower].name : root_;
-    transforms_[i].child_frame_id = prefix + body.name;
+TfJoint tf_joint(const mbk::Model& model, int body) {
+  const mbk::Joint& joint = model.bodies[body].joint;
+  return {body, Eigen::Quaterniond(joint.rotation), mbk::translation_count(joint.type) > 0};
+}
+
+std::vector<int> moving_bodies(const mbk::Model& model, int first) {
+  std::vector<int> out;
+  for (int k = first; k <= model.body_count(); ++k)
+    if (mbk::coordinate_count(model.bodies[k].joint.type) > 0) out.push_back(k);
+  return out;
+}
+
+void init_transforms(const mbk::Model& model, const FrameNames& names,
+                     const std::vector<int>& bodies, std::vector<TfJoint>& moving,
+                     std::vector<geometry_msgs::TransformStamped>& transforms) {
+  moving.clear();
+  transforms.resize(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    moving.push_back(tf_joint(model, bodies[i]));
+    transforms[i].header.frame_id = names.lower(bodies[i]);
+    transforms[i].child_frame_id = names.body(bodies[i]);
   }
 }
 
-// q_k + s_k in Bj and SJK, from the joint's own coordinates (as the node's /tf).
-const std::vector<geometry_msgs::TransformStamped>& TfFrames::moving(
-    const mbk::JointState<double>& state) {
+void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
+                     const std::vector<TfJoint>& moving, const ros::Time& stamp,
+                     std::vector<geometry_msgs::TransformStamped>& transforms) {
   mbk::JointMotion<double> m;
-  for (size_t i = 0; i < moving_.size(); ++i) {
-    const mbk::Body& body = model_.bodies[moving_[i]];
-    mbk::joint_motion<double>(body.joint, model_.speeds, state.position.data() + body.q_index,
-                              nullptr, m);
-    set_vector(body.joint.offset + m.translation, transforms_[i].transform.translation);
-    set_quaternion(m.rotation, transforms_[i].transform.rotation);
+  for (size_t i = 0; i < moving.size(); ++i) {
+    const mbk::Body& body = model.bodies[moving[i].body];
+    const double* q = state.position.data() + body.q_index;
+    geometry_msgs::Transform& out = transforms[i].transform;
+    transforms[i].header.stamp = stamp;
+    set_quaternion(mbk::joint_quaternion(body.joint, moving[i].offset, q), out.rotation);
+    if (!moving[i].translates) {
+      set_vector(body.joint.offset, out.translation);
+      continue;
+    }
+    mbk::joint_motion<double>(body.joint, model.speeds, q, nullptr, m);
+    set_vector(body.joint.offset + m.translation, out.translation);  // q_k + s_k in Bj
   }
-  return transforms_;
 }
 
-std::vector<geometry_msgs::TransformStamped> TfFrames::fixed() const {
+std::vector<geometry_msgs::TransformStamped> fixed_transforms(const mbk::Model& model,
+                                                              const FrameNames& names,
+                                                              const ros::Time& stamp) {
   std::vector<geometry_msgs::TransformStamped> out;
   mbk::JointMotion<double> m;
-  for (int k = 1; k <= model_.body_count(); ++k) {
-    const mbk::Body& body = model_.bodies[k];
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const mbk::Body& body = model.bodies[k];
     if (mbk::coordinate_count(body.joint.type) > 0) continue;
-    mbk::joint_motion<double>(body.joint, model_.speeds, nullptr, nullptr, m);
+    mbk::joint_motion<double>(body.joint, model.speeds, nullptr, nullptr, m);
     geometry_msgs::TransformStamped t;
-    t.header.frame_id = body.lower ? prefix_ + model_.bodies[body.lower].name : root_;
-    t.child_frame_id = prefix_ + body.name;
+    t.header.stamp = stamp;
+    t.header.frame_id = names.lower(k);
+    t.child_frame_id = names.body(k);
     set_vector(body.joint.offset + m.translation, t.transform.translation);
     set_quaternion(m.rotation, t.transform.rotation);
     out.push_back(t);
@@ -50,4 +68,4 @@ std::vector<geometry_msgs::TransformStamped> TfFrames::fixed() const {
   return out;
 }
 
-}  // namespace mbk_offline
+}  // namespace mbk_messages

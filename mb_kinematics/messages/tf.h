@@ -1,34 +1,46 @@
-// tf transforms from the core's Data, made as the node makes them (doc/method.md 8): a frame per
-// moving body, parent = its lower body's frame (q_k + s_k and SJK); fixed joints separately, for
-// /tf_static. body_kinematics is filled by the node's own mb_kinematics/messages/body_kinematics.h.
+// tf from the joint state (doc/method.md 8), for the node's /tf and /tf_static and mbk bag's:
+// a frame per body, parent = its lower body's frame, the relative transform q_k + s_k and SJK
+// of its joint alone. Moving joints every sample (nothing allocated), fixed joints once.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
+#include <ros/time.h>
 
-#include <string>
+#include <Eigen/Geometry>
 #include <vector>
 
-#include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/messages/frames.h"
 
-namespace mbk_offline {
+namespace mbk_messages {
 
-// tf frame names: `prefix` + body name, R = `prefix` + R's name.
-class TfFrames {
- public:
-  TfFrames(const mbk::Model& model, const std::string& prefix);
-  // The transforms of the bodies on moving joints at `state` (stamp set by the caller).
-  const std::vector<geometry_msgs::TransformStamped>& moving(const mbk::JointState<double>& state);
-  // The transforms of the bodies on fixed joints.
-  std::vector<geometry_msgs::TransformStamped> fixed() const;
-  const std::string& root() const { return root_; }
-
- private:
-  const mbk::Model& model_;
-  std::string prefix_, root_;
-  std::vector<int> moving_;
-  std::vector<geometry_msgs::TransformStamped> transforms_;
+// A body on a joint with coordinates, as /tf publishes it: SJK from the joint's quaternion
+// (mbk::joint_quaternion) after C_k's, made once; s_k only for joints that translate.
+struct TfJoint {
+  int body;
+  Eigen::Quaterniond offset;  // C_k
+  bool translates;            // prismatic, planar, free joints: s_k from mbk::joint_motion
 };
+TfJoint tf_joint(const mbk::Model& model, int body);
 
-}  // namespace mbk_offline
+// The bodies on joints with coordinates, from body `first` on.
+std::vector<int> moving_bodies(const mbk::Model& model, int first = 1);
+
+// `bodies`' joints into `moving` and a transform each into `transforms`, frames set.
+void init_transforms(const mbk::Model& model, const FrameNames& names,
+                     const std::vector<int>& bodies, std::vector<TfJoint>& moving,
+                     std::vector<geometry_msgs::TransformStamped>& transforms);
+
+// The relative transforms of the `moving` bodies at `stamp` into `transforms` (one per moving
+// body, frames already set): nothing allocated.
+void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
+                     const std::vector<TfJoint>& moving, const ros::Time& stamp,
+                     std::vector<geometry_msgs::TransformStamped>& transforms);
+
+// The transforms of the bodies on fixed joints, at `stamp` (/tf_static).
+std::vector<geometry_msgs::TransformStamped> fixed_transforms(const mbk::Model& model,
+                                                              const FrameNames& names,
+                                                              const ros::Time& stamp);
+
+}  // namespace mbk_messages

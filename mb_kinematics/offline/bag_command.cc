@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"

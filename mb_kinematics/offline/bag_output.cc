@@ -3,19 +3,38 @@
 #include <stdexcept>
 
 #include "mb_kinematics/messages/body_kinematics.h"
+#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_offline {
+namespace {
+
+// The floating base's pose in R as R -> the model's root frame.
+void set_base(const mbk::BaseMotion& base, geometry_msgs::TransformStamped& out) {
+  mbk_messages::set_vector(base.position, out.transform.translation);
+  mbk_messages::set_quaternion(base.rotation, out.transform.rotation);
+}
+
+}  // namespace
 
 BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
                      const std::string& base_frame)
-    : model_(model), path_(path), frames_(model, prefix), base_frame_(base_frame) {
+    : model_(model),
+      path_(path),
+      names_(model, prefix, mbk_messages::model_frame(model, prefix)),
+      base_frame_(base_frame) {
   try {
     bag_.open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
     throw std::invalid_argument(path + ": cannot write the bag (" + e.what() + ")");
   }
-  mbk_ros::init_body_kinematics(model, base_frame.empty() ? frames_.root() : base_frame,
-                                kinematics_);
+  mbk_messages::init_body_kinematics(model, base_frame.empty() ? names_.root() : base_frame,
+                                     kinematics_);
+  mbk_messages::init_transforms(model, names_, mbk_messages::moving_bodies(model), moving_,
+                                tf_.transforms);
+  if (base_frame.empty()) return;
+  tf_.transforms.emplace_back();  // R -> the model's root frame, last
+  tf_.transforms.back().header.frame_id = base_frame;
+  tf_.transforms.back().child_frame_id = names_.root();
 }
 
 void BagOutput::write(double stamp, const mbk::JointState<double>& state,
@@ -23,29 +42,17 @@ void BagOutput::write(double stamp, const mbk::JointState<double>& state,
   const ros::Time time(stamp);
   if (!static_written_) {
     tf2_msgs::TFMessage fixed;
-    fixed.transforms = frames_.fixed();
-    for (auto& t : fixed.transforms) t.header.stamp = time;
+    fixed.transforms = mbk_messages::fixed_transforms(model_, names_, time);
     if (!fixed.transforms.empty()) bag_.write("/tf_static", time, fixed);
     static_written_ = true;
   }
-  mbk_ros::fill_body_kinematics(time, data, kinematics_);
+  mbk_messages::fill_kinematics(time, model_, data, true, kinematics_);  // every body: complete
   bag_.write("/body_kinematics", time, kinematics_);
-  tf_.transforms = frames_.moving(state);
-  if (base) {  // R -> the model's root frame
-    geometry_msgs::TransformStamped t;
-    t.header.frame_id = base_frame_;
-    t.child_frame_id = frames_.root();
-    t.transform.translation.x = base->position.x();
-    t.transform.translation.y = base->position.y();
-    t.transform.translation.z = base->position.z();
-    const Eigen::Quaterniond q(base->rotation);
-    t.transform.rotation.x = q.x();
-    t.transform.rotation.y = q.y();
-    t.transform.rotation.z = q.z();
-    t.transform.rotation.w = q.w();
-    tf_.transforms.push_back(t);
+  mbk_messages::fill_transforms(model_, state, moving_, time, tf_.transforms);
+  if (moving_.size() < tf_.transforms.size()) {
+    tf_.transforms.back().header.stamp = time;
+    if (base) set_base(*base, tf_.transforms.back());
   }
-  for (auto& t : tf_.transforms) t.header.stamp = time;
   if (!tf_.transforms.empty()) bag_.write("/tf", time, tf_);
 }
 

@@ -8,8 +8,10 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/core/floating_base.h"
+#include "mb_kinematics/messages/frames.h"
 #include "mb_kinematics/messages/tf.h"
 
 namespace mbk_offline {
@@ -29,9 +31,10 @@ class BagOutput {
   const mbk::Model& model_;
   std::string path_;
   rosbag::Bag bag_;
-  TfFrames frames_;
+  mbk_messages::FrameNames names_;
+  std::vector<mbk_messages::TfJoint> moving_;  // the bodies on joints with coordinates
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;
-  tf2_msgs::TFMessage tf_;
+  tf2_msgs::TFMessage tf_;  // moving_'s transforms, then R -> the root frame with a base
   std::string base_frame_;
   bool static_written_ = false;
 };

@@ -7,6 +7,7 @@
 
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/messages/frames.h"
 
 namespace mbk_ros {
 namespace {
@@ -57,7 +58,7 @@ void NodeInput::load(const mbk::Model& loaded) {
   state_ = mbk::JointState<double>(*model_);
   if (base_) base_->reset();
   frame_ = base_                      ? base_->frame()
-           : params_.frame_id.empty() ? params_.frame_prefix + model_->frame
+           : params_.frame_id.empty() ? mbk_messages::model_frame(*model_, params_.frame_prefix)
                                       : params_.frame_id;
   tally_.restart();
 }

@@ -23,6 +23,7 @@
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/lower_body_text.h"
 #include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/state_json.h"

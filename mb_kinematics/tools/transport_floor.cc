@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     t.header.frame_id = j ? model.bodies[j].name : model.frame;
     t.child_frame_id = model.bodies[k].name;
   }
-  mbk_ros::init_body_kinematics(model, model.frame, bodies.next());
+  mbk_messages::init_body_kinematics(model, model.frame, bodies.next());
   const ros::Publisher tf_pub = nh.advertise<tf2_msgs::TFMessage>("/tf", mbk_ros::kSampleQueueSize);
   const ros::Publisher bodies_pub = nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>(
       "body_kinematics", mbk_ros::kSampleQueueSize);

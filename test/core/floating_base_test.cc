@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/io/load_model.h"
 #include "test/support/test_models.h"
 
@@ -58,8 +59,11 @@ TEST(FloatingBaseTest, CarryingIntoRMatchesAFreeJointBase) {
     EXPECT_LT((data.mass_center[k] - expected.mass_center[k + 1]).norm(), 1e-13) << k;
     EXPECT_LT((data.omega[k] - expected.omega[k + 1]).norm(), 1e-12) << k;
     EXPECT_LT((data.alpha[k] - expected.alpha[k + 1]).norm(), 1e-11) << k;
-    EXPECT_LT((data.mass_center_velocity[k] - expected.mass_center_velocity[k + 1]).norm(), 1e-12) << k;
-    EXPECT_LT((data.mass_center_acceleration[k] - expected.mass_center_acceleration[k + 1]).norm(), 1e-11) << k;
+    EXPECT_LT((data.mass_center_velocity[k] - expected.mass_center_velocity[k + 1]).norm(), 1e-12)
+        << k;
+    EXPECT_LT((data.mass_center_acceleration[k] - expected.mass_center_acceleration[k + 1]).norm(),
+              1e-11)
+        << k;
     EXPECT_LT((data.origin_acceleration[k] - expected.origin_acceleration[k + 1]).norm(), 1e-11);
   }
 }

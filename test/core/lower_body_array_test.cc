@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "mb_kinematics/io/lower_body_text.h"
+
 namespace {
 
 using Table = std::vector<std::vector<int>>;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/io/lower_body_text.h"
 #include "mb_kinematics/io/report.h"
 #include "test/fuzz/fuzz_support.h"
 

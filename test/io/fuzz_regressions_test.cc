@@ -12,6 +12,7 @@
 
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/lower_body_text.h"
 #include "mb_kinematics/io/state_json.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/urdf_writer.h"

@@ -18,6 +18,7 @@
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/offline/bag_command.h"
 
@@ -78,6 +79,20 @@ std::string error_of(const mbk_offline::BagOptions& o) {
   return "";
 }
 
+// The demo trajectory's exact kinematics at t.
+mbk::Data<double> exact_kinematics(const mbk::Model& model, const std::vector<mbk::Wave>& waves,
+                                   double t) {
+  mbk::JointState<double> exact(model);
+  for (int c = 0; c < model.nq; ++c) {
+    exact.position[c] = waves[c].at(t, 0);
+    exact.velocity[c] = waves[c].at(t, 1);
+    exact.acceleration[c] = waves[c].at(t, 2);
+  }
+  mbk::Data<double> d(model);
+  mbk::forward_kinematics(model, exact, d, mbk::Level::kAcceleration);
+  return d;
+}
+
 TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
   const std::string in = write_bag("demo.bag", 100, 3.0);
   mbk_offline::BagOptions o = options(in, temp("demo_out.bag"));
@@ -103,14 +118,7 @@ TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
     ASSERT_EQ(msg->header.stamp, ros::Time(t));
     ASSERT_EQ(m.getTime(), ros::Time(t));
     ASSERT_EQ(msg->header.frame_id, "p/" + model.frame);
-    mbk::JointState<double> exact(model);
-    for (int c = 0; c < model.nq; ++c) {
-      exact.position[c] = waves[c].at(t, 0);
-      exact.velocity[c] = waves[c].at(t, 1);
-      exact.acceleration[c] = waves[c].at(t, 2);
-    }
-    mbk::Data<double> d(model);
-    mbk::forward_kinematics(model, exact, d, mbk::Level::kAcceleration);
+    const mbk::Data<double> d = exact_kinematics(model, waves, t);
     ASSERT_EQ(msg->bodies.size(), 16u);
     for (int k = 1; k <= 16; ++k) {
       const auto& b = msg->bodies[k - 1];
@@ -376,6 +384,35 @@ TEST(BagTest, FixedJointsOnTfStaticOnce) {
     EXPECT_EQ(t.header.frame_id.rfind("r1/", 0), 0u) << t.header.frame_id;
   }
   EXPECT_EQ(count_topics(o.out_bag).at("/tf"), 20);
+}
+
+// body_kinematics' system field as the node fills it (doc/method.md 9), every sample: the whole
+// model's mass, its mass center from the recorded positions (as the core's), and its velocity
+// from the estimated one close to the exact.
+TEST(BagTest, SystemFieldFilledAsTheNodeFillsIt) {
+  const std::string in = write_bag("system.bag", 100, 1.0);
+  const mbk_offline::BagOptions o = options(in, temp("system_out.bag"));
+  EXPECT_EQ(mbk_offline::run_bag(o).written, 100);
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  int i = 0;
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>();
+    const double t = 1.0 + i++ / 100.0;
+    const mbk::Data<double> d = exact_kinematics(model, waves, t);
+    mbk::SystemKinematics<double> s;
+    mbk::system_kinematics(model, d, s);
+    const auto v3 = [](const auto& x) { return mbk::Vec3<double>(x.x, x.y, x.z); };
+    ASSERT_TRUE(msg->system.filled) << "at " << t;
+    EXPECT_EQ(msg->system.mass, s.mass);
+    EXPECT_LT((v3(msg->system.mass_center) - s.mass_center).norm(), 1e-12);
+    if (t > 1.2 && t < 1.78) {  // the ends: one-sided fits
+      EXPECT_LT((v3(msg->system.velocity) - s.velocity).norm(), 2e-3 * s.velocity.norm() + 1e-6);
+    }
+  }
+  EXPECT_EQ(i, 100);
 }
 
 TEST(BagTest, TheMbkCommandRunsIt) {

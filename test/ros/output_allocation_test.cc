@@ -45,10 +45,10 @@ TEST(OutputAllocation, NoneInFillTransforms) {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const mbk::Model model = mbk_test::random_tree(100, seed);
     const mbk_test::Trajectory trajectory(model, seed);
-    std::vector<mbk_ros::TfJoint> moving;
+    std::vector<mbk_messages::TfJoint> moving;
     for (int k = 1; k <= model.body_count(); ++k)
       if (mbk::coordinate_count(model.bodies[k].joint.type) > 0)
-        moving.push_back(mbk_ros::tf_joint(model, k));
+        moving.push_back(mbk_messages::tf_joint(model, k));
     std::vector<geometry_msgs::TransformStamped> transforms(moving.size());
     for (size_t i = 0; i < moving.size(); ++i) {
       transforms[i].header.frame_id = frame(model.bodies[moving[i].body].lower);
@@ -58,8 +58,8 @@ TEST(OutputAllocation, NoneInFillTransforms) {
                                                          trajectory.at<double>(0.2)};
     const AllocationCounts before = allocation_counts();
     for (int sample = 0; sample < 4; ++sample)
-      mbk_ros::fill_transforms(model, states[sample % 2], moving, ros::Time(1.0 + sample),
-                               transforms);
+      mbk_messages::fill_transforms(model, states[sample % 2], moving, ros::Time(1.0 + sample),
+                                    transforms);
     const AllocationCounts after = allocation_counts();
     expect_none(before, after, "fill_transforms, seed " + std::to_string(seed));
     // The fill did its work: the last sample's stamp and frames as set.
@@ -76,11 +76,10 @@ TEST(OutputAllocation, NoneInFillBodyKinematicsAndSystem) {
     mbk::Data<double> data(model);
     mbk::forward_kinematics(model, trajectory.at<double>(0.3), data, mbk::Level::kAcceleration);
     mb_kinematics_msgs::BodyKinematicsArray msg;
-    mbk_ros::init_body_kinematics(model, frame(0), msg);
+    mbk_messages::init_body_kinematics(model, frame(0), msg);
     const AllocationCounts before = allocation_counts();
     for (int sample = 0; sample < 4; ++sample) {
-      mbk_ros::fill_body_kinematics(ros::Time(1.0 + sample), data, msg);
-      mbk_ros::fill_system_kinematics(model, data, msg.system);
+      mbk_messages::fill_kinematics(ros::Time(1.0 + sample), model, data, true, msg);
     }
     const AllocationCounts after = allocation_counts();
     expect_none(before, after,

@@ -20,7 +20,7 @@ mb_kinematics_msgs::SystemKinematics filled(const mbk::Model& model, unsigned se
   mbk::Data<double> data(model);
   mbk::forward_kinematics(model, trajectory.at<double>(0.4), data, mbk::Level::kAcceleration);
   mb_kinematics_msgs::SystemKinematics msg;
-  mbk_ros::fill_system_kinematics(model, data, msg);
+  mbk_messages::fill_system_kinematics(model, data, msg);
   mbk::SystemKinematics<double> s;
   mbk::system_kinematics(model, data, s);
   // Every field is the core's value, copied (float64 to float64: exact).

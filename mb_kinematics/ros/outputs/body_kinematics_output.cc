@@ -2,29 +2,22 @@
 
 #include <mb_kinematics_msgs/LowerBodyArray.h>
 
-#include "mb_kinematics/messages/fields.h"
-#include "mb_kinematics/messages/system.h"
-
 namespace mbk_ros {
 
 BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
     : publisher_(setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics",
                                                                              kSampleQueueSize)),
       shown_(setup.model.body_count() + 1, 1) {
-  init_body_kinematics(setup.model, setup.frame, msg_.next());
+  mbk_messages::init_body_kinematics(setup.model, setup.frame, msg_.next());
 }
 
 void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample) {
   mb_kinematics_msgs::BodyKinematicsArray& msg = msg_.next();
   if (sample.published != shown_) {  // ~missing_coordinates skip: bodies left out or joining
-    select_body_kinematics(sample.model, sample.published, msg);
+    mbk_messages::select_body_kinematics(sample.model, sample.published, msg);
     shown_ = sample.published;
   }
-  fill_body_kinematics(stamp, sample.data, msg);
-  if (sample.complete)
-    fill_system_kinematics(sample.model, sample.data, msg.system);  // doc/method.md 9
-  else  // over a subset of the bodies it would pass for the system's: not filled
-    msg.system = mb_kinematics_msgs::SystemKinematics();
+  mbk_messages::fill_kinematics(stamp, sample.model, sample.data, sample.complete, msg);
   msg_.publish(publisher_);
 }
 

@@ -11,6 +11,7 @@
 #include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
+using mbk_messages::set_vector;
 
 std::string body_topic_name(const std::string& body) {
   std::string out = body;
@@ -30,7 +31,7 @@ BodyMotionOutput::BodyMotionOutput(const OutputSetup& setup, Kind kind)
     if (setup.model.body_index(name) < 1)
       throw std::invalid_argument("~per_body_topics: '" + name + "' is no body of the model");
   for (int k = 1; k <= setup.model.body_count(); ++k) {
-    frames_[k] = setup.body_frame(k);
+    frames_[k] = setup.frames().body(k);
     if (!only.empty() &&
         std::find(only.begin(), only.end(), setup.model.bodies[k].name) == only.end())
       continue;

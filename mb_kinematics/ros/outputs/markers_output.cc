@@ -1,6 +1,6 @@
 #include "mb_kinematics/ros/outputs/markers_output.h"
 
-#include "mb_kinematics/ros/outputs/body_kinematics_output.h"
+#include "mb_kinematics/messages/body_kinematics.h"
 
 namespace mbk_ros {
 
@@ -8,15 +8,15 @@ MarkersOutput::MarkersOutput(const OutputSetup& setup)
     : publisher_(
           setup.nh.advertise<visualization_msgs::MarkerArray>("body_kinematics/markers", 10)),
       shown_(setup.model.body_count() + 1, 1) {
-  init_body_kinematics(setup.model, setup.frame, kinematics_);
+  mbk_messages::init_body_kinematics(setup.model, setup.frame, kinematics_);
 }
 
 void MarkersOutput::publish(const ros::Time& stamp, const Sample& sample) {
   if (sample.published != shown_) {  // the bodies of body_kinematics
-    select_body_kinematics(sample.model, sample.published, kinematics_);
+    mbk_messages::select_body_kinematics(sample.model, sample.published, kinematics_);
     shown_ = sample.published;
   }
-  fill_body_kinematics(stamp, sample.data, kinematics_);
+  mbk_messages::fill_body_kinematics(stamp, sample.data, kinematics_);
   for (int q = 0; q < GlyphQuantity::kCount; ++q)
     style_.scale[q] = scales_[q].update(max_norm(kinematics_, style_, q), 0.3);
   publisher_.publish(

@@ -15,6 +15,7 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/messages/frames.h"
 #include "mb_kinematics/ros/coordinate_coverage.h"
 #include "mb_kinematics/ros/input_tally.h"
 #include "mb_kinematics/ros/node_params.h"
@@ -38,13 +39,8 @@ struct OutputSetup {
   // Held while the node takes in and publishes a sample (in roscpp's network thread:
   // immediate_callback_queue.h): an output's own callbacks (a service, a timer) lock it too.
   std::mutex& mutex;
-  // The tf frame of body k (1..N): ~frame_prefix + its name.
-  std::string body_frame(int k) const { return params.frame_prefix + model.bodies[k].name; }
-  // Of body k's lower body: R for L(k) = 0.
-  std::string lower_frame(int k) const {
-    const int j = model.bodies[k].lower;
-    return j ? body_frame(j) : frame;
-  }
+  // The tf frames of the bodies (~frame_prefix) and R.
+  mbk_messages::FrameNames frames() const { return {model, params.frame_prefix, frame}; }
 };
 
 // One computed sample.

@@ -5,6 +5,7 @@
 #include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
+using mbk_messages::set_vector;
 namespace {
 
 geometry_msgs::Vector3 vector3(const mbk::Vec3<double>& v) {

@@ -1,6 +1,6 @@
 // /tf and /tf_static: a frame per body, parent = its lower body's frame (R for L(k) = 0), the
-// relative transform q_k + s_k, SJK of its joint alone. Fixed joints never move: /tf_static,
-// once at start (doc/method.md 8).
+// relative transform q_k + s_k, SJK of its joint alone (messages/tf.h). Fixed joints never move:
+// /tf_static, once at start (doc/method.md 8).
 #pragma once
 
 #include <ros/publisher.h>
@@ -10,25 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/messages/tf.h"
 #include "mb_kinematics/ros/outputs/output.h"
 #include "mb_kinematics/ros/outputs/reused_message.h"
 
 namespace mbk_ros {
-
-// A body on a joint with coordinates, as /tf publishes it: SJK from the joint's quaternion
-// (mbk::joint_quaternion) after C_k's, made once; s_k only for joints that translate.
-struct TfJoint {
-  int body;
-  Eigen::Quaterniond offset;  // C_k
-  bool translates;            // prismatic, planar, free joints: s_k from mbk::joint_motion
-};
-TfJoint tf_joint(const mbk::Model& model, int body);
-
-// The relative transforms of the `moving` bodies at `stamp` into `transforms` (one per moving
-// body, frames already set): nothing allocated.
-void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
-                     const std::vector<TfJoint>& moving, const ros::Time& stamp,
-                     std::vector<geometry_msgs::TransformStamped>& transforms);
 
 // The joints with coordinates, every sample (with ~base_odometry, the base's only with
 // ~publish_base_tf): one TFMessage, its frames set once (and again when ~missing_coordinates
@@ -47,11 +33,11 @@ class TfOutput : public Output {
   void select(const mbk::Model& model, const std::vector<char>& published,
               tf2_msgs::TFMessage& msg);
 
-  std::vector<int> moving_all_;              // bodies on joints with coordinates
-  std::vector<std::string> parent_, child_;  // their frames
-  std::vector<TfJoint> moving_;              // those of them published now
-  std::vector<char> shown_;                  // per body: published now
-  ReusedMessage<tf2_msgs::TFMessage> msg_;   // a transform per body of moving_
+  std::string prefix_, frame_;                 // ~frame_prefix, R
+  std::vector<int> moving_all_;                // bodies on joints with coordinates
+  std::vector<mbk_messages::TfJoint> moving_;  // those of them published now
+  std::vector<char> shown_;                    // per body: published now
+  ReusedMessage<tf2_msgs::TFMessage> msg_;     // a transform per body of moving_
   ros::Time last_stamp_;
   ros::Publisher publisher_;
 };
