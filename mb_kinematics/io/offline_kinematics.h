@@ -5,11 +5,13 @@
 // ROS-free.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "mb_kinematics/core/offline_estimator.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/io/recording.h"
 
 namespace mbk {
@@ -37,7 +39,10 @@ class OfflineStates {
     size_t next = 0;  // first entry not yet reached
     double velocity = 0, acceleration = 0;
     int valid = 0;
+    std::shared_ptr<const AutoEstimate> fit;  // "auto": per sample, of positions then velocities
   };
+  void fit_automatic();
+  void load_automatic(int r);
   void estimate_series(size_t i, size_t entry);
   void fill_full(int r, JointState<double>& state, int& valid) const;
   void derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c, bool velocity,
@@ -56,6 +61,10 @@ class OfflineStates {
   Segments segments_;
   DerivativeWeights weights_, series_weights_;  // of full_'s coordinates, of a Series
   bool any_velocity_everywhere_ = false;
+  int fit_valid_ = 2;  // the least DerivativeWeights::valid of full_'s coordinates at this row
+  // "auto": the estimates of every row of full_'s coordinates (shared by OfflineBatch's
+  // workers), of the positions and of the given velocities.
+  std::shared_ptr<const AutoEstimate> positions_fit_, velocities_fit_;
   Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
 };
 
