@@ -58,7 +58,7 @@ void noise_levels(const OfflineEstimator& e, const std::vector<double>& t, const
       double fit = 0;
       for (int j = 0; j < w.count; ++j) fit += w.value[j] * x[w.row(j) * ld + c];
       const double r = x[i * ld + c] - fit;
-      rss[c] += r * r;
+      if (std::isfinite(r)) rss[c] += r * r;  // a bad sample spoils its fits, not the level
     }
   }
   sigma.assign(m, 0.0);
@@ -128,9 +128,8 @@ void choose_windows(const std::vector<OfflineEstimator>& candidates, const std::
     for (int c : active) {
       double moved = 0;  // sum_i (x_k,i - x_k-1,i)^2
       for (size_t i = 0; k > 0 && i < n; ++i) {
-        const size_t at = i * m + c;
-        if (cur.tested[i])
-          moved += (cur.estimate[at] - out.estimate[at]) * (cur.estimate[at] - out.estimate[at]);
+        const double step = cur.estimate[i * m + c] - out.estimate[i * m + c];
+        if (cur.tested[i] && std::isfinite(step)) moved += step * step;
       }
       const double explained = sigma[c] * sigma[c] * cur.change;
       if (k > 0 && !(moved <= kLepski * explained)) continue;  // Lepski's test

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <random>
 
 namespace {
@@ -93,12 +92,22 @@ TEST(AutoEstimatorTest, TwoSigmaBarsCoverAtTheStatedRate) {
           covered_a += std::abs(a.second[i] - signal(s.t[i], 2)) <= 2 * a.second_se[i];
         }
       }
-      std::printf("%g Hz %g: v %.3f a %.3f\n", rate, noise, double(covered_v) / n, double(covered_a) / n);
       EXPECT_GE(covered_v, 0.90 * n) << rate << " Hz, noise " << noise;
       EXPECT_LE(covered_v, 0.98 * n) << rate << " Hz, noise " << noise;
       EXPECT_GE(covered_a, 0.90 * n) << rate << " Hz, noise " << noise;
       EXPECT_LE(covered_a, 0.98 * n) << rate << " Hz, noise " << noise;
     }
+}
+
+// A non-finite sample spoils the fits that hold it, not the series' noise level and error bars.
+TEST(AutoEstimatorTest, BadSampleKeepsTheNoiseLevel) {
+  Stream s = stream(1000, 2, 1e-3, 4);
+  s.x[1000] = std::nan("");
+  mbk::AutoEstimate a;
+  mbk::estimate_auto(s.t, s.x.data(), 1, 1, 0.005, a);
+  EXPECT_NEAR(a.noise[0], 1e-3, 1e-4);
+  EXPECT_TRUE(std::isfinite(a.second[100]) && std::isfinite(a.second_se[100]));
+  EXPECT_FALSE(std::isfinite(a.second[1000]));
 }
 
 TEST(AutoEstimatorTest, TimeLinearInLength) {
