@@ -181,7 +181,7 @@ std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, boo
   for (const std::string& name : offline_estimator_names())
     for (double rate : {100.0, 1000.0})
       for (double jitter : {0.0, 0.2})
-        for (double noise : {0.0, 1e-6, 1e-4})
+        for (double noise : {0.0, 1e-6, 1e-4, 1e-3, 1e-2})
           out.push_back(run_offline_estimator(name, waves, rate, jitter, noise, quick ? 4.0 : 10.0,
                                               repetitions));
   return out;

@@ -22,8 +22,8 @@ struct EstimatorResult {
 };
 
 // Every estimator of derivative_estimator_names() (the node's) and of offline_estimator_names()
-// (mbk bag's, note "offline") on every stream of `waves` (one estimator per
-// coordinate, each wave sampled at the same stamps).
+// (mbk bag's, note "offline"; also with noise 1e-3 and 1e-2) on every stream of `waves` (one
+// estimator per coordinate, each wave sampled at the same stamps).
 std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, bool quick);
 
 // One stream: samples at `rate` Hz over `seconds`, stamps jittered uniformly by +-jitter/rate

@@ -1,5 +1,7 @@
 #include "mb_kinematics/io/offline_kinematics.h"
 
+#include <algorithm>
+
 namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
@@ -73,6 +75,40 @@ void OfflineStates::fit_automatic() {
                   max_gap_ > 0 ? max_gap_ : default_max_gap(s.t), *a);
     s.fit = std::move(a);
   }
+}
+
+namespace {
+
+// The median of column c of v (v[k * m + c]).
+double column_median(const std::vector<double>& v, int m, int c) {
+  std::vector<double> column;
+  for (size_t at = c; at < v.size(); at += m) column.push_back(v[at]);
+  if (column.empty()) return 0;
+  std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
+  return column[column.size() / 2];
+}
+
+}  // namespace
+
+std::vector<CoordinateError> OfflineStates::error_summary() const {
+  std::vector<CoordinateError> out;
+  const auto add = [&](int c, const AutoEstimate& a, int column, const AutoEstimate* v) {
+    const int m = a.series;
+    // Accelerations from given velocities: their first derivative's error bar.
+    out.push_back({model_.coordinate_names[c], a.noise[column],
+                   column_median(a.first_se, m, column),
+                   v ? column_median(v->first_se, v->series, v == &a ? column + 1 : column)
+                     : column_median(a.second_se, m, column)});
+  };
+  if (positions_fit_)
+    for (int c : full_)
+      add(c, *positions_fit_, c, velocity_everywhere_[c] ? velocities_fit_.get() : nullptr);
+  for (size_t i = 0; i < partial_.size(); ++i)
+    if (series_[i].fit) {
+      const AutoEstimate& a = *series_[i].fit;
+      add(partial_[i], a, 0, velocity_everywhere_[partial_[i]] ? &a : nullptr);
+    }
+  return out;
 }
 
 // "auto": full_'s derivatives at row r from the fits.

@@ -16,6 +16,13 @@
 
 namespace mbk {
 
+// One coordinate's error bars from the "auto" estimator: its noise level and the median over
+// its samples of the standard errors of its velocity and acceleration (rad, rad/s, rad/s^2 or m).
+struct CoordinateError {
+  std::string name;
+  double noise = 0, velocity_se = 0, acceleration_se = 0;
+};
+
 class OfflineStates {
  public:
   // `model` (coordinate-derivative speeds) and `recording` must outlive this object. max_gap:
@@ -29,6 +36,8 @@ class OfflineStates {
   std::string state_at(int r, JointState<double>& state);
 
   double max_gap() const { return max_gap_; }
+  // Every estimated coordinate's error bars ("auto" only; empty for the fixed estimators).
+  std::vector<CoordinateError> error_summary() const;
 
  private:
   // The samples of coordinates that are not in every row.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "mb_kinematics/io/offline_batch.h"
 #include "mb_kinematics/io/offline_kinematics.h"
@@ -44,6 +45,31 @@ TEST(OfflineAutoTest, AccurateOnFullAndPartialCoordinates) {
     EXPECT_NEAR(s.velocity[1], wave(t2, 1, 0.7), 1e-8) << row;
     EXPECT_NEAR(s.acceleration[1], wave(t2, 2, 0.7), 1e-5) << row;
   }
+}
+
+// The error bars of a coordinate with known noise: its level, and standard errors that grow
+// with the derivative's order.
+TEST(OfflineAutoTest, ErrorSummaryGivesTheNoiseLevel) {
+  const mbk::Model model = mbk::make_bare_model({0, 1}, mbk::JointType::kRevolute);
+  mbk::RecordingBuilder b(model);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  for (int i = 0; i < 2000; ++i) {
+    const double t = 1e-3 * i;
+    b.add(t, {"J1", "J2"}, {wave(t, 0, 1.1) + noise(rng), wave(t, 0, 0.7)}, {}, "s");
+  }
+  const mbk::Recording r = b.finish();
+  const mbk::OfflineStates states(model, r, mbk::make_offline_estimator("auto"), 0);
+  const std::vector<mbk::CoordinateError> errors = states.error_summary();
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(errors[0].name, "J1");
+  EXPECT_NEAR(errors[0].noise, 1e-3, 1e-4);
+  EXPECT_GT(errors[0].acceleration_se, errors[0].velocity_se);
+  EXPECT_GT(errors[0].velocity_se, 0);
+  EXPECT_LT(errors[1].noise, 1e-9);  // clean
+  EXPECT_TRUE(mbk::OfflineStates(model, r, mbk::make_offline_estimator("centered_9_4"), 0)
+                  .error_summary()
+                  .empty());
 }
 
 TEST(OfflineAutoTest, EveryThreadCountGivesTheSameRows) {
