@@ -11,6 +11,8 @@ namespace {
 // A window is kept while the squared change of its estimates stays within this many times what
 // the noise explains.
 constexpr double kLepski = 2.0;
+// At the ends, the window this many candidates shorter than the one chosen away from them.
+constexpr int kEndStep = 1;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -151,6 +153,29 @@ void choose_windows(const std::vector<OfflineEstimator>& candidates, const std::
   }
 }
 
+// Where the chosen window is shifted (an end, a gap), the accelerations of the window kEndStep
+// candidates shorter: a one-sided fit's bias grows faster with its length.
+void ends_step_down(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+                    const Segments& segments, const double* x, int ld, int m,
+                    const std::vector<double>& sigma, const std::vector<int>& choice, Pass& pass) {
+  DerivativeWeights w, shorter;
+  for (int c = 0; c < m; ++c) {
+    if (choice[c] < kEndStep) continue;
+    for (size_t i = 0; i < t.size(); ++i) {
+      derivative_weights(candidates[choice[c]], t, segments, static_cast<int>(i), w);
+      if (w.valid < 2 || centred_window(t, static_cast<int>(i), w)) continue;
+      derivative_weights(candidates[choice[c] - kEndStep], t, segments, static_cast<int>(i),
+                         shorter);
+      double sum = 0;
+      for (int j = 0; j < shorter.count; ++j) sum += shorter.second[j] * x[shorter.row(j) * ld + c];
+      const size_t at = i * m + c;
+      pass.estimate[at] = sum;
+      pass.se[at] =
+          std::max(pass.se[at], sigma[c] * std::sqrt(norm2(shorter.second, shorter.count)));
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t) {
@@ -182,6 +207,7 @@ void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m,
   choose_windows(candidates, t, segments, x, ld, m, 2, out.noise, acceleration, out.choice);
   out.series = m;
   out.first = std::move(velocity.estimate), out.first_se = std::move(velocity.se);
+  ends_step_down(candidates, t, segments, x, ld, m, out.noise, out.choice, acceleration);
   out.second = std::move(acceleration.estimate), out.second_se = std::move(acceleration.se);
   out.valid.resize(acceleration.valid.size());
   for (size_t at = 0; at < out.valid.size(); ++at)
