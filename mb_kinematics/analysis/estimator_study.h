@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
+#include "mb_kinematics/estimation/auto_estimator.h"
 
 namespace mbk {
 
@@ -21,8 +22,8 @@ struct EstimatorResult {
 };
 
 // Every estimator of derivative_estimator_names() (the node's) and of offline_estimator_names()
-// (mbk bag's, note "offline") on every stream of `waves` (one estimator per
-// coordinate, each wave sampled at the same stamps).
+// (mbk bag's, note "offline"; also with noise 1e-3 and 1e-2) on every stream of `waves` (one
+// estimator per coordinate, each wave sampled at the same stamps).
 std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, bool quick);
 
 // One stream: samples at `rate` Hz over `seconds`, stamps jittered uniformly by +-jitter/rate
@@ -37,5 +38,17 @@ EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& 
 EstimatorResult run_offline_estimator(const std::string& name, const std::vector<Wave>& waves,
                                       double rate, double jitter, double noise, double seconds,
                                       int repetitions);
+
+// An offline estimator's errors on one stream, each the largest |estimate - exact| over the
+// coordinates and samples divided by the largest |exact| (velocity, acceleration): over every
+// sample, and away from the ends (0.5 s).
+struct OfflineAccuracy {
+  double velocity = 0, acceleration = 0, velocity_inside = 0, acceleration_inside = 0;
+};
+OfflineAccuracy offline_accuracy(const std::string& name, const std::vector<Wave>& waves,
+                                 double rate, double jitter, double noise, double seconds);
+// The same of the estimates a.first, a.second ([i * m + c]) at the stamps t.
+OfflineAccuracy offline_accuracy(const std::vector<Wave>& waves, const std::vector<double>& t,
+                                 const AutoEstimate& a);
 
 }  // namespace mbk

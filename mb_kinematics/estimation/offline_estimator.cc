@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "mb_kinematics/estimation/auto_estimator.h"
+
 namespace mbk {
 namespace {
 
@@ -40,9 +42,14 @@ void window_range(const OfflineEstimator& e, const std::vector<double>& t, int s
 }  // namespace
 
 const std::vector<std::string>& offline_estimator_names() {
-  static const std::vector<std::string> names = {
-      "centered_0.4s_4", "centered_0.1s_4", "centered_0.2s_4", "centered_0.3s_4",
-      "centered_0.4s_5", "centered_9_4",    "centered_15_3"};
+  static const std::vector<std::string> names = {"auto",
+                                                 "centered_0.4s_4",
+                                                 "centered_0.1s_4",
+                                                 "centered_0.2s_4",
+                                                 "centered_0.3s_4",
+                                                 "centered_0.4s_5",
+                                                 "centered_9_4",
+                                                 "centered_15_3"};
   return names;
 }
 
@@ -53,6 +60,10 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
   e.name = name;
   int used = 0, samples = 0, order = 0;
   double seconds = 0;
+  if (name == "auto") {
+    e.automatic = true;
+    return e;
+  }
   if (std::sscanf(name.c_str(), "centered_%lfs_%d%n", &seconds, &order, &used) == 2 &&
       used == static_cast<int>(name.size())) {
     e.window_seconds = seconds;
@@ -61,7 +72,7 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
     e.window_samples = samples;
   } else {
     throw std::invalid_argument("unknown offline estimator '" + name +
-                                "' (known: centered_<samples>_<order>, e.g. centered_9_4, or "
+                                "' (known: auto, centered_<samples>_<order>, e.g. centered_9_4, or "
                                 "centered_<seconds>s_<order>, e.g. centered_0.1s_3)");
   }
   e.order = order;
@@ -99,8 +110,8 @@ double default_max_gap(const std::vector<double>& t) {
 
 // Least squares in s = (t_j - t_i) / scale: c = N^-1 A^T x with A_jc = s_j^c and the normal
 // matrix N = A^T A, N_ab = sum_j s_j^(a + b); x'(t_i) = c1 / scale, x''(t_i) = 2 c2 / scale^2, so
-// the weights are A N^-1 e1 / scale and 2 A N^-1 e2 / scale^2. N is solved by Cholesky in fixed
-// arrays (order <= 5): no allocation, no general-size Eigen solver.
+// the weights are A N^-1 e1 / scale and 2 A N^-1 e2 / scale^2 (and the fitted value's A N^-1 e0). N
+// is solved by Cholesky in fixed arrays (order <= 5): no allocation, no general-size Eigen solver.
 void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
                         const Segments& segments, int i, DerivativeWeights& w) {
   const int seg = segments.segment_of[i];
@@ -111,6 +122,7 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
   const int n = (end - 1 - w.begin) / w.stride + 1, order = std::min(e.order, n - 1);
   w.count = n;
   w.valid = std::min(order, 2);
+  w.value.assign(n, 0.0);
   w.first.assign(n, 0.0);
   w.second.assign(n, 0.0);
   if (order < 1) return;
@@ -130,11 +142,11 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
       for (int c = 0; c < b; ++c) sum -= l[a][c] * l[b][c];
       l[a][b] = a == b ? std::sqrt(sum) : sum / l[b][b];
     }
-  // g[m] = N^-1 e_(m+1), m = 0, 1: forward then back substitution.
-  double g[2][kMaxOrder + 1];
-  for (int m = 0; m < 2; ++m) {
+  // g[m] = N^-1 e_m, m = 0, 1, 2: forward then back substitution.
+  double g[3][kMaxOrder + 1];
+  for (int m = 0; m < 3; ++m) {
     for (int a = 0; a <= order; ++a) {
-      double sum = a == m + 1 ? 1.0 : 0.0;
+      double sum = a == m ? 1.0 : 0.0;
       for (int c = 0; c < a; ++c) sum -= l[a][c] * g[m][c];
       g[m][a] = sum / l[a][a];
     }
@@ -146,8 +158,10 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
   }
   for (int j = 0; j < n; ++j) {
     const double s = w.first[j];
-    double p = 1, first = 0, second = 0;
-    for (int c = 0; c <= order; ++c, p *= s) first += p * g[0][c], second += p * g[1][c];
+    double p = 1, value = 0, first = 0, second = 0;
+    for (int c = 0; c <= order; ++c, p *= s)
+      value += p * g[0][c], first += p * g[1][c], second += p * g[2][c];
+    w.value[j] = value;
     w.first[j] = first / scale;
     if (order >= 2) w.second[j] = 2 * second / (scale * scale);
   }
@@ -214,6 +228,12 @@ void apply_weights(const DerivativeWeights& w, const double* x, int ld, int n, d
 void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,
                       const std::vector<double>& x, double max_gap, std::vector<double>& first,
                       std::vector<double>& second, std::vector<int>& valid) {
+  if (e.automatic) {
+    AutoEstimate a;
+    estimate_auto(t, x.data(), 1, 1, max_gap, a);
+    first = a.first, second = a.second, valid = a.valid;
+    return;
+  }
   const Segments segments = find_segments(t, max_gap);
   const int n = static_cast<int>(t.size());
   first.assign(n, 0.0);

@@ -17,9 +17,10 @@ struct OfflineEstimator {
   double window_seconds = 0;  // > 0: the window spans this many seconds, centred on the sample,
                               // widened to hold order + 3 samples where the samples are sparse
   int order = 2;              // degree of the polynomial (2..5)
+  bool automatic = false;     // "auto": chosen per series (estimation/auto_estimator.h)
 };
 
-// "centered_<N>_<order>" (N samples, odd) or "centered_<seconds>s_<order>"; throws
+// "auto", "centered_<N>_<order>" (N samples, odd) or "centered_<seconds>s_<order>"; throws
 // std::invalid_argument naming the known forms.
 OfflineEstimator make_offline_estimator(const std::string& name);
 // The studied ones (work-precision report, doc/error_vs_runtime.md), the default first.
@@ -37,6 +38,7 @@ struct DerivativeWeights {
   int row(int j) const { return begin + j * stride; }
   int valid = 0;  // 0: none (a lone sample), 1: first derivative only, 2: both
   std::vector<double> first, second;
+  std::vector<double> value;  // the fitted x(t_i) (the smoother's row; the automatic estimator)
 };
 
 // Index ranges [begin, end) of the runs of `t` (increasing) without a gap longer than max_gap
@@ -46,7 +48,7 @@ struct Segments {
 };
 Segments find_segments(const std::vector<double>& t, double max_gap);
 
-// The weights for sample i of the increasing stamps t (within its segment).
+// The weights for sample i of the increasing stamps t (within its segment); e is not automatic.
 void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
                         const Segments& segments, int i, DerivativeWeights& w);
 
@@ -59,7 +61,8 @@ void apply_weights(const DerivativeWeights& w, const double* x, int ld, int n, d
 // 5 x the median interval of t: what counts as a gap unless the user says otherwise.
 double default_max_gap(const std::vector<double>& t);
 
-// Both derivatives of x at every sample (convenience for studies and tests): `valid` per sample.
+// Both derivatives of x at every sample (convenience for studies and tests): `valid` per sample;
+// an automatic e chooses its window for x.
 void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,
                       const std::vector<double>& x, double max_gap, std::vector<double>& first,
                       std::vector<double>& second, std::vector<int>& valid);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <stdexcept>
 
@@ -141,6 +142,21 @@ BagOptions parse_bag_options(int argc, char** argv) {
   return o;
 }
 
+// OUT.csv's side file of error bars: OUT.errors.csv.
+std::string errors_path(const std::string& csv) {
+  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + ".errors.csv";
+}
+
+// One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
+void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
+  std::ofstream f(path);
+  f << "coordinate,noise,velocity_se,acceleration_se\n";
+  f.precision(6);
+  for (const mbk::CoordinateError& e : errors)
+    f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
+  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
+}
+
 BagSummary run_bag(const BagOptions& o) {
   const auto wall = Clock::now();
   BagSummary s;
@@ -182,6 +198,8 @@ BagSummary run_bag(const BagOptions& o) {
   if (!o.out_csv.empty()) out.csv = std::make_unique<mbk::TidyCsvWriter>(o.out_csv, model);
   out.floating = floating;
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
+  s.errors = batch.error_summary();
+  if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);
   s.wall_seconds = since(wall);
   return s;
 }
@@ -200,6 +218,13 @@ std::string format_summary(const BagSummary& s) {
   for (const auto& n : s.log.notes)
     out += "  note " + std::to_string(n.second) + " samples: " + n.first +
            " (first: " + s.log.example.at(n.first) + ")\n";
+  if (!s.errors.empty())
+    out += "  error bars (noise level; median standard error of velocity, acceleration):\n";
+  for (const mbk::CoordinateError& e : s.errors) {
+    std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n", e.name.c_str(), e.noise,
+                  e.velocity_se, e.acceleration_se);
+    out += line;
+  }
   const double rate = s.wall_seconds > 0 ? s.written / s.wall_seconds : 0;
   std::snprintf(line, sizeof line,
                 "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s (%d threads, summed; "

@@ -4,8 +4,10 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/offline/recording.h"
+#include "mb_kinematics/offline/offline_kinematics.h"
 
 namespace mbk_offline {
 
@@ -31,6 +33,7 @@ struct BagSummary {
   int threads = 1;
   std::string estimator;
   double max_gap = 0;
+  std::vector<mbk::CoordinateError> errors;  // "auto": each coordinate's error bars
 };
 
 // Throws std::invalid_argument (bad options, model, input) with a one-line message.

@@ -1,5 +1,7 @@
 #include "mb_kinematics/offline/offline_kinematics.h"
 
+#include <algorithm>
+
 namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
@@ -47,6 +49,79 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       positions_only_[r] = positions_only_[r] && g == 0;
       derivatives_given_[r] = derivatives_given_[r] && g == kBoth;
     }
+  if (estimator_.automatic) fit_automatic();
+}
+
+// "auto": every row's estimates at once, each coordinate choosing its own smoothing (of its
+// given velocities too where it has them everywhere); a partial coordinate over its own samples.
+void OfflineStates::fit_automatic() {
+  const int nq = rec_.nq;
+  auto fit = [&](const std::vector<double>& x) {
+    auto a = std::make_shared<AutoEstimate>();
+    estimate_auto(rec_.stamp, x.data(), nq, nq, max_gap_, *a);
+    return a;
+  };
+  if (!full_.empty()) positions_fit_ = fit(rec_.position);
+  if (any_velocity_everywhere_) velocities_fit_ = fit(rec_.velocity);
+  for (size_t i = 0; i < partial_.size(); ++i) {
+    Series& s = series_[i];
+    const int c = partial_[i];
+    const size_t n = s.row.size();
+    std::vector<double> x(2 * n);  // [k * 2]: position, [k * 2 + 1]: velocity
+    for (size_t k = 0; k < n; ++k)
+      x[2 * k] = rec_.position[s.row[k] * nq + c], x[2 * k + 1] = rec_.velocity[s.row[k] * nq + c];
+    auto a = std::make_shared<AutoEstimate>();
+    estimate_auto(s.t, x.data(), 2, velocity_everywhere_[c] ? 2 : 1,
+                  max_gap_ > 0 ? max_gap_ : default_max_gap(s.t), *a);
+    s.fit = std::move(a);
+  }
+}
+
+namespace {
+
+// The median of column c of v (v[k * m + c]).
+double column_median(const std::vector<double>& v, int m, int c) {
+  std::vector<double> column;
+  for (size_t at = c; at < v.size(); at += m) column.push_back(v[at]);
+  if (column.empty()) return 0;
+  std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
+  return column[column.size() / 2];
+}
+
+}  // namespace
+
+std::vector<CoordinateError> OfflineStates::error_summary() const {
+  std::vector<CoordinateError> out;
+  const auto add = [&](int c, const AutoEstimate& a, int column, const AutoEstimate* v) {
+    const int m = a.series;
+    // Accelerations from given velocities: their first derivative's error bar.
+    out.push_back({model_.coordinate_names[c], a.noise[column],
+                   column_median(a.first_se, m, column),
+                   v ? column_median(v->first_se, v->series, v == &a ? column + 1 : column)
+                     : column_median(a.second_se, m, column)});
+  };
+  if (positions_fit_)
+    for (int c : full_)
+      add(c, *positions_fit_, c, velocity_everywhere_[c] ? velocities_fit_.get() : nullptr);
+  for (size_t i = 0; i < partial_.size(); ++i)
+    if (series_[i].fit) {
+      const AutoEstimate& a = *series_[i].fit;
+      add(partial_[i], a, 0, velocity_everywhere_[partial_[i]] ? &a : nullptr);
+    }
+  return out;
+}
+
+// "auto": full_'s derivatives at row r from the fits.
+void OfflineStates::load_automatic(int r) {
+  const int nq = rec_.nq;
+  fit_valid_ = 2;
+  for (int c : full_) {
+    const size_t at = static_cast<size_t>(r) * nq + c;
+    first_[c] = positions_fit_->first[at];
+    second_[c] = positions_fit_->second[at];
+    fit_valid_ = std::min(fit_valid_, positions_fit_->valid[at]);
+    if (velocities_fit_) velocity_first_[c] = velocities_fit_->first[at];
+  }
 }
 
 // x'(t) and x''(t) of coordinate c from the weights (over rows, or over a series' rows);
@@ -71,7 +146,7 @@ void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) cons
     state.position = Eigen::Map<const Eigen::VectorXd>(rec_.position.data() + r * nq, nq);
     state.velocity = first_;
     state.acceleration = second_;
-    if (weights_.valid < 2) valid = 0;
+    if (fit_valid_ < 2) valid = 0;
     return;
   }
   if (derivatives_given_[r]) {  // every coordinate of full_ as recorded (the others set later)
@@ -91,7 +166,7 @@ void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) cons
         std::max(given[c] & Recording::kVelocity ? 0 : 1, given[c] & Recording::kAcceleration ? 0
                                                           : velocity_everywhere_[c]           ? 1
                                                                                               : 2);
-    if (need > weights_.valid) valid = 0;
+    if (need > fit_valid_) valid = 0;
   }
 }
 
@@ -99,10 +174,18 @@ void OfflineStates::fill_full(int r, JointState<double>& state, int& valid) cons
 void OfflineStates::estimate_series(size_t i, size_t entry) {
   const int c = partial_[i];
   Series& s = series_[i];
-  DerivativeWeights& w = series_weights_;
-  derivative_weights(estimator_, s.t, s.segments, static_cast<int>(entry), w);
-  derivatives(w, &s.row, c, velocity_everywhere_[c], s.velocity, s.acceleration);
-  s.valid = w.valid;
+  if (s.fit) {
+    const AutoEstimate& a = *s.fit;
+    const size_t at = entry * a.series;
+    s.velocity = a.first[at];
+    s.acceleration = velocity_everywhere_[c] ? a.first[at + 1] : a.second[at];
+    s.valid = velocity_everywhere_[c] ? std::min(a.valid[at], a.valid[at + 1]) : a.valid[at];
+  } else {
+    DerivativeWeights& w = series_weights_;
+    derivative_weights(estimator_, s.t, s.segments, static_cast<int>(entry), w);
+    derivatives(w, &s.row, c, velocity_everywhere_[c], s.velocity, s.acceleration);
+    s.valid = w.valid;
+  }
   const int r = s.row[entry];
   const std::uint8_t g = rec_.given[r * rec_.nq + c];
   if (g & Recording::kVelocity) s.velocity = rec_.velocity[r * rec_.nq + c];
@@ -115,8 +198,11 @@ std::string OfflineStates::state_at(int r, JointState<double>& state) {
   // Does some coordinate of full_ lack a derivative here?
   const bool estimate = !full_.empty() && !derivatives_given_[r];
   int valid = 2;
-  if (estimate) {
+  if (estimate && positions_fit_) {
+    load_automatic(r);
+  } else if (estimate) {
     derivative_weights(estimator_, rec_.stamp, segments_, r, weights_);
+    fit_valid_ = weights_.valid;
     // One pass over the window's rows for all coordinates (positions, and given velocities).
     apply_weights(weights_, rec_.position.data(), nq, nq, first_.data(), second_.data());
     if (any_velocity_everywhere_)

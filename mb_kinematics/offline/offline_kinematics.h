@@ -5,14 +5,23 @@
 // ROS-free.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/offline/recording.h"
+#include "mb_kinematics/estimation/auto_estimator.h"
 
 namespace mbk {
+
+// One coordinate's error bars from the "auto" estimator: its noise level and the median over
+// its samples of the standard errors of its velocity and acceleration (rad, rad/s, rad/s^2 or m).
+struct CoordinateError {
+  std::string name;
+  double noise = 0, velocity_se = 0, acceleration_se = 0;
+};
 
 class OfflineStates {
  public:
@@ -27,6 +36,8 @@ class OfflineStates {
   std::string state_at(int r, JointState<double>& state);
 
   double max_gap() const { return max_gap_; }
+  // Every estimated coordinate's error bars ("auto" only; empty for the fixed estimators).
+  std::vector<CoordinateError> error_summary() const;
 
  private:
   // The samples of coordinates that are not in every row.
@@ -37,7 +48,10 @@ class OfflineStates {
     size_t next = 0;  // first entry not yet reached
     double velocity = 0, acceleration = 0;
     int valid = 0;
+    std::shared_ptr<const AutoEstimate> fit;  // "auto": per sample, of positions then velocities
   };
+  void fit_automatic();
+  void load_automatic(int r);
   void estimate_series(size_t i, size_t entry);
   void fill_full(int r, JointState<double>& state, int& valid) const;
   void derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c, bool velocity,
@@ -56,6 +70,10 @@ class OfflineStates {
   Segments segments_;
   DerivativeWeights weights_, series_weights_;  // of full_'s coordinates, of a Series
   bool any_velocity_everywhere_ = false;
+  int fit_valid_ = 2;  // the least DerivativeWeights::valid of full_'s coordinates at this row
+  // "auto": the estimates of every row of full_'s coordinates (shared by OfflineBatch's
+  // workers), of the positions and of the given velocities.
+  std::shared_ptr<const AutoEstimate> positions_fit_, velocities_fit_;
   Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
 };
 

@@ -163,8 +163,18 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   a.out_csv = temp("from_bag.csv");
   mbk_offline::BagOptions b = options(temp("traj_in.csv"), "");
   b.out_csv = temp("from_csv.csv");
-  EXPECT_EQ(mbk_offline::run_bag(a).written, 50);
+  const mbk_offline::BagSummary summary = mbk_offline::run_bag(a);
+  EXPECT_EQ(summary.written, 50);
   EXPECT_EQ(mbk_offline::run_bag(b).written, 50);
+  // The default estimator's error bars: in the summary and in OUT.errors.csv, a row each.
+  ASSERT_FALSE(summary.errors.empty());
+  EXPECT_NE(mbk_offline::format_summary(summary).find("error bars"), std::string::npos);
+  std::ifstream fe(temp("from_bag.errors.csv"));
+  std::stringstream se;
+  se << fe.rdbuf();
+  const std::string errors = se.str();
+  EXPECT_EQ(errors.rfind("coordinate,noise,velocity_se,acceleration_se\n", 0), 0u);
+  EXPECT_EQ(std::count(errors.begin(), errors.end(), '\n'), 1 + summary.errors.size());
   std::ifstream fa(a.out_csv), fb(b.out_csv);
   std::stringstream sa, sb;
   sa << fa.rdbuf();
