@@ -1,4 +1,4 @@
-// The automatic offline estimator ("auto", mbk bag's default): per series, the zero-phase
+// The automatic offline estimator ("auto", mbk bag --estimator auto): per series, the zero-phase
 // local polynomial of core/offline_estimator.h whose window is chosen from the data by
 // Lepski's principle (Lepski, Mammen & Spokoiny 1997), the data-driven bandwidth choice for
 // derivatives: windows of 7 to 641 median intervals are tried shortest first, and a window is

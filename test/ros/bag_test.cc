@@ -163,10 +163,11 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   a.out_csv = temp("from_bag.csv");
   mbk_offline::BagOptions b = options(temp("traj_in.csv"), "");
   b.out_csv = temp("from_csv.csv");
+  a.estimator = b.estimator = "auto";
   const mbk_offline::BagSummary summary = mbk_offline::run_bag(a);
   EXPECT_EQ(summary.written, 50);
   EXPECT_EQ(mbk_offline::run_bag(b).written, 50);
-  // The default estimator's error bars: in the summary and in OUT.errors.csv, a row each.
+  // The auto estimator's error bars: in the summary and in OUT.errors.csv, a row each.
   ASSERT_FALSE(summary.errors.empty());
   EXPECT_NE(mbk_offline::format_summary(summary).find("error bars"), std::string::npos);
   std::ifstream fe(temp("from_bag.errors.csv"));
