@@ -21,6 +21,7 @@ Model with_floating_base(const Model& model, const std::string& frame, const std
   Model out;
   out.frame = frame;
   out.speeds = model.speeds;
+  out.warnings = model.warnings;
   out.bodies.resize(2);
   out.bodies[1].name = model.frame;
   out.bodies[1].joint.name = joint;
@@ -44,6 +45,7 @@ Model without_root_body(const Model& model) {
   Model out;
   out.frame = model.bodies[1].name;
   out.speeds = model.speeds;
+  out.warnings = model.warnings;
   out.bodies.resize(1);
   for (int k = 2; k <= model.body_count(); ++k) {
     Body b = model.bodies[k];
