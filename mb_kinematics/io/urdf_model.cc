@@ -130,6 +130,15 @@ void drop_unphysical_inertias(Model& model, const std::string& source) {
                              links);
 }
 
+// m_k, r_k and I_k from the link's <inertial>, if it has one.
+void set_mass_properties(const urdf::Link& link, Body& body) {
+  if (!link.inertial) return;
+  const urdf::Vector3& c = link.inertial->origin.position;
+  body.mass_center = Vec3<double>(c.x, c.y, c.z);
+  body.mass = link.inertial->mass;
+  set_inertia(*link.inertial, body);
+}
+
 Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
   Body body;
   body.name = link.name;
@@ -142,12 +151,7 @@ Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
   body.joint.rotation = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
   if (joint_traits(body.joint.type).uses_axis)
     body.joint.axis = Vec3<double>(joint.axis.x, joint.axis.y, joint.axis.z);
-  if (link.inertial) {
-    const urdf::Vector3& c = link.inertial->origin.position;
-    body.mass_center = Vec3<double>(c.x, c.y, c.z);
-    body.mass = link.inertial->mass;
-    set_inertia(*link.inertial, body);
-  }
+  set_mass_properties(link, body);
   return body;
 }
 
@@ -162,6 +166,8 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml,
   const urdf::LinkConstSharedPtr root = urdf.getRoot();
   model.frame = root->name;
   model.bodies.resize(1);
+  model.bodies[0].name = root->name;
+  set_mass_properties(*root, model.bodies[0]);  // the root link, fixed in R (issue 25)
   std::vector<std::pair<urdf::LinkConstSharedPtr, int>> queue = {{root, 0}};  // link, its k
   std::map<std::string, int> index_of_joint;
   std::map<std::string, std::string> parent_joint = {{root->name, ""}};  // of each link reached
