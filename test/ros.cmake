@@ -44,6 +44,7 @@ endforeach()
 add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
+add_rostest(test/ros/launch_description.test DEPENDENCIES mb_kinematics_node rsp_compare_test)
 
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/ros/bag_test.cc)

@@ -687,6 +687,18 @@ TEST(MbkCli, UnphysicalUrdfInertiaIsOneWarningAndExitZero) {
   EXPECT_NE(mbk("eval --model " + robot.path).out.find("\"missing_inertia\""), std::string::npos);
 }
 
+// A xacro model (what most robots ship) is refused with the command that expands it, one line.
+TEST(MbkCli, XacroModelSaysHowToExpandIt) {
+  const TempFile robot("<robot name=\"r\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\"/>",
+                       ".urdf.xacro");
+  const Output run = mbk("eval --model " + robot.path);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+  EXPECT_NE(run.err.find("a xacro file: expand it first (xacro " + robot.path + " > robot.urdf"),
+            std::string::npos)
+      << run.err;
+}
+
 TEST(MbkCli, EulerSceneWithAValidStateWorks) {  // the zero-norm failure above is the state's
   const Output run = mbk("eval --model test/io/data/ball_euler.yaml");
   EXPECT_EQ(run.status, 0) << run.err;
