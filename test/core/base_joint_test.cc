@@ -14,6 +14,7 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/support/test_models.h"
+#include "test/support/urdf_facts.h"
 
 namespace {
 
@@ -156,15 +157,7 @@ TEST(BaseJoint, AgreesWithCarryingIntoR) {
 // The root link (issue 25): with a floating base it is the base body, with its link's mass, mass
 // center and inertia, and the system moves with it; the node's way and mbk bag's way agree.
 TEST(BaseJoint, FloatingBaseCarriesTheRootLinksMass) {
-  const char urdf[] =
-      "<robot name=\"q\"><link name=\"base\"><inertial><origin xyz=\"0.1 -0.02 0.05\"/>"
-      "<mass value=\"15.36\"/><inertia ixx=\"0.3\" ixy=\"0\" ixz=\"0\" iyy=\"0.4\" iyz=\"0\" "
-      "izz=\"0.5\"/></inertial></link><link name=\"leg\"><inertial><origin xyz=\"0 0 -0.2\"/>"
-      "<mass value=\"2.5\"/><inertia ixx=\"0.02\" ixy=\"0\" ixz=\"0\" iyy=\"0.02\" iyz=\"0\" "
-      "izz=\"0.01\"/></inertial></link><joint name=\"hip\" type=\"continuous\"><parent "
-      "link=\"base\"/><child link=\"leg\"/><origin xyz=\"0.3 0 0\"/><axis xyz=\"0 1 0\"/></joint>"
-      "</robot>";
-  const mbk::Model model = mbk::load_urdf_string(urdf, "q.urdf");
+  const mbk::Model model = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");
   const mbk::Model based = mbk::with_floating_base(model, "odom", "base");
   const mbk::Body& base = based.bodies[1];
   EXPECT_EQ(base.name, "base");

@@ -20,6 +20,7 @@
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/support/checks.h"
 #include "test/support/test_models.h"
+#include "test/support/urdf_facts.h"
 
 namespace {
 
@@ -359,15 +360,7 @@ TEST(IndependentSpeeds, DotColumnsAreTimeDerivatives) {
 // ---- The root link (issue 25): a URDF root link's mass counts, fixed in R; M is the sum of the
 // URDF's <mass> values. H_G = H_O - M p_G x v_G, the root link at rest adding nothing to H_O.
 TEST(SystemKinematics, RootLinkMassCountsFixedInR) {
-  const char urdf[] =
-      "<robot name=\"q\"><link name=\"base\"><inertial><origin xyz=\"0.1 -0.02 0.05\"/>"
-      "<mass value=\"15.36\"/><inertia ixx=\"0.3\" ixy=\"0\" ixz=\"0\" iyy=\"0.4\" iyz=\"0\" "
-      "izz=\"0.5\"/></inertial></link><link name=\"leg\"><inertial><origin xyz=\"0 0 -0.2\"/>"
-      "<mass value=\"2.5\"/><inertia ixx=\"0.02\" ixy=\"0\" ixz=\"0\" iyy=\"0.02\" iyz=\"0\" "
-      "izz=\"0.01\"/></inertial></link><joint name=\"hip\" type=\"continuous\"><parent "
-      "link=\"base\"/><child link=\"leg\"/><origin xyz=\"0.3 0 0\"/><axis xyz=\"0 1 0\"/></joint>"
-      "</robot>";
-  const mbk::Model model = mbk::load_urdf_string(urdf, "q.urdf");
+  const mbk::Model model = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");
   mbk::JointState<double> state(model);
   state.position[0] = 0.4;
   state.velocity[0] = 1.3;

@@ -9,7 +9,6 @@
 // (YAML scene or random tree; the links `<body>__alpha` etc. that the writer adds for ball and
 // free joints exist only in KDL then and are skipped).
 #include <gtest/gtest.h>
-#include <tinyxml2.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,10 +33,12 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/urdf_writer.h"
 #include "test/support/checks.h"
 #include "test/support/test_models.h"
+#include "test/support/urdf_facts.h"
 
 namespace {
 
@@ -316,20 +317,6 @@ constexpr RealRobot kRealRobots[] = {{"panda", 12, false},  {"anymal_c", 77, tru
                                      {"solo12", 16, false}, {"romeo_small", 57, true},
                                      {"pr2", 81, true},     {"baxter", 56, false}};
 
-// The sum of every <mass value> in the file, read without urdfdom.
-double urdf_mass_sum(const std::string& path) {
-  tinyxml2::XMLDocument doc;
-  EXPECT_EQ(doc.LoadFile(path.c_str()), tinyxml2::XML_SUCCESS) << path;
-  double sum = 0;
-  for (auto* link = doc.FirstChildElement("robot")->FirstChildElement("link"); link;
-       link = link->NextSiblingElement("link")) {
-    const auto* inertial = link->FirstChildElement("inertial");
-    const auto* mass = inertial ? inertial->FirstChildElement("mass") : nullptr;
-    if (mass) sum += mass->DoubleAttribute("value");
-  }
-  return sum;
-}
-
 // omega_k against the skew part of S0K' S0K^T and alpha_k against omega_k', both from the
 // fourth-order central difference along a smooth trajectory of every coordinate.
 void expect_rates_match_differences(const mbk::Model& model) {
@@ -373,7 +360,7 @@ TEST(RealRobots, LoadAgreeWithKdlAndWeighWhatTheUrdfSays) {
     mbk::forward_kinematics(model, mbk::JointState<double>(model), data);
     mbk::SystemKinematics<double> system;
     mbk::system_kinematics(model, data, system);
-    const double sum = urdf_mass_sum(path);
+    const double sum = mbk_test::urdf_mass_sum(mbk::read_text_file(path, "URDF"));
     EXPECT_NEAR(system.mass, sum, 1e-12 * sum);
     EXPECT_EQ(system.angular_momentum_known, !robot.warns);
     expect_rates_match_differences(model);
