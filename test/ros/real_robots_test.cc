@@ -1,14 +1,15 @@
 // The real-robot conformance set (issue 25): for the published robot description on
 // /robot_description (real_robots.test), the node's /tf and /tf_static agree with
 // robot_state_publisher's on the same joint_states stream to 1e-12 m and 1e-12 rad (the angle of
-// the quaternion difference), and body_kinematics' system mass is the sum of the URDF's <mass>.
+// the quaternion difference), mimic joints published off their rule included (the published
+// value wins, as in robot_state_publisher), and body_kinematics' system mass is the URDF's sum.
 #include <tf2_msgs/TFMessage.h>
-#include <tinyxml2.h>
 
 #include <map>
 
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/ros/ros_test_support.h"
+#include "test/support/urdf_facts.h"
 
 using namespace mbk_ros_test;
 
@@ -56,19 +57,6 @@ void compare(const std::map<Key, geometry_msgs::TransformStamped>& ours,
   }
 }
 
-double urdf_mass_sum(const std::string& xml) {
-  tinyxml2::XMLDocument doc;
-  EXPECT_EQ(doc.Parse(xml.c_str()), tinyxml2::XML_SUCCESS);
-  double sum = 0;
-  for (auto* link = doc.FirstChildElement("robot")->FirstChildElement("link"); link;
-       link = link->NextSiblingElement("link")) {
-    const auto* inertial = link->FirstChildElement("inertial");
-    const auto* mass = inertial ? inertial->FirstChildElement("mass") : nullptr;
-    if (mass) sum += mass->DoubleAttribute("value");
-  }
-  return sum;
-}
-
 TEST(RealRobots, NodeAgreesWithRobotStatePublisher) {
   ros::NodeHandle nh;
   std::string xml;
@@ -87,9 +75,11 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisher) {
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const Quadratic trajectory(model);
   const int samples = 10;              // 10 ms apart: the node estimates the accelerations
-  for (int i = 0; i < samples; ++i) {  // the mimics' sources only: both apply the mimic rule
+  for (int i = 0; i < samples; ++i) {  // every coordinate, the mimics 0.01 off their rule:
+    mbk::JointState<double> state = trajectory.at(i * 0.01);  // a published value wins in both
+    for (const mbk::Mimic& m : model.mimics) state.position[m.coordinate] += 0.01;
     states.publish(
-        joint_state_msg(model, trajectory.at(i * 0.01), ros::Time(50.0 + i * 0.01), true));
+        joint_state_msg(model, state, ros::Time(50.0 + i * 0.01), true, model.coordinate_names));
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   ASSERT_TRUE(wait_until([&] { return kinematics.count() > 0; }, 10));
@@ -103,7 +93,7 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisher) {
               theirs_static.get().size(), position, rotation);
   EXPECT_LT(position, 1e-12);
   EXPECT_LT(rotation, 1e-12);
-  const double sum = urdf_mass_sum(xml);
+  const double sum = mbk_test::urdf_mass_sum(xml);
   EXPECT_NEAR(kinematics.latest().system.mass, sum, 1e-12 * sum);
 }
 
