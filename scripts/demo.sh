@@ -39,7 +39,7 @@ stop() {
 trap 'stop; exit 130' INT TERM
 set +e
 for _ in $(seq 100); do  # the node logs its lower body arrays table once it is up
-  grep -q "Lower body arrays" "$log" && break
+  grep -q "coordinates, max depth" "$log" && break
   kill -0 "$launch_pid" 2>/dev/null || break
   sleep 0.2
 done

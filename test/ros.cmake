@@ -44,6 +44,20 @@ endforeach()
 add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
+add_rostest(test/ros/launch_description.test DEPENDENCIES mb_kinematics_node rsp_compare_test)
+
+# The real-robot conformance set (test/robots/): the node against robot_state_publisher.
+add_executable(real_robots_test EXCLUDE_FROM_ALL test/ros/real_robots_test.cc)
+add_dependencies(tests real_robots_test)
+add_dependencies(real_robots_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
+target_include_directories(real_robots_test SYSTEM PRIVATE ${GTEST_INCLUDE_DIRS})
+target_link_libraries(real_robots_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES}
+  ${GTEST_LIBRARIES})
+target_compile_definitions(real_robots_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+  MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
+foreach(robot panda anymal_c solo12 romeo_small pr2 baxter)
+  add_rostest(test/ros/real_robots.test ARGS robot:=${robot} DEPENDENCIES real_robots_test)
+endforeach()
 
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/ros/bag_test.cc)

@@ -8,6 +8,17 @@
 
 namespace mbk {
 
+namespace {
+
+void take_mass_properties(const Body& from, Body& to) {
+  to.mass = from.mass;
+  to.mass_center = from.mass_center;
+  to.inertia = from.inertia;
+  to.has_inertia = from.has_inertia;
+}
+
+}  // namespace
+
 bool has_floating_root(const Model& model) {
   if (model.body_count() < 1 || model.bodies[1].lower != 0) return false;
   const JointType type = model.bodies[1].joint.type;
@@ -21,10 +32,12 @@ Model with_floating_base(const Model& model, const std::string& frame, const std
   Model out;
   out.frame = frame;
   out.speeds = model.speeds;
+  out.warnings = model.warnings;
   out.bodies.resize(2);
   out.bodies[1].name = model.frame;
   out.bodies[1].joint.name = joint;
   out.bodies[1].joint.type = JointType::kFreeEuler;
+  take_mass_properties(model.bodies[0], out.bodies[1]);  // the root link moves with the base
   for (int k = 1; k <= model.body_count(); ++k) {
     Body b = model.bodies[k];
     b.lower += 1;  // R's children now hang from the base
@@ -44,7 +57,9 @@ Model without_root_body(const Model& model) {
   Model out;
   out.frame = model.bodies[1].name;
   out.speeds = model.speeds;
+  out.warnings = model.warnings;
   out.bodies.resize(1);
+  take_mass_properties(model.bodies[1], out.bodies[0]);  // body 1's link is now fixed in R
   for (int k = 2; k <= model.body_count(); ++k) {
     Body b = model.bodies[k];
     b.lower = std::max(b.lower - 1, 0);  // body 1's children now hang from R

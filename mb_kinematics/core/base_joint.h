@@ -17,8 +17,9 @@ namespace mbk {
 bool has_floating_root(const Model& model);
 
 // The model with a new body 1 on a free_euler joint named `joint` from R, named after the
-// model's R (its root link), and R renamed `frame`: the old bodies follow it, its coordinates
-// come first (`joint`/x y z e1 e2 e3 e4), mimics follow their coordinates.
+// model's R (its root link, whose mass, mass center and inertia it carries), and R renamed `frame`:
+// the old bodies follow it, its coordinates come first (`joint`/x y z e1 e2 e3 e4), mimics follow
+// their coordinates.
 Model with_floating_base(const Model& model, const std::string& frame, const std::string& joint);
 
 // The model without body 1 (the floating base of has_floating_root): its children hang from R,

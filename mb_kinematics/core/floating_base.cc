@@ -33,6 +33,12 @@ void apply_floating_base(const BaseMotion& base, Data<double>& data) {
     v = base.velocity + w.cross(r) + vr;
     p = base.position + r;
   };
+  data.rotation[0] = rb;  // the root frame, where the root link's mass center sits
+  data.origin[0] = base.position;
+  data.origin_velocity[0] = base.velocity;
+  data.origin_acceleration[0] = base.acceleration;
+  data.omega[0] = w;
+  data.alpha[0] = base.alpha;
   for (size_t k = 1; k < data.rotation.size(); ++k) {
     data.rotation[k] = rb * data.rotation[k];
     const Vec3<double> omega = rb * data.omega[k];

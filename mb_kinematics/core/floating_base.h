@@ -44,6 +44,7 @@ bool interpolate_base(const std::vector<BaseSample>& samples,
 // S0K <- R_b S0K, p <- p_b + R_b p, omega <- w_b + R_b omega, v <- v_b + w_b x R_b p + R_b v,
 // alpha <- a_b' + w_b x R_b omega + R_b alpha,
 // a <- a_b + alpha_b x R_b p + w_b x (w_b x R_b p) + 2 w_b x R_b v + R_b a.
+// Index 0 becomes the root frame's own motion (the root link's mass sits there, issue 25).
 void apply_floating_base(const BaseMotion& base, Data<double>& data);
 
 }  // namespace mbk

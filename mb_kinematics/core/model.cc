@@ -101,6 +101,21 @@ void order_mimics(Model& model) {
   model.mimics = sorted;
 }
 
+// bodies[0] stands for R: named after it, with the mass, mass center and inertia of the link
+// fixed in R that a URDF's root link gives (issue 25), nothing else.
+void set_root(Model& model) {
+  const Body& given = model.bodies[0];
+  Body root;
+  root.name = model.frame;
+  root.mass = given.mass;
+  root.mass_center = given.mass_center;
+  root.inertia = given.inertia;
+  root.has_inertia = given.has_inertia;
+  if (!std::isfinite(root.mass) || root.mass < 0) fail(root, 0, "mass must be finite and >= 0");
+  if (!all_finite(root.mass_center)) fail(root, 0, "mass_center is not finite");
+  model.bodies[0] = root;
+}
+
 }  // namespace
 
 std::vector<int> Model::lower_body_array() const {
@@ -129,8 +144,7 @@ int Model::speed_index(const std::string& name) const {
 
 void finalize_model(Model& model) {
   if (model.bodies.size() < 2) throw std::invalid_argument("model has no bodies");
-  model.bodies[0] = Body();
-  model.bodies[0].name = model.frame;
+  set_root(model);
   validate_lower_body_array(model.lower_body_array());
   std::set<std::string> body_names = {model.frame}, joint_names;
   model.nq = model.nv = 0;

@@ -45,6 +45,7 @@ struct Model {
   std::vector<std::string> speed_names;       // nv names; equal to coordinate_names unless
                                               // Euler joints use angular velocity speeds
   BodySteps steps;  // what each update does per body (body_step.h), set by finalize_model
+  std::vector<std::string> warnings;  // what the loader let through but reports, one line each
 
   int body_count() const { return static_cast<int>(bodies.size()) - 1; }
   std::vector<int> lower_body_array() const;            // L(1..N)

@@ -38,12 +38,15 @@ JointState<S> cast_state(const Model& model, const JointState<T>& state) {
 // Fills mimic coordinates from their sources (q = multiplier * q_source + offset; the
 // derivatives scale by multiplier).
 template <typename S>
+void apply_mimic(const Mimic& m, JointState<S>& state) {
+  state.position[m.coordinate] = S(m.multiplier) * state.position[m.source] + S(m.offset);
+  state.velocity[m.coordinate] = S(m.multiplier) * state.velocity[m.source];
+  state.acceleration[m.coordinate] = S(m.multiplier) * state.acceleration[m.source];
+}
+
+template <typename S>
 void apply_mimics(const Model& model, JointState<S>& state) {
-  for (const Mimic& m : model.mimics) {
-    state.position[m.coordinate] = S(m.multiplier) * state.position[m.source] + S(m.offset);
-    state.velocity[m.coordinate] = S(m.multiplier) * state.velocity[m.source];
-    state.acceleration[m.coordinate] = S(m.multiplier) * state.acceleration[m.source];
-  }
+  for (const Mimic& m : model.mimics) apply_mimic(m, state);
 }
 
 }  // namespace mbk

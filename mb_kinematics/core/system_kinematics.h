@@ -28,33 +28,50 @@ struct SystemKinematics {
 std::vector<std::string> bodies_without_inertia(const Model& model);
 bool inertias_known(const Model& model);  // bodies_without_inertia is empty (no allocation)
 
+// The mass center of bodies[0] (a URDF's root link, fixed in R's frame; that frame moves as
+// data's index 0 says when apply_floating_base set it): p_0 = O_0 + S00 r_0, its velocity
+// v_O0 + w_0 x S00 r_0 and acceleration a_O0 + alpha_0 x S00 r_0 + w_0 x (w_0 x S00 r_0).
+template <typename S>
+void root_mass_center(const Model& model, const Data<S>& data, Vec3<S>& p, Vec3<S>& v, Vec3<S>& a) {
+  const Vec3<S> r = data.rotation[0] * model.bodies[0].mass_center.template cast<S>();
+  p = data.origin[0] + r;
+  v = data.origin_velocity[0] + data.omega[0].cross(r);
+  a = data.origin_acceleration[0] + data.alpha[0].cross(r) +
+      data.omega[0].cross(data.omega[0].cross(r));
+}
+
 // Fills `out` from `data` at `level` (kPose: M and p_G; kVelocity adds v_G, M v_G and H_G;
-// kAcceleration adds a_G). With M = 0 every vector is zero (there is no mass center).
+// kAcceleration adds a_G). Every link with mass counts, bodies[0] (the root link) included.
+// With M = 0 every vector is zero (there is no mass center).
 template <typename S>
 void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics<S>& out,
                        Level level = Level::kAcceleration) {
   assert(sized_for(data, model) && "system_kinematics: Data made for another model");
   const int n = model.body_count();
   out = SystemKinematics<S>();
-  for (int k = 1; k <= n; ++k) out.mass += S(model.bodies[k].mass);
+  for (int k = 0; k <= n; ++k) out.mass += S(model.bodies[k].mass);
   out.angular_momentum_known = level != Level::kPose && inertias_known(model);
   if (!(out.mass > S(0))) return;
-  for (int k = 1; k <= n; ++k) {
+  Vec3<S> p0, v0, a0;
+  root_mass_center(model, data, p0, v0, a0);
+  const auto p = [&](int k) -> const Vec3<S>& { return k ? data.mass_center[k] : p0; };
+  const auto v = [&](int k) -> const Vec3<S>& { return k ? data.mass_center_velocity[k] : v0; };
+  for (int k = 0; k <= n; ++k) {
     const S m = S(model.bodies[k].mass);
-    out.mass_center += m * data.mass_center[k];
-    if (level != Level::kPose) out.linear_momentum += m * data.mass_center_velocity[k];
-    if (level == Level::kAcceleration) out.acceleration += m * data.mass_center_acceleration[k];
+    out.mass_center += m * p(k);
+    if (level != Level::kPose) out.linear_momentum += m * v(k);
+    if (level == Level::kAcceleration)
+      out.acceleration += m * (k ? data.mass_center_acceleration[k] : a0);
   }
   out.mass_center /= out.mass;
   out.velocity = out.linear_momentum / out.mass;
   out.acceleration /= out.mass;
   if (!out.angular_momentum_known) return;
-  for (int k = 1; k <= n; ++k) {
+  for (int k = 0; k <= n; ++k) {
     const Body& body = model.bodies[k];
     const Mat3<S>& s0k = data.rotation[k];
     const Vec3<S> spin = s0k * (body.inertia.cast<S>() * (s0k.transpose() * data.omega[k]));
-    const Vec3<S> orbit =
-        (data.mass_center[k] - out.mass_center).cross(data.mass_center_velocity[k] - out.velocity);
+    const Vec3<S> orbit = (p(k) - out.mass_center).cross(v(k) - out.velocity);
     out.angular_momentum += spin + S(body.mass) * orbit;  // doc/method.md 9, H_G
   }
 }

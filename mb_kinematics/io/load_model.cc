@@ -17,6 +17,10 @@ bool ends_with(const std::string& s, const std::string& tail) {
 Model load_model_file(const std::string& path) {
   if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);
   if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
+  if (ends_with(path, ".xacro"))
+    throw std::invalid_argument(path + ": a xacro file: expand it first (xacro " + path +
+                                " > robot.urdf, from ROS's xacro package) and give the .urdf, or "
+                                "load robot_description yourself and give no model");
   throw std::invalid_argument(path + ": unknown model file type (expected .urdf, .xml, .yaml)");
 }
 

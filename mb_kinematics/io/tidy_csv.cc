@@ -5,12 +5,14 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "mb_kinematics/core/system_kinematics.h"
+
 namespace mbk {
 
 TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
     : model_(model), path_(path), file_(std::fopen(path.c_str(), "w")) {
   if (!file_) throw std::invalid_argument(path + ": cannot write (" + std::strerror(errno) + ")");
-  for (int k = 1; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
+  for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
   std::fputs(header(), file_);
   std::fputc('\n', file_);
 }
@@ -53,13 +55,9 @@ void TidyCsvWriter::write(double stamp, const Data<double>& d) {
     std::fputc('\n', file_);
   }
   if (total_mass_ <= 0) return;
-  Vec3<double> p = Vec3<double>::Zero(), v = p, a = p;  // sum m_k (p_k, v_k, a_k) / M
-  for (int k = 1; k <= model_.body_count(); ++k) {
-    const double m = model_.bodies[k].mass / total_mass_;
-    p += m * d.mass_center[k];
-    v += m * d.mass_center_velocity[k];
-    a += m * d.mass_center_acceleration[k];
-  }
+  SystemKinematics<double> system;  // every link with mass, the root link included
+  system_kinematics(model_, d, system, Level::kAcceleration);
+  const Vec3<double>&p = system.mass_center, &v = system.velocity, &a = system.acceleration;
   std::fprintf(file_, "%s,system,0,0%s", stamp_text, ",,,,,,,");  // no origin, orientation
   for (int i = 0; i < 3; ++i) number(p[i]);
   std::fputs(",,,,,,", file_);  // no omega, alpha

@@ -113,6 +113,32 @@ void set_inertia(const urdf::Inertial& inertial, Body& body) {
   body.has_inertia = true;
 }
 
+// A URDF is what the vendor ships: an inertia that is not physical leaves its body without one
+// (H_G is then left out, as for a missing inertia) and one warning names every such link.
+void drop_unphysical_inertias(Model& model, const std::string& source) {
+  std::string links;
+  for (Body& body : model.bodies) {
+    const std::string problem = body.has_inertia ? inertia_problem(body.inertia) : "";
+    if (problem.empty()) continue;
+    links += (links.empty() ? "link '" : "; link '") + body.name + "' inertia " + problem;
+    body.has_inertia = false;
+  }
+  if (!links.empty())
+    model.warnings.push_back(source +
+                             ": inertia not physical, so the system's angular "
+                             "momentum is left out: " +
+                             links);
+}
+
+// m_k, r_k and I_k from the link's <inertial>, if it has one.
+void set_mass_properties(const urdf::Link& link, Body& body) {
+  if (!link.inertial) return;
+  const urdf::Vector3& c = link.inertial->origin.position;
+  body.mass_center = Vec3<double>(c.x, c.y, c.z);
+  body.mass = link.inertial->mass;
+  set_inertia(*link.inertial, body);
+}
+
 Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
   Body body;
   body.name = link.name;
@@ -125,16 +151,12 @@ Body make_body(const urdf::Link& link, const urdf::Joint& joint, int lower) {
   body.joint.rotation = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
   if (joint_traits(body.joint.type).uses_axis)
     body.joint.axis = Vec3<double>(joint.axis.x, joint.axis.y, joint.axis.z);
-  if (link.inertial) {
-    const urdf::Vector3& c = link.inertial->origin.position;
-    body.mass_center = Vec3<double>(c.x, c.y, c.z);
-    body.mass = link.inertial->mass;
-    set_inertia(*link.inertial, body);
-  }
+  set_mass_properties(link, body);
   return body;
 }
 
-Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
+Model build_model(const urdf::ModelInterface& urdf, const std::string& xml,
+                  const std::string& source) {
   const std::map<std::string, int> order = joint_file_order(xml);
   auto file_position = [&](const urdf::JointSharedPtr& j) {
     auto it = order.find(j->name);
@@ -144,6 +166,8 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
   const urdf::LinkConstSharedPtr root = urdf.getRoot();
   model.frame = root->name;
   model.bodies.resize(1);
+  model.bodies[0].name = root->name;
+  set_mass_properties(*root, model.bodies[0]);  // the root link, fixed in R (issue 25)
   std::vector<std::pair<urdf::LinkConstSharedPtr, int>> queue = {{root, 0}};  // link, its k
   std::map<std::string, int> index_of_joint;
   std::map<std::string, std::string> parent_joint = {{root->name, ""}};  // of each link reached
@@ -173,6 +197,7 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml) {
     const int k = model.body_index(link);
     if (k > 0) model.bodies[k].has_inertia = false;
   }
+  drop_unphysical_inertias(model, source);
   finalize_model(model);
   for (const auto& [name, k] : index_of_joint) {
     const urdf::Joint& joint = *urdf.getJoint(name);
@@ -215,7 +240,7 @@ Model parse_urdf(const std::string& xml, const std::string& source) {
     throw std::invalid_argument(
         source + ": URDF does not parse: " + (errors.empty() ? "urdfdom gave no reason" : errors));
   try {
-    return build_model(*urdf, xml);
+    return build_model(*urdf, xml, source);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(source + ": " + e.what());
   }
@@ -226,7 +251,9 @@ Model parse_urdf(const std::string& xml, const std::string& source) {
 // Messages hold names and urdfdom's text: control characters escaped to keep them one line.
 Model load_urdf_string(const std::string& xml, const std::string& source) {
   try {
-    return parse_urdf(xml, source);
+    Model model = parse_urdf(xml, source);
+    for (std::string& warning : model.warnings) warning = printable(warning);
+    return model;
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(printable(e.what()));
   }

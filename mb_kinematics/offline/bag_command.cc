@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <stdexcept>
 
@@ -32,6 +33,8 @@ bool ends_with(const std::string& s, const std::string& end) {
 // The node's model rules: coordinate-derivative speeds (JointState velocities are q').
 mbk::Model load(const std::string& path) {
   mbk::Model model = mbk::load_model_file(path);
+  for (const std::string& warning : model.warnings)
+    std::cerr << "mbk: warning: " << warning << "\n";
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {
     model.speeds = mbk::SpeedKind::kCoordinateDerivatives;
     mbk::finalize_model(model);

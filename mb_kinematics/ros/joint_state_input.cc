@@ -140,7 +140,7 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
   update.flipped = align_euler_signs(msg);
   for (size_t i = 0; i < msg.name.size(); ++i) {
     const int j = state_names_.index[i];
-    if (j < 0 || coordinates_[j].mimic) continue;  // mimics: computed
+    if (j < 0) continue;  // a published mimic value wins over its rule (robot_state_publisher)
     Coordinate& c = coordinates_[j];
     if (c.has_value && t < c.stamp) {  // e.g. a bag looping: the old history means nothing
       c.position_history->reset();
@@ -234,8 +234,9 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
   bool accels = level == mbk::Level::kAcceleration;
   for (int i = 0; i < model_.nq; ++i) {
     const Coordinate& c = coordinates_[i];
-    if (c.mimic) continue;
-    if (from_input && !(*from_input)[i]) {  // ~missing_coordinates: held or zero, at rest
+    if (c.mimic && !c.has_value) continue;  // the mimic rule, below
+    if (from_input && !(*from_input)[i] &&
+        !c.mimic) {  // ~missing_coordinates: held or zero, at rest
       state.position[i] = c.has_value ? c.position : initial_.position[i];
       state.velocity[i] = state.acceleration[i] = 0;
       continue;
@@ -258,7 +259,8 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
       accels = n >= 2;
     }
   }
-  mbk::apply_mimics(model_, state);
+  for (const mbk::Mimic& m : model_.mimics)  // in order: a mimic of a mimic reads the result
+    if (!coordinates_[m.coordinate].has_value) mbk::apply_mimic(m, state);
   if (!velocities) return mbk::Level::kPose;
   return accels ? mbk::Level::kAcceleration : mbk::Level::kVelocity;
 }

@@ -24,24 +24,28 @@ constexpr double kThrottle = 5.0;  // seconds between repeats of the estimating 
 constexpr long kMaxLoggedTableCells = 10000;
 
 void log_model(const mbk::Model& model, const std::string& frame) {
+  for (const std::string& warning : model.warnings) ROS_WARN_STREAM("mb_kinematics: " << warning);
   int depth = 0;
   for (int k = 1; k <= model.body_count(); ++k) depth = std::max(depth, model.bodies[k].depth);
   const long cells = static_cast<long>(model.body_count()) * (depth + 1);
-  std::ostringstream out;
-  out << "mb_kinematics: " << model.body_count() << " bodies, " << model.nq
-      << " coordinates, max depth " << depth << ", R = '" << frame << "'";
+  const std::vector<std::string> no_inertia = mbk::bodies_without_inertia(model);
+  ROS_INFO_STREAM("mb_kinematics: "
+                  << model.body_count() << " bodies, " << model.nq << " coordinates, max depth "
+                  << depth << ", R = '" << frame
+                  << "'; kinematics of every body and the system, angular "
+                  << (no_inertia.empty() ? "momentum included" : "momentum left out (inertias)"));
   if (cells <= kMaxLoggedTableCells) {
     std::vector<std::string> names;
     for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
-    out << "\n" << mbk::format_lower_body_table(model.lower_body_array(), names);
+    ROS_DEBUG_STREAM("mb_kinematics: lower body arrays\n"
+                     << mbk::format_lower_body_table(model.lower_body_array(), names));
   } else {
-    out << "; the lower body arrays table (" << cells << " cells) is not logged above "
-        << kMaxLoggedTableCells << " (mbk tables prints it)";
+    ROS_DEBUG_STREAM("mb_kinematics: the lower body arrays table ("
+                     << cells << " cells) is not "
+                     << "logged above " << kMaxLoggedTableCells << " (mbk tables prints it)");
   }
-  ROS_INFO_STREAM(out.str());
-  const std::vector<std::string> no_inertia = mbk::bodies_without_inertia(model);
   if (!no_inertia.empty())  // doc/node.md, system
-    ROS_INFO_STREAM(
+    ROS_DEBUG_STREAM(
         "mb_kinematics: body_kinematics' system.angular_momentum is left out "
         "(angular_momentum_known false): no inertia for "
         << no_inertia.size() << " bodies with mass: " << join_names(no_inertia));

@@ -64,6 +64,15 @@ std::map<std::string, std::string> parse_options(int argc, char** argv) {
   return options;
 }
 
+// The model of FILE; what the loader let through (e.g. inertias that are not physical) is
+// printed once on stderr.
+mbk::Model load(const std::string& path) {
+  mbk::Model model = mbk::load_model_file(path);
+  for (const std::string& warning : model.warnings)
+    std::cerr << "mbk: warning: " << warning << "\n";
+  return model;
+}
+
 int tables(const std::map<std::string, std::string>& options) {
   std::vector<int> lower;
   std::vector<std::string> names;
@@ -73,7 +82,7 @@ int tables(const std::map<std::string, std::string>& options) {
     lower = mbk::parse_lower_body_array(options.at("--lower"));
     mbk::validate_lower_body_array(lower);
   } else {
-    const mbk::Model model = mbk::load_model_file(options.at("--model"));
+    const mbk::Model model = load(options.at("--model"));
     lower = model.lower_body_array();
     for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
   }
@@ -86,7 +95,7 @@ int tables(const std::map<std::string, std::string>& options) {
 
 int eval(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("eval needs --model FILE");
-  const mbk::Model model = mbk::load_model_file(options.at("--model"));
+  const mbk::Model model = load(options.at("--model"));
   const mbk::JointState<double> state = options.count("--state")
                                             ? mbk::read_state_file(model, options.at("--state"))
                                             : mbk::JointState<double>(model);
@@ -114,7 +123,7 @@ int eval(const std::map<std::string, std::string>& options) {
 
 int urdf(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("urdf needs --model FILE");
-  const mbk::Model model = mbk::load_model_file(options.at("--model"));
+  const mbk::Model model = load(options.at("--model"));
   std::cout << mbk::write_urdf(
       model, options.count("--name") ? options.at("--name") : "scene",
       options.count("--display") ? mbk::UrdfStyle::kDisplay : mbk::UrdfStyle::kEquivalent);

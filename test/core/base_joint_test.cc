@@ -10,13 +10,16 @@
 
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/support/test_models.h"
+#include "test/support/urdf_facts.h"
 
 namespace {
 
 using V = mbk::Vec3<double>;
+using M = mbk::Mat3<double>;
 constexpr double kTol = 1e-12;
 
 mbk::BaseMotion some_motion() {
@@ -149,6 +152,47 @@ TEST(BaseJoint, AgreesWithCarryingIntoR) {
     expect_near(direct.mass_center_acceleration[k + 1], carried.mass_center_acceleration[k], tol,
                 "a");
   }
+}
+
+// The root link (issue 25): with a floating base it is the base body, with its link's mass, mass
+// center and inertia, and the system moves with it; the node's way and mbk bag's way agree.
+TEST(BaseJoint, FloatingBaseCarriesTheRootLinksMass) {
+  const mbk::Model model = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");
+  const mbk::Model based = mbk::with_floating_base(model, "odom", "base");
+  const mbk::Body& base = based.bodies[1];
+  EXPECT_EQ(base.name, "base");
+  EXPECT_EQ(base.mass, 15.36);
+  EXPECT_EQ(base.mass_center, V(0.1, -0.02, 0.05));
+  ASSERT_TRUE(base.has_inertia);
+  EXPECT_EQ(base.inertia, M(V(0.3, 0.4, 0.5).asDiagonal()));
+  EXPECT_EQ(based.bodies[0].mass, 0.0);  // R (the odometry frame) has none
+  mbk::JointState<double> s(model), sb(based);
+  s.position[0] = 0.4;
+  s.velocity[0] = 1.3;
+  s.acceleration[0] = -0.7;
+  const mbk::BaseMotion m = some_motion();
+  ASSERT_EQ(mbk::free_joint_coordinates(base.joint, m, sb.position.data(), sb.velocity.data(),
+                                        sb.acceleration.data()),
+            "");
+  sb.position.tail(1) = s.position;
+  sb.velocity.tail(1) = s.velocity;
+  sb.acceleration.tail(1) = s.acceleration;
+  mbk::Data<double> carried(model), direct(based);
+  mbk::forward_kinematics(model, s, carried, mbk::Level::kAcceleration);
+  mbk::apply_floating_base(m, carried);
+  mbk::forward_kinematics(based, sb, direct, mbk::Level::kAcceleration);
+  mbk::SystemKinematics<double> a, b;
+  mbk::system_kinematics(model, carried, a);
+  mbk::system_kinematics(based, direct, b);
+  EXPECT_EQ(a.mass, 15.36 + 2.5);
+  EXPECT_EQ(b.mass, 15.36 + 2.5);
+  expect_near(direct.mass_center[1], m.position + m.rotation * V(0.1, -0.02, 0.05), 1e-15, "p_b");
+  const double tol = 1e-12;
+  expect_near(a.mass_center, b.mass_center, tol, "p_G");
+  expect_near(a.velocity, b.velocity, tol, "v_G");
+  expect_near(a.acceleration, b.acceleration, tol, "a_G");
+  ASSERT_TRUE(a.angular_momentum_known && b.angular_momentum_known);
+  expect_near(a.angular_momentum, b.angular_momentum, tol, "H_G");
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/support/checks.h"
 #include "test/support/test_models.h"
+#include "test/support/urdf_facts.h"
 
 namespace {
 
@@ -354,6 +355,29 @@ TEST(IndependentSpeeds, DotColumnsAreTimeDerivatives) {
       EXPECT_LT((d_v - now[c].velocity_dot).norm(), tol * scale) << "body " << k;
     }
   }
+}
+
+// ---- The root link (issue 25): a URDF root link's mass counts, fixed in R; M is the sum of the
+// URDF's <mass> values. H_G = H_O - M p_G x v_G, the root link at rest adding nothing to H_O.
+TEST(SystemKinematics, RootLinkMassCountsFixedInR) {
+  const mbk::Model model = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");
+  mbk::JointState<double> state(model);
+  state.position[0] = 0.4;
+  state.velocity[0] = 1.3;
+  state.acceleration[0] = -0.7;
+  mbk::Data<double> data(model);
+  const mbk::SystemKinematics<double> s = system_at(model, state, data);
+  const double m0 = 15.36, m1 = 2.5, total = m0 + m1;
+  EXPECT_EQ(s.mass, total);
+  const V p_g = (m0 * V(0.1, -0.02, 0.05) + m1 * data.mass_center[1]) / total;
+  EXPECT_LT((s.mass_center - p_g).norm(), 4 * kEps);
+  EXPECT_LT((s.velocity - m1 * data.mass_center_velocity[1] / total).norm(), 8 * kEps);
+  EXPECT_LT((s.acceleration - m1 * data.mass_center_acceleration[1] / total).norm(), 8 * kEps);
+  ASSERT_TRUE(s.angular_momentum_known);
+  const M i1 = data.rotation[1] * model.bodies[1].inertia * data.rotation[1].transpose();
+  const V h_o = i1 * data.omega[1] + m1 * data.mass_center[1].cross(data.mass_center_velocity[1]);
+  EXPECT_LT((s.angular_momentum - (h_o - total * s.mass_center.cross(s.velocity))).norm(),
+            16 * kEps);
 }
 
 }  // namespace

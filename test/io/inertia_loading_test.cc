@@ -82,6 +82,7 @@ TEST(Inertia, UrdfInertialRpyIsTurnedIntoTheBodyAxes) {
   const char diag123[] = "ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"2\" iyz=\"0\" izz=\"3\"";
   const mbk::Model plain = mbk::load_urdf_string(urdf("", diag123), "r.urdf");
   ASSERT_TRUE(plain.bodies[1].has_inertia);
+  EXPECT_TRUE(plain.warnings.empty());
   EXPECT_EQ(plain.bodies[1].inertia, M(mbk::Vec3<double>(1, 2, 3).asDiagonal()));
   const mbk::Model turned = mbk::load_urdf_string(
       urdf("<origin xyz=\"0.1 0 0\" rpy=\"0 0 1.5707963267948966\"/>", diag123), "r.urdf");
@@ -99,16 +100,38 @@ TEST(Inertia, UrdfInertialRpyIsTurnedIntoTheBodyAxes) {
       1e-14);
 }
 
-TEST(Inertia, UrdfBadInertiaNamesFileLinkAndField) {
-  try {
-    mbk::load_urdf_string(urdf("", "ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"5\""),
-                          "r.urdf");
-    ADD_FAILURE() << "no error";
-  } catch (const std::invalid_argument& e) {
-    const std::string m = e.what();
-    EXPECT_EQ(m.rfind("r.urdf: ", 0), 0u) << m;
-    EXPECT_NE(m.find("'arm': inertia violates the triangle inequality"), std::string::npos) << m;
-  }
+// Inertias that are not physical (issue 25: a sensor mount, a 1e-6 kg antenna) never stop a URDF
+// from loading: those bodies keep no inertia (H_G is left out) and one warning names every link.
+TEST(Inertia, UrdfUnphysicalInertiasLoadWithOneWarningNamingEveryLink) {
+  const std::string xml =
+      "<robot name=\"r\"><link name=\"base\"/>"
+      "<link name=\"mount\"><inertial><mass value=\"1\"/><inertia ixx=\"0.001\" ixy=\"0\" "
+      "ixz=\"0\" iyy=\"0.001\" iyz=\"0\" izz=\"0.01\"/></inertial></link>"
+      "<link name=\"antenna\"><inertial><mass value=\"1e-6\"/><inertia ixx=\"-3.5e-08\" "
+      "ixy=\"0\" ixz=\"0\" iyy=\"1e-7\" iyz=\"0\" izz=\"1e-7\"/></inertial></link>"
+      "<link name=\"arm\"><inertial><mass value=\"2\"/><inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" "
+      "iyy=\"1\" iyz=\"0\" izz=\"1\"/></inertial></link>"
+      "<joint name=\"j1\" type=\"fixed\"><parent link=\"base\"/><child link=\"mount\"/></joint>"
+      "<joint name=\"j2\" type=\"fixed\"><parent link=\"mount\"/><child link=\"antenna\"/>"
+      "</joint><joint name=\"j3\" type=\"continuous\"><parent link=\"base\"/>"
+      "<child link=\"arm\"/><axis xyz=\"0 0 1\"/></joint></robot>";
+  const mbk::Model model = mbk::load_urdf_string(xml, "r.urdf");
+  EXPECT_FALSE(model.bodies[model.body_index("mount")].has_inertia);
+  EXPECT_FALSE(model.bodies[model.body_index("antenna")].has_inertia);
+  EXPECT_TRUE(model.bodies[model.body_index("arm")].has_inertia);
+  EXPECT_EQ(model.bodies[model.body_index("antenna")].mass, 1e-6);  // the mass stays
+  ASSERT_EQ(model.warnings.size(), 1u);
+  const std::string& w = model.warnings[0];
+  EXPECT_EQ(w.rfind("r.urdf: ", 0), 0u) << w;
+  EXPECT_NE(w.find("angular momentum is left out"), std::string::npos) << w;
+  EXPECT_NE(w.find("'mount' inertia violates the triangle inequality I1 + I2 >= I3 (principal "
+                   "moments 0.001, 0.001, 0.01)"),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find("'antenna' inertia is not positive semidefinite (principal moments -3.5e-08"),
+            std::string::npos)
+      << w;
+  EXPECT_EQ(w.find('\n'), std::string::npos) << w;
 }
 
 // `mbk urdf` writes a scene's inertias; without one it writes the token URDF needs, marked, and

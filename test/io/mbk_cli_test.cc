@@ -667,6 +667,38 @@ TEST(MbkCli, BadUrdfIsOneLine) {
   EXPECT_NE(run.err.find("mass [x]"), std::string::npos) << run.err;
 }
 
+// A URDF with an inertia that is not physical loads: mbk prints the warning once on stderr, exits
+// 0, and leaves the angular momentum out (issue 25).
+TEST(MbkCli, UnphysicalUrdfInertiaIsOneWarningAndExitZero) {
+  const TempFile robot(
+      "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"><inertial><mass value=\"1\"/>"
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"5\"/></inertial></link>"
+      "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/><child link=\"b\"/></joint>"
+      "</robot>",
+      ".urdf");
+  for (const char* command : {"eval", "tables"}) {
+    const Output run = mbk(std::string(command) + " --model " + robot.path);
+    EXPECT_EQ(run.status, 0) << run.err;
+    EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;  // one line
+    EXPECT_EQ(run.err.rfind("mbk: warning: " + robot.path + ": inertia not physical", 0), 0u)
+        << run.err;
+    EXPECT_NE(run.err.find("'b' inertia violates the triangle inequality"), std::string::npos);
+  }
+  EXPECT_NE(mbk("eval --model " + robot.path).out.find("\"missing_inertia\""), std::string::npos);
+}
+
+// A xacro model (what most robots ship) is refused with the command that expands it, one line.
+TEST(MbkCli, XacroModelSaysHowToExpandIt) {
+  const TempFile robot("<robot name=\"r\" xmlns:xacro=\"http://www.ros.org/wiki/xacro\"/>",
+                       ".urdf.xacro");
+  const Output run = mbk("eval --model " + robot.path);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+  EXPECT_NE(run.err.find("a xacro file: expand it first (xacro " + robot.path + " > robot.urdf"),
+            std::string::npos)
+      << run.err;
+}
+
 TEST(MbkCli, EulerSceneWithAValidStateWorks) {  // the zero-norm failure above is the state's
   const Output run = mbk("eval --model test/io/data/ball_euler.yaml");
   EXPECT_EQ(run.status, 0) << run.err;

@@ -61,19 +61,25 @@ TEST_F(JointStateInputTest, RejectsBadMessagesWhole) {
   EXPECT_EQ(input_.missing().size(), kAll.size()) << "a rejected message changed the state";
 }
 
-TEST_F(JointStateInputTest, UnknownNamesIgnoredMimicsComputed) {
+// A published mimic value wins over the mimic rule, as in robot_state_publisher (issue 25): the
+// finger (2 * arm2 + 0.1) published at 9 is placed at 9; unpublished, the rule places it.
+TEST_F(JointStateInputTest, UnknownNamesIgnoredPublishedMimicsWin) {
+  input_.add(msg(kAll, 0.25), 1);
+  EXPECT_EQ(input_.fill(Level::kPose, nullptr, state_), Level::kPose);
+  const int finger = model_.coordinate_index("finger_joint");
+  EXPECT_DOUBLE_EQ(state_.position[finger], 2 * 0.25 + 0.1);  // not published: the rule
   sensor_msgs::JointState m = msg(kAll, 0.25);
   m.name.push_back("gripper");
   m.position.push_back(std::numeric_limits<double>::quiet_NaN());
-  m.name.push_back("finger_joint");  // a mimic: computed, never taken from the message
+  m.name.push_back("finger_joint");
   m.position.push_back(9.0);
-  const auto update = input_.add(m, 1);
+  const auto update = input_.add(m, 2);
   EXPECT_EQ(update.error, "");
   EXPECT_EQ(update.unknown, std::vector<std::string>({"gripper"}));
-  EXPECT_EQ(update.used, static_cast<int>(kAll.size()));
+  EXPECT_EQ(update.used, static_cast<int>(kAll.size()) + 1);
   EXPECT_TRUE(input_.missing().empty());
   EXPECT_EQ(input_.fill(Level::kPose, nullptr, state_), Level::kPose);
-  EXPECT_DOUBLE_EQ(state_.position[model_.coordinate_index("finger_joint")], 2 * 0.25 + 0.1);
+  EXPECT_EQ(state_.position[finger], 9.0);
 }
 
 TEST_F(JointStateInputTest, MergesPartialMessages) {

@@ -43,8 +43,8 @@ port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.
 export ROS_MASTER_URI=http://localhost:$port
 stdbuf -oL roslaunch -p "$port" mb_kinematics demo.launch ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
 pids+=($!)
-for _ in $(seq 300); do grep -q "Lower body arrays" "$tmp/launch.log" && break; sleep 0.1; done
-grep -q "Lower body arrays" "$tmp/launch.log" || fail "demo.launch did not start: $(tail "$tmp/launch.log")"
+for _ in $(seq 300); do grep -q "coordinates, max depth" "$tmp/launch.log" && break; sleep 0.1; done
+grep -q "coordinates, max depth" "$tmp/launch.log" || fail "demo.launch did not start: $(tail "$tmp/launch.log")"
 
 rviz -d "$src/config/mb_kinematics.rviz" >"$tmp/rviz.log" 2>&1 &
 rviz_pid=$!
