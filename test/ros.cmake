@@ -44,6 +44,9 @@ endforeach()
 add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
+add_rostest_gtest(nodelet_load_test test/ros/nodelet_load.test test/ros/nodelet_load_test.cc)
+add_dependencies(nodelet_load_test mbk_nodelet demo_publisher)
+target_link_libraries(nodelet_load_test ${catkin_LIBRARIES})
 
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/ros/bag_test.cc)
