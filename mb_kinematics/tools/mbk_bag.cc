@@ -12,8 +12,9 @@ int main(int argc, char** argv) {
   try {
     mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
     options.progress = mbk::stderr_is_terminal();
-    std::cerr << mbk_offline::format_summary(mbk_offline::run_bag(options));
-    return 0;
+    const mbk_offline::BagSummary summary = mbk_offline::run_bag(options);
+    std::cerr << mbk_offline::format_summary(summary);
+    return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::exception& e) {
     std::cerr << "mbk: error: " << e.what() << "\n";
     return 1;
