@@ -120,6 +120,41 @@ TEST(TrajectoryCsvTest, ClearErrors) {
   }
 }
 
+// Issue 24.6, 24.8: CR-only and CRLF line ends and a byte-order mark read as LF; a NUL inside a
+// cell and a column given twice are clear errors.
+TEST(TrajectoryCsvTest, LineEndsAndByteOrderMark) {
+  const mbk::Model model = two_joints();
+  for (const std::string end : {"\n", "\r\n", "\r"}) {
+    for (const std::string bom : {"", "\xEF\xBB\xBF"}) {
+      const std::string path = temp_file(
+          "traj_ends.csv", bom + "time,J1,J2" + end + "0,0.1,0.2" + end + "0.01,0.3,0.4" + end);
+      mbk::RecordingBuilder b(model);
+      mbk::read_trajectory_csv(path, b);
+      const mbk::Recording r = b.finish();
+      ASSERT_EQ(r.rows(), 2) << bom.size() << " " << end.size();
+      EXPECT_EQ(r.position, (std::vector<double>{0.1, 0.2, 0.3, 0.4}));
+    }
+  }
+}
+
+TEST(TrajectoryCsvTest, NulInACellAndATwiceNamedColumnAreErrors) {
+  const mbk::Model model = two_joints();
+  for (const auto& bad :
+       {std::make_pair(std::string("time,J1,J2\n0,0.5\0abc,0.1\n", 25),
+                       "traj_nul.csv:2: column 'J1': '0.5\\0abc' is not a number"),
+        std::make_pair(std::string("time,J1,J1\n0,0.5,0.1\n"),
+                       "traj_two.csv:1: column 'J1' is given twice (2 and 3)")}) {
+    const std::string path = temp_file(std::string(bad.second).substr(0, 12), bad.first);
+    mbk::RecordingBuilder b(model);
+    try {
+      mbk::read_trajectory_csv(path, b);
+      FAIL() << "no error for " << path;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.second), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(TidyCsvTest, OneRowPerSampleAndBodyWithEveryColumn) {
   const mbk::Model model = two_joints();
   mbk::JointState<double> state(model);
