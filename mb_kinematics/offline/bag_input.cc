@@ -15,6 +15,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "mb_kinematics/core/quaternion_scale.h"
+
 namespace mbk_offline {
 namespace {
 
@@ -77,6 +79,7 @@ void add_odometry(const nav_msgs::Odometry& o, double t, const std::string& wher
   s.position << p.position.x, p.position.y, p.position.z;
   s.orientation =
       Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+  mbk::scale_large_quaternion(s.orientation);  // components of 1e154 and more: a finite norm
   s.linear << o.twist.twist.linear.x, o.twist.twist.linear.y, o.twist.twist.linear.z;
   s.angular << o.twist.twist.angular.x, o.twist.twist.angular.y, o.twist.twist.angular.z;
   const double norm = s.orientation.norm();

@@ -524,6 +524,35 @@ TEST(BagTest, AFailedRunLeavesNoPartialOutput) {
   }
 }
 
+// Issue 24.9: odometry whose quaternion components are finite but huge (1e200 times a unit
+// one) is the same rotation, not ignored.
+TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()));
+  {
+    rosbag::Bag bag(temp("huge_q.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 50; ++i) {
+      const double t = 1.0 + i / 100.0;
+      nav_msgs::Odometry o;
+      o.header.stamp = ros::Time(t);
+      o.header.frame_id = "odom";
+      o.pose.pose.orientation.z = 1e200 * q.z(), o.pose.pose.orientation.w = 1e200 * q.w();
+      bag.write("/odom", o.header.stamp, o);
+      sensor_msgs::JointState js;
+      js.header.stamp = ros::Time(t);
+      js.name = model.coordinate_names;
+      js.position.assign(model.nq, 0.1);
+      bag.write("/joint_states", js.header.stamp, js);
+    }
+  }
+  mbk_offline::BagOptions o = options(temp("huge_q.bag"), "");
+  o.out_csv = temp("huge_q.csv");
+  o.base_odometry = "/odom";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.written, 50);
+  EXPECT_EQ(s.log.notes.count("base odometry ignored"), 0u);
+}
+
 // Issue 24.3(a), 24.6: a std_msgs/String connection on /joint_states, before or after the
 // JointState one: those messages are skipped and counted, every joint sample is written.
 TEST(BagTest, MessagesOfAnotherTypeAreSkippedAndCounted) {
