@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/lower_body_array.h"
@@ -68,6 +69,29 @@ TEST(RecordingTest, AJointNeverNamedIsAnError) {
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("no sample names the joints J2"), std::string::npos);
+  }
+}
+
+// Issue 24.8: when every sample was dropped, the error says why (NaN, a name given twice), not
+// only that no sample names the joints.
+TEST(RecordingTest, EveryDroppedSampleSaysWhy) {
+  const mbk::Model model = two_joints();
+  for (const auto& bad :
+       {std::make_tuple(std::vector<std::string>{"J1", "J2"}, std::nan(""), "position is NaN"),
+        std::make_tuple(std::vector<std::string>{"J1", "J2", "J1"}, 0.1, "'J1' is named twice")}) {
+    const std::vector<std::string>& names = std::get<0>(bad);
+    mbk::RecordingBuilder b(model);
+    for (int i = 0; i < 3; ++i)
+      b.add(i * 0.1, names, std::vector<double>(names.size(), std::get<1>(bad)), {},
+            "s" + std::to_string(i));
+    try {
+      b.finish();
+      FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("3 of 3 samples dropped"), std::string::npos) << what;
+      EXPECT_NE(what.find(std::get<2>(bad)), std::string::npos) << what;
+    }
   }
 }
 
