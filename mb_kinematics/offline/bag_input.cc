@@ -5,8 +5,11 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -202,11 +205,41 @@ class MessageReader {
   nav_msgs::Odometry odometry_;
 };
 
+// Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
+// child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
+// index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
+// the real reading, which counts them.
+void survive_or_refuse(const std::string& path) {
+  const pid_t child = fork();
+  if (child < 0) return;  // cannot isolate: read it anyway
+  if (child == 0) {
+    try {
+      rosbag::Bag bag(path, rosbag::bagmode::Read);
+      std::vector<std::uint8_t> bytes;
+      for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+        bytes.resize(m.size());
+        ros::serialization::OStream copy(bytes.data(), static_cast<uint32_t>(bytes.size()));
+        m.write(copy);
+      }
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw std::invalid_argument(path + ": damaged bag: reading it crashes librosbag (signal " +
+                                std::to_string(WTERMSIG(status)) + "); `rosbag reindex " + path +
+                                "` may recover it");
+}
+
 }  // namespace
 
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress) {
+  survive_or_refuse(path);
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
