@@ -2,6 +2,8 @@
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
 //       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
 //       [--frame-prefix P] [--max-gap S] [--threads N]
+#include <console_bridge/console.h>
+
 #include <iostream>
 #include <stdexcept>
 
@@ -9,6 +11,9 @@
 #include "mb_kinematics/offline/bag_command.h"
 
 int main(int argc, char** argv) {
+  // librosbag's own messages on damaged records ("Error: Received an invalid TCPROS header")
+  // would break the one-line format: what it cannot read is counted and named in the summary.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   try {
     mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
     options.progress = mbk::stderr_is_terminal();

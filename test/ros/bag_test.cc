@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
@@ -567,6 +568,21 @@ TEST(BagTest, ABagThatCrashesLibrosbagIsAnError) {
     EXPECT_NE(e.find("flip.bag: damaged bag: reading it crashes librosbag"), std::string::npos)
         << e;
   }
+}
+
+// Issue 24.8: librosbag's own complaints about a damaged connection header stay off stderr;
+// only mbk's summary (or its one error line) is printed.
+TEST(BagTest, DamagedHeadersPrintOnlyMbksOwnLines) {
+  const std::string in = write_bag("flip_src.bag", 100, 2.0);
+  std::string damaged = read_file(in);
+  ASSERT_EQ(damaged.size(), 204133u) << "the bag's layout changed: find another flip";
+  damaged[16635] = static_cast<char>(damaged[16635] ^ 128);  // in a connection header
+  std::ofstream(temp("header_flip.bag"), std::ios::binary) << damaged;
+  std::string err;
+  run_mbk_bag(temp("header_flip.bag"), "--csv " + temp("header_flip.csv"), err);
+  std::istringstream lines(err);
+  for (std::string line; std::getline(lines, line);)
+    EXPECT_TRUE(line.rfind("mbk", 0) == 0 || line.rfind("  ", 0) == 0) << line;
 }
 
 // Issue 24.3(a), 24.6: a std_msgs/String connection on /joint_states, before or after the
