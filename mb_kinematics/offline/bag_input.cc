@@ -205,6 +205,28 @@ class MessageReader {
   nav_msgs::Odometry odometry_;
 };
 
+// Every top-level record of the bag (header length, header, data length, data) within the
+// file, before librosbag reads it: it allocates what a damaged length says (GBs) first.
+void check_record_lengths(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::uint64_t size = in ? static_cast<std::uint64_t>(in.tellg()) : 0;
+  char magic[13] = {};
+  in.seekg(0);
+  if (!in.read(magic, sizeof magic) || std::string(magic, sizeof magic) != "#ROSBAG V2.0\n")
+    return;  // not a bag: rosbag's error to give
+  std::uint64_t at = 13;
+  for (int part = 0; in && at < size; part = 1 - part) {
+    std::uint32_t length = 0;
+    in.seekg(static_cast<std::streamoff>(at));
+    if (!in.read(reinterpret_cast<char*>(&length), 4) || at + 4 + length > size)
+      throw std::invalid_argument(path + ": damaged or truncated bag: the record " +
+                                  (part ? "data" : "header") + " at byte " + std::to_string(at) +
+                                  " goes beyond the end of the file; `rosbag reindex " + path +
+                                  "` may recover it");
+    at += 4 + length;
+  }
+}
+
 // Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
 // child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
 // index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
@@ -217,9 +239,12 @@ void survive_or_refuse(const std::string& path) {
       rosbag::Bag bag(path, rosbag::bagmode::Read);
       std::vector<std::uint8_t> bytes;
       for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
-        bytes.resize(m.size());
-        ros::serialization::OStream copy(bytes.data(), static_cast<uint32_t>(bytes.size()));
-        m.write(copy);
+        try {  // as the real reading: past a message that throws, on to the next
+          bytes.resize(m.size());
+          ros::serialization::OStream copy(bytes.data(), static_cast<uint32_t>(bytes.size()));
+          m.write(copy);
+        } catch (const std::exception&) {
+        }
       }
     } catch (...) {
     }
@@ -228,10 +253,12 @@ void survive_or_refuse(const std::string& path) {
   int status = 0;
   while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-  if (WIFSIGNALED(status))
-    throw std::invalid_argument(path + ": damaged bag: reading it crashes librosbag (signal " +
-                                std::to_string(WTERMSIG(status)) + "); `rosbag reindex " + path +
-                                "` may recover it");
+  if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))  // a sanitizer's
+    throw std::invalid_argument(path + ": damaged bag: reading it crashes librosbag (" +
+                                (WIFSIGNALED(status)
+                                     ? "signal " + std::to_string(WTERMSIG(status))
+                                     : "exit " + std::to_string(WEXITSTATUS(status))) +
+                                "); `rosbag reindex " + path + "` may recover it");
 }
 
 }  // namespace
@@ -239,6 +266,7 @@ void survive_or_refuse(const std::string& path) {
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress) {
+  check_record_lengths(path);
   survive_or_refuse(path);
   rosbag::Bag bag;
   try {
