@@ -20,7 +20,7 @@ case "${1:-}" in
   "") ;;
   *) echo "usage: scripts/fuzz.sh [seconds | --smoke | --build]" >&2; exit 2 ;;
 esac
-harnesses=(urdf yaml_scene state_json lower joint_state_input)
+harnesses=(urdf yaml_scene state_json lower joint_state_input bag)
 dir=${MBK_FUZZ_DIR:-$MBK_WS/fuzz}
 mkdir -p "$dir/build" "$dir/findings"
 
@@ -43,6 +43,7 @@ smoke_runs() {  # about 5 s each on this project's 2-core CI machines
     state_json) echo 10000 ;;
     joint_state_input) echo 3000 ;;
     lower) echo 100000 ;;
+    bag) echo 1500 ;;  # each input is read twice (bag_input.cc: once in a child process)
   esac
 }
 
@@ -52,6 +53,7 @@ seeds() {  # the shipped files each harness starts from
     yaml_scene) ls "$MBK_SRC"/config/*.yaml "$MBK_SRC"/test/io/data/*.yaml ;;
     state_json | joint_state_input) ls "$MBK_SRC"/config/*.json "$MBK_SRC"/test/io/data/*.json ;;
     lower) ls "$MBK_SRC"/test/fuzz/seeds/lower/* ;;
+    bag) ls "$MBK_SRC"/test/fuzz/seeds/bag/* ;;
   esac
 }
 

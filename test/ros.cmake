@@ -58,6 +58,9 @@ target_compile_definitions(real_robots_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SO
 foreach(robot panda anymal_c solo12 romeo_small pr2 baxter)
   add_rostest(test/ros/real_robots.test ARGS robot:=${robot} DEPENDENCIES real_robots_test)
 endforeach()
+add_rostest_gtest(nodelet_load_test test/ros/nodelet_load.test test/ros/nodelet_load_test.cc)
+add_dependencies(nodelet_load_test mbk_nodelet demo_publisher)
+target_link_libraries(nodelet_load_test ${catkin_LIBRARIES})
 
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/ros/bag_test.cc)

@@ -171,10 +171,15 @@ void finalize_model(Model& model) {
   check_unique(model, model.coordinate_names, false);
   check_unique(model, model.speed_names, true);
   for (const Mimic& m : model.mimics) {
-    const bool ok = m.coordinate >= 0 && m.coordinate < model.nq && m.source >= 0 &&
-                    m.source < model.nq && m.source != m.coordinate &&
-                    std::isfinite(m.multiplier) && std::isfinite(m.offset);
-    if (!ok) throw std::invalid_argument("mimic: bad coordinate, source or factor");
+    if (m.coordinate < 0 || m.coordinate >= model.nq)
+      throw std::invalid_argument("mimic: coordinate " + std::to_string(m.coordinate) +
+                                  " is not in the model");
+    const std::string mimic = "mimic '" + model.coordinate_names[m.coordinate] + "': ";
+    if (m.source < 0 || m.source >= model.nq)
+      throw std::invalid_argument(mimic + "its source is not in the model");
+    if (m.source == m.coordinate) throw std::invalid_argument(mimic + "it mimics itself");
+    if (!std::isfinite(m.multiplier) || !std::isfinite(m.offset))
+      throw std::invalid_argument(mimic + "multiplier or offset not finite");
     if (model.nq != model.nv)
       throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
   }

@@ -2,10 +2,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
@@ -14,6 +17,7 @@
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
 #include "mb_kinematics/offline/offline_batch.h"
+#include "mb_kinematics/offline/output_file.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/trajectory_csv.h"
 
@@ -42,8 +46,43 @@ mbk::Model load(const std::string& path) {
   return model;
 }
 
-// OUT.bag and/or OUT.csv.
+// True if paths a and b name one file: the same device and inode (symlinks and hard links
+// followed) when both exist, else the same path once the existing part is resolved. Two
+// outputs that are both devices or pipes (/dev/null twice) are not refused.
+bool same_file(const std::string& a, const std::string& b, bool both_outputs) {
+  namespace fs = std::filesystem;
+  std::error_code ea, eb;
+  const fs::file_status sa = fs::status(a, ea), sb = fs::status(b, eb);
+  if (fs::exists(sa) && fs::exists(sb)) {
+    if (both_outputs && !fs::is_regular_file(sa) && !fs::is_regular_file(sb)) return false;
+    return fs::equivalent(a, b, ea);
+  }
+  return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);
+}
+
+// Refuses, before anything is read or written, an output that is the same file as an input
+// (IN, --model) or as the other output.
+void refuse_same_files(const BagOptions& o) {
+  using Named = std::pair<const char*, const std::string*>;
+  const std::vector<Named> inputs = {{"the input", &o.input}, {"--model", &o.model}};
+  std::vector<Named> outputs;
+  if (!o.out_bag.empty()) outputs.push_back({"--out", &o.out_bag});
+  if (!o.out_csv.empty()) outputs.push_back({"--csv", &o.out_csv});
+  for (const Named& out : outputs)
+    for (const Named& in : inputs)
+      if (same_file(*out.second, *in.second, false))
+        throw std::invalid_argument(std::string(out.first) + " " + *out.second +
+                                    " is the same file as " + in.first + " " + *in.second +
+                                    ": refused, nothing written");
+  if (outputs.size() == 2 && same_file(o.out_bag, o.out_csv, true))
+    throw std::invalid_argument("--out " + o.out_bag + " and --csv " + o.out_csv +
+                                " are the same file: refused, nothing written");
+}
+
+// OUT.bag and/or OUT.csv, each under a temporary name until both are whole (output_file.h):
+// the writers are destroyed before the files, which remove what was not committed.
 struct Outputs {
+  std::unique_ptr<OutputFile> bag_file, csv_file;
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
   bool floating = false;
@@ -55,6 +94,8 @@ struct Outputs {
   void close() {
     if (bag) bag->close();
     if (csv) csv->close();
+    if (bag_file) bag_file->commit();
+    if (csv_file) csv_file->commit();
   }
 };
 
@@ -162,6 +203,7 @@ void write_errors(const std::string& path, const std::vector<mbk::CoordinateErro
 
 BagSummary run_bag(const BagOptions& o) {
   const auto wall = Clock::now();
+  refuse_same_files(o);
   BagSummary s;
   const mbk::Model model = load(o.model);
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
@@ -177,8 +219,11 @@ BagSummary run_bag(const BagOptions& o) {
     if (ends_with(o.input, ".csv")) {
       mbk::read_trajectory_csv(o.input, builder);
     } else {
+      Unreadable unreadable;
       read_bag(o.input, {o.joint_states, o.joint_accelerations, o.base_odometry}, builder, base,
-               [&](long done, long total) { bar.update(done, total); });
+               unreadable, [&](long done, long total) { bar.update(done, total); });
+      s.unreadable = unreadable.count;
+      s.unreadable_example = unreadable.first;
     }
   }
   const mbk::Recording rec = builder.finish();
@@ -196,9 +241,15 @@ BagSummary run_bag(const BagOptions& o) {
   s.max_gap = batch.max_gap();
   s.threads = batch.threads();
   Outputs out;
-  if (!o.out_bag.empty())
-    out.bag = std::make_unique<BagOutput>(o.out_bag, model, o.frame_prefix, base.frame);
-  if (!o.out_csv.empty()) out.csv = std::make_unique<mbk::TidyCsvWriter>(o.out_csv, model);
+  if (!o.out_bag.empty()) {
+    out.bag_file = std::make_unique<OutputFile>(o.out_bag);
+    out.bag =
+        std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix, base.frame);
+  }
+  if (!o.out_csv.empty()) {
+    out.csv_file = std::make_unique<OutputFile>(o.out_csv);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), model);
+  }
   out.floating = floating;
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
@@ -206,6 +257,8 @@ BagSummary run_bag(const BagOptions& o) {
   s.wall_seconds = since(wall);
   return s;
 }
+
+int exit_status(const BagSummary& s) { return s.unreadable == 0 && s.written > 0 ? 0 : 2; }
 
 std::string format_summary(const BagSummary& s) {
   char line[256];
@@ -228,6 +281,10 @@ std::string format_summary(const BagSummary& s) {
                   e.velocity_se, e.acceleration_se);
     out += line;
   }
+  if (s.unreadable > 0)
+    out += "  unreadable " + std::to_string(s.unreadable) +
+           " messages, skipped: the output is partial (first: " + s.unreadable_example + ")\n";
+  if (s.written == 0) out += "  nothing written\n";
   const double rate = s.wall_seconds > 0 ? s.written / s.wall_seconds : 0;
   std::snprintf(line, sizeof line,
                 "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s (%d threads, summed; "

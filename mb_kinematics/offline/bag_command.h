@@ -28,6 +28,8 @@ struct BagOptions {
 struct BagSummary {
   long read = 0, written = 0;
   mbk::DropLog log;
+  long unreadable = 0;             // messages skipped because they could not be read
+  std::string unreadable_example;  // the first of them, and why
   // compute_seconds: summed over the computing threads, which run while this thread writes.
   double read_seconds = 0, compute_seconds = 0, write_seconds = 0, wall_seconds = 0;
   int threads = 1;
@@ -38,6 +40,10 @@ struct BagSummary {
 
 // Throws std::invalid_argument (bad options, model, input) with a one-line message.
 BagSummary run_bag(const BagOptions& options);
+
+// mbk bag's exit status after a run: 0 when every sample read was written or dropped for a
+// counted reason; 2 when some message could not be read or nothing was written (partial).
+int exit_status(const BagSummary& s);
 
 // The summary as printed at the end (several lines).
 std::string format_summary(const BagSummary& s);

@@ -5,40 +5,69 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <stdexcept>
+
+#include "mb_kinematics/core/quaternion_scale.h"
 
 namespace mbk_offline {
 namespace {
 
-// topic -> type of every connection in the bag.
-std::map<std::string, std::string> bag_topics(const rosbag::Bag& bag) {
-  std::map<std::string, std::string> topics;
+// topic -> types of its connections in the bag (a topic may have several, of other types).
+using Topics = std::map<std::string, std::set<std::string>>;
+
+Topics bag_topics(const rosbag::Bag& bag) {
+  Topics topics;
   rosbag::View all(bag);
-  for (const rosbag::ConnectionInfo* c : all.getConnections()) topics[c->topic] = c->datatype;
+  for (const rosbag::ConnectionInfo* c : all.getConnections()) topics[c->topic].insert(c->datatype);
   return topics;
 }
 
-std::string list(const std::map<std::string, std::string>& topics) {
+std::string join(const std::set<std::string>& types) {
+  std::string out;
+  for (const std::string& t : types) out += (out.empty() ? "" : " and ") + t;
+  return out;
+}
+
+std::string list(const Topics& topics) {
   if (topics.empty()) return "the bag has no topics";
   std::string out = "the bag has ";
   bool first = true;
   for (const auto& t : topics)
-    out += (first ? "" : ", ") + t.first + " (" + t.second + ")", first = false;
+    out += (first ? "" : ", ") + t.first + " (" + join(t.second) + ")", first = false;
   return out;
 }
 
-void require(const std::map<std::string, std::string>& topics, const std::string& path,
-             const std::string& topic, const std::string& type) {
-  auto it = topics.find(topic);
-  if (it == topics.end())
+std::string without_slash(const std::string& topic) {
+  return topic.rfind('/', 0) == 0 ? topic.substr(1) : topic;
+}
+
+// The bag's names of `topic`: itself and its form with or without the leading '/' (`rosbag
+// record joint_states` stores `joint_states`), as rosbag's tools match them. One of their
+// connections must be of `type`.
+std::vector<std::string> require(const Topics& topics, const std::string& path,
+                                 const std::string& topic, const std::string& type) {
+  std::vector<std::string> names;
+  std::set<std::string> types;
+  for (const auto& t : topics)
+    if (without_slash(t.first) == without_slash(topic))
+      names.push_back(t.first), types.insert(t.second.begin(), t.second.end());
+  if (names.empty())
     throw std::invalid_argument(path + ": no topic '" + topic + "'; " + list(topics));
-  if (it->second != type)
-    throw std::invalid_argument(path + ": topic '" + topic + "' is " + it->second + ", not " +
+  if (!types.count(type))
+    throw std::invalid_argument(path + ": topic '" + topic + "' is " + join(types) + ", not " +
                                 type);
+  return names;
 }
 
 double stamp_of(const std_msgs::Header& header, const rosbag::MessageInstance& m) {
@@ -53,6 +82,7 @@ void add_odometry(const nav_msgs::Odometry& o, double t, const std::string& wher
   s.position << p.position.x, p.position.y, p.position.z;
   s.orientation =
       Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
+  mbk::scale_large_quaternion(s.orientation);  // components of 1e154 and more: a finite norm
   s.linear << o.twist.twist.linear.x, o.twist.twist.linear.y, o.twist.twist.linear.z;
   s.angular << o.twist.twist.angular.x, o.twist.twist.angular.y, o.twist.twist.angular.z;
   const double norm = s.orientation.norm();
@@ -66,10 +96,178 @@ void add_odometry(const nav_msgs::Odometry& o, double t, const std::string& wher
   base.samples.push_back(s);
 }
 
+enum class Kind { kJointStates, kAccelerations, kOdometry };
+const std::string kJointState = "sensor_msgs/JointState";
+const std::string kJointAccelerations = "mb_kinematics_msgs/JointAccelerations";
+const std::string kOdometry = "nav_msgs/Odometry";
+
+// The variable-length fields of a message, in order (the fixed ones after them need no check:
+// deserializing refuses a message too short for them).
+enum class Field { kHeader, kString, kStrings, kDoubles };
+const std::vector<Field> kJointStateFields = {Field::kHeader, Field::kStrings, Field::kDoubles,
+                                              Field::kDoubles, Field::kDoubles};
+const std::vector<Field> kAccelerationFields = {Field::kHeader, Field::kStrings, Field::kDoubles};
+const std::vector<Field> kOdometryFields = {Field::kHeader, Field::kString};
+
+// Walks serialized bytes: every length and array count within the bytes left.
+class ByteWalk {
+ public:
+  ByteWalk(const std::uint8_t* data, size_t size) : data_(data), left_(size) {}
+  // "" if the fields fit, else which count does not.
+  std::string check(const std::vector<Field>& fields) {
+    for (size_t f = 0; f < fields.size(); ++f)
+      if (!field(fields[f]))
+        return "field " + std::to_string(f + 1) + " counts " + std::to_string(count_) +
+               " elements with " + std::to_string(left_) + " bytes left: damaged";
+    return "";
+  }
+
+ private:
+  bool skip(size_t n) {
+    if (n > left_) return false;
+    data_ += n, left_ -= n;
+    return true;
+  }
+  bool next_count() {
+    if (left_ < 4) return false;
+    std::memcpy(&count_, data_, 4);
+    return skip(4);
+  }
+  bool string() { return next_count() && skip(count_); }
+  bool field(Field f) {
+    switch (f) {
+      case Field::kHeader:  // seq, stamp, frame_id
+        return skip(12) && string();
+      case Field::kString:
+        return string();
+      case Field::kStrings: {
+        if (!next_count() || count_ > left_ / 4)
+          return false;  // each string takes 4 bytes at least
+        for (std::uint32_t n = count_, i = 0; i < n; ++i)
+          if (!string()) return false;
+        return true;
+      }
+      case Field::kDoubles:
+        return next_count() && count_ <= left_ / 8 && skip(8 * size_t{count_});
+    }
+    return false;
+  }
+
+  const std::uint8_t* data_;
+  size_t left_;
+  std::uint32_t count_ = 0;
+};
+
+// Reads messages from their bytes, checked before they are deserialized (a count of 2^32 names
+// in a damaged message would otherwise be allocated), into the recording or the odometry.
+class MessageReader {
+ public:
+  // The reason message m could not be read (of another type, damaged), or "".
+  std::string read(const rosbag::MessageInstance& m, Kind kind, const std::string& where,
+                   mbk::RecordingBuilder& builder, BaseOdometry& base) {
+    try {
+      std::string error;
+      if (kind == Kind::kJointStates) {
+        if ((error = load(m, kJointStateFields, js_)).empty())
+          builder.add(stamp_of(js_.header, m), js_.name, js_.position, js_.velocity, where);
+      } else if (kind == Kind::kAccelerations) {
+        if ((error = load(m, kAccelerationFields, accelerations_)).empty())
+          builder.add_accelerations(stamp_of(accelerations_.header, m), accelerations_.name,
+                                    accelerations_.acceleration, where);
+      } else if ((error = load(m, kOdometryFields, odometry_)).empty()) {
+        add_odometry(odometry_, stamp_of(odometry_.header, m), where, base, builder.log());
+      }
+      return error;
+    } catch (const std::exception& e) {  // rosbag's and roscpp's (a message cut short)
+      return e.what();
+    }
+  }
+
+ private:
+  template <typename M>
+  std::string load(const rosbag::MessageInstance& m, const std::vector<Field>& fields, M& out) {
+    const std::string type = ros::message_traits::datatype<M>();
+    if (m.getDataType() != type || m.getMD5Sum() != ros::message_traits::md5sum<M>())
+      return "a " + m.getDataType() + " message (md5 " + m.getMD5Sum() + "), not " + type;
+    bytes_.resize(m.size());
+    ros::serialization::OStream copy(bytes_.data(), static_cast<uint32_t>(bytes_.size()));
+    m.write(copy);
+    const std::string error = ByteWalk(bytes_.data(), bytes_.size()).check(fields);
+    if (!error.empty()) return error;
+    ros::serialization::IStream in(bytes_.data(), static_cast<uint32_t>(bytes_.size()));
+    ros::serialization::deserialize(in, out);
+    return "";
+  }
+
+  std::vector<std::uint8_t> bytes_;
+  sensor_msgs::JointState js_;
+  mb_kinematics_msgs::JointAccelerations accelerations_;
+  nav_msgs::Odometry odometry_;
+};
+
+// Every top-level record of the bag (header length, header, data length, data) within the
+// file, before librosbag reads it: it allocates what a damaged length says (GBs) first.
+void check_record_lengths(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::uint64_t size = in ? static_cast<std::uint64_t>(in.tellg()) : 0;
+  char magic[13] = {};
+  in.seekg(0);
+  if (!in.read(magic, sizeof magic) || std::string(magic, sizeof magic) != "#ROSBAG V2.0\n")
+    return;  // not a bag: rosbag's error to give
+  std::uint64_t at = 13;
+  for (int part = 0; in && at < size; part = 1 - part) {
+    std::uint32_t length = 0;
+    in.seekg(static_cast<std::streamoff>(at));
+    if (!in.read(reinterpret_cast<char*>(&length), 4) || at + 4 + length > size)
+      throw std::invalid_argument(path + ": damaged or truncated bag: the record " +
+                                  (part ? "data" : "header") + " at byte " + std::to_string(at) +
+                                  " goes beyond the end of the file; `rosbag reindex " + path +
+                                  "` may recover it");
+    at += 4 + length;
+  }
+}
+
+// Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
+// child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
+// index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
+// the real reading, which counts them.
+void survive_or_refuse(const std::string& path) {
+  const pid_t child = fork();
+  if (child < 0) return;  // cannot isolate: read it anyway
+  if (child == 0) {
+    try {
+      rosbag::Bag bag(path, rosbag::bagmode::Read);
+      std::vector<std::uint8_t> bytes;
+      for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+        try {  // as the real reading: past a message that throws, on to the next
+          bytes.resize(m.size());
+          ros::serialization::OStream copy(bytes.data(), static_cast<uint32_t>(bytes.size()));
+          m.write(copy);
+        } catch (const std::exception&) {
+        }
+      }
+    } catch (...) {
+    }
+    _exit(0);
+  }
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))  // a sanitizer's
+    throw std::invalid_argument(path + ": damaged bag: reading it crashes librosbag (" +
+                                (WIFSIGNALED(status)
+                                     ? "signal " + std::to_string(WTERMSIG(status))
+                                     : "exit " + std::to_string(WEXITSTATUS(status))) +
+                                "); `rosbag reindex " + path + "` may recover it");
+}
+
 }  // namespace
 
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
-              BaseOdometry& base, const std::function<void(long, long)>& progress) {
+              BaseOdometry& base, Unreadable& unreadable,
+              const std::function<void(long, long)>& progress) {
+  check_record_lengths(path);
+  survive_or_refuse(path);
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
@@ -88,39 +286,34 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
                                   "` may recover it");
     throw std::invalid_argument(path + ": not a readable bag (" + e.what() + ")");
   }
-  const std::map<std::string, std::string> present = bag_topics(bag);
-  require(present, path, topics.joint_states, "sensor_msgs/JointState");
-  std::vector<std::string> wanted = {topics.joint_states};
-  if (!topics.joint_accelerations.empty()) {
-    require(present, path, topics.joint_accelerations, "mb_kinematics_msgs/JointAccelerations");
-    wanted.push_back(topics.joint_accelerations);
-  }
-  if (!topics.base_odometry.empty()) {
-    require(present, path, topics.base_odometry, "nav_msgs/Odometry");
-    wanted.push_back(topics.base_odometry);
-  }
+  const Topics present = bag_topics(bag);
+  std::map<std::string, Kind> kinds;
+  for (const std::string& t : require(present, path, topics.joint_states, kJointState))
+    kinds[t] = Kind::kJointStates;
+  if (!topics.joint_accelerations.empty())
+    for (const std::string& t :
+         require(present, path, topics.joint_accelerations, kJointAccelerations))
+      kinds[t] = Kind::kAccelerations;
+  if (!topics.base_odometry.empty())
+    for (const std::string& t : require(present, path, topics.base_odometry, kOdometry))
+      kinds[t] = Kind::kOdometry;
+  std::vector<std::string> wanted;
+  for (const auto& k : kinds) wanted.push_back(k.first);
   rosbag::View view(bag, rosbag::TopicQuery(wanted));
   const long total = view.size();
   long done = 0;
+  MessageReader reader;
   try {
     for (const rosbag::MessageInstance& m : view) {
       if (++done % 1024 == 0) progress(done, total);
       const std::string where = m.getTopic() + " message " + std::to_string(done);
-      if (m.getTopic() == topics.joint_states) {
-        const auto js = m.instantiate<sensor_msgs::JointState>();
-        builder.add(stamp_of(js->header, m), js->name, js->position, js->velocity, where);
-      } else if (m.getTopic() == topics.base_odometry) {
-        const auto o = m.instantiate<nav_msgs::Odometry>();
-        add_odometry(*o, stamp_of(o->header, m), where, base, builder.log());
-      } else {
-        const auto a = m.instantiate<mb_kinematics_msgs::JointAccelerations>();
-        builder.add_accelerations(stamp_of(a->header, m), a->name, a->acceleration, where);
-      }
+      const std::string error = reader.read(m, kinds.at(m.getTopic()), where, builder, base);
+      if (!error.empty()) unreadable.add(1, where + ": " + error);
     }
-  } catch (const std::exception& e) {  // rosbag's and roscpp's serialization exceptions
-    builder.log().drop("rest of the bag unreadable", path + ": after message " +
-                                                         std::to_string(done) + " of " +
-                                                         std::to_string(total) + ": " + e.what());
+  } catch (const std::exception& e) {  // rosbag's own exceptions: the index or a chunk
+    unreadable.add(std::max(1L, total - done), path + ": after message " + std::to_string(done) +
+                                                   " of " + std::to_string(total) + ": " +
+                                                   e.what());
   }
   progress(total, total);
 }

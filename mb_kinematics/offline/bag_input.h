@@ -24,12 +24,25 @@ struct BaseOdometry {
   std::string frame;  // the odometry's header.frame_id: R
 };
 
-// Throws std::invalid_argument for a bag that cannot be opened (corrupt, truncated: unindexed)
-// and for a topic the bag lacks or of another type (naming the topics and types it has). A bag
-// that becomes unreadable part way keeps what was read and counts the rest as one drop.
-// `progress(done, total)` is called now and then with message counts.
-// With topics.base_odometry, `base` receives the odometry.
+// Messages that could not be read (damaged, of another type on the topic): skipped, counted,
+// the first one named; reading goes on with the next.
+struct Unreadable {
+  long count = 0;
+  std::string first;
+  void add(long n, const std::string& detail) {
+    if (count == 0) first = detail;
+    count += n;
+  }
+};
+
+// A topic is found by its name with or without the leading '/' (rosbag record stores relative
+// names as given). Throws std::invalid_argument for a bag that cannot be opened (corrupt,
+// truncated: unindexed) and for a topic the bag lacks or of another type (naming the topics and
+// types it has). A bag that becomes unreadable part way keeps what was read and counts the rest in
+// `unreadable`, as it counts every message that cannot be read. `progress(done, total)` is called
+// now and then with message counts. With topics.base_odometry, `base` receives the odometry.
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
-              BaseOdometry& base, const std::function<void(long, long)>& progress);
+              BaseOdometry& base, Unreadable& unreadable,
+              const std::function<void(long, long)>& progress);
 
 }  // namespace mbk_offline

@@ -1,6 +1,9 @@
 #include "mb_kinematics/offline/bag_output.h"
 
+#include <memory>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "mb_kinematics/messages/body_kinematics.h"
 #include "mb_kinematics/messages/fields.h"
@@ -20,11 +23,13 @@ BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std
                      const std::string& base_frame)
     : model_(model),
       path_(path),
+      bag_(std::make_unique<rosbag::Bag>()),
       names_(model, prefix, mbk_messages::model_frame(model, prefix)),
       base_frame_(base_frame) {
   try {
-    bag_.open(path, rosbag::bagmode::Write);
+    bag_->open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
+    abandon();
     throw std::invalid_argument(path + ": cannot write the bag (" + e.what() + ")");
   }
   mbk_messages::init_body_kinematics(model, base_frame.empty() ? names_.root() : base_frame,
@@ -37,30 +42,56 @@ BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std
   tf_.transforms.back().child_frame_id = names_.root();
 }
 
+BagOutput::~BagOutput() = default;
+
+// A bag whose file refused a write cannot be closed or destroyed without writing (its index)
+// and throwing again: it is kept aside, unclosed, for the rest of the process (reachable, so
+// not reported as a leak); the caller removes or leaves the file (output_file.h).
+void BagOutput::abandon() {
+  static auto* abandoned = new std::vector<std::unique_ptr<rosbag::Bag>>;
+  abandoned->push_back(std::move(bag_));
+}
+
+void BagOutput::fail(const rosbag::BagException& e) {
+  abandon();
+  throw std::runtime_error(path_ + ": write failed (" + e.what() + ")");
+}
+
 void BagOutput::write(double stamp, const mbk::JointState<double>& state,
                       const mbk::Data<double>& data, const mbk::BaseMotion* base) {
+  if (!bag_) throw std::runtime_error(path_ + ": write after a failed write");
+  try {
+    write_sample(stamp, state, data, base);
+  } catch (const rosbag::BagException& e) {
+    fail(e);
+  }
+}
+
+void BagOutput::write_sample(double stamp, const mbk::JointState<double>& state,
+                             const mbk::Data<double>& data, const mbk::BaseMotion* base) {
   const ros::Time time(stamp);
   if (!static_written_) {
     tf2_msgs::TFMessage fixed;
     fixed.transforms = mbk_messages::fixed_transforms(model_, names_, time);
-    if (!fixed.transforms.empty()) bag_.write("/tf_static", time, fixed);
+    if (!fixed.transforms.empty()) bag_->write("/tf_static", time, fixed);
     static_written_ = true;
   }
   mbk_messages::fill_kinematics(time, model_, data, true, kinematics_);  // every body: complete
-  bag_.write("/body_kinematics", time, kinematics_);
+  bag_->write("/body_kinematics", time, kinematics_);
   mbk_messages::fill_transforms(model_, state, moving_, time, tf_.transforms);
   if (moving_.size() < tf_.transforms.size()) {
     tf_.transforms.back().header.stamp = time;
     if (base) set_base(*base, tf_.transforms.back());
   }
-  if (!tf_.transforms.empty()) bag_.write("/tf", time, tf_);
+  if (!tf_.transforms.empty()) bag_->write("/tf", time, tf_);
 }
 
 void BagOutput::close() {
+  if (!bag_) return;
   try {
-    bag_.close();
+    bag_->close();
   } catch (const rosbag::BagException& e) {
-    throw std::runtime_error(path_ + ": write failed (" + e.what() + ")");
+    fail(e);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <rosbag/bag.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -23,14 +24,23 @@ class BagOutput {
   // each write gets the root frame's pose in it.
   BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
             const std::string& base_frame = "");
+  ~BagOutput();
+  BagOutput(const BagOutput&) = delete;
+  BagOutput& operator=(const BagOutput&) = delete;
+  // Both throw std::runtime_error naming the path when the disk refuses the data.
   void write(double stamp, const mbk::JointState<double>& state, const mbk::Data<double>& data,
              const mbk::BaseMotion* base = nullptr);
   void close();
 
  private:
+  void write_sample(double stamp, const mbk::JointState<double>& state,
+                    const mbk::Data<double>& data, const mbk::BaseMotion* base);
+  void abandon();
+  [[noreturn]] void fail(const rosbag::BagException& e);
+
   const mbk::Model& model_;
   std::string path_;
-  rosbag::Bag bag_;
+  std::unique_ptr<rosbag::Bag> bag_;  // null once writing failed (abandon())
   mbk_messages::FrameNames names_;
   std::vector<mbk_messages::TfJoint> moving_;  // the bodies on joints with coordinates
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;

@@ -149,8 +149,17 @@ Recording RecordingBuilder::finish() {
   std::vector<std::string> never;
   for (int i = 0; i < nq; ++i)
     if (!mimic_[i] && !seen_[i]) never.push_back(model_.coordinate_names[i]);
-  if (!never.empty() && read_ > 0)
-    throw std::invalid_argument("no sample names the joints " + join(never));
+  if (!never.empty() && read_ > 0) {
+    std::string why = "no sample names the joints " + join(never);
+    auto most = log_.drops.begin();  // why the samples that might have named them were dropped
+    for (auto it = log_.drops.begin(); it != log_.drops.end(); ++it)
+      if (it->second > most->second) most = it;
+    if (most != log_.drops.end())
+      why += " (" + std::to_string(log_.dropped()) + " of " + std::to_string(read_) +
+             " samples dropped, " + std::to_string(most->second) + " as " + most->first +
+             "; first: " + log_.example.at(most->first) + ")";
+    throw std::invalid_argument(why);
+  }
   // The first row from which every coordinate has a value; earlier rows are dropped.
   std::vector<char> named(nq, 0);
   int missing = 0, first = 0;

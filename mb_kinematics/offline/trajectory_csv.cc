@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
+#include <istream>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,23 +23,58 @@ std::vector<std::string> split(const std::string& line) {
   return cells;
 }
 
-}  // namespace
+// The next line, whatever ends it: LF, CRLF or a lone CR (old Mac exports); false at the end.
+bool next_line(std::istream& in, std::string& line) {
+  line.clear();
+  int c = in.get();
+  if (c == EOF) return false;
+  for (; c != EOF && c != '\n' && c != '\r'; c = in.get()) line.push_back(static_cast<char>(c));
+  if (c == '\r' && in.peek() == '\n') in.get();
+  return true;
+}
 
-void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open");
+// A cell as printed in an error: a NUL byte shown as \0.
+std::string printable(const std::string& cell) {
+  std::string out;
+  for (char c : cell) {
+    if (c == '\0')
+      out += "\\0";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// The header's cells (a UTF-8 byte-order mark before it skipped); a name given twice is an error.
+std::vector<std::string> read_header(std::istream& in, const std::string& path) {
   std::string line;
-  if (!std::getline(in, line)) throw std::invalid_argument(path + ": empty file (need a header)");
+  if (!next_line(in, line)) throw std::invalid_argument(path + ": empty file (need a header)");
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
   const std::vector<std::string> header = split(line);
   if (header.empty() || header[0] != "time")
     throw std::invalid_argument(path +
                                 ":1: the first column must be 'time' (then one column "
                                 "per coordinate name)");
+  for (size_t i = 1; i < header.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (header[i] == header[j])
+        throw std::invalid_argument(path + ":1: column '" + header[i] + "' is given twice (" +
+                                    std::to_string(j + 1) + " and " + std::to_string(i + 1) + ")");
+  return header;
+}
+
+}  // namespace
+
+void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::invalid_argument(path + ": cannot open");
+  const std::vector<std::string> header = read_header(in, path);
+  std::string line;
   const std::vector<std::string> all(header.begin() + 1, header.end());
   std::vector<std::string> names;
   std::vector<double> position;
-  for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty() || line == "\r") continue;
+  for (int number = 2; next_line(in, line); ++number) {
+    if (line.empty()) continue;
     const std::string where = path + ":" + std::to_string(number);
     const std::vector<std::string> cells = split(line);
     if (cells.size() != header.size()) {
@@ -54,9 +90,9 @@ void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
       if (i > 0 && cells[i].empty()) continue;  // not in this sample
       char* end = nullptr;
       const double x = std::strtod(cells[i].c_str(), &end);
-      if (cells[i].empty() || *end != '\0')
-        throw std::invalid_argument(where + ": column '" + header[i] + "': '" + cells[i] +
-                                    "' is not a number");
+      if (cells[i].empty() || end != cells[i].c_str() + cells[i].size())  // a NUL inside too
+        throw std::invalid_argument(where + ": column '" + header[i] + "': '" +
+                                    printable(cells[i]) + "' is not a number");
       if (i == 0) {
         t = x;
       } else {

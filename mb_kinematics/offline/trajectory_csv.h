@@ -9,8 +9,10 @@
 
 namespace mbk {
 
-// Adds every line of `path` to `builder`. Throws std::invalid_argument naming the file, line and
-// column for what cannot be read (no `time` column first, a cell that is not a number); a line
+// Adds every line of `path` to `builder`; lines may end in LF, CRLF or a lone CR, and a UTF-8
+// byte-order mark may come first. Throws std::invalid_argument naming the file, line and column
+// for what cannot be read (no `time` column first, a column named twice, a cell that is not a
+// number, or has a NUL byte inside); a line
 // with the wrong number of cells (e.g. a truncated last line) is dropped and counted.
 void read_trajectory_csv(const std::string& path, RecordingBuilder& builder);
 

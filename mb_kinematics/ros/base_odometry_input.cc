@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "mb_kinematics/core/base_joint.h"
+#include "mb_kinematics/core/quaternion_scale.h"
 
 namespace mbk_ros {
 
@@ -35,7 +36,8 @@ std::string BaseOdometryInput::add(const nav_msgs::Odometry& msg, double t) {
   s.position = mbk::Vec3<double>(p.position.x, p.position.y, p.position.z);
   s.orientation =
       Eigen::Quaterniond(p.orientation.w, p.orientation.x, p.orientation.y, p.orientation.z);
-  const auto& v = msg.twist.twist;  // in child_frame_id, the base's frame (nav_msgs)
+  mbk::scale_large_quaternion(s.orientation);  // components of 1e154 and more: a finite norm
+  const auto& v = msg.twist.twist;             // in child_frame_id, the base's frame (nav_msgs)
   s.linear = mbk::Vec3<double>(v.linear.x, v.linear.y, v.linear.z);
   s.angular = mbk::Vec3<double>(v.angular.x, v.angular.y, v.angular.z);
   const std::string error = buffer_.add(s);

@@ -17,7 +17,8 @@
 namespace mbk_ros {
 namespace {
 
-constexpr double kThrottle = 5.0;  // seconds between repeats of the estimating notice
+constexpr double kThrottle = 5.0;        // seconds between repeats of the estimating notice
+constexpr double kPairingPeriod = 0.05;  // seconds between looks for joint_accelerations publishers
 
 // The lower body arrays table has N columns and (max depth + 1) rows: logged whole up to this
 // many cells (e.g. 100 bodies of depth up to 99), else a summary (doc/node.md).
@@ -62,6 +63,9 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
   start(load_node_model(params_));
   joint_states_sub_ = subscribe("joint_states", &KinematicsNode::on_joint_states);
   accelerations_sub_ = subscribe("joint_accelerations", &KinematicsNode::on_joint_accelerations);
+  pairing_timer_ = nh_.createWallTimer(
+      ros::WallDuration(kPairingPeriod),
+      [this](const ros::WallTimerEvent&) { pairing_ = accelerations_sub_.getNumPublishers() > 0; });
   if (!params_.base_odometry.empty())
     odometry_sub_ = subscribe(params_.base_odometry, &KinematicsNode::on_odometry);
   reload_service_ = pnh_.advertiseService("reload", &KinematicsNode::on_reload, this);
@@ -149,11 +153,12 @@ void KinematicsNode::on_odometry(const nav_msgs::OdometryConstPtr& msg) {
 
 void KinematicsNode::on_joint_states(const sensor_msgs::JointStateConstPtr& msg) {
   input_.tally().received();
-  process(input_.pair(msg, accelerations_sub_.getNumPublishers() > 0));
+  process(input_.pair(msg, pairing_));
 }
 
 void KinematicsNode::on_joint_accelerations(
     const mb_kinematics_msgs::JointAccelerationsConstPtr& msg) {
+  pairing_ = true;
   process(input_.pair(*msg));
 }
 

@@ -11,6 +11,7 @@
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Trigger.h>
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,11 @@ class KinematicsNode {
   PublishRate rate_;              // ~publish_frequency
   ImmediateCallbackQueue queue_;  // the input's callbacks; the others lock its mutex
   ros::Subscriber joint_states_sub_, accelerations_sub_, odometry_sub_;
+  // Some joint_accelerations publisher is there: kept by a timer on the handle's queue (and set
+  // by each joint_accelerations message), so that no input callback asks roscpp (its topic
+  // manager's lock, taken in the other order by a nodelet loading beside it: a deadlock).
+  std::atomic<bool> pairing_{false};
+  ros::WallTimer pairing_timer_;
   ros::ServiceServer reload_service_;
 };
 

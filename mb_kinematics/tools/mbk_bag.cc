@@ -2,6 +2,8 @@
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
 //       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
 //       [--frame-prefix P] [--max-gap S] [--threads N]
+#include <console_bridge/console.h>
+
 #include <iostream>
 #include <stdexcept>
 
@@ -9,11 +11,15 @@
 #include "mb_kinematics/offline/progress.h"
 
 int main(int argc, char** argv) {
+  // librosbag's own messages on damaged records ("Error: Received an invalid TCPROS header")
+  // would break the one-line format: what it cannot read is counted and named in the summary.
+  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   try {
     mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
     options.progress = mbk::stderr_is_terminal();
-    std::cerr << mbk_offline::format_summary(mbk_offline::run_bag(options));
-    return 0;
+    const mbk_offline::BagSummary summary = mbk_offline::run_bag(options);
+    std::cerr << mbk_offline::format_summary(summary);
+    return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::exception& e) {
     std::cerr << "mbk: error: " << e.what() << "\n";
     return 1;

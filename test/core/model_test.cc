@@ -52,6 +52,18 @@ void expect_error(mbk::Model model, const Names& fragments) {
   }
 }
 
+// Issue 24.8: a mimic's error names its coordinate and what is wrong.
+TEST(FinalizeModel, MimicErrorsNameTheCoordinate) {
+  mbk::Model self = three_bodies();
+  self.bodies[2].joint.name = "elbow";
+  self.mimics.push_back({6, 6, 1.0, 0.0});  // the arm's coordinate, after base's six
+  expect_error(self, {"mimic 'elbow': it mimics itself"});
+  mbk::Model infinite = three_bodies();
+  infinite.bodies[2].joint.name = "elbow";
+  infinite.mimics.push_back({6, 0, std::numeric_limits<double>::infinity(), 0.0});
+  expect_error(infinite, {"mimic 'elbow': multiplier or offset not finite"});
+}
+
 TEST(FinalizeModel, AcceptsTheValidModel) {
   mbk::Model model = three_bodies();
   EXPECT_NO_THROW(mbk::finalize_model(model));

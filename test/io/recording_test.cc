@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/lower_body_array.h"
@@ -72,6 +73,29 @@ TEST(RecordingTest, AJointNeverNamedIsAnError) {
   }
 }
 
+// Issue 24.8: when every sample was dropped, the error says why (NaN, a name given twice), not
+// only that no sample names the joints.
+TEST(RecordingTest, EveryDroppedSampleSaysWhy) {
+  const mbk::Model model = two_joints();
+  for (const auto& bad :
+       {std::make_tuple(std::vector<std::string>{"J1", "J2"}, std::nan(""), "position is NaN"),
+        std::make_tuple(std::vector<std::string>{"J1", "J2", "J1"}, 0.1, "'J1' is named twice")}) {
+    const std::vector<std::string>& names = std::get<0>(bad);
+    mbk::RecordingBuilder b(model);
+    for (int i = 0; i < 3; ++i)
+      b.add(i * 0.1, names, std::vector<double>(names.size(), std::get<1>(bad)), {},
+            "s" + std::to_string(i));
+    try {
+      b.finish();
+      FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("3 of 3 samples dropped"), std::string::npos) << what;
+      EXPECT_NE(what.find(std::get<2>(bad)), std::string::npos) << what;
+    }
+  }
+}
+
 TEST(RecordingTest, EulerParametersStayContinuousAndAccelerationsPair) {
   const mbk::Model model = mbk::make_bare_model({0}, mbk::JointType::kBallEuler);
   mbk::RecordingBuilder b(model);
@@ -115,6 +139,41 @@ TEST(TrajectoryCsvTest, ClearErrors) {
     try {
       mbk::read_trajectory_csv(path, b);
       FAIL() << "no error for " << bad.first;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(bad.second), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Issue 24.6, 24.8: CR-only and CRLF line ends and a byte-order mark read as LF; a NUL inside a
+// cell and a column given twice are clear errors.
+TEST(TrajectoryCsvTest, LineEndsAndByteOrderMark) {
+  const mbk::Model model = two_joints();
+  for (const std::string end : {"\n", "\r\n", "\r"}) {
+    for (const std::string bom : {"", "\xEF\xBB\xBF"}) {
+      const std::string path = temp_file(
+          "traj_ends.csv", bom + "time,J1,J2" + end + "0,0.1,0.2" + end + "0.01,0.3,0.4" + end);
+      mbk::RecordingBuilder b(model);
+      mbk::read_trajectory_csv(path, b);
+      const mbk::Recording r = b.finish();
+      ASSERT_EQ(r.rows(), 2) << bom.size() << " " << end.size();
+      EXPECT_EQ(r.position, (std::vector<double>{0.1, 0.2, 0.3, 0.4}));
+    }
+  }
+}
+
+TEST(TrajectoryCsvTest, NulInACellAndATwiceNamedColumnAreErrors) {
+  const mbk::Model model = two_joints();
+  for (const auto& bad :
+       {std::make_pair(std::string("time,J1,J2\n0,0.5\0abc,0.1\n", 25),
+                       "traj_nul.csv:2: column 'J1': '0.5\\0abc' is not a number"),
+        std::make_pair(std::string("time,J1,J1\n0,0.5,0.1\n"),
+                       "traj_two.csv:1: column 'J1' is given twice (2 and 3)")}) {
+    const std::string path = temp_file(std::string(bad.second).substr(0, 12), bad.first);
+    mbk::RecordingBuilder b(model);
+    try {
+      mbk::read_trajectory_csv(path, b);
+      FAIL() << "no error for " << path;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(bad.second), std::string::npos) << e.what();
     }

@@ -8,11 +8,16 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
+#include <std_msgs/String.h>
 #include <tf2_msgs/TFMessage.h>
+#include <topic_tools/shape_shifter.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
@@ -463,6 +468,256 @@ TEST(BagTest, ThreadsOptionIsACountFromOne) {
           << e.what();
     }
   }
+}
+
+// A bag of the demo trajectory (100 samples at 100 Hz on `topic`) with, where `extra(i, t, bag)`
+// writes something, other messages among them.
+std::string write_mixed(const std::string& name, const std::string& topic,
+                        const std::function<void(int, double, rosbag::Bag&)>& extra) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  rosbag::Bag bag(temp(name), rosbag::bagmode::Write);
+  for (int i = 0; i < 100; ++i) {
+    const double t = 1.0 + i / 100.0;
+    extra(i, t, bag);
+    bag.write(topic, ros::Time(t), sample(model, waves, t));
+  }
+  bag.close();
+  return temp(name);
+}
+
+// A std_msgs/String on /joint_states from a publisher of its own: a connection of its own.
+void write_string(rosbag::Bag& bag, double t) {
+  std_msgs::String text;
+  text.data = "not a joint state";
+  auto header = boost::make_shared<ros::M_string>();
+  (*header)["topic"] = "/joint_states";
+  (*header)["type"] = ros::message_traits::datatype(text);
+  (*header)["md5sum"] = ros::message_traits::md5sum(text);
+  (*header)["message_definition"] = ros::message_traits::definition(text);
+  (*header)["callerid"] = "/talker";
+  bag.write("/joint_states", ros::Time(t), text, header);
+}
+
+// Issue 24.5: an output that is an input (also through a symlink), the model, or the other
+// output is refused before anything is written; the inputs are left as they were.
+TEST(BagTest, AnOutputThatIsAnInputIsRefusedBeforeWriting) {
+  const std::string in = write_bag("same.bag", 10, 1.0);
+  const std::string model = temp("same_model.yaml");
+  std::ofstream(model) << read_file(kModel);
+  const std::string bag_bytes = read_file(in), model_text = read_file(model);
+  const std::string link = temp("same_link.bag");
+  std::remove(link.c_str());
+  ASSERT_EQ(symlink(in.c_str(), link.c_str()), 0);
+  std::remove(temp("same_both.out").c_str());
+  const auto refused = [&](mbk_offline::BagOptions o, const std::string& what) {
+    o.model = model;
+    const std::string e = error_of(o);
+    EXPECT_NE(e.find(what), std::string::npos) << e;
+    EXPECT_NE(e.find("nothing written"), std::string::npos) << e;
+  };
+  refused(options(in, in), "--out " + in + " is the same file as the input");
+  refused(options(in, link), "is the same file as the input");
+  mbk_offline::BagOptions csv_is_model = options(in, "");
+  csv_is_model.out_csv = model;
+  refused(csv_is_model, "is the same file as --model");
+  mbk_offline::BagOptions both = options(in, temp("same_both.out"));
+  both.out_csv = temp("./same_both.out");
+  refused(both, "are the same file");
+  EXPECT_EQ(read_file(in), bag_bytes);
+  EXPECT_EQ(read_file(model), model_text);
+  std::ifstream absent(temp("same_both.out"));
+  EXPECT_FALSE(absent.good());
+}
+
+// `mbk bag IN --model kModel ARGS`: its exit status, stderr into `err`.
+int run_mbk_bag(const std::string& in, const std::string& args, std::string& err) {
+  const std::string command = std::string(MBK_MBK_PATH) + " bag " + in + " --model " + kModel +
+                              " " + args + " 2>" + temp("run.err");
+  const int status = std::system(command.c_str());
+  err = read_file(temp("run.err"));
+  return WEXITSTATUS(status);
+}
+
+// Issue 24.4: a full disk (/dev/full) is one `mbk: error:` line naming the file, exit 1.
+TEST(BagTest, AFullDiskIsOneErrorLine) {
+  const std::string in = write_bag("full.bag", 100, 2.0);
+  for (const std::string option : {"--out", "--csv"}) {
+    std::string err;
+    EXPECT_EQ(run_mbk_bag(in, option + " /dev/full", err), 1) << option << ": " << err;
+    EXPECT_EQ(err.rfind("mbk: error: /dev/full: ", 0), 0u) << err;
+    EXPECT_NE(err.find("writ"), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  }
+}
+
+// Issue 24.7: outputs are written under a temporary name and renamed once whole: a run that
+// fails (here: an unwritable --csv) leaves no new bag and the old one as it was; a run that
+// succeeds leaves no temporary file.
+TEST(BagTest, AFailedRunLeavesNoPartialOutput) {
+  const std::string in = write_bag("whole_run.bag", 10, 1.0);
+  const std::string out = temp("kept.bag"), fresh = temp("never.bag");
+  std::ofstream(out) << "the previous output";
+  std::remove(fresh.c_str());
+  std::string err;
+  EXPECT_EQ(run_mbk_bag(in, "--out " + out + " --csv /nonexistent/dir/x.csv", err), 1) << err;
+  EXPECT_EQ(read_file(out), "the previous output");
+  EXPECT_EQ(run_mbk_bag(in, "--out " + fresh + " --csv /nonexistent/dir/x.csv", err), 1) << err;
+  EXPECT_FALSE(std::ifstream(fresh).good());
+  EXPECT_EQ(run_mbk_bag(in, "--out " + out + " --csv " + temp("whole_run.csv"), err), 0) << err;
+  EXPECT_EQ(count_topics(out).at("/body_kinematics"), 10);
+  for (const std::string& path : {out, temp("whole_run.csv"), fresh}) {
+    const std::string pattern = path + ".mbk-tmp-*";
+    const std::string ls = "ls " + pattern + " >/dev/null 2>&1";
+    EXPECT_NE(std::system(ls.c_str()), 0) << "left: " << pattern;
+  }
+}
+
+// Issue 24.9: odometry whose quaternion components are finite but huge (1e200 times a unit
+// one) is the same rotation, not ignored.
+TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()));
+  {
+    rosbag::Bag bag(temp("huge_q.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 50; ++i) {
+      const double t = 1.0 + i / 100.0;
+      nav_msgs::Odometry o;
+      o.header.stamp = ros::Time(t);
+      o.header.frame_id = "odom";
+      o.pose.pose.orientation.z = 1e200 * q.z(), o.pose.pose.orientation.w = 1e200 * q.w();
+      bag.write("/odom", o.header.stamp, o);
+      sensor_msgs::JointState js;
+      js.header.stamp = ros::Time(t);
+      js.name = model.coordinate_names;
+      js.position.assign(model.nq, 0.1);
+      bag.write("/joint_states", js.header.stamp, js);
+    }
+  }
+  mbk_offline::BagOptions o = options(temp("huge_q.bag"), "");
+  o.out_csv = temp("huge_q.csv");
+  o.base_odometry = "/odom";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.written, 50);
+  EXPECT_EQ(s.log.notes.count("base odometry ignored"), 0u);
+}
+
+// Issue 24.3(b): one flipped bit that crashes librosbag itself (a segfault in its reading, found
+// by flipping random bits of this bag) is an error naming the bag, not a crash of mbk.
+TEST(BagTest, ABagThatCrashesLibrosbagIsAnError) {
+  const std::string in = write_bag("flip_src.bag", 100, 2.0);
+  std::string bytes = read_file(in);
+  ASSERT_EQ(bytes.size(), 204133u) << "the bag's layout changed: find another crashing flip";
+  for (const auto& flip : {std::make_pair(194964, 64), std::make_pair(149421, 8)}) {
+    std::string damaged = bytes;
+    damaged[flip.first] = static_cast<char>(damaged[flip.first] ^ flip.second);
+    std::ofstream(temp("flip.bag"), std::ios::binary) << damaged;
+    const std::string e = error_of(options(temp("flip.bag"), temp("flip_out.bag")));
+    EXPECT_NE(e.find("flip.bag: damaged bag: reading it crashes librosbag"), std::string::npos)
+        << e;
+  }
+}
+
+// Issue 24.8: librosbag's own complaints about a damaged connection header stay off stderr;
+// only mbk's summary (or its one error line) is printed.
+TEST(BagTest, DamagedHeadersPrintOnlyMbksOwnLines) {
+  const std::string in = write_bag("flip_src.bag", 100, 2.0);
+  std::string damaged = read_file(in);
+  ASSERT_EQ(damaged.size(), 204133u) << "the bag's layout changed: find another flip";
+  damaged[16635] = static_cast<char>(damaged[16635] ^ 128);  // in a connection header
+  std::ofstream(temp("header_flip.bag"), std::ios::binary) << damaged;
+  std::string err;
+  run_mbk_bag(temp("header_flip.bag"), "--csv " + temp("header_flip.csv"), err);
+  std::istringstream lines(err);
+  for (std::string line; std::getline(lines, line);)
+    EXPECT_TRUE(line.rfind("mbk", 0) == 0 || line.rfind("  ", 0) == 0) << line;
+}
+
+// Issue 24.3(a), 24.6: a std_msgs/String connection on /joint_states, before or after the
+// JointState one: those messages are skipped and counted, every joint sample is written.
+TEST(BagTest, MessagesOfAnotherTypeAreSkippedAndCounted) {
+  for (const bool string_first : {true, false}) {
+    const std::string in =
+        write_mixed("mixed.bag", "/joint_states", [&](int i, double t, auto& bag) {
+          if (i == (string_first ? 0 : 50) || i == 70) write_string(bag, t);
+        });
+    const mbk_offline::BagSummary s = mbk_offline::run_bag(options(in, temp("mixed_out.bag")));
+    EXPECT_EQ(s.written, 100) << string_first;
+    EXPECT_EQ(s.unreadable, 2) << string_first;
+    EXPECT_NE(s.unreadable_example.find("a std_msgs/String message"), std::string::npos)
+        << s.unreadable_example;
+    EXPECT_EQ(mbk_offline::exit_status(s), 2);  // partial: said so
+    EXPECT_NE(mbk_offline::format_summary(s).find("unreadable 2 messages"), std::string::npos);
+  }
+}
+
+TEST(BagTest, ATopicOfOnlyAnotherTypeNamesItsType) {
+  const std::string in =
+      write_mixed("strings.bag", "/other", [](int, double t, auto& bag) { write_string(bag, t); });
+  const std::string e = error_of(options(in, temp("strings_out.bag")));
+  EXPECT_NE(e.find("topic '/joint_states' is std_msgs/String, not sensor_msgs/JointState"),
+            std::string::npos)
+      << e;
+}
+
+// Issue 25.7: `rosbag record joint_states` stores the relative name; either form finds it.
+TEST(BagTest, RelativeAndAbsoluteTopicNamesMatch) {
+  const std::string relative =
+      write_mixed("relative.bag", "joint_states", [](int, double, auto&) {});
+  EXPECT_EQ(mbk_offline::run_bag(options(relative, temp("relative_out.bag"))).written, 100);
+  const std::string absolute =
+      write_mixed("absolute.bag", "/joint_states", [](int, double, auto&) {});
+  mbk_offline::BagOptions o = options(absolute, temp("absolute_out.bag"));
+  o.joint_states = "joint_states";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.written, 100);
+  EXPECT_EQ(mbk_offline::exit_status(s), 0);
+}
+
+// Issue 24.2: a JointState whose name count says 2^32 - 1 (one damaged field) is refused from
+// its bytes, without allocating, and the reading goes on.
+TEST(BagTest, AnArrayCountBeyondTheMessageIsSkipped) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  const std::string in = write_mixed("huge.bag", "/joint_states", [&](int i, double t, auto& bag) {
+    if (i != 10 && i != 20) return;
+    sensor_msgs::JointState js = sample(model, waves, t - 0.005);
+    js.header.frame_id = "f";
+    std::vector<uint8_t> bytes(ros::serialization::serializationLength(js));
+    ros::serialization::OStream out(bytes.data(), bytes.size());
+    ros::serialization::serialize(out, js);
+    const size_t count_at = 12 + 4 + 1;  // seq, stamp, frame_id; then name[]'s count
+    const size_t at = i == 10 ? count_at : bytes.size() - 4 - 4 - 8 * model.nq - 4;  // position[]'s
+    for (size_t b = at; b < at + 4; ++b) bytes[b] = 0xff;
+    topic_tools::ShapeShifter shifter;
+    shifter.morph(ros::message_traits::md5sum(js), ros::message_traits::datatype(js),
+                  ros::message_traits::definition(js), "");
+    ros::serialization::IStream in_bytes(bytes.data(), bytes.size());
+    shifter.read(in_bytes);
+    bag.write("/joint_states", ros::Time(t - 0.005), shifter);
+  });
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(options(in, temp("huge_out.bag")));
+  EXPECT_EQ(s.written, 100);
+  EXPECT_EQ(s.unreadable, 2);
+  EXPECT_NE(s.unreadable_example.find("/joint_states message 11: field 2 counts 4294967295"),
+            std::string::npos)
+      << s.unreadable_example;
+}
+
+// Issue 24.6: the command's exit status says a partial run (2), with the summary.
+TEST(BagTest, APartialRunExitsTwoWithTheCounts) {
+  const std::string in =
+      write_mixed("cli_mixed.bag", "/joint_states", [](int i, double t, auto& bag) {
+        if (i == 30) write_string(bag, t);
+      });
+  const std::string mbk = MBK_MBK_PATH;
+  const std::string run = mbk + " bag " + in + " --model " + kModel + " --csv " +
+                          temp("cli_mixed.csv") + " 2>" + temp("cli_mixed.err");
+  EXPECT_EQ(WEXITSTATUS(std::system(run.c_str())), 2);
+  std::ifstream err(temp("cli_mixed.err"));
+  const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("100 samples read, 100 written"), std::string::npos) << text;
+  EXPECT_NE(text.find("unreadable 1 messages"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/ros/base_odometry_input.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -31,6 +33,28 @@ TEST(NodeInput, WithBaseOdometryTheKinematicsModelHasTheBase) {
     EXPECT_EQ(input.model().body_count(), n + 1);  // the base on its free joint first
     EXPECT_EQ(input.state().position.size(), input.model().nq);
   }
+}
+
+// Issue 24.9: a quaternion of finite but huge components (1e200 times a unit one) gives its
+// rotation to the base, not the identity its overflowing norm made of it.
+TEST(BaseOdometryInput, HugeQuaternionIsItsRotation) {
+  const auto estimator = mbk::make_derivative_estimator("backward_difference");
+  mbk_ros::BaseOdometryInput input(*estimator, 1.0, "/odom");
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ()));
+  nav_msgs::Odometry o;
+  o.header.frame_id = "odom";
+  o.pose.pose.orientation.z = 1e200 * q.z();
+  o.pose.pose.orientation.w = 1e200 * q.w();
+  for (const double t : {0.0, 0.1, 0.2, 0.3}) EXPECT_EQ(input.add(o, t), "");
+  mbk::Model in, model;
+  mbk_ros::BaseOdometryInput::split(mbk_test::revolute_chain(2), in, model);
+  mbk::JointState<double> joints(in), state(model);
+  mbk::Level level = mbk::Level::kAcceleration;
+  ASSERT_EQ(input.fill(0.2, model, joints, state, level), "");
+  const mbk::Body& base = model.bodies[1];
+  const int e1 = base.q_index + mbk::first_euler_parameter(base.joint.type);
+  EXPECT_NEAR(state.position[e1 + 2], q.z(), 1e-12);
+  EXPECT_NEAR(state.position[e1 + 3], q.w(), 1e-12);
 }
 
 }  // namespace

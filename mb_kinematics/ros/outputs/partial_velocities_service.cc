@@ -39,9 +39,8 @@ PartialVelocitiesService::PartialVelocitiesService(const OutputSetup& setup)
       frame_(setup.frame),
       latest_(setup.model),
       published_(setup.model.body_count() + 1, 1) {
-  ros::NodeHandle private_nh("~");
-  server_ = private_nh.advertiseService("get_partial_velocities", &PartialVelocitiesService::answer,
-                                        this);
+  server_ =
+      setup.pnh.advertiseService("get_partial_velocities", &PartialVelocitiesService::answer, this);
 }
 
 void PartialVelocitiesService::publish(const ros::Time& stamp, const Sample& sample) {
