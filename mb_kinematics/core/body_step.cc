@@ -15,27 +15,22 @@ JointKernel revolute_kernel(const Joint& joint, bool rotated) {
   return JointKernel::kRevolute;
 }
 
+// The kernel of a joint: the types that have their own (opt-in specializations, each tested
+// against joint_motion in generic_kernel_test); every other type runs joint_motion (kGeneric),
+// so a new joint type needs nothing here.
 JointKernel kernel_of(const Joint& joint) {
   const bool rotated = joint.rotation != Mat3<double>::Identity();
-  switch (joint.type) {  // no default: -Wswitch-enum flags a new joint type here
-    case JointType::kFixed:
-      return rotated ? JointKernel::kFixedRotated : JointKernel::kFixed;
-    case JointType::kRevolute:
-      return revolute_kernel(joint, rotated);
-    case JointType::kPrismatic:
-      return rotated ? JointKernel::kPrismaticRotated : JointKernel::kPrismatic;
-    case JointType::kBall123:
-      return JointKernel::kBall123;
-    case JointType::kBallEuler:
-      return JointKernel::kBallEuler;
-    case JointType::kFree123:
-      return JointKernel::kFree123;
-    case JointType::kFreeEuler:
-      return JointKernel::kFreeEuler;
-    case JointType::kPlanar:
-      return JointKernel::kPlanar;
-  }
-  return JointKernel::kFixed;  // not reached: every JointType is a case above
+  const JointType type = joint.type;  // not a switch: -Wswitch-enum would flag a new type here
+  if (type == JointType::kFixed) return rotated ? JointKernel::kFixedRotated : JointKernel::kFixed;
+  if (type == JointType::kRevolute) return revolute_kernel(joint, rotated);
+  if (type == JointType::kPrismatic)
+    return rotated ? JointKernel::kPrismaticRotated : JointKernel::kPrismatic;
+  if (type == JointType::kBall123) return JointKernel::kBall123;
+  if (type == JointType::kBallEuler) return JointKernel::kBallEuler;
+  if (type == JointType::kFree123) return JointKernel::kFree123;
+  if (type == JointType::kFreeEuler) return JointKernel::kFreeEuler;
+  if (type == JointType::kPlanar) return JointKernel::kPlanar;
+  return JointKernel::kGeneric;  // no kernel of its own: joint_motion
 }
 
 VectorShape shape_of(const Vec3<double>& v) {
@@ -85,6 +80,7 @@ std::vector<int> angle_offsets(JointKernel kernel) {
     case JointKernel::kPrismaticRotated:
     case JointKernel::kBallEuler:
     case JointKernel::kFreeEuler:
+    case JointKernel::kGeneric:
       break;
   }
   return {};
@@ -106,13 +102,13 @@ bool is_ball_or_free(JointKernel kernel) {
 
 }  // namespace
 
-BodySteps make_body_steps(const Model& model) {
+BodySteps make_body_steps(const Model& model, KernelChoice choice) {
   BodySteps out;
   out.steps.resize(model.bodies.size());
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     BodyStep& step = out.steps[k];
-    step.kernel = kernel_of(body.joint);
+    step.kernel = choice == KernelChoice::kFast ? kernel_of(body.joint) : JointKernel::kGeneric;
     step.reorthonormalize = body.depth % detail::kReorthonormalizeEvery == 0;
     step.lower = body.lower;
     step.q_index = body.q_index;

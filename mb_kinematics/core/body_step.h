@@ -32,7 +32,12 @@ enum class JointKernel : std::uint8_t {
   kFree123,           // s_k = C_k (x, y, z), then kBall123
   kFreeEuler,         // s_k = C_k (x, y, z), then kBallEuler
   kPlanar,            // SJK = P0 + cos q P1 + sin q P2 about the normal, s_k = x C u1 + y C u2
+  kGeneric,           // any joint type through joint_motion (a type without a kernel of its own)
 };
+
+// Which kernels make_body_steps picks: each type's own where it has one (opt-in, kernel_of in
+// body_step.cc), or joint_motion for every body (the generic path the kernels are tested against).
+enum class KernelChoice : std::uint8_t { kFast, kGenericOnly };
 
 // Which entries of a constant vector (q_k, r_k) are nonzero, so that S0J q_k takes a column of
 // S0J, or nothing, instead of the whole product (the same sums without their zero terms).
@@ -71,6 +76,6 @@ struct BodySteps {
 };
 
 // The steps of a model whose bodies, joints and indices are final (finalize_model calls it).
-BodySteps make_body_steps(const Model& model);
+BodySteps make_body_steps(const Model& model, KernelChoice choice = KernelChoice::kFast);
 
 }  // namespace mbk

@@ -26,7 +26,8 @@ const JointTraits& joint_traits(JointType type) {
                  false,
                  "",
                  UrdfForm::kNone},
-      planar{"planar", {{"x", t}, {"y", t}, {"gamma", a}}, true, "planar", UrdfForm::kJoint};
+      planar{"planar", {{"x", t}, {"y", t}, {"gamma", a}}, true, "planar", UrdfForm::kJoint},
+      universal{"universal", {{"alpha", a}, {"beta", a}}, false, "", UrdfForm::kAxisChain};
   switch (type) {
     case JointType::kFixed:
       return fixed;
@@ -44,6 +45,8 @@ const JointTraits& joint_traits(JointType type) {
       return free_euler;
     case JointType::kPlanar:
       return planar;
+    case JointType::kUniversal:
+      return universal;
   }
   throw std::invalid_argument("joint type " + std::to_string(static_cast<int>(type)) +
                               " is not a JointType");

@@ -1,7 +1,9 @@
 // Joints: how body Bk moves relative to its lower body Bj (doc/method.md 2 and 3), and the facts
-// about each joint type in one table (joint_traits). Adding a joint type touches JointType, the
-// table in joint.cc and joint_motion.h; the compiler flags every switch over JointType (none has
-// a default).
+// about each joint type in one table (joint_traits). Adding a joint type touches these three
+// files only: JointType here, its row in joint.cc's table, and its motion in joint_motion.h
+// (joint_motion, joint_quaternion); the compiler (-Wswitch-enum) flags every switch over
+// JointType, none has a default. The recursion runs a new type through joint_motion
+// (JointKernel::kGeneric) until it earns a kernel of its own (body_step.cc, kinematics.h).
 #pragma once
 
 #include <string>
@@ -20,7 +22,9 @@ enum class JointType {
   kFree123,    // translations x, y, z then 1-2-3 angles: the chapter's general 6-coordinate joint
   kFreeEuler,  // translations x, y, z then Euler parameters e1..e4
   kPlanar,     // translations x, y in the plane normal to `axis`, rotation gamma about it
-  kLast = kPlanar,  // keep equal to the last type (all_joint_types() checks its length against it)
+  kUniversal,  // Hooke joint: alpha about the joint frame's x, then beta about the new y: A B
+  kLast =
+      kUniversal,  // keep equal to the last type (all_joint_types() checks its length against it)
 };
 
 // How generalized speeds of Euler-parameter joints are chosen (doc/method.md 5): the time
@@ -61,7 +65,8 @@ const JointTraits& joint_traits(JointType type);
 const std::vector<JointType>& all_joint_types();  // in JointType order
 
 // Names used in scene files and on the command line: fixed, revolute, prismatic, ball_123,
-// ball_euler, free_123, free_euler, planar. Throws std::invalid_argument for an unknown name.
+// ball_euler, free_123, free_euler, planar, universal. Throws std::invalid_argument for an unknown
+// name.
 JointType joint_type_from_string(const std::string& name);
 std::string to_string(JointType type);
 // The type read from a URDF joint type (JointTraits::urdf_type; "revolute" is read as

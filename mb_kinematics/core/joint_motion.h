@@ -204,6 +204,15 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
       out.angular_dot[2].setZero();
       break;
     }
+    case JointType::kUniversal: {  // A(alpha) B(beta): the 1-2-3 angles without gamma
+      S ca, sa, cb, sb;
+      sin_cos(q[0], sa, ca);
+      sin_cos(q[1], sb, cb);
+      motion = detail::rotation_123(ca, sa, cb, sb, S(1), S(0));
+      if (qd) detail::angles_123_columns(ca, sa, cb, sb, qd, out.angular, out.angular_dot);
+      n = 2;  // columns e1, A e2 (eq. 4.4.13-4.4.16)
+      break;
+    }
   }
   if (t == 3) {  // free joints: translations along the joint frame's axes
     s = Vec3<S>(q[0], q[1], q[2]);
@@ -246,6 +255,8 @@ Eigen::Quaternion<S> joint_quaternion(const Joint& joint, const Eigen::Quaternio
       return offset * turn(axis, q[0]);
     case JointType::kPlanar:
       return offset * turn(axis, q[2]);
+    case JointType::kUniversal:
+      return offset * turn(Vec3<S>::UnitX(), q[0]) * turn(Vec3<S>::UnitY(), q[1]);
     case JointType::kBall123:
     case JointType::kFree123: {
       const S* a = joint.type == JointType::kFree123 ? q + 3 : q;  // A(alpha) B(beta) C(gamma)

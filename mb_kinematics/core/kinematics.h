@@ -312,9 +312,10 @@ constexpr bool kFolded = std::numeric_limits<S>::digits <= std::numeric_limits<d
 // Whether body k's kernel runs through joint_motion.
 template <typename S>
 bool uses_joint_motion(JointKernel kernel) {
-  return !kFolded<S> &&
-         (kernel == JointKernel::kRevolute || kernel == JointKernel::kPrismaticRotated ||
-          kernel == JointKernel::kPlanar);
+  return kernel == JointKernel::kGeneric ||
+         (!kFolded<S> &&
+          (kernel == JointKernel::kRevolute || kernel == JointKernel::kPrismaticRotated ||
+           kernel == JointKernel::kPlanar));
 }
 
 // Orientation, origin and mass center of body k by its kernel (m: its joint_motion, used when
@@ -367,6 +368,9 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
         break;
       case JointKernel::kPlanar:
         planar_pose(model, b, k, q, data, d);
+        break;
+      case JointKernel::kGeneric:  // uses_joint_motion
+        motion_pose(b, k, m, data, d);
         break;
     }
   }
@@ -426,7 +430,8 @@ void fixed_step(const Model& model, const BodyStep& b, int k, const StateView<S>
   body_update<L, false, false>(b, k, t, data);
 }
 
-// A joint through joint_motion, column by column (folded joints of a reference build).
+// Any joint through joint_motion, column by column: the generic path (JointKernel::kGeneric),
+// and the folded joints of a reference build.
 template <Level L, typename S>
 void motion_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
   const Body& body = model.bodies[k];
@@ -792,6 +797,9 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
           planar_step<L>(model, b, k, state, data);
         else
           motion_step<L>(model, k, state, data);
+        break;
+      case JointKernel::kGeneric:
+        motion_step<L>(model, k, state, data);
         break;
     }
   }
