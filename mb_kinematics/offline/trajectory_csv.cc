@@ -26,10 +26,13 @@ std::vector<std::string> split(const std::string& line) {
 // The next line, whatever ends it: LF, CRLF or a lone CR (old Mac exports); false at the end.
 bool next_line(std::istream& in, std::string& line) {
   line.clear();
-  int c = in.get();
-  if (c == EOF) return false;
-  for (; c != EOF && c != '\n' && c != '\r'; c = in.get()) line.push_back(static_cast<char>(c));
-  if (c == '\r' && in.peek() == '\n') in.get();
+  std::streambuf& buf = *in.rdbuf();  // not istream::get(): a sentry per character
+  constexpr int kEof = std::char_traits<char>::eof();
+  int c = buf.sbumpc();
+  if (c == kEof) return false;
+  for (; c != kEof && c != '\n' && c != '\r'; c = buf.sbumpc())
+    line.push_back(static_cast<char>(c));
+  if (c == '\r' && buf.sgetc() == '\n') buf.sbumpc();
   return true;
 }
 
