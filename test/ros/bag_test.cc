@@ -327,8 +327,14 @@ TEST(BagTest, BaseOdometryCarriesTheModel) {
   }
   mbk_offline::BagOptions o = options(temp("odom.bag"), temp("odom_out.bag"));
   o.base_odometry = "/odom";
+  o.out_csv = temp("odom_out.csv");
   const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
   EXPECT_EQ(s.written, 299);
+  std::ifstream csv(o.out_csv);
+  std::string line;
+  std::getline(csv, line);
+  std::getline(csv, line);  // the first sample's first row: the base, body 1 on R
+  EXPECT_NE(line.find("," + model.frame + ",1,0,"), std::string::npos) << line;
   EXPECT_EQ(s.log.drops.at("outside the base odometry's time span"), 6);
   mbk::JointState<double> still(model);
   still.position.setConstant(0.1);
@@ -343,8 +349,18 @@ TEST(BagTest, BaseOdometryCarriesTheModel) {
     const double t = msg->header.stamp.toSec();
     mbk::Data<double> expected = relative;
     mbk::apply_floating_base(base_at(t), expected);
+    // The node's layout: body 1 is the base (the root link on its free joint), then the model.
+    ASSERT_EQ(msg->bodies.size(), model.bodies.size()) << "at " << t;
+    const auto& base = msg->bodies[0];
+    EXPECT_EQ(base.name, model.frame);
+    EXPECT_EQ(base.index, 1u);
+    EXPECT_LT((mbk::Vec3<double>(base.pose.position.x, base.pose.position.y, base.pose.position.z) -
+               base_at(t).position)
+                  .norm(),
+              1e-4);
     for (int k = 1; k <= model.body_count(); ++k) {
-      const auto& b = msg->bodies[k - 1];
+      const auto& b = msg->bodies[k];
+      EXPECT_EQ(b.name, model.bodies[k].name);
       const auto v3 = [](const auto& x) { return mbk::Vec3<double>(x.x, x.y, x.z); };
       worst_p = std::max(worst_p, (v3(b.mass_center) - expected.mass_center[k]).norm());
       worst_v = std::max(worst_v, (v3(b.twist.linear) - expected.mass_center_velocity[k]).norm());
