@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "mb_kinematics/core/base_joint.h"
 #include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
@@ -86,10 +87,14 @@ struct Outputs {
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
   bool floating = false;
+  const mbk::Model* base_model = nullptr;        // with a base: the node's layout
+  std::unique_ptr<mbk::Data<double>> base_data;  // of base_model
 
   void write(const mbk::OfflineRow& row) {
-    if (bag) bag->write(row.stamp, row.state, row.data, floating ? &row.base : nullptr);
-    if (csv) csv->write(row.stamp, row.data);
+    const mbk::Data<double>* data = &row.data;
+    if (floating) with_base_body(*base_model, row.data, *base_data), data = base_data.get();
+    if (bag) bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
+    if (csv) csv->write(row.stamp, *data);
   }
   void close() {
     if (bag) bag->close();
@@ -241,16 +246,20 @@ BagSummary run_bag(const BagOptions& o) {
   s.max_gap = batch.max_gap();
   s.threads = batch.threads();
   Outputs out;
+  const mbk::Model base_model =
+      floating ? mbk::with_floating_base(model, base.frame, "base_odometry") : model;
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
-    out.bag =
-        std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix, base.frame);
+    out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
+                                          base.frame, base_model);
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), model);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model);
   }
   out.floating = floating;
+  out.base_model = &base_model;
+  if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
   if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);

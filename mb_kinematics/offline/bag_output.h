@@ -21,9 +21,10 @@ class BagOutput {
  public:
   // Throws std::invalid_argument if `path` cannot be written. `prefix` goes before every frame
   // taken from the model. With a floating base, `base_frame` names R (the odometry's frame) and
-  // each write gets the root frame's pose in it.
+  // each write gets the root frame's pose in it. body_kinematics lists the bodies of
+  // `kinematics_model` (with a base: with_floating_base(model), as the node), `data` is of it.
   BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
-            const std::string& base_frame = "");
+            const std::string& base_frame, const mbk::Model& kinematics_model);
   ~BagOutput();
   BagOutput(const BagOutput&) = delete;
   BagOutput& operator=(const BagOutput&) = delete;
@@ -39,6 +40,7 @@ class BagOutput {
   [[noreturn]] void fail(const rosbag::BagException& e);
 
   const mbk::Model& model_;
+  const mbk::Model& kinematics_model_;
   std::string path_;
   std::unique_ptr<rosbag::Bag> bag_;  // null once writing failed (abandon())
   mbk_messages::FrameNames names_;
@@ -48,5 +50,11 @@ class BagOutput {
   std::string base_frame_;
   bool static_written_ = false;
 };
+
+// The node's layout with ~base_odometry: `data` (of the model, carried into R by
+// apply_floating_base) as `out` (of with_floating_base(model)): body 1 is the base, the root link
+// on its free joint, with its mass center r_1 (p = O + S0K r, doc/method.md 3), the others follow.
+void with_base_body(const mbk::Model& base_model, const mbk::Data<double>& data,
+                    mbk::Data<double>& out);
 
 }  // namespace mbk_offline

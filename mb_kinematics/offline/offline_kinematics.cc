@@ -11,11 +11,11 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       estimator_(estimator),
       max_gap_(max_gap > 0 ? max_gap : default_max_gap(recording.stamp)),
       velocity_everywhere_(model.nq, 1),
+      rule_until_(model.nq, 0),
       first_(Eigen::VectorXd::Zero(model.nq)),
       second_(Eigen::VectorXd::Zero(model.nq)),
       velocity_first_(Eigen::VectorXd::Zero(model.nq)) {
-  std::vector<char> mimic(model.nq, 0), everywhere(model.nq, 1);
-  for (const Mimic& m : model.mimics) mimic[m.coordinate] = 1;
+  std::vector<char> everywhere(model.nq, 1);
   const int nq = model.nq;
   for (int r = 0; r < rec_.rows(); ++r)
     for (int c = 0; c < nq; ++c) {
@@ -23,8 +23,12 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       everywhere[c] = everywhere[c] && (g & Recording::kPosition);
       velocity_everywhere_[c] = velocity_everywhere_[c] && (g & Recording::kVelocity);
     }
+  for (const Mimic& m : model.mimics) {  // the rule places a mimic until it is recorded
+    int& r = rule_until_[m.coordinate];
+    while (r < rec_.rows() && !(rec_.given[r * nq + m.coordinate] & Recording::kPosition)) ++r;
+  }
   for (int c = 0; c < nq; ++c) {
-    if (mimic[c]) continue;
+    if (rule_until_[c] == rec_.rows() && rec_.rows() > 0) continue;  // a mimic never recorded
     if (everywhere[c]) {
       full_.push_back(c);
       continue;
@@ -220,12 +224,16 @@ std::string OfflineStates::state_at(int r, JointState<double>& state) {
     s.next = k;
     if (s.next < s.row.size() && s.row[s.next] == r) estimate_series(i, s.next++);
     // else the last sample's values hold
+    if (r < rule_until_[c]) continue;  // a mimic not yet recorded: its rule, below
     state.position[c] = rec_.position[r * nq + c];
     state.velocity[c] = s.velocity;
     state.acceleration[c] = s.acceleration;
     valid = std::min(valid, s.valid);
   }
-  apply_mimics(model_, state);
+  // A recorded mimic value wins over the rule from its first sample on (as the node); in order:
+  // a mimic of a mimic reads the result.
+  for (const Mimic& m : model_.mimics)
+    if (r < rule_until_[m.coordinate]) apply_mimic(m, state);
   if (valid < 2)
     return "too few samples around it for derivatives (a run of " + std::to_string(weights_.count) +
            " between gaps longer than " + std::to_string(max_gap_) + " s)";

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/offline/recording.h"
-#include "mb_kinematics/estimation/auto_estimator.h"
 
 namespace mbk {
 
@@ -64,6 +64,7 @@ class OfflineStates {
   std::vector<int> full_;     // coordinates given in every row (share the weights)
   std::vector<int> partial_;  // the others (mimics aside)
   std::vector<char> velocity_everywhere_;
+  std::vector<int> rule_until_;  // per coordinate: rows before it is recorded (mimics: rule)
   // Per row, over the coordinates of full_: none has a derivative given; all have both.
   std::vector<char> positions_only_, derivatives_given_;
   std::vector<Series> series_;  // per coordinate in partial_

@@ -104,7 +104,7 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
   std::vector<std::uint8_t> given(nq, 0);
   for (int i = 0; i < nq; ++i) {
     const int m = message_index_[i];
-    if (m < 0 || mimic_[i]) continue;
+    if (m < 0) continue;  // a published mimic value wins over its rule (as the node)
     row[i] = position[m];
     given[i] = Recording::kPosition;
     if (!velocity.empty()) vrow[i] = velocity[m], given[i] |= Recording::kVelocity;

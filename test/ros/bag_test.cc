@@ -332,8 +332,14 @@ TEST(BagTest, BaseOdometryCarriesTheModel) {
   }
   mbk_offline::BagOptions o = options(temp("odom.bag"), temp("odom_out.bag"));
   o.base_odometry = "/odom";
+  o.out_csv = temp("odom_out.csv");
   const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
   EXPECT_EQ(s.written, 299);
+  std::ifstream csv(o.out_csv);
+  std::string line;
+  std::getline(csv, line);
+  std::getline(csv, line);  // the first sample's first row: the base, body 1 on R
+  EXPECT_NE(line.find("," + model.frame + ",1,0,"), std::string::npos) << line;
   EXPECT_EQ(s.log.drops.at("outside the base odometry's time span"), 6);
   mbk::JointState<double> still(model);
   still.position.setConstant(0.1);
@@ -348,8 +354,18 @@ TEST(BagTest, BaseOdometryCarriesTheModel) {
     const double t = msg->header.stamp.toSec();
     mbk::Data<double> expected = relative;
     mbk::apply_floating_base(base_at(t), expected);
+    // The node's layout: body 1 is the base (the root link on its free joint), then the model.
+    ASSERT_EQ(msg->bodies.size(), model.bodies.size()) << "at " << t;
+    const auto& base = msg->bodies[0];
+    EXPECT_EQ(base.name, model.frame);
+    EXPECT_EQ(base.index, 1u);
+    EXPECT_LT((mbk::Vec3<double>(base.pose.position.x, base.pose.position.y, base.pose.position.z) -
+               base_at(t).position)
+                  .norm(),
+              1e-4);
     for (int k = 1; k <= model.body_count(); ++k) {
-      const auto& b = msg->bodies[k - 1];
+      const auto& b = msg->bodies[k];
+      EXPECT_EQ(b.name, model.bodies[k].name);
       const auto v3 = [](const auto& x) { return mbk::Vec3<double>(x.x, x.y, x.z); };
       worst_p = std::max(worst_p, (v3(b.mass_center) - expected.mass_center[k]).norm());
       worst_v = std::max(worst_v, (v3(b.twist.linear) - expected.mass_center_velocity[k]).norm());
@@ -721,3 +737,53 @@ TEST(BagTest, APartialRunExitsTwoWithTheCounts) {
 }
 
 }  // namespace
+
+// Issue 25.5: a published mimic value wins over the mimic rule, as in the node and
+// robot_state_publisher; the finger (2 q_arm2 + 0.1) is recorded 0.3 off its rule.
+TEST(BagTest, APublishedMimicValueWinsOverItsRule) {
+  const std::string urdf = MBK_SOURCE_DIR "/test/ros/test_robot.urdf";
+  const mbk::Model model = mbk::load_model_file(urdf);
+  auto state_at = [&](double t) {
+    mbk::JointState<double> s(model);
+    for (int i = 0; i < model.nq; ++i)
+      if (model.coordinate_names[i] == "arm2_joint") s.position[i] = 0.3 * std::sin(t);
+    for (int i = 0; i < model.nq; ++i)
+      if (model.coordinate_names[i] == "finger_joint") s.position[i] = 0.6 * std::sin(t) + 0.4;
+    return s;
+  };
+  rosbag::Bag out(temp("mimic.bag"), rosbag::bagmode::Write);
+  for (int i = 0; i < 50; ++i) {
+    const double t = 1.0 + i / 100.0;
+    const mbk::JointState<double> s = state_at(t);
+    sensor_msgs::JointState js;
+    js.header.stamp = ros::Time(t);
+    js.name = model.coordinate_names;
+    js.position.assign(s.position.data(), s.position.data() + model.nq);
+    out.write("/joint_states", ros::Time(t), js);
+  }
+  out.close();
+  mbk_offline::BagOptions o = options(temp("mimic.bag"), temp("mimic_out.bag"));
+  o.model = urdf;
+  EXPECT_EQ(mbk_offline::run_bag(o).written, 50);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  int i = 0;
+  for (const rosbag::MessageInstance& m : view) {
+    const auto msg = m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>();
+    mbk::Data<double> d(model);
+    mbk::forward_kinematics(model, state_at(1.0 + i++ / 100.0), d, mbk::Level::kPose);
+    for (int k = 1; k <= model.body_count(); ++k) {
+      const auto& b = msg->bodies[k - 1];
+      const Eigen::Quaterniond q(d.rotation[k]);
+      const Eigen::Quaterniond got(b.pose.orientation.w, b.pose.orientation.x, b.pose.orientation.y,
+                                   b.pose.orientation.z);
+      EXPECT_LT(q.angularDistance(got), 1e-12) << b.name << " at sample " << i;
+      EXPECT_LT(
+          (mbk::Vec3<double>(b.pose.position.x, b.pose.position.y, b.pose.position.z) - d.origin[k])
+              .norm(),
+          1e-12)
+          << b.name;
+    }
+  }
+  EXPECT_EQ(i, 50);
+}
