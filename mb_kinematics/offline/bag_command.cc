@@ -197,13 +197,17 @@ std::string errors_path(const std::string& csv) {
 }
 
 // One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
+// Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
 void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
-  std::ofstream f(path);
+  OutputFile file(path);
+  std::ofstream f(file.writing());
   f << "coordinate,noise,velocity_se,acceleration_se\n";
   f.precision(6);
   for (const mbk::CoordinateError& e : errors)
     f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
+  f.close();
   if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
+  file.commit();
 }
 
 BagSummary run_bag(const BagOptions& o) {
@@ -246,8 +250,13 @@ BagSummary run_bag(const BagOptions& o) {
   s.max_gap = batch.max_gap();
   s.threads = batch.threads();
   Outputs out;
-  const mbk::Model base_model =
-      floating ? mbk::with_floating_base(model, base.frame, "base_odometry") : model;
+  // With a base, body_kinematics and the CSV list the node's layout (the model is not copied
+  // without one).
+  std::unique_ptr<const mbk::Model> with_base;
+  if (floating)
+    with_base = std::make_unique<const mbk::Model>(
+        mbk::with_floating_base(model, base.frame, "base_odometry"));
+  const mbk::Model& base_model = floating ? *with_base : model;
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
     out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
