@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/types.h"
 
 namespace mbk {
@@ -92,6 +93,9 @@ struct Joint {
   Vec3<double> axis = Vec3<double>::UnitZ();         // unit; revolute, prismatic, planar normal
   Vec3<double> offset = Vec3<double>::Zero();        // q_k: O_j -> Q_k, components in Bj
   Mat3<double> rotation = Mat3<double>::Identity();  // C_k: SJK = C_k * R_motion(coordinates)
+  // kBall123, kFree123: the axes of alpha, beta, gamma (euler_order.h); only XYZ is computed so
+  // far, the others are refused by Model::validate until the kernels take them (issue 26.1).
+  EulerOrder euler_order = EulerOrder::kXYZ;
 };
 
 }  // namespace mbk

@@ -1,0 +1,64 @@
+#include "mb_kinematics/core/euler_order.h"
+
+#include <cctype>
+#include <stdexcept>
+
+namespace mbk {
+
+namespace {
+
+constexpr std::array<std::array<int, 3>, 12> kAxes{{{0, 1, 2},
+                                                    {0, 2, 1},
+                                                    {1, 0, 2},
+                                                    {1, 2, 0},
+                                                    {2, 0, 1},
+                                                    {2, 1, 0},
+                                                    {0, 1, 0},
+                                                    {0, 2, 0},
+                                                    {1, 0, 1},
+                                                    {1, 2, 1},
+                                                    {2, 0, 2},
+                                                    {2, 1, 2}}};
+
+}  // namespace
+
+std::array<int, 3> euler_axes(EulerOrder order) { return kAxes.at(static_cast<size_t>(order)); }
+
+bool is_tait_bryan(EulerOrder order) {
+  const std::array<int, 3> a = euler_axes(order);
+  return a[0] != a[2];
+}
+
+std::string to_string(EulerOrder order) {
+  std::string s;
+  for (int axis : euler_axes(order)) s += static_cast<char>('X' + axis);
+  return s;
+}
+
+EulerOrder euler_order_from_axes(const std::array<int, 3>& axes) {
+  for (size_t i = 0; i < kAxes.size(); ++i)
+    if (kAxes[i] == axes) return static_cast<EulerOrder>(i);
+  throw std::invalid_argument("not an Euler order: axes " + std::to_string(axes[0]) + ", " +
+                              std::to_string(axes[1]) + ", " + std::to_string(axes[2]));
+}
+
+EulerOrder euler_order_from_string(const std::string& text) {
+  std::array<int, 3> axes{};
+  bool ok = text.size() == 3;
+  for (size_t i = 0; ok && i < 3; ++i) {
+    const char c = static_cast<char>(std::toupper(static_cast<unsigned char>(text[i])));
+    if (c >= 'X' && c <= 'Z')
+      axes[i] = c - 'X';
+    else if (c >= '1' && c <= '3')
+      axes[i] = c - '1';
+    else
+      ok = false;
+  }
+  for (const std::array<int, 3>& a : kAxes)
+    if (ok && a == axes) return euler_order_from_axes(axes);
+  throw std::invalid_argument("unknown Euler order '" + text +
+                              "' (one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, "
+                              "ZYZ, or the same as digits 123, 313, ...)");
+}
+
+}  // namespace mbk
