@@ -25,6 +25,10 @@ add_dependencies(system_fields_test mb_kinematics_msgs_generate_messages_cpp)
 target_link_libraries(system_fields_test mbk_ros mbk_test_models mbk_analysis mbk_io mbk_core
   gtest_main)
 
+# bvh_player's schedule and messages (no master needed).
+catkin_add_gtest(frame_player_test test/ros/frame_player_test.cc)
+target_link_libraries(frame_player_test mbk_ros gtest_main)
+
 # The heap's freed pages back to the system after the model is read (no master needed).
 catkin_add_gtest(heap_trim_test test/ros/heap_trim_test.cc)
 target_link_libraries(heap_trim_test gtest_main)

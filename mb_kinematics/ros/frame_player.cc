@@ -1,0 +1,44 @@
+#include "mb_kinematics/ros/frame_player.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace mbk_ros {
+
+void check_player(const PlayerFrames& frames, const PlayerOptions& options) {
+  if (!(options.rate > 0) || !std::isfinite(options.rate))
+    throw std::invalid_argument("~rate must be a positive number (playback speed), got " +
+                                std::to_string(options.rate));
+  if (!(options.loop_pause >= 0) || !std::isfinite(options.loop_pause))
+    throw std::invalid_argument("~loop_pause must be a number of seconds >= 0, got " +
+                                std::to_string(options.loop_pause));
+  if (frames.frame_count < 1) throw std::invalid_argument("the recording has no frames");
+  if (!(frames.frame_time > 0) || !std::isfinite(frames.frame_time))
+    throw std::invalid_argument("the recording's frame time must be positive, got " +
+                                std::to_string(frames.frame_time));
+}
+
+FramePlayer::FramePlayer(PlayerFrames frames, const PlayerOptions& options)
+    : frames_(std::move(frames)),
+      period_(frames_.frame_time / options.rate),
+      pause_ticks_(static_cast<long>(std::ceil(options.loop_pause / period_))),
+      loop_(options.loop) {}
+
+long FramePlayer::frame_at(long tick) const {
+  const long n = frames_.frame_count;
+  if (!loop_) return tick < n ? tick : -2;
+  const long in_cycle = tick % (n + pause_ticks_);
+  return in_cycle < n ? in_cycle : -1;
+}
+
+void FramePlayer::fill(long frame, sensor_msgs::JointState& msg) const {
+  const size_t width = frames_.names.size();
+  msg.name = frames_.names;
+  msg.position.assign(frames_.positions.begin() + frame * width,
+                      frames_.positions.begin() + (frame + 1) * width);
+  msg.velocity.clear();
+  msg.effort.clear();
+}
+
+}  // namespace mbk_ros
