@@ -38,3 +38,6 @@ set_tests_properties(doc_check PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TI
 # The layers of mb_kinematics/ (doc/architecture.md): no #include from a lower layer to a higher
 # one, no ROS in core/ or estimation/ (scripts/check_layers.py, tested on planted includes).
 add_test(NAME layer_includes COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/layers_test.py)
+# scripts/plot_kinematics.py (its overview and --walk figures, its refusals) on a CSV of its own.
+add_test(NAME plot_kinematics COMMAND /usr/bin/python3
+  ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py)
