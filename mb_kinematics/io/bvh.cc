@@ -20,7 +20,7 @@ class Scanner {
   Scanner(const std::string& text, const std::string& path) : text_(text), path_(path) {}
 
   [[noreturn]] void fail(int line, const std::string& what) const {
-    throw std::runtime_error(path_ + ":" + std::to_string(line) + ": " + what);
+    throw std::invalid_argument(path_ + ":" + std::to_string(line) + ": " + what);
   }
   int line() const { return line_; }
 
@@ -141,6 +141,7 @@ void open_segment(Scanner& in, BvhFile& bvh, const std::string& keyword, int par
   if (segment.name.empty() || segment.name == "{")
     in.fail(in.token_line(), keyword + " without a name");
   segment.parent = parent;
+  segment.line = in.token_line();
   in.expect("{", keyword + " " + segment.name);
   bvh.segments.push_back(segment);
 }
@@ -245,6 +246,7 @@ bool is_rotation(BvhChannel channel) {
 BvhFile parse_bvh(const std::string& text, const std::string& path) {
   Scanner in(text, path);
   BvhFile bvh;
+  bvh.path = path;
   read_hierarchy(in, bvh);
   read_motion(in, bvh);
   return bvh;
@@ -252,7 +254,7 @@ BvhFile parse_bvh(const std::string& text, const std::string& path) {
 
 BvhFile read_bvh(const std::string& path) {
   std::ifstream file(path);
-  if (!file) throw std::runtime_error(path + ": cannot open");
+  if (!file) throw std::invalid_argument(path + ": cannot open");
   std::stringstream text;
   text << file.rdbuf();
   return parse_bvh(text.str(), path);

@@ -18,7 +18,8 @@ bool is_rotation(BvhChannel channel);
 // One ROOT or JOINT of the hierarchy; segments come in file order, parents first.
 struct BvhSegment {
   std::string name;
-  int parent = -1;                                   // index in BvhFile::segments; -1 for the ROOT
+  int parent = -1;  // index in BvhFile::segments; -1 for the ROOT
+  int line = 0;     // of its ROOT or JOINT keyword, for errors found later
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // from the parent's origin, parent axes
   std::vector<BvhChannel> channels;                  // in the file's order
   int first_column = 0;                              // of channels[0] in a frame row
@@ -27,6 +28,7 @@ struct BvhSegment {
 };
 
 struct BvhFile {
+  std::string path;  // as given to parse_bvh, for errors found later
   std::vector<BvhSegment> segments;
   int channel_count = 0;  // values per frame: every segment's channels, in segment order
   int frame_count = 0;
@@ -37,12 +39,13 @@ struct BvhFile {
   }
 };
 
-// Parses the text of a BVH file; `path` names it in errors. Throws std::runtime_error
+// Parses the text of a BVH file; `path` names it in errors. Throws std::invalid_argument (as the
+// other model loaders do)
 // "<path>:<line>: <what is wrong>" (missing braces, unknown channel, a bad number, an empty
 // hierarchy, a frame with the wrong number of values, a truncated MOTION). Linear time.
 BvhFile parse_bvh(const std::string& text, const std::string& path);
 
-// parse_bvh of the file at `path`; std::runtime_error "<path>: cannot open" if unreadable.
+// parse_bvh of the file at `path`; std::invalid_argument "<path>: cannot open" if unreadable.
 BvhFile read_bvh(const std::string& path);
 
 // Unwraps every rotation column at +-180 degrees: each frame's angle moves by the multiple of

@@ -1,7 +1,10 @@
 #include "mb_kinematics/io/load_model.h"
 
+#include <algorithm>
+#include <cctype>
 #include <stdexcept>
 
+#include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/yaml_scene.h"
 
@@ -14,14 +17,23 @@ bool ends_with(const std::string& s, const std::string& tail) {
 
 }  // namespace
 
-Model load_model_file(const std::string& path) {
+bool is_bvh_file(const std::string& path) {
+  std::string tail = path.size() >= 4 ? path.substr(path.size() - 4) : "";
+  std::transform(tail.begin(), tail.end(), tail.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return tail == ".bvh";
+}
+
+Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
+  if (is_bvh_file(path)) return model_from_bvh(read_bvh(path), bvh);
   if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);
   if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
   if (ends_with(path, ".xacro"))
     throw std::invalid_argument(path + ": a xacro file: expand it first (xacro " + path +
                                 " > robot.urdf, from ROS's xacro package) and give the .urdf, or "
                                 "load robot_description yourself and give no model");
-  throw std::invalid_argument(path + ": unknown model file type (expected .urdf, .xml, .yaml)");
+  throw std::invalid_argument(path +
+                              ": unknown model file type (expected .urdf, .xml, .yaml, .bvh)");
 }
 
 }  // namespace mbk

@@ -49,11 +49,11 @@ const char kWalk[] =
     "-1.5 2.5e1 0 179 -179 90 0 0 0 -0 0.25 -0.5 1 2 3\r\n"                       // 30
     "\t0 0 0 0 0 0 0 0 0 0 0 0 0 0 180   \n";                                     // 31
 
-// The message of the std::runtime_error that parsing `text` throws ("" and a failure if none).
+// The message of the std::invalid_argument that parsing `text` throws ("" and a failure if none).
 std::string error_of(const std::string& text) {
   try {
     mbk::parse_bvh(text, "walk.bvh");
-  } catch (const std::runtime_error& e) {
+  } catch (const std::invalid_argument& e) {
     return e.what();
   }
   ADD_FAILURE() << "no error for:\n" << text;
@@ -171,7 +171,7 @@ TEST(Bvh, ReadsAFileFromDisk) {
   try {
     mbk::read_bvh(path);
     ADD_FAILURE() << "no error for a missing file";
-  } catch (const std::runtime_error& e) {
+  } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), path + ": cannot open");
   }
 }

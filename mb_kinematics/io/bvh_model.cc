@@ -1,0 +1,153 @@
+#include "mb_kinematics/io/bvh_model.h"
+
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace mbk {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kHumanHeight[2] = {0.5, 2.5};  // metres: outside, the scale is likely wrong
+
+[[noreturn]] void fail(const BvhFile& bvh, const BvhSegment& segment, const std::string& what) {
+  throw std::invalid_argument(bvh.path + ":" + std::to_string(segment.line) + ": " +
+                              (segment.parent < 0 ? "ROOT " : "JOINT ") + segment.name + ": " +
+                              what);
+}
+
+int axis_of(BvhChannel channel) { return static_cast<int>(channel) % 3; }  // X, Y, Z -> 0, 1, 2
+
+// The segment's rotation axes in channel order; whether it has position channels.
+struct Channels {
+  std::vector<int> rotations;
+  bool positions = false;
+};
+
+Channels channels_of(const BvhFile& bvh, const BvhSegment& segment) {
+  Channels c;
+  std::array<bool, 3> seen{};
+  for (BvhChannel channel : segment.channels) {
+    const int axis = axis_of(channel);
+    if (is_rotation(channel)) {
+      if (!c.rotations.empty() && c.rotations.back() == axis)
+        fail(bvh, segment, "two successive rotations about one axis");
+      c.rotations.push_back(axis);
+    } else {
+      if (seen[axis]) fail(bvh, segment, "two position channels along one axis");
+      seen[axis] = c.positions = true;
+    }
+  }
+  if (c.rotations.size() > 3) fail(bvh, segment, "more than three rotation channels");
+  return c;
+}
+
+// The channels' rotation axes completed to three (the added angles stay 0): the order of a
+// ball_123 or free_123 joint.
+EulerOrder completed_order(std::vector<int> axes) {
+  if (axes.empty()) axes.push_back(0);
+  if (axes.size() == 1) axes.push_back((axes[0] + 1) % 3);
+  if (axes.size() == 2) axes.push_back(3 - axes[0] - axes[1]);
+  return euler_order_from_axes({axes[0], axes[1], axes[2]});
+}
+
+Joint joint_of(const BvhFile& bvh, const BvhSegment& segment, double scale) {
+  const Channels c = channels_of(bvh, segment);
+  Joint joint;
+  joint.name = segment.name;
+  joint.offset = scale * segment.offset;
+  const size_t n = c.rotations.size();
+  if (c.positions) {
+    joint.type = JointType::kFree123;
+  } else if (n == 3 || (n == 2 && !(c.rotations[0] == 0 && c.rotations[1] == 1))) {
+    joint.type = JointType::kBall123;
+  } else if (n == 2) {
+    joint.type = JointType::kUniversal;
+  } else if (n == 1) {
+    joint.type = JointType::kRevolute;
+    joint.axis = Vec3<double>::Unit(c.rotations[0]);
+  }
+  if (joint.type == JointType::kFree123 || joint.type == JointType::kBall123)
+    joint.euler_order = completed_order(c.rotations);
+  return joint;
+}
+
+// The largest side of the box around the rest pose's joints and End Sites (all angles 0), in
+// metres: the standing height of a skeleton standing or in a T-pose.
+double rest_extent(const BvhFile& bvh, double scale) {
+  std::vector<Vec3<double>> origin(bvh.segments.size());
+  Vec3<double> low = Vec3<double>::Constant(INFINITY), high = -low;
+  for (size_t i = 0; i < bvh.segments.size(); ++i) {
+    const BvhSegment& s = bvh.segments[i];
+    origin[i] = scale * s.offset + (s.parent < 0 ? Vec3<double>::Zero() : origin[s.parent]);
+    low = low.cwiseMin(origin[i]);
+    high = high.cwiseMax(origin[i]);
+    if (!s.has_end_site) continue;
+    low = low.cwiseMin(origin[i] + scale * s.end_site);
+    high = high.cwiseMax(origin[i] + scale * s.end_site);
+  }
+  return (high - low).maxCoeff();
+}
+
+std::string height_warning(const BvhFile& bvh, double scale) {
+  const double height = rest_extent(bvh, scale);
+  if (height >= kHumanHeight[0] && height <= kHumanHeight[1]) return "";
+  std::ostringstream s;
+  s << bvh.path << ": the skeleton's standing height is " << height
+    << " m (the rest pose's largest extent, file units times the scale " << scale
+    << "), outside a human's " << kHumanHeight[0] << "-" << kHumanHeight[1]
+    << " m: give the metres per file unit with --scale (0.01 for centimetres, 0.0254 for inches)";
+  return s.str();
+}
+
+}  // namespace
+
+Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
+  if (!(options.scale > 0) || !std::isfinite(options.scale))
+    throw std::invalid_argument("scale: must be a positive number of metres per file unit");
+  Model model;
+  model.bodies.resize(bvh.segments.size() + 1);
+  for (size_t i = 0; i < bvh.segments.size(); ++i) {
+    const BvhSegment& segment = bvh.segments[i];
+    Body& body = model.bodies[i + 1];
+    body.name = segment.name;
+    body.lower = segment.parent + 1;
+    body.joint = joint_of(bvh, segment, options.scale);
+  }
+  finalize_model(model);
+  const std::string warning = height_warning(bvh, options.scale);
+  if (!warning.empty()) model.warnings.push_back(warning);
+  return model;
+}
+
+std::vector<double> bvh_frame_coordinates(const BvhFile& bvh, const Model& model, int frame,
+                                          double scale) {
+  if (frame < 0 || frame >= bvh.frame_count)
+    throw std::invalid_argument(bvh.path + ": frame " + std::to_string(frame) +
+                                " does not exist (the file has frames 0 to " +
+                                std::to_string(bvh.frame_count - 1) + ")");
+  if (model.body_count() != static_cast<int>(bvh.segments.size()))
+    throw std::invalid_argument(bvh.path + ": the model is not this file's skeleton");
+  std::vector<double> q(model.nq, 0.0);
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const BvhSegment& segment = bvh.segments[k - 1];
+    const Body& body = model.bodies[k];
+    if (body.name != segment.name)
+      throw std::invalid_argument(bvh.path + ": body " + std::to_string(k) + " is " + body.name +
+                                  ", not the file's " + segment.name);
+    const int translations = translation_count(body.joint.type);
+    int angle = 0;
+    for (size_t i = 0; i < segment.channels.size(); ++i) {
+      const BvhChannel channel = segment.channels[i];
+      const double value = bvh.value(frame, segment.first_column + static_cast<int>(i));
+      if (is_rotation(channel))
+        q[body.q_index + translations + angle++] = value * kPi / 180.0;
+      else
+        q[body.q_index + axis_of(channel)] = value * scale;
+    }
+  }
+  return q;
+}
+
+}  // namespace mbk

@@ -1,0 +1,47 @@
+// A BVH recording (io/bvh.h) as a Model and its frames as the model's coordinates
+// (doc/conventions.md#bvh-files). ROS-free.
+//
+// The skeleton: every ROOT and JOINT is a body named after it, numbered in file order (parents
+// first), its OFFSET (times `scale`) the joint origin q_k in the parent's axes, C_k = I, so that
+// each body's axes are the BVH joint's axes. The joint follows the segment's CHANNELS:
+//   position channels (ROOT or JOINT)  free_123: x, y, z = the position channels (missing ones
+//                                      0), added to the OFFSET; the angles as below (0 if none)
+//   three rotations                    ball_123 in the channels' order (Zrotation Xrotation
+//                                      Yrotation: ZXY, alpha = the Zrotation value, ...)
+//   two rotations                      universal for Xrotation Yrotation; any other pair
+//                                      ball_123 in that order, completed by the third axis whose
+//                                      angle (gamma) stays 0
+//   one rotation                       revolute about that axis
+//   no channels                        fixed
+// Coordinates are named "<joint>/<suffix>" (x y z alpha beta gamma) or, for a revolute joint,
+// after the joint. An End Site is no body: it is the segment's tip (see bvh_anthropometry.h for
+// how tips place the mass centers).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/io/bvh.h"
+
+namespace mbk {
+
+struct BvhModelOptions {
+  double scale = 1.0;        // metres per file unit (0.01 for centimetres, 0.0254 for inches)
+  double body_mass = 0.0;    // kg; 0 = massless segments
+  std::string sex = "male";  // "male" or "female": the anthropometric table's column
+};
+
+// The model of the file's skeleton. Its warnings (Model::warnings) name what the user should
+// know: a standing height outside 0.5-2.5 m (a wrong --scale), and with a body mass the segments
+// the anthropometric table does not cover. Throws std::invalid_argument "<path>:<line>: ..." for
+// channels no joint can take (a repeated rotation axis, more than three rotations) and for a bad
+// option.
+Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options);
+
+// Frame `frame`'s values (from 0) as the coordinates of `model` (made by model_from_bvh from the
+// same file), in model.coordinate_names order: radians and metres (positions times `scale`).
+std::vector<double> bvh_frame_coordinates(const BvhFile& bvh, const Model& model, int frame,
+                                          double scale);
+
+}  // namespace mbk

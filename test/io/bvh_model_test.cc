@@ -1,0 +1,195 @@
+// A BVH skeleton as a Model (mb_kinematics/io/bvh_model.h): joint types from the channels,
+// offsets as joint origins, frames as coordinates; the model's joint positions against a forward
+// kinematics of the BVH written here from the file format's definition.
+#include "mb_kinematics/io/bvh_model.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/kinematics.h"
+
+namespace {
+
+// Every rotation order X Y Z here (until every order is computed); a 6-channel root, a free
+// non-root joint, one- and two-rotation joints, a fixed one, End Sites.
+const char kSkeleton[] =
+    "HIERARCHY\n"                                                                 // 1
+    "ROOT Hips\n"                                                                 // 2
+    "{\n"                                                                         // 3
+    "  OFFSET 10 90 -5\n"                                                         // 4
+    "  CHANNELS 6 Xposition Yposition Zposition Xrotation Yrotation Zrotation\n"  // 5
+    "  JOINT LeftUpLeg\n"                                                         // 6
+    "  {\n"                                                                       // 7
+    "    OFFSET 10 -5 0\n"                                                        // 8
+    "    CHANNELS 3 Xrotation Yrotation Zrotation\n"                              // 9
+    "    JOINT LeftLeg\n"                                                         // 10
+    "    {\n"                                                                     // 11
+    "      OFFSET 0 -40 1\n"                                                      // 12
+    "      CHANNELS 1 Xrotation\n"                                                // 13
+    "      End Site\n"                                                            // 14
+    "      {\n"                                                                   // 15
+    "        OFFSET 0 -42 0\n"                                                    // 16
+    "      }\n"                                                                   // 17
+    "    }\n"                                                                     // 18
+    "  }\n"                                                                       // 19
+    "  JOINT Chest\n"                                                             // 20
+    "  {\n"                                                                       // 21
+    "    OFFSET 0 30 0\n"                                                         // 22
+    "    CHANNELS 2 Xrotation Yrotation\n"                                        // 23
+    "    JOINT Neck\n"                                                            // 24
+    "    {\n"                                                                     // 25
+    "      OFFSET 0 25 0\n"                                                       // 26
+    "      CHANNELS 4 Zposition Xposition Xrotation Yrotation\n"                  // 27
+    "      JOINT Head\n"                                                          // 28
+    "      {\n"                                                                   // 29
+    "        OFFSET 0 8 2\n"                                                      // 30
+    "        CHANNELS 0\n"                                                        // 31
+    "        End Site\n"                                                          // 32
+    "        {\n"                                                                 // 33
+    "          OFFSET 0 20 0\n"                                                   // 34
+    "        }\n"                                                                 // 35
+    "      }\n"                                                                   // 36
+    "    }\n"                                                                     // 37
+    "  }\n"                                                                       // 38
+    "}\n"                                                                         // 39
+    "MOTION\n"                                                                    // 40
+    "Frames: 2\n"                                                                 // 41
+    "Frame Time: 0.01\n"                                                          // 42
+    "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n"                                           // 43
+    "1.5 -2 3 10 -20 30 40 -50 60 -70 15 25 3 -4 35 -45\n";                       // 44
+
+constexpr double kScale = 0.01;  // centimetres
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+mbk::Model model_of(const std::string& text, const mbk::BvhModelOptions& options = {kScale}) {
+  return mbk::model_from_bvh(mbk::parse_bvh(text, "walk.bvh"), options);
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    model_of(text);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error";
+  return "";
+}
+
+TEST(BvhModel, EachSegmentIsABodyOnTheJointItsChannelsMake) {
+  const mbk::Model model = model_of(kSkeleton);
+  ASSERT_EQ(model.body_count(), 6);
+  const std::vector<std::string> names = {"Hips", "LeftUpLeg", "LeftLeg", "Chest", "Neck", "Head"};
+  const std::vector<int> lower = {0, 1, 2, 1, 4, 5};
+  const std::vector<mbk::JointType> types = {mbk::JointType::kFree123,  mbk::JointType::kBall123,
+                                             mbk::JointType::kRevolute, mbk::JointType::kUniversal,
+                                             mbk::JointType::kFree123,  mbk::JointType::kFixed};
+  for (int k = 1; k <= 6; ++k) {
+    EXPECT_EQ(model.bodies[k].name, names[k - 1]);
+    EXPECT_EQ(model.bodies[k].lower, lower[k - 1]);
+    EXPECT_EQ(model.bodies[k].joint.type, types[k - 1]) << names[k - 1];
+    EXPECT_EQ(model.bodies[k].mass, 0.0);
+  }
+  EXPECT_EQ(model.bodies[3].joint.axis, Eigen::Vector3d::UnitX());
+  EXPECT_TRUE(model.bodies[3].joint.offset.isApprox(Eigen::Vector3d(0, -0.40, 0.01), 1e-15));
+  EXPECT_TRUE(model.bodies[1].joint.offset.isApprox(Eigen::Vector3d(0.10, 0.90, -0.05), 1e-15));
+  const std::vector<std::string> coordinates = {
+      "Hips/x",      "Hips/y",          "Hips/z",         "Hips/alpha",      "Hips/beta",
+      "Hips/gamma",  "LeftUpLeg/alpha", "LeftUpLeg/beta", "LeftUpLeg/gamma", "LeftLeg",
+      "Chest/alpha", "Chest/beta",      "Neck/x",         "Neck/y",          "Neck/z",
+      "Neck/alpha",  "Neck/beta",       "Neck/gamma"};
+  EXPECT_EQ(model.coordinate_names, coordinates);
+  EXPECT_TRUE(model.warnings.empty()) << model.warnings.front();
+}
+
+TEST(BvhModel, FrameValuesBecomeCoordinatesInRadiansAndMetres) {
+  const mbk::BvhFile bvh = mbk::parse_bvh(kSkeleton, "walk.bvh");
+  const mbk::Model model = mbk::model_from_bvh(bvh, {kScale});
+  const std::vector<double> q = mbk::bvh_frame_coordinates(bvh, model, 1, kScale);
+  // Neck's "Zposition Xposition" go to z and x whatever their order; its y and gamma stay 0.
+  const std::vector<double> expected = {0.015,     -0.02,      0.03,       10 * kDeg, -20 * kDeg,
+                                        30 * kDeg, 40 * kDeg,  -50 * kDeg, 60 * kDeg, -70 * kDeg,
+                                        15 * kDeg, 25 * kDeg,  -0.04,      0,         0.03,
+                                        35 * kDeg, -45 * kDeg, 0};
+  ASSERT_EQ(q.size(), expected.size());
+  for (size_t i = 0; i < q.size(); ++i) EXPECT_NEAR(q[i], expected[i], 1e-15) << i;
+  EXPECT_THROW(mbk::bvh_frame_coordinates(bvh, model, 2, kScale), std::invalid_argument);
+}
+
+// The BVH format's own forward kinematics: a segment's origin is its parent's origin plus the
+// parent's rotation times (OFFSET + position channels); its rotation is the parent's times the
+// rotation channels' elementary rotations in channel order.
+std::vector<Eigen::Vector3d> bvh_joint_positions(const mbk::BvhFile& bvh, int frame) {
+  std::vector<Eigen::Vector3d> origin(bvh.segments.size());
+  std::vector<Eigen::Matrix3d> rotation(bvh.segments.size());
+  for (size_t i = 0; i < bvh.segments.size(); ++i) {
+    const mbk::BvhSegment& s = bvh.segments[i];
+    Eigen::Vector3d translation = s.offset;
+    Eigen::Matrix3d turn = Eigen::Matrix3d::Identity();
+    for (size_t c = 0; c < s.channels.size(); ++c) {
+      const int axis = static_cast<int>(s.channels[c]) % 3;
+      const double value = bvh.value(frame, s.first_column + static_cast<int>(c));
+      if (mbk::is_rotation(s.channels[c]))
+        turn = turn * Eigen::AngleAxisd(value * kDeg, Eigen::Vector3d::Unit(axis)).matrix();
+      else
+        translation[axis] += value;
+    }
+    const bool root = s.parent < 0;
+    origin[i] =
+        root ? translation : Eigen::Vector3d(origin[s.parent] + rotation[s.parent] * translation);
+    rotation[i] = root ? turn : Eigen::Matrix3d(rotation[s.parent] * turn);
+  }
+  for (Eigen::Vector3d& p : origin) p *= kScale;
+  return origin;
+}
+
+TEST(BvhModel, JointPositionsAgreeWithTheFormatsForwardKinematics) {
+  const mbk::BvhFile bvh = mbk::parse_bvh(kSkeleton, "walk.bvh");
+  const mbk::Model model = mbk::model_from_bvh(bvh, {kScale});
+  mbk::JointState<double> state(model);
+  mbk::Data<double> data(model);
+  const std::vector<double> q = mbk::bvh_frame_coordinates(bvh, model, 1, kScale);
+  state.position = Eigen::Map<const Eigen::VectorXd>(q.data(), q.size());
+  mbk::forward_kinematics(model, state, data);
+  const std::vector<Eigen::Vector3d> expected = bvh_joint_positions(bvh, 1);
+  for (int k = 1; k <= model.body_count(); ++k)
+    EXPECT_LT((data.origin[k] - expected[k - 1]).norm(), 1e-12 * expected[k - 1].norm())
+        << model.bodies[k].name << ": " << data.origin[k].transpose() << " vs "
+        << expected[k - 1].transpose();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+TEST(BvhModel, ChannelsNoJointTakesNameTheirSegmentsLine) {
+  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 2 Xrotation Yrotation",
+                              "CHANNELS 2 Yrotation Yrotation")),
+            "walk.bvh:20: JOINT Chest: two successive rotations about one axis");
+  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 4 Zposition Xposition Xrotation Yrotation",
+                              "CHANNELS 4 Xrotation Yrotation Zrotation Xrotation")),
+            "walk.bvh:24: JOINT Neck: more than three rotation channels");
+  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 4 Zposition Xposition Xrotation Yrotation",
+                              "CHANNELS 4 Zposition Zposition Xrotation Yrotation")),
+            "walk.bvh:24: JOINT Neck: two position channels along one axis");
+  EXPECT_EQ(error_of(replaced(kSkeleton, "Zposition Xrotation Yrotation Zrotation",
+                              "Zposition Xrotation Xrotation Zrotation")),
+            "walk.bvh:2: ROOT Hips: two successive rotations about one axis");
+}
+
+TEST(BvhModel, AScaleThatMakesNoHumanIsWarnedAbout) {
+  const mbk::Model metres = model_of(kSkeleton, {kScale});
+  EXPECT_TRUE(metres.warnings.empty());
+  const mbk::Model centimetres = model_of(kSkeleton, {1.0});
+  ASSERT_EQ(centimetres.warnings.size(), 1u);
+  EXPECT_NE(centimetres.warnings[0].find("standing height is 170 m"), std::string::npos)
+      << centimetres.warnings[0];
+  EXPECT_NE(centimetres.warnings[0].find("--scale"), std::string::npos);
+  EXPECT_THROW(model_of(kSkeleton, {-1.0}), std::invalid_argument);
+}
+
+}  // namespace
