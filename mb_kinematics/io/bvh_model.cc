@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/io/bvh_anthropometry.h"
+
 namespace mbk {
 namespace {
 
@@ -106,6 +108,9 @@ std::string height_warning(const BvhFile& bvh, double scale) {
 Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale))
     throw std::invalid_argument("scale: must be a positive number of metres per file unit");
+  if (!(options.body_mass >= 0) || !std::isfinite(options.body_mass))
+    throw std::invalid_argument("body mass: must be a number of kg >= 0 (0: massless segments)");
+  const Sex sex = sex_from_string(options.sex);
   Model model;
   model.bodies.resize(bvh.segments.size() + 1);
   for (size_t i = 0; i < bvh.segments.size(); ++i) {
@@ -115,9 +120,13 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
     body.lower = segment.parent + 1;
     body.joint = joint_of(bvh, segment, options.scale);
   }
+  for (const std::string& warning :
+       {height_warning(bvh, options.scale),
+        options.body_mass > 0
+            ? set_segment_parameters(bvh, options.scale, options.body_mass, sex, model)
+            : std::string()})
+    if (!warning.empty()) model.warnings.push_back(warning);
   finalize_model(model);
-  const std::string warning = height_warning(bvh, options.scale);
-  if (!warning.empty()) model.warnings.push_back(warning);
   return model;
 }
 

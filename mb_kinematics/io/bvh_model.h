@@ -14,8 +14,9 @@
 //   one rotation                       revolute about that axis
 //   no channels                        fixed
 // Coordinates are named "<joint>/<suffix>" (x y z alpha beta gamma) or, for a revolute joint,
-// after the joint. An End Site is no body: it is the segment's tip (see bvh_anthropometry.h for
-// how tips place the mass centers).
+// after the joint. An End Site is no body: it is the segment's tip (bvh_anthropometry.h: how
+// tips place the mass centers). With a body mass, the segments' masses, mass centers and
+// inertias come from de Leva's table (bvh_anthropometry.h); without, every body is massless.
 #pragma once
 
 #include <string>
