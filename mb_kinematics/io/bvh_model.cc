@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -103,7 +104,28 @@ std::string height_warning(const BvhFile& bvh, double scale) {
   return s.str();
 }
 
+double number(const std::string& option, const std::string& text, double fallback) {
+  if (text.empty()) return fallback;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (*end != '\0' || !std::isfinite(x))
+    throw std::invalid_argument(option + " needs a number, not '" + text + "'");
+  return x;
+}
+
 }  // namespace
+
+BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
+                                  const std::string& sex) {
+  BvhModelOptions o;
+  o.scale = number("--scale", scale, o.scale);
+  o.body_mass = number("--body-mass", body_mass, o.body_mass);
+  if (!sex.empty()) o.sex = sex;
+  if (!(o.scale > 0)) throw std::invalid_argument("--scale needs metres per file unit > 0");
+  if (!(o.body_mass >= 0)) throw std::invalid_argument("--body-mass needs kg >= 0");
+  sex_from_string(o.sex);
+  return o;
+}
 
 Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale))

@@ -33,6 +33,11 @@ struct BvhModelOptions {
   std::string sex = "male";  // "male" or "female": the anthropometric table's column
 };
 
+// The options from their command-line texts (--scale, --body-mass, --sex; "" keeps the default).
+// Throws std::invalid_argument naming the option and the text.
+BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
+                                  const std::string& sex);
+
 // The model of the file's skeleton. Its warnings (Model::warnings) name what the user should
 // know: a standing height outside 0.5-2.5 m (a wrong --scale), and with a body mass the segments
 // the anthropometric table does not cover. Throws std::invalid_argument "<path>:<line>: ..." for
