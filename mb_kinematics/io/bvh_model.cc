@@ -2,8 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+
+#include "mb_kinematics/io/bvh_anthropometry.h"
 
 namespace mbk {
 namespace {
@@ -101,11 +104,35 @@ std::string height_warning(const BvhFile& bvh, double scale) {
   return s.str();
 }
 
+double number(const std::string& option, const std::string& text, double fallback) {
+  if (text.empty()) return fallback;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (*end != '\0' || !std::isfinite(x))
+    throw std::invalid_argument(option + " needs a number, not '" + text + "'");
+  return x;
+}
+
 }  // namespace
+
+BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
+                                  const std::string& sex) {
+  BvhModelOptions o;
+  o.scale = number("--scale", scale, o.scale);
+  o.body_mass = number("--body-mass", body_mass, o.body_mass);
+  if (!sex.empty()) o.sex = sex;
+  if (!(o.scale > 0)) throw std::invalid_argument("--scale needs metres per file unit > 0");
+  if (!(o.body_mass >= 0)) throw std::invalid_argument("--body-mass needs kg >= 0");
+  sex_from_string(o.sex);
+  return o;
+}
 
 Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
   if (!(options.scale > 0) || !std::isfinite(options.scale))
     throw std::invalid_argument("scale: must be a positive number of metres per file unit");
+  if (!(options.body_mass >= 0) || !std::isfinite(options.body_mass))
+    throw std::invalid_argument("body mass: must be a number of kg >= 0 (0: massless segments)");
+  const Sex sex = sex_from_string(options.sex);
   Model model;
   model.bodies.resize(bvh.segments.size() + 1);
   for (size_t i = 0; i < bvh.segments.size(); ++i) {
@@ -115,9 +142,13 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
     body.lower = segment.parent + 1;
     body.joint = joint_of(bvh, segment, options.scale);
   }
+  for (const std::string& warning :
+       {height_warning(bvh, options.scale),
+        options.body_mass > 0
+            ? set_segment_parameters(bvh, options.scale, options.body_mass, sex, model)
+            : std::string()})
+    if (!warning.empty()) model.warnings.push_back(warning);
   finalize_model(model);
-  const std::string warning = height_warning(bvh, options.scale);
-  if (!warning.empty()) model.warnings.push_back(warning);
   return model;
 }
 

@@ -14,8 +14,9 @@
 //   one rotation                       revolute about that axis
 //   no channels                        fixed
 // Coordinates are named "<joint>/<suffix>" (x y z alpha beta gamma) or, for a revolute joint,
-// after the joint. An End Site is no body: it is the segment's tip (see bvh_anthropometry.h for
-// how tips place the mass centers).
+// after the joint. An End Site is no body: it is the segment's tip (bvh_anthropometry.h: how
+// tips place the mass centers). With a body mass, the segments' masses, mass centers and
+// inertias come from de Leva's table (bvh_anthropometry.h); without, every body is massless.
 #pragma once
 
 #include <string>
@@ -31,6 +32,11 @@ struct BvhModelOptions {
   double body_mass = 0.0;    // kg; 0 = massless segments
   std::string sex = "male";  // "male" or "female": the anthropometric table's column
 };
+
+// The options from their command-line texts (--scale, --body-mass, --sex; "" keeps the default).
+// Throws std::invalid_argument naming the option and the text.
+BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
+                                  const std::string& sex);
 
 // The model of the file's skeleton. Its warnings (Model::warnings) name what the user should
 // know: a standing height outside 0.5-2.5 m (a wrong --scale), and with a body mass the segments

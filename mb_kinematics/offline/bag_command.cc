@@ -13,10 +13,12 @@
 #include "mb_kinematics/core/base_joint.h"
 #include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
+#include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
+#include "mb_kinematics/offline/bvh_recording.h"
 #include "mb_kinematics/offline/offline_batch.h"
 #include "mb_kinematics/offline/output_file.h"
 #include "mb_kinematics/offline/progress.h"
@@ -36,8 +38,8 @@ bool ends_with(const std::string& s, const std::string& end) {
 }
 
 // The node's model rules: coordinate-derivative speeds (JointState velocities are q').
-mbk::Model load(const std::string& path) {
-  mbk::Model model = mbk::load_model_file(path);
+mbk::Model load(const std::string& path, const mbk::BvhModelOptions& bvh) {
+  mbk::Model model = mbk::load_model_file(path, bvh);
   for (const std::string& warning : model.warnings)
     std::cerr << "mbk: warning: " << warning << "\n";
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {
@@ -151,6 +153,7 @@ void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int ro
 
 BagOptions parse_bag_options(int argc, char** argv) {
   BagOptions o;
+  std::string scale, body_mass, sex;
   const std::map<std::string, std::string*> values = {
       {"--model", &o.model},
       {"--out", &o.out_bag},
@@ -159,7 +162,10 @@ BagOptions parse_bag_options(int argc, char** argv) {
       {"--joint-accelerations", &o.joint_accelerations},
       {"--base-odometry", &o.base_odometry},
       {"--estimator", &o.estimator},
-      {"--frame-prefix", &o.frame_prefix}};
+      {"--frame-prefix", &o.frame_prefix},
+      {"--scale", &scale},
+      {"--body-mass", &body_mass},
+      {"--sex", &sex}};
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     auto it = values.find(arg);
@@ -184,8 +190,12 @@ BagOptions parse_bag_options(int argc, char** argv) {
       throw std::invalid_argument("unknown or incomplete option '" + arg + "'");
     }
   }
-  if (o.input.empty()) throw std::invalid_argument("bag needs an input IN.bag or IN.csv");
+  if (o.input.empty()) throw std::invalid_argument("bag needs an input IN.bag, IN.csv or IN.bvh");
+  if (o.model.empty() && mbk::is_bvh_file(o.input)) o.model = o.input;
   if (o.model.empty()) throw std::invalid_argument("bag needs --model FILE");
+  if (!(scale + body_mass + sex).empty() && !mbk::is_bvh_file(o.model))
+    throw std::invalid_argument("--scale, --body-mass and --sex apply to a .bvh model only");
+  o.bvh = mbk::bvh_model_options(scale, body_mass, sex);
   if (o.out_bag.empty() && o.out_csv.empty())
     throw std::invalid_argument("bag needs --out OUT.bag and/or --csv OUT.csv");
   return o;
@@ -214,18 +224,21 @@ BagSummary run_bag(const BagOptions& o) {
   const auto wall = Clock::now();
   refuse_same_files(o);
   BagSummary s;
-  const mbk::Model model = load(o.model);
+  const mbk::Model model = load(o.model, o.bvh);
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
   s.estimator = estimator.name;
   // Read everything first: the centred estimates look ahead.
   mbk::RecordingBuilder builder(model);
   BaseOdometry base;
-  if (!o.base_odometry.empty() && ends_with(o.input, ".csv"))
+  const bool bvh = mbk::is_bvh_file(o.input);
+  if (!o.base_odometry.empty() && (ends_with(o.input, ".csv") || bvh))
     throw std::invalid_argument("--base-odometry needs a bag input");
   {
     mbk::Progress bar("reading  ", o.progress);
-    if (ends_with(o.input, ".csv")) {
+    if (bvh) {
+      mbk::add_bvh_frames(mbk::read_bvh(o.input), model, o.bvh.scale, builder);
+    } else if (ends_with(o.input, ".csv")) {
       mbk::read_trajectory_csv(o.input, builder);
     } else {
       Unreadable unreadable;

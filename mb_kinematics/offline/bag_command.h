@@ -1,19 +1,22 @@
-// mbk bag: the kinematics of every sample of a recording (a rosbag or a trajectory CSV) into a
-// bag and/or a tidy CSV, with zero-phase derivative estimates (doc/recorded_data.md).
+// mbk bag: the kinematics of every sample of a recording (a rosbag, a trajectory CSV or a BVH
+// file's motion) into a bag and/or a tidy CSV, with zero-phase derivative estimates
+// (doc/recorded_data.md).
 #pragma once
 
 #include <map>
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/offline/recording.h"
+#include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/offline/offline_kinematics.h"
+#include "mb_kinematics/offline/recording.h"
 
 namespace mbk_offline {
 
 struct BagOptions {
-  std::string input;  // .bag or .csv
-  std::string model;
+  std::string input;         // .bag, .csv or .bvh
+  std::string model;         // a .bvh input's own skeleton when empty
+  mbk::BvhModelOptions bvh;  // --scale, --body-mass, --sex: a .bvh model's
   std::string out_bag, out_csv;
   std::string joint_states = "/joint_states";
   std::string joint_accelerations;

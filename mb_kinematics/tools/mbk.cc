@@ -1,7 +1,8 @@
 // mbk: the command-line tool (doc/method.md 8).
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
-//   mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]
+//   mbk eval --model FILE [--state STATE.json | --frame N] [--method recursive|partial_velocity]
 //       [--partial-velocities]
+//   FILE: .urdf, .yaml or .bvh (with [--scale M] [--body-mass KG] [--sex male|female])
 //   mbk urdf --model SCENE.yaml [--name ROBOT] [--display]   (a scene as URDF: the equivalent
 //       kinematics for KDL and robot_state_publisher, or with --display a link per body for
 //       rviz's RobotModel beside a node that runs the scene)
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -22,24 +24,29 @@
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/lower_body_text.h"
 #include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/state_json.h"
 #include "mb_kinematics/io/urdf_writer.h"
+#include "mb_kinematics/offline/bvh_recording.h"
 
 namespace {
 
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
-    "       mbk eval --model FILE [--state STATE.json] [--method recursive|partial_velocity]\n"
-    "                [--partial-velocities]\n"
+    "       mbk eval --model FILE [--state STATE.json | --frame N]\n"
+    "                [--method recursive|partial_velocity] [--partial-velocities]\n"
     "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n"
     "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
     "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
     "P]\n"
-    "           [--max-gap S] [--threads N]\n";
+    "           [--max-gap S] [--threads N]\n"
+    "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) ...\n"
+    "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
+    "         [--body-mass KG] [--sex male|female]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {
@@ -54,7 +61,8 @@ std::map<std::string, std::string> parse_options(int argc, char** argv) {
     if (arg == "--csv" || arg == "--display" || arg == "--partial-velocities") {
       options[arg] = "1";
     } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method" ||
-                arg == "--name") &&
+                arg == "--name" || arg == "--frame" || arg == "--scale" || arg == "--body-mass" ||
+                arg == "--sex") &&
                i + 1 < argc) {
       options[arg] = argv[++i];
     } else {
@@ -64,13 +72,47 @@ std::map<std::string, std::string> parse_options(int argc, char** argv) {
   return options;
 }
 
-// The model of FILE; what the loader let through (e.g. inertias that are not physical) is
-// printed once on stderr.
-mbk::Model load(const std::string& path) {
-  mbk::Model model = mbk::load_model_file(path);
+std::string option(const std::map<std::string, std::string>& options, const std::string& name) {
+  const auto it = options.find(name);
+  return it == options.end() ? "" : it->second;
+}
+
+// --scale, --body-mass and --sex, for a .bvh model only.
+mbk::BvhModelOptions bvh_options(const std::map<std::string, std::string>& options,
+                                 const std::string& path) {
+  const bool given = options.count("--scale") || options.count("--body-mass") ||
+                     options.count("--sex") || options.count("--frame");
+  if (given && !mbk::is_bvh_file(path))
+    throw UsageError("--scale, --body-mass, --sex and --frame apply to a .bvh model only");
+  return mbk::bvh_model_options(option(options, "--scale"), option(options, "--body-mass"),
+                                option(options, "--sex"));
+}
+
+void print_warnings(const mbk::Model& model) {
   for (const std::string& warning : model.warnings)
     std::cerr << "mbk: warning: " << warning << "\n";
+}
+
+// The model of FILE; what the loader let through (e.g. inertias that are not physical) is
+// printed once on stderr.
+mbk::Model load(const std::map<std::string, std::string>& options) {
+  const std::string path = options.at("--model");
+  mbk::Model model = mbk::load_model_file(path, bvh_options(options, path));
+  print_warnings(model);
   return model;
+}
+
+// Frame N of the BVH model file as the state: its coordinates, velocities and accelerations
+// from the offline zero-phase estimator over the whole motion (mbk bag's, for that frame).
+mbk::JointState<double> frame_state(const std::map<std::string, std::string>& options,
+                                    const mbk::Model& model) {
+  const std::string path = options.at("--model"), text = options.at("--frame");
+  char* end = nullptr;
+  const long frame = std::strtol(text.c_str(), &end, 10);
+  if (*end != '\0' || text.empty() || frame < 0 || frame > (1L << 30))
+    throw UsageError("--frame needs a frame number from 0, not '" + text + "'");
+  return mbk::bvh_frame_state(mbk::read_bvh(path), model, bvh_options(options, path).scale,
+                              static_cast<int>(frame), mbk::default_offline_estimator());
 }
 
 int tables(const std::map<std::string, std::string>& options) {
@@ -82,7 +124,7 @@ int tables(const std::map<std::string, std::string>& options) {
     lower = mbk::parse_lower_body_array(options.at("--lower"));
     mbk::validate_lower_body_array(lower);
   } else {
-    const mbk::Model model = load(options.at("--model"));
+    const mbk::Model model = load(options);
     lower = model.lower_body_array();
     for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
   }
@@ -95,10 +137,13 @@ int tables(const std::map<std::string, std::string>& options) {
 
 int eval(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("eval needs --model FILE");
-  const mbk::Model model = load(options.at("--model"));
+  if (options.count("--state") && options.count("--frame"))
+    throw UsageError("eval takes --state or --frame, not both");
+  const mbk::Model model = load(options);
   const mbk::JointState<double> state = options.count("--state")
                                             ? mbk::read_state_file(model, options.at("--state"))
-                                            : mbk::JointState<double>(model);
+                                        : options.count("--frame") ? frame_state(options, model)
+                                                                   : mbk::JointState<double>(model);
   const std::string problem = mbk::check_state(model, state);  // NaN/Inf, |e| ~ 0, overflow
   if (!problem.empty())
     throw std::invalid_argument((options.count("--state") ? options.at("--state") : "state") +
@@ -123,7 +168,7 @@ int eval(const std::map<std::string, std::string>& options) {
 
 int urdf(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("urdf needs --model FILE");
-  const mbk::Model model = load(options.at("--model"));
+  const mbk::Model model = load(options);
   std::cout << mbk::write_urdf(
       model, options.count("--name") ? options.at("--name") : "scene",
       options.count("--display") ? mbk::UrdfStyle::kDisplay : mbk::UrdfStyle::kEquivalent);

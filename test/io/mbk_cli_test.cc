@@ -19,6 +19,7 @@
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/state_json.h"
 #include "mb_kinematics/io/urdf_model.h"
@@ -703,6 +704,58 @@ TEST(MbkCli, EulerSceneWithAValidStateWorks) {  // the zero-norm failure above i
   const Output run = mbk("eval --model test/io/data/ball_euler.yaml");
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_EQ(JsonReader(run.out).document().at("bodies").array.size(), 2u);
+}
+
+// A BVH recording as the model: its skeleton's tables, a frame's kinematics (the segment
+// parameters for --body-mass in the system), the options refused for other models.
+TEST(MbkCli, ABvhFileIsAModel) {
+  const std::string walk = "--model test/io/data/cmu_walk.bvh";
+  const Output tables = mbk("tables --csv " + walk + " --scale 0.01");
+  EXPECT_EQ(tables.status, 0) << tables.err;
+  EXPECT_EQ(tables.err, "");
+  EXPECT_EQ(tables.out.substr(0, tables.out.find('\n', tables.out.find('\n') + 1)),
+            "1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17,18,19,20,21,22,23,24,25,26,27,28,29\n"
+            "0,1,2,3,4,5,1,7,8,9,10,1,12,13,14,15,16,14,18,19,20,21,21,14,24,25,26,27,27");
+  const Output eval =
+      mbk("eval " + walk + " --scale 0.01 --body-mass 61.5 --sex female --frame 15");
+  EXPECT_EQ(eval.status, 0) << eval.err;
+  EXPECT_EQ(eval.err, "");
+  const Json doc = JsonReader(eval.out).document();
+  EXPECT_NEAR(doc.at("system").at("mass").number, 61.5, 1e-12 * 61.5);
+  EXPECT_EQ(doc.at("system").at("angular_momentum").type, Json::kArray);
+  const mbk::BvhFile bvh = mbk::read_bvh(source_path("test/io/data/cmu_walk.bvh"));
+  const mbk::Model model = mbk::model_from_bvh(bvh, {0.01, 61.5, "female"});
+  mbk::JointState<double> state(model);
+  const std::vector<double> q = mbk::bvh_frame_coordinates(bvh, model, 15, 0.01);
+  state.position = Eigen::Map<const Eigen::VectorXd>(q.data(), q.size());
+  mbk::Data<double> data(model);
+  mbk::forward_kinematics(model, state, data);
+  const Json& bodies = doc.at("bodies");
+  ASSERT_EQ(static_cast<int>(bodies.array.size()), model.body_count());
+  for (int k = 1; k <= model.body_count(); ++k)
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(bodies.array[k - 1].at("origin").array[i].number, data.origin[k][i], 1e-12);
+  const Output unscaled = mbk("urdf " + walk);
+  EXPECT_EQ(unscaled.status, 0);
+  EXPECT_NE(unscaled.err.find("mbk: warning: test/io/data/cmu_walk.bvh: the skeleton's standing "
+                              "height is 172 m"),
+            std::string::npos)
+      << unscaled.err;
+  const Output late = mbk("eval " + walk + " --frame 40");
+  EXPECT_EQ(late.status, 1);
+  EXPECT_NE(late.err.find("mbk: error: test/io/data/cmu_walk.bvh: frame 40 does not exist (the "
+                          "file has frames 0 to 39)\n"),
+            std::string::npos)
+      << late.err;
+  const Output yaml = mbk("eval --model config/human_body.yaml --body-mass 70");
+  EXPECT_EQ(yaml.status, 1);
+  EXPECT_EQ(yaml.err.rfind("mbk: error: --scale, --body-mass, --sex and --frame apply to a .bvh "
+                           "model only\nusage:",
+                           0),
+            0u)
+      << yaml.err;
+  EXPECT_EQ(mbk("eval " + walk + " --scale 0.01 --sex other").err,
+            "mbk: error: sex: 'other' is neither male nor female (de Leva's columns)\n");
 }
 
 }  // namespace

@@ -787,3 +787,38 @@ TEST(BagTest, APublishedMimicValueWinsOverItsRule) {
   }
   EXPECT_EQ(i, 50);
 }
+
+// A BVH file is its own model and recording: every frame written at its time, with the segment
+// parameters of --body-mass in the CSV's system rows; --scale etc. refused for other models.
+TEST(BagTest, ABvhFileIsItsOwnRecording) {
+  const std::string walk = MBK_SOURCE_DIR "/test/io/data/cmu_walk.bvh";
+  const std::string run = std::string(MBK_MBK_PATH) + " bag " + walk +
+                          " --scale 0.01 --body-mass 70 --csv " + temp("walk.csv") + " --out " +
+                          temp("walk.bag") + " 2>" + temp("walk.err");
+  ASSERT_EQ(std::system(run.c_str()), 0);
+  std::ifstream err(temp("walk.err"));
+  std::string line;
+  std::getline(err, line);
+  EXPECT_EQ(line.rfind("mbk bag: 40 samples read, 40 written, 0 dropped", 0), 0u) << line;
+  std::ifstream csv(temp("walk.csv"));
+  std::getline(csv, line);  // header
+  int rows = 0, system_rows = 0;
+  for (; std::getline(csv, line); ++rows) {
+    if (line.find(",system,") == std::string::npos) continue;
+    ++system_rows;
+    EXPECT_EQ(line.rfind(std::to_string(system_rows / 60.0).substr(0, 6), 0), 0u) << line;
+  }
+  EXPECT_EQ(rows, 40 * 30);  // 29 bodies and the system per frame
+  EXPECT_EQ(system_rows, 40);
+  EXPECT_EQ(count_topics(temp("walk.bag")).at("/body_kinematics"), 40);
+  std::vector<std::string> args = {"mbk",     "bag",  walk,    "--model", kModel,
+                                   "--scale", "0.01", "--csv", "x.csv"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  try {
+    mbk_offline::parse_bag_options(static_cast<int>(argv.size()), argv.data());
+    ADD_FAILURE() << "--scale with a .yaml model accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--scale, --body-mass and --sex apply to a .bvh model only");
+  }
+}

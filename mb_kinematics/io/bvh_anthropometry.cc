@@ -1,0 +1,438 @@
+#include "mb_kinematics/io/bvh_anthropometry.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <stdexcept>
+
+namespace mbk {
+namespace {
+
+enum Row {
+  kHead,
+  kUpperTrunk,
+  kMiddleTrunk,
+  kLowerTrunk,
+  kUpperArm,
+  kForearm,
+  kHand,
+  kThigh,
+  kShank,
+  kFoot,
+  kRows
+};
+constexpr double kPercent = 0.01;
+// The three trunk parts' lengths in mm (Table 4; upper, middle, lower; male, female): they place
+// XYPH and OMPH on the line from SUPR to MIDH.
+constexpr double kTrunkPartLength[2][3] = {{170.7, 215.5, 145.7}, {142.5, 205.3, 181.5}};
+
+// A segment on one side of the body: 0 none (head, trunk), 1 left, 2 right.
+struct Found {
+  int row;
+  int side;
+  int body;                       // index in BvhFile::segments that carries it
+  Vec3<double> proximal, distal;  // rest pose, in R (mass center measured from `proximal`)
+};
+
+// "mixamorig:LeftUpLeg" -> side 1, "upleg"; "LThumb" -> 1, "thumb"; "Head" -> 0, "head".
+std::pair<int, std::string> side_and_part(std::string name) {
+  name = name.substr(name.rfind(':') + 1);
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  int side = 0;
+  size_t skip = 0;
+  if (lower.rfind("left", 0) == 0)
+    side = 1, skip = 4;
+  else if (lower.rfind("right", 0) == 0)
+    side = 2, skip = 5;
+  else if (name.size() > 1 && (name[0] == 'L' || name[0] == 'R') && std::isupper(name[1]))
+    side = name[0] == 'L' ? 1 : 2, skip = 1;
+  else if (lower.rfind("l_", 0) == 0 || lower.rfind("r_", 0) == 0)
+    side = lower[0] == 'l' ? 1 : 2, skip = 2;
+  std::string part;
+  for (char c : lower.substr(skip))
+    if (c != '_') part += c;
+  return {side, part};
+}
+
+// The skeleton in its rest pose (every angle 0: every body's axes are R's).
+class Skeleton {
+ public:
+  Skeleton(const BvhFile& bvh, double scale) : bvh_(bvh), scale_(scale) {
+    const size_t n = bvh.segments.size();
+    origin_.resize(n);
+    children_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+      const int parent = bvh.segments[i].parent;
+      origin_[i] =
+          scale * bvh.segments[i].offset + (parent < 0 ? Vec3<double>::Zero() : origin_[parent]);
+      if (parent >= 0) children_[parent].push_back(static_cast<int>(i));
+    }
+  }
+  int size() const { return static_cast<int>(origin_.size()); }
+  int parent(int i) const { return bvh_.segments[i].parent; }
+  const Vec3<double>& origin(int i) const { return origin_[i]; }
+  const std::vector<int>& children(int i) const { return children_[i]; }
+  const std::string& name(int i) const { return bvh_.segments[i].name; }
+
+  // The first segment named `side` + one of `parts` (side_and_part), or -1.
+  int find(int side, std::initializer_list<const char*> parts) const {
+    for (int i = 0; i < size(); ++i) {
+      const auto sp = side_and_part(name(i));
+      if (sp.first != side) continue;
+      for (const char* p : parts)
+        if (sp.second == p) return i;
+    }
+    return -1;
+  }
+  // The children's origins' mean, else the End Site, else the origin.
+  Vec3<double> tip(int i) const {
+    if (!children_[i].empty()) {
+      Vec3<double> sum = Vec3<double>::Zero();
+      for (int c : children_[i]) sum += origin_[c];
+      return sum / children_[i].size();
+    }
+    const BvhSegment& s = bvh_.segments[i];
+    return s.has_end_site ? Vec3<double>(origin_[i] + scale_ * s.end_site) : origin_[i];
+  }
+  // The point of i's subtree (origins and End Sites) farthest from `from`.
+  Vec3<double> farthest(int i, const Vec3<double>& from) const {
+    Vec3<double> best = tip(i);
+    for (int j = i; j < size(); ++j) {
+      if (!in_subtree(j, i)) continue;
+      for (const Vec3<double>& p : {origin_[j], tip(j)})
+        if ((p - from).norm() > (best - from).norm()) best = p;
+    }
+    return best;
+  }
+  bool in_subtree(int j, int root) const {
+    while (j > root) j = parent(j);
+    return j == root;
+  }
+
+ private:
+  const BvhFile& bvh_;
+  double scale_;
+  std::vector<Vec3<double>> origin_;
+  std::vector<std::vector<int>> children_;
+};
+
+// The parent of `child` in a limb; -1 if `child` is missing or the root.
+int limb_parent(const Skeleton& s, int child) { return child > 0 ? s.parent(child) : -1; }
+
+// Upper arm, forearm, hand and thigh, shank, foot of one side, found from the hand (Hand or
+// Wrist; without one, from the forearm: ForeArm or Elbow) and the foot (Foot or Ankle; else the
+// shank: Leg or Knee) upwards.
+void find_limbs(const Skeleton& s, int side, std::vector<Found>& found) {
+  const int hand = s.find(side, {"hand", "wrist"});
+  const int forearm = hand > 0 ? limb_parent(s, hand) : s.find(side, {"forearm", "elbow"});
+  const int upper_arm = limb_parent(s, forearm);
+  const int foot = s.find(side, {"foot", "ankle"});
+  const int shank = foot > 0 ? limb_parent(s, foot) : s.find(side, {"leg", "knee"});
+  const int thigh = limb_parent(s, shank);
+  auto add = [&](int row, int body, int next) {
+    if (body > 0) found.push_back({row, side, body, s.origin(body), s.origin(next)});
+  };
+  if (upper_arm > 0) add(kUpperArm, upper_arm, forearm);
+  if (forearm > 0) add(kForearm, forearm, hand);
+  if (hand > 0) found.push_back({kHand, side, hand, s.origin(hand), s.tip(hand)});
+  if (thigh > 0) add(kThigh, thigh, shank);
+  if (shank > 0) add(kShank, shank, foot);
+  if (foot > 0)
+    found.push_back({kFoot, side, foot, s.origin(foot), s.farthest(foot, s.origin(foot))});
+}
+
+const Found* find_row(const std::vector<Found>& found, int row, int side) {
+  for (const Found& f : found)
+    if (f.row == row && f.side == side) return &f;
+  return nullptr;
+}
+
+// The lowest Neck* above the head (the head itself if none): its origin stands for CERV/SUPR.
+int cervical(const Skeleton& s, int head) {
+  int c = head;
+  while (c > 0 && side_and_part(s.name(s.parent(c))).second.rfind("neck", 0) == 0) c = s.parent(c);
+  return c;
+}
+
+// Head and neck from VERT (the head's farthest point) to CERV; the trunk's three parts on the
+// line from MIDH (mid-hip: between the thighs, else the root) to CERV, each on the spine body
+// whose span along that line holds its mass center (doc/anthropometry.md).
+void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) {
+  const int head = s.find(0, {"head"});
+  if (head <= 0) return;
+  const int neck = cervical(s, head);
+  const Vec3<double> cerv = s.origin(neck);
+  found.push_back({kHead, 0, head, s.farthest(head, cerv), cerv});
+  const Found* left = find_row(found, kThigh, 1);
+  const Found* right = find_row(found, kThigh, 2);
+  const Vec3<double> midh =
+      left && right ? Vec3<double>((left->proximal + right->proximal) / 2) : s.origin(0);
+  const Vec3<double> line = cerv - midh;
+  std::vector<int> spine;  // the root up to the neck's parent
+  for (int b = s.parent(neck); b >= 0; b = s.parent(b)) spine.insert(spine.begin(), b);
+  const double* part = kTrunkPartLength[static_cast<int>(sex)];
+  const double total = part[0] + part[1] + part[2];
+  const Vec3<double> xyph = cerv - line * (part[0] / total);
+  const Vec3<double> omph = midh + line * (part[2] / total);
+  const Vec3<double> ends[3][2] = {{cerv, xyph}, {xyph, omph}, {omph, midh}};
+  for (int i = 0; i < 3; ++i) {
+    const SegmentRow& row = de_leva_table()[kUpperTrunk + i];
+    const Vec3<double> c =
+        ends[i][0] + row.mass_center[static_cast<int>(sex)] * kPercent * (ends[i][1] - ends[i][0]);
+    const double t = (c - midh).dot(line) / line.squaredNorm();
+    int body = spine.front();
+    for (int b : spine)
+      if ((s.origin(b) - midh).dot(line) / line.squaredNorm() <= t) body = b;
+    found.push_back({kUpperTrunk + i, 0, body, ends[i][0], ends[i][1]});
+  }
+}
+
+// Anatomical directions in the rest pose: up (MIDH to CERV, else +y) and lateral (right to left
+// thigh, else upper arm, else +x), made orthogonal.
+struct Directions {
+  Vec3<double> up, lateral, forward;
+};
+
+Directions directions_of(const std::vector<Found>& found) {
+  Directions d{Vec3<double>::UnitY(), Vec3<double>::UnitX(), Vec3<double>::Zero()};
+  const Found* trunk = find_row(found, kLowerTrunk, 0);
+  const Found* head = find_row(found, kHead, 0);
+  if (trunk && head && (head->distal - trunk->distal).norm() > 0)
+    d.up = (head->distal - trunk->distal).normalized();
+  for (int row : {kThigh, kUpperArm}) {
+    const Found* l = find_row(found, row, 1);
+    const Found* r = find_row(found, row, 2);
+    if (!l || !r) continue;
+    const Vec3<double> across = l->proximal - r->proximal;
+    if ((across - across.dot(d.up) * d.up).norm() <= 0) continue;
+    d.lateral = across;
+    break;
+  }
+  d.lateral = (d.lateral - d.lateral.dot(d.up) * d.up).normalized();
+  d.forward = d.lateral.cross(d.up);
+  return d;
+}
+
+// The central inertia of a segment of mass m from its radii of gyration: longitudinal about the
+// segment's line, sagittal about the forward axis across it, transverse about the third (for a
+// segment along the forward axis, the foot: transverse about the lateral axis).
+Mat3<double> segment_inertia(const SegmentRow& row, int sex, double m, const Found& f,
+                             const Directions& d) {
+  const Vec3<double> along = f.distal - f.proximal;
+  const double length = along.norm();
+  if (length == 0) return Mat3<double>::Zero();
+  const Vec3<double> u = along / length;
+  Vec3<double> sagittal = d.forward - d.forward.dot(u) * u;
+  Vec3<double> transverse;
+  if (sagittal.norm() > 0.5) {
+    sagittal.normalize();
+    transverse = u.cross(sagittal);
+  } else {
+    transverse = (d.lateral - d.lateral.dot(u) * u).normalized();
+    sagittal = transverse.cross(u);
+  }
+  auto moment = [&](const double* r, const Vec3<double>& axis) -> Mat3<double> {
+    const double k = r[sex] * kPercent * length;
+    return m * k * k * axis * axis.transpose();
+  };
+  return moment(row.sagittal, sagittal) + moment(row.transverse, transverse) +
+         moment(row.longitudinal, u);
+}
+
+// Bodies no segment accounts for: not carrying one, not in a hand's, foot's or head's subtree,
+// not on the spine or the neck, not between the trunk and a limb (hip joints, clavicles).
+std::vector<std::string> uncovered(const Skeleton& s, const std::vector<Found>& found) {
+  std::vector<bool> covered(s.size(), false);
+  for (const Found& f : found) {
+    covered[f.body] = true;
+    if (f.row == kHand || f.row == kFoot || f.row == kHead)
+      for (int j = f.body; j < s.size(); ++j) covered[j] = covered[j] || s.in_subtree(j, f.body);
+  }
+  for (const Found& f : found) {  // up from each segment to the first covered body
+    for (int b = s.parent(f.body); b >= 0 && !covered[b]; b = s.parent(b)) covered[b] = true;
+  }
+  std::vector<std::string> names;
+  for (int i = 0; i < s.size(); ++i)
+    if (!covered[i]) names.push_back(s.name(i));
+  return names;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+std::vector<std::string> missing_rows(const std::vector<Found>& found) {
+  static const char* const kSide[] = {"", "left ", "right "};
+  std::vector<std::string> names;
+  for (int row = 0; row < kRows; ++row) {
+    const bool limb = row >= kUpperArm;
+    for (int side = limb ? 1 : 0; side <= (limb ? 2 : 0); ++side)
+      if (!find_row(found, row, side))
+        names.push_back(kSide[side] + std::string(de_leva_table()[row].name));
+  }
+  return names;
+}
+
+// Mass, mass center (in R, rest pose) and central inertia gathered on one body.
+struct Lumped {
+  double mass = 0;
+  Vec3<double> moment = Vec3<double>::Zero();  // sum of m_i c_i
+  std::vector<std::pair<double, Vec3<double>>> parts;
+  Mat3<double> inertia = Mat3<double>::Zero();  // sum of the parts' central inertias
+};
+
+}  // namespace
+
+Sex sex_from_string(const std::string& text) {
+  if (text == "male" || text == "m") return Sex::kMale;
+  if (text == "female" || text == "f") return Sex::kFemale;
+  throw std::invalid_argument("sex: '" + text + "' is neither male nor female (de Leva's columns)");
+}
+
+const std::vector<SegmentRow>& de_leva_table() {
+  // Percent, as printed in Table 4; head and neck from its lower part (VERT to CERV).
+  static const std::vector<SegmentRow> table = {
+      {"head and neck",
+       "VERT",
+       "CERV",
+       {6.94, 6.68},
+       {50.02, 48.41},
+       {30.3, 27.1},
+       {31.5, 29.5},
+       {26.1, 26.1}},
+      {"upper trunk",
+       "SUPR",
+       "XYPH",
+       {15.96, 15.45},
+       {29.99, 20.77},
+       {71.6, 74.6},
+       {45.4, 50.2},
+       {65.9, 71.8}},
+      {"middle trunk",
+       "XYPH",
+       "OMPH",
+       {16.33, 14.65},
+       {45.02, 45.12},
+       {48.2, 43.3},
+       {38.3, 35.4},
+       {46.8, 41.5}},
+      {"lower trunk",
+       "OMPH",
+       "MIDH",
+       {11.17, 12.47},
+       {61.15, 49.20},
+       {61.5, 43.3},
+       {55.1, 40.2},
+       {58.7, 44.4}},
+      {"upper arm",
+       "SJC",
+       "EJC",
+       {2.71, 2.55},
+       {57.72, 57.54},
+       {28.5, 27.8},
+       {26.9, 26.0},
+       {15.8, 14.8}},
+      {"forearm",
+       "EJC",
+       "WJC",
+       {1.62, 1.38},
+       {45.74, 45.59},
+       {27.6, 26.1},
+       {26.5, 25.7},
+       {12.1, 9.4}},
+      {"hand",
+       "WJC",
+       "MET3",
+       {0.61, 0.56},
+       {79.00, 74.74},
+       {62.8, 53.1},
+       {51.3, 45.4},
+       {40.1, 33.5}},
+      {"thigh",
+       "HJC",
+       "KJC",
+       {14.16, 14.78},
+       {40.95, 36.12},
+       {32.9, 36.9},
+       {32.9, 36.4},
+       {14.9, 16.2}},
+      {"shank",
+       "KJC",
+       "LMAL",
+       {4.33, 4.81},
+       {44.59, 44.16},
+       {25.5, 27.1},
+       {24.9, 26.7},
+       {10.3, 9.3}},
+      {"foot",
+       "HEEL",
+       "TTIP",
+       {1.37, 1.29},
+       {44.15, 40.14},
+       {25.7, 29.9},
+       {24.5, 27.9},
+       {12.4, 13.9}},
+  };
+  return table;
+}
+
+double de_leva_mass_sum(Sex sex) {
+  double sum = 0;
+  for (size_t row = 0; row < de_leva_table().size(); ++row)
+    sum += (row >= kUpperArm ? 2 : 1) * de_leva_table()[row].mass[static_cast<int>(sex)];
+  return sum * kPercent;
+}
+
+std::string set_segment_parameters(const BvhFile& bvh, double scale, double body_mass, Sex sex,
+                                   Model& model) {
+  if (!(body_mass > 0) || !std::isfinite(body_mass))
+    throw std::invalid_argument("body mass: must be a positive number of kg");
+  const Skeleton s(bvh, scale);
+  std::vector<Found> found;
+  for (int side : {1, 2}) find_limbs(s, side, found);
+  find_head_and_trunk(s, sex, found);
+  const int x = static_cast<int>(sex);
+  double fraction_found = 0;
+  for (const Found& f : found) fraction_found += de_leva_table()[f.row].mass[x];
+  const Directions d = directions_of(found);
+  std::vector<Lumped> lumped(s.size());
+  for (const Found& f : found) {
+    const SegmentRow& row = de_leva_table()[f.row];
+    const double m = body_mass * row.mass[x] / fraction_found;
+    const Vec3<double> c = f.proximal + row.mass_center[x] * kPercent * (f.distal - f.proximal);
+    Lumped& l = lumped[f.body];
+    l.mass += m;
+    l.moment += m * c;
+    l.parts.push_back({m, c});
+    l.inertia += segment_inertia(row, x, m, f, d);
+  }
+  for (int i = 0; i < s.size(); ++i) {
+    Lumped& l = lumped[i];
+    if (l.mass == 0) continue;
+    const Vec3<double> c = l.moment / l.mass;
+    for (const auto& [m, ci] : l.parts) {  // parallel axes (Steiner)
+      const Vec3<double> r = ci - c;
+      l.inertia += m * (r.squaredNorm() * Mat3<double>::Identity() - r * r.transpose());
+    }
+    Body& body = model.bodies[i + 1];
+    body.mass = l.mass;
+    body.mass_center = c - s.origin(i);  // body axes are R's in the rest pose
+    body.inertia = l.inertia;
+    body.has_inertia = true;
+  }
+  const std::vector<std::string> massless = uncovered(s, found);
+  const std::vector<std::string> missing = missing_rows(found);
+  if (massless.empty() && missing.empty()) return "";
+  std::string note = bvh.path + ": segment parameters (de Leva 1996):";
+  if (!massless.empty()) note += " massless, in no table segment: " + join(massless) + ";";
+  if (!missing.empty())
+    note += " not found (their mass spread over the others): " + join(missing) + ";";
+  note.pop_back();
+  return note;
+}
+
+}  // namespace mbk

@@ -1,0 +1,50 @@
+// Segment masses, mass centers and inertias of a BVH skeleton from de Leva (1996), "Adjustments
+// to Zatsiorsky-Seluyanov's segment inertia parameters", J. Biomech. 29(9):1223-1230, Table 4,
+// for a given body mass and sex (doc/anthropometry.md: the table as used, the naming map, the
+// rules). ROS-free.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/io/bvh.h"
+
+namespace mbk {
+
+enum class Sex { kMale, kFemale };
+
+// "male"/"female" (also "m"/"f"); std::invalid_argument naming the text otherwise.
+Sex sex_from_string(const std::string& text);
+
+// One row of de Leva's Table 4: the mass as a fraction of the body's, the mass center's distance
+// from the `proximal` landmark as a fraction of the segment's length (proximal to distal), and
+// the radii of gyration about the sagittal, transverse and longitudinal axes through the mass
+// center as fractions of the length. Index [0] male, [1] female.
+struct SegmentRow {
+  const char* name;
+  const char* proximal;  // the landmark the mass center is measured from
+  const char* distal;
+  double mass[2];
+  double mass_center[2];
+  double sagittal[2];
+  double transverse[2];
+  double longitudinal[2];
+};
+
+// The rows used (head and neck, upper/middle/lower trunk, upper arm, forearm, hand, thigh,
+// shank, foot), one per segment; limbs appear once and count twice (left and right).
+const std::vector<SegmentRow>& de_leva_table();
+// The sum of every segment's mass fraction, limbs counted twice: 1 up to the table's rounding.
+double de_leva_mass_sum(Sex sex);
+
+// Sets mass, mass_center and inertia of the bodies of `model` (model_from_bvh of `bvh` with
+// the same `scale`) for a body of `body_mass` kg: each table segment found in the skeleton on
+// the body named in doc/anthropometry.md, the fractions of segments not found spread over the
+// found ones in proportion, so that the masses sum to body_mass. Bodies covered by no segment
+// stay massless. Returns "" or one note naming the bodies without mass that no segment covers
+// and the segments not found.
+std::string set_segment_parameters(const BvhFile& bvh, double scale, double body_mass, Sex sex,
+                                   Model& model);
+
+}  // namespace mbk
