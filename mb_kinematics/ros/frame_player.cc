@@ -4,7 +4,28 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mb_kinematics/io/bvh.h"
+#include "mb_kinematics/io/bvh_model.h"
+
 namespace mbk_ros {
+
+PlayerFrames bvh_player_frames(const std::string& path, double scale) {
+  mbk::BvhFile bvh = mbk::read_bvh(path);
+  mbk::unwrap_rotations(bvh);
+  mbk::BvhModelOptions options;
+  options.scale = scale;
+  const mbk::Model model = mbk::model_from_bvh(bvh, options);
+  PlayerFrames frames;
+  frames.names = model.coordinate_names;
+  frames.frame_count = bvh.frame_count;
+  frames.frame_time = bvh.frame_time;
+  frames.positions.reserve(static_cast<size_t>(bvh.frame_count) * model.nq);
+  for (int f = 0; f < bvh.frame_count; ++f) {
+    const std::vector<double> q = mbk::bvh_frame_coordinates(bvh, model, f, scale);
+    frames.positions.insert(frames.positions.end(), q.begin(), q.end());
+  }
+  return frames;
+}
 
 void check_player(const PlayerFrames& frames, const PlayerOptions& options) {
   if (!(options.rate > 0) || !std::isfinite(options.rate))

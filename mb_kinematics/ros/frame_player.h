@@ -24,6 +24,12 @@ struct PlayerOptions {
   double loop_pause = 1.5;  // ~loop_pause (s): no message between the last frame and the first
 };
 
+// The frames of the BVH file at `path` as the coordinates of its model (io/bvh_model.h, names
+// and order of model_from_bvh): radians, positions times `scale` metres; rotations unwrapped
+// at +-180 degrees so that the node differentiates no jump. Throws std::invalid_argument
+// "<path>:<line>: ..." for a file the loader refuses.
+PlayerFrames bvh_player_frames(const std::string& path, double scale);
+
 // Throws std::invalid_argument naming the parameter if `options` cannot play `frames` (rate
 // not positive and finite, a negative pause, no frames, a frame time not positive).
 void check_player(const PlayerFrames& frames, const PlayerOptions& options);
