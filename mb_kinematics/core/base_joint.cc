@@ -103,7 +103,7 @@ void euler_coordinates(const Mat3<double>& r, const Vec3<double>& w, const Vec3<
 std::string angles_123_coordinates(const Mat3<double>& r, const Vec3<double>& w,
                                    const Vec3<double>& alpha, double* q, double* qd, double* qdd) {
   const double b = std::asin(std::clamp(r(0, 2), -1.0, 1.0));
-  if (std::abs(std::cos(b)) < 1e-9) return "base orientation at gimbal lock of the 1-2-3 angles";
+  if (std::abs(std::cos(b)) < 1e-9) return "at gimbal lock";
   q[0] = std::atan2(-r(1, 2), r(2, 2));
   q[1] = b;
   q[2] = std::atan2(-r(0, 1), r(0, 0));
@@ -122,6 +122,24 @@ std::string angles_123_coordinates(const Mat3<double>& r, const Vec3<double>& w,
   for (int i = 0; i < 3; ++i) rest -= columns_dot[i] * qd[i];
   const Vec3<double> second = lu.solve(rest);
   for (int i = 0; i < 3; ++i) qdd[i] = second[i];
+  return "";
+}
+
+// The angles of r in `order` and their derivatives (euler_order.h): the 1-2-3 angles of
+// P^T r Q^T with w and alpha in P's frame, then beta = beta' - shift, gamma = sign gamma'.
+std::string ordered_angles_coordinates(EulerOrder order, const Mat3<double>& r,
+                                       const Vec3<double>& w, const Vec3<double>& alpha, double* q,
+                                       double* qd, double* qdd) {
+  const EulerMap& map = euler_map(order);
+  const Mat3<double> pt = map.p.matrix().transpose();
+  const std::string error =
+      angles_123_coordinates(pt * r * map.q.matrix().transpose(), pt * w, pt * alpha, q, qd, qdd);
+  if (!error.empty())
+    return "base orientation " + error + " of the " + to_string(order) + " angles";
+  if (map.shifted) q[1] -= M_PI / 2;
+  q[2] *= map.gamma_sign;
+  qd[2] *= map.gamma_sign;
+  if (qdd) qdd[2] *= map.gamma_sign;
   return "";
 }
 
@@ -147,7 +165,8 @@ std::string free_joint_coordinates(const Joint& joint, const BaseMotion& m, doub
     euler_coordinates(r, w, alpha, q + 3, qd + 3, qdd ? qdd + 3 : nullptr);
     return "";
   }
-  return angles_123_coordinates(r, w, alpha, q + 3, qd + 3, qdd ? qdd + 3 : nullptr);
+  return ordered_angles_coordinates(joint.euler_order, r, w, alpha, q + 3, qd + 3,
+                                    qdd ? qdd + 3 : nullptr);
 }
 
 }  // namespace mbk

@@ -30,7 +30,7 @@ Model without_root_body(const Model& model);
 // The coordinates, first and second derivatives of a free joint (free_123 or free_euler, with
 // its offset q_k and rotation C_k) from R that put its body at `m` (doc/method.md 2: SJK = C_k
 // R_motion, origin q_k + C_k s_k); qdd may be null (then no accelerations). Returns an error
-// for other joints and for 1-2-3 angles at gimbal lock (|cos beta| < 1e-9).
+// for other joints and for angles at gimbal lock (|cos(beta + shift)| < 1e-9, euler_order.h).
 std::string free_joint_coordinates(const Joint& joint, const BaseMotion& m, double* q, double* qd,
                                    double* qdd);
 

@@ -25,9 +25,10 @@ JointKernel kernel_of(const Joint& joint) {
   if (type == JointType::kRevolute) return revolute_kernel(joint, rotated);
   if (type == JointType::kPrismatic)
     return rotated ? JointKernel::kPrismaticRotated : JointKernel::kPrismatic;
-  if (type == JointType::kBall123) return JointKernel::kBall123;
+  const bool xyz = joint.euler_order == EulerOrder::kXYZ;
+  if (type == JointType::kBall123) return xyz ? JointKernel::kBall123 : JointKernel::kBallOrdered;
   if (type == JointType::kBallEuler) return JointKernel::kBallEuler;
-  if (type == JointType::kFree123) return JointKernel::kFree123;
+  if (type == JointType::kFree123) return xyz ? JointKernel::kFree123 : JointKernel::kFreeOrdered;
   if (type == JointType::kFreeEuler) return JointKernel::kFreeEuler;
   if (type == JointType::kPlanar) return JointKernel::kPlanar;
   return JointKernel::kGeneric;  // no kernel of its own: joint_motion
@@ -69,8 +70,10 @@ std::vector<int> angle_offsets(JointKernel kernel) {
     case JointKernel::kRevolute:
       return {0};
     case JointKernel::kBall123:
+    case JointKernel::kBallOrdered:
       return {0, 1, 2};
     case JointKernel::kFree123:
+    case JointKernel::kFreeOrdered:
       return {3, 4, 5};
     case JointKernel::kPlanar:
       return {2};
@@ -97,7 +100,15 @@ PaddedMat3 padded(const Mat3<double>& m) {
 
 bool is_ball_or_free(JointKernel kernel) {
   return kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
-         kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
+         kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
+         kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered;
+}
+
+// A ball or free joint's constant M = C_k, times P for angles in another order (euler_order.h).
+Mat3<double> ball_matrix(const Joint& joint, JointKernel kernel) {
+  if (kernel != JointKernel::kBallOrdered && kernel != JointKernel::kFreeOrdered)
+    return joint.rotation;
+  return joint.rotation * euler_map(joint.euler_order).p.matrix();
 }
 
 }  // namespace
@@ -122,10 +133,15 @@ BodySteps make_body_steps(const Model& model, KernelChoice choice) {
       if (step.angle < 0) step.angle = static_cast<int>(out.angles.size());
       out.angles.push_back(body.q_index + offset);
     }
-    const bool rotated = body.joint.rotation != Mat3<double>::Identity();
-    if (step.kernel == JointKernel::kFixedRotated ||
-        step.kernel == JointKernel::kPrismaticRotated ||
-        (is_ball_or_free(step.kernel) && rotated)) {
+    step.euler_order = body.joint.euler_order;
+    if (is_ball_or_free(step.kernel)) {
+      const Mat3<double> m = ball_matrix(body.joint, step.kernel);
+      if (m != Mat3<double>::Identity()) {
+        step.matrices = static_cast<int>(out.matrices.size());
+        out.matrices.push_back(m);
+      }
+    } else if (step.kernel == JointKernel::kFixedRotated ||
+               step.kernel == JointKernel::kPrismaticRotated) {
       step.matrices = static_cast<int>(out.matrices.size());
       out.matrices.push_back(body.joint.rotation);
     } else if (step.kernel == JointKernel::kRevolute) {

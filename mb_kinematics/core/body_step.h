@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/types.h"
 
 namespace mbk {
@@ -31,6 +32,8 @@ enum class JointKernel : std::uint8_t {
   kBallEuler,         // SJK = C_k R(e), Euler parameters
   kFree123,           // s_k = C_k (x, y, z), then kBall123
   kFreeEuler,         // s_k = C_k (x, y, z), then kBallEuler
+  kBallOrdered,       // angles in another order: SJK = (C_k P) A B(beta + shift) C(sign gamma) Q
+  kFreeOrdered,       // s_k = C_k (x, y, z), then kBallOrdered (euler_order.h EulerMap)
   kPlanar,            // SJK = P0 + cos q P1 + sin q P2 about the normal, s_k = x C u1 + y C u2
   kGeneric,           // any joint type through joint_motion (a type without a kernel of its own)
 };
@@ -52,9 +55,11 @@ struct BodyStep {
   int q_index = 0;
   int v_index = 0;
   // This body's first constant in BodySteps::matrices: C_k (fixed, prismatic, ball and free
-  // joints with C_k != I), P0 P1 P2 (revolute), P0 P1 P2 [C u1, C u2, C a] (planar); else -1.
+  // joints with C_k != I; C_k P for other Euler orders when not I), P0 P1 P2 (revolute), P0 P1 P2
+  // [C u1, C u2, C a] (planar); else -1.
   int matrices = -1;
   int angle = -1;  // its first angle in BodySteps::angles (revolute, 1-2-3 and planar joints)
+  EulerOrder euler_order = EulerOrder::kXYZ;        // kBallOrdered, kFreeOrdered: C_k P in matrices
   Vec3<double> offset = Vec3<double>::Zero();       // q_k, in Bj
   Vec3<double> mass_center = Vec3<double>::Zero();  // r_k, in Bk
   Vec3<double> axis = Vec3<double>::Zero();         // C_k a, in Bj: w_k / q' or s_k' / q'

@@ -5,24 +5,15 @@
 
 namespace mbk {
 
-namespace {
+Mat3<double> SignedPermutation::matrix() const {
+  Mat3<double> m = Mat3<double>::Zero();
+  for (int j = 0; j < 3; ++j) m(index[j], j) = sign[j];
+  return m;
+}
 
-constexpr std::array<std::array<int, 3>, 12> kAxes{{{0, 1, 2},
-                                                    {0, 2, 1},
-                                                    {1, 0, 2},
-                                                    {1, 2, 0},
-                                                    {2, 0, 1},
-                                                    {2, 1, 0},
-                                                    {0, 1, 0},
-                                                    {0, 2, 0},
-                                                    {1, 0, 1},
-                                                    {1, 2, 1},
-                                                    {2, 0, 2},
-                                                    {2, 1, 2}}};
-
-}  // namespace
-
-std::array<int, 3> euler_axes(EulerOrder order) { return kAxes.at(static_cast<size_t>(order)); }
+std::array<int, 3> euler_axes(EulerOrder order) {
+  return kEulerAxes.at(static_cast<size_t>(order));
+}
 
 bool is_tait_bryan(EulerOrder order) {
   const std::array<int, 3> a = euler_axes(order);
@@ -36,8 +27,8 @@ std::string to_string(EulerOrder order) {
 }
 
 EulerOrder euler_order_from_axes(const std::array<int, 3>& axes) {
-  for (size_t i = 0; i < kAxes.size(); ++i)
-    if (kAxes[i] == axes) return static_cast<EulerOrder>(i);
+  for (size_t i = 0; i < kEulerAxes.size(); ++i)
+    if (kEulerAxes[i] == axes) return static_cast<EulerOrder>(i);
   throw std::invalid_argument("not an Euler order: axes " + std::to_string(axes[0]) + ", " +
                               std::to_string(axes[1]) + ", " + std::to_string(axes[2]));
 }
@@ -54,7 +45,7 @@ EulerOrder euler_order_from_string(const std::string& text) {
     else
       ok = false;
   }
-  for (const std::array<int, 3>& a : kAxes)
+  for (const std::array<int, 3>& a : kEulerAxes)
     if (ok && a == axes) return euler_order_from_axes(axes);
   throw std::invalid_argument("unknown Euler order '" + text +
                               "' (one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, "

@@ -7,6 +7,8 @@
 #include <array>
 #include <string>
 
+#include "mb_kinematics/core/types.h"
+
 namespace mbk {
 
 enum class EulerOrder {
@@ -25,6 +27,20 @@ enum class EulerOrder {
   kLast = kZYZ,  // keep equal to the last order
 };
 
+// The axes of the 12 orders, in EulerOrder order.
+inline constexpr std::array<std::array<int, 3>, 12> kEulerAxes{{{0, 1, 2},
+                                                                {0, 2, 1},
+                                                                {1, 0, 2},
+                                                                {1, 2, 0},
+                                                                {2, 0, 1},
+                                                                {2, 1, 0},
+                                                                {0, 1, 0},
+                                                                {0, 2, 0},
+                                                                {1, 0, 1},
+                                                                {1, 2, 1},
+                                                                {2, 0, 2},
+                                                                {2, 1, 2}}};
+
 // The axes of the three rotations in order, 0 = x, 1 = y, 2 = z.
 std::array<int, 3> euler_axes(EulerOrder order);
 // True for the six Tait-Bryan orders (three different axes).
@@ -38,5 +54,82 @@ EulerOrder euler_order_from_string(const std::string& text);
 // The order whose axes are `axes` (0 = x, 1 = y, 2 = z); std::invalid_argument if two successive
 // axes are equal or an axis is out of range.
 EulerOrder euler_order_from_axes(const std::array<int, 3>& axes);
+
+// Every order is the chapter's 1-2-3 rotation between two constant signed axis permutations
+// (the one place that maps the orders; the kernels and joint_motion use it):
+//   R_a1(alpha) R_a2(beta) R_a3(gamma) = P R_123(alpha, beta + shift, sign * gamma) Q.
+// Proof. For a rotation P, P R_u(t) P^T = R_{P u}(t). Take P with columns e_a1, e_a2,
+// e_a1 x e_a2 (a proper rotation): P R_x(t) P^T = R_a1(t), P R_y(t) P^T = R_a2(t).
+// - Tait-Bryan (a3 != a1): e_a1 x e_a2 = sign e_a3, sign = +1 for the cyclic orders XYZ, YZX,
+//   ZXY and -1 for the others, so P R_z(sign t) P^T = R_{sign e_a3}(sign t) = R_a3(t). Then
+//   R_a1 R_a2 R_a3 = P R_x(alpha) R_y(beta) R_z(sign gamma) P^T: shift 0, Q = P^T.
+// - Proper Euler (a3 = a1): R_y(pi/2) carries e_z to e_x, so R_x(t) = R_y(pi/2) R_z(t) R_y(-pi/2)
+//   and R_a1(gamma) = P R_y(pi/2) R_z(gamma) R_y(-pi/2) P^T; R_y(beta) R_y(pi/2) =
+//   R_y(beta + pi/2): shift pi/2, sign +1, Q = R_y(-pi/2) P^T.
+// P and Q being constant, the relative angular velocity (in Bj) is P times the 1-2-3 one at the
+// shifted angles: [w] = R' R^T = P (R_123' R_123^T) P^T, and its columns are P [e1, A e2,
+// sign A B e3] (eq. 4.4.13-4.4.16); the gimbal lock is cos(beta + shift) = 0: beta = +-90 deg
+// (Tait-Bryan), beta = 0 or 180 deg (proper Euler). The shift is exact: cos(beta + pi/2) =
+// -sin beta, sin(beta + pi/2) = cos beta. euler_order_test checks the identity for all 12.
+struct SignedPermutation {  // column j is sign[j] times the unit vector e_{index[j]}
+  std::array<int, 3> index;
+  std::array<int, 3> sign;
+  Mat3<double> matrix() const;
+  template <typename S>
+  Vec3<S> transpose_times(const Vec3<S>& v) const {  // row j of P^T is column j of P
+    return Vec3<S>(S(sign[0]) * v[index[0]], S(sign[1]) * v[index[1]], S(sign[2]) * v[index[2]]);
+  }
+};
+
+struct EulerMap {
+  SignedPermutation p, q;
+  bool shifted;    // proper Euler: beta + pi/2 (cos -> -sin beta, sin -> cos beta)
+  int gamma_sign;  // -1 for the non-cyclic Tait-Bryan orders
+};
+
+namespace detail {
+
+constexpr SignedPermutation product(const SignedPermutation& a, const SignedPermutation& b) {
+  SignedPermutation ab{};  // column j of A B = sign_b[j] A e_{index_b[j]}
+  for (int j = 0; j < 3; ++j) {
+    ab.index[j] = a.index[b.index[j]];
+    ab.sign[j] = a.sign[b.index[j]] * b.sign[j];
+  }
+  return ab;
+}
+
+constexpr SignedPermutation transpose(const SignedPermutation& a) {
+  SignedPermutation t{};  // column index[j] of A^T is sign[j] e_j
+  for (int j = 0; j < 3; ++j) {
+    t.index[a.index[j]] = j;
+    t.sign[a.index[j]] = a.sign[j];
+  }
+  return t;
+}
+
+constexpr EulerMap make_euler_map(const std::array<int, 3>& a) {
+  const int third = 3 - a[0] - a[1];                      // the axis neither a1 nor a2
+  const int cross = (a[1] - a[0] + 3) % 3 == 1 ? 1 : -1;  // e_a1 x e_a2 = cross e_third
+  const SignedPermutation p{{a[0], a[1], third}, {1, 1, cross}};
+  const SignedPermutation turn{{2, 1, 0}, {1, 1, -1}};  // R_y(-pi/2)
+  const bool proper = a[2] == a[0];
+  return EulerMap{p, proper ? product(turn, transpose(p)) : transpose(p), proper,
+                  proper ? 1 : cross};
+}
+
+}  // namespace detail
+
+// The map of each order, in EulerOrder order.
+inline constexpr std::array<EulerMap, 12> kEulerMaps{
+    detail::make_euler_map(kEulerAxes[0]),  detail::make_euler_map(kEulerAxes[1]),
+    detail::make_euler_map(kEulerAxes[2]),  detail::make_euler_map(kEulerAxes[3]),
+    detail::make_euler_map(kEulerAxes[4]),  detail::make_euler_map(kEulerAxes[5]),
+    detail::make_euler_map(kEulerAxes[6]),  detail::make_euler_map(kEulerAxes[7]),
+    detail::make_euler_map(kEulerAxes[8]),  detail::make_euler_map(kEulerAxes[9]),
+    detail::make_euler_map(kEulerAxes[10]), detail::make_euler_map(kEulerAxes[11])};
+
+inline const EulerMap& euler_map(EulerOrder order) {
+  return kEulerMaps[static_cast<size_t>(order)];
+}
 
 }  // namespace mbk

@@ -93,8 +93,8 @@ struct Joint {
   Vec3<double> axis = Vec3<double>::UnitZ();         // unit; revolute, prismatic, planar normal
   Vec3<double> offset = Vec3<double>::Zero();        // q_k: O_j -> Q_k, components in Bj
   Mat3<double> rotation = Mat3<double>::Identity();  // C_k: SJK = C_k * R_motion(coordinates)
-  // kBall123, kFree123: the axes of alpha, beta, gamma (euler_order.h); only XYZ is computed so
-  // far, the others are refused by Model::validate until the kernels take them (issue 26.1).
+  // kBall123, kFree123: the axes of alpha, beta, gamma (euler_order.h), any of the 12 orders:
+  // SJK = C_k R_a1(alpha) R_a2(beta) R_a3(gamma). The others ignore it.
   EulerOrder euler_order = EulerOrder::kXYZ;
 };
 

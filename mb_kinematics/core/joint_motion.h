@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/joint.h"
 #include "mb_kinematics/core/sincos.h"
 #include "mb_kinematics/core/types.h"
@@ -90,6 +91,41 @@ void angles_123_columns(S ca, S sa, S cb, S sb, const S* qd, Vec3<S>* angular,
       qd[0] * Vec3<S>(S(0), -ca * cb, -sa * cb) + qd[1] * Vec3<S>(cb, sa * sb, -ca * sb);
 }
 
+// Ball and free joints' angles alpha, beta, gamma in any order (euler_order.h): the 1-2-3
+// rotation and columns at (alpha, beta + shift, sign gamma), carried by the order's P and Q:
+// SJK = P R_123 Q, columns P [e1, A e2, sign A B e3] and their rates. qd: nullptr for the
+// rotation alone.
+template <typename S>
+Mat3<S> angles_motion(EulerOrder order, const S* q, const S* qd, Vec3<S>* angular,
+                      Vec3<S>* angular_dot) {
+  S ca, sa, cb, sb, cg, sg;
+  sin_cos(q[0], sa, ca);
+  sin_cos(q[1], sb, cb);
+  sin_cos(q[2], sg, cg);
+  if (order == EulerOrder::kXYZ) {  // P = Q = I
+    if (qd) angles_123_columns(ca, sa, cb, sb, qd, angular, angular_dot);
+    return rotation_123(ca, sa, cb, sb, cg, sg);
+  }
+  const EulerMap& map = euler_map(order);
+  if (map.shifted) {  // cos, sin of beta + pi/2
+    const S c = cb;
+    cb = -sb;
+    sb = c;
+  }
+  sg *= S(map.gamma_sign);
+  const Mat3<S> p = map.p.matrix().cast<S>();
+  if (qd) {
+    angles_123_columns(ca, sa, cb, sb, qd, angular, angular_dot);
+    angular[2] *= S(map.gamma_sign);  // the rate of sign * gamma is sign * gamma'
+    angular_dot[2] *= S(map.gamma_sign);
+    for (int i = 0; i < 3; ++i) {
+      angular[i] = p * angular[i];
+      angular_dot[i] = p * angular_dot[i];
+    }
+  }
+  return p * rotation_123(ca, sa, cb, sb, cg, sg) * map.q.matrix().cast<S>();
+}
+
 // Euler-parameter columns: w = 2 (e4 e' - e4' e + e x e') / |e|^2, with coordinate-derivative
 // speeds (e1'..e4'), or the identity with angular velocity speeds.
 template <typename S>
@@ -172,18 +208,12 @@ void joint_motion(const Joint& joint, SpeedKind speeds, const S* q, const S* qd,
       out.linear[0] = axis;
       break;
     case JointType::kBall123:
-    case JointType::kFree123: {
+    case JointType::kFree123:
       t = joint.type == JointType::kFree123 ? 3 : 0;
-      S ca, sa, cb, sb, cg, sg;
-      sin_cos(q[t], sa, ca);
-      sin_cos(q[t + 1], sb, cb);
-      sin_cos(q[t + 2], sg, cg);
-      motion = detail::rotation_123(ca, sa, cb, sb, cg, sg);
-      if (qd)
-        detail::angles_123_columns(ca, sa, cb, sb, qd + t, out.angular + t, out.angular_dot + t);
+      motion = detail::angles_motion(joint.euler_order, q + t, qd ? qd + t : nullptr,
+                                     out.angular + t, out.angular_dot + t);
       n = t + 3;
       break;
-    }
     case JointType::kBallEuler:
     case JointType::kFreeEuler:
       t = joint.type == JointType::kFreeEuler ? 3 : 0;
@@ -259,9 +289,10 @@ Eigen::Quaternion<S> joint_quaternion(const Joint& joint, const Eigen::Quaternio
       return offset * turn(Vec3<S>::UnitX(), q[0]) * turn(Vec3<S>::UnitY(), q[1]);
     case JointType::kBall123:
     case JointType::kFree123: {
-      const S* a = joint.type == JointType::kFree123 ? q + 3 : q;  // A(alpha) B(beta) C(gamma)
-      return offset * turn(Vec3<S>::UnitX(), a[0]) * turn(Vec3<S>::UnitY(), a[1]) *
-             turn(Vec3<S>::UnitZ(), a[2]);
+      const S* a = joint.type == JointType::kFree123 ? q + 3 : q;  // R_a1(alpha) R_a2(beta) ...
+      const std::array<int, 3> axes = euler_axes(joint.euler_order);
+      return offset * turn(Vec3<S>::Unit(axes[0]), a[0]) * turn(Vec3<S>::Unit(axes[1]), a[1]) *
+             turn(Vec3<S>::Unit(axes[2]), a[2]);
     }
     case JointType::kBallEuler:
     case JointType::kFreeEuler: {

@@ -239,12 +239,13 @@ void planar_pose(const Model& model, const BodyStep& b, int k, const S* q, const
   d = s0j * (b.offset.cast<S>() + p[3].col(0).cast<S>() * x[0] + p[3].col(1).cast<S>() * x[1]);
 }
 
-// A ball or free joint's frames in R components: M = S0J C_k, and for 1-2-3 angles the turns
-// M A (after alpha) and M A B (after beta); cos beta.
+// A ball or free joint's frames in R components: M = S0J C_k (S0J C_k P for another Euler
+// order), and for angles the turns M A (after alpha) and M A B (after beta); cos beta (of
+// beta + shift); the order's sign of gamma (set for kBallOrdered and kFreeOrdered only).
 template <typename S>
 struct BallFrame {
   Mat3<S> m, ma, mab;
-  S cos_beta;
+  S cos_beta, gamma_sign;
 };
 
 // 1-2-3 angles (eq. 4.4.9-4.4.12): S0K = M A(alpha) B(beta) C(gamma), one column turn per angle.
@@ -257,10 +258,37 @@ void angles_123_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
   turn_columns<2>(f.mab, c[2], s[2], s0k);
 }
 
+// Angles in any other order (euler_order.h EulerMap): S0K = M A(alpha) B(beta + shift)
+// C(sign gamma) Q with M = S0J C_k P, Q a signed permutation of the columns.
+template <typename S>
+void ordered_angles_pose(const EulerMap& map, const S* c, const S* s, BallFrame<S>& f,
+                         Mat3<S>& s0k) {
+  const S cb = map.shifted ? -s[1] : c[1], sb = map.shifted ? c[1] : s[1];
+  f.gamma_sign = S(map.gamma_sign);
+  turn_columns<0>(f.m, c[0], s[0], f.ma);
+  f.cos_beta = cb;
+  turn_columns<1>(f.ma, cb, sb, f.mab);
+  Mat3<S> mabc;
+  turn_columns<2>(f.mab, c[2], f.gamma_sign * s[2], mabc);
+  for (int j = 0; j < 3; ++j) s0k.col(j) = S(map.q.sign[j]) * mabc.col(map.q.index[j]);
+}
+
 template <JointKernel K>
-constexpr bool kFreeJoint = K == JointKernel::kFree123 || K == JointKernel::kFreeEuler;
+constexpr bool kFreeJoint =
+    K == JointKernel::kFree123 || K == JointKernel::kFreeEuler || K == JointKernel::kFreeOrdered;
 template <JointKernel K>
-constexpr bool kAngles123 = K == JointKernel::kBall123 || K == JointKernel::kFree123;
+constexpr bool kOrdered = K == JointKernel::kBallOrdered || K == JointKernel::kFreeOrdered;
+template <JointKernel K>
+constexpr bool kAngles123 = K == JointKernel::kBall123 || K == JointKernel::kFree123 || kOrdered<K>;
+
+// A free joint's (x, y, z) along the joint frame's axes in M's: P^T (x, y, z) for another
+// Euler order (M = S0J C_k P), else (x, y, z).
+template <JointKernel K, typename S>
+Vec3<S> joint_frame_vector(const BodyStep& b, const S* x) {
+  const Vec3<S> v(x[0], x[1], x[2]);
+  if constexpr (kOrdered<K>) return euler_map(b.euler_order).p.transpose_times(v);
+  return v;
+}
 
 // Ball and free joints: M = S0J C_k, S0K = M R with R of the 1-2-3 angles or the Euler
 // parameters, d = S0J q_k + M s with s = (x, y, z) for free joints (along the joint frame's
@@ -272,12 +300,15 @@ void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const D
   const S* x = q + b.q_index;
   const S* angles = kFreeJoint<K> ? x + 3 : x;
   f.m = b.matrices < 0 ? s0j : Mat3<S>(s0j * model.steps.matrices[b.matrices].cast<S>());
-  if constexpr (kAngles123<K>)
+  if constexpr (kOrdered<K>)
+    ordered_angles_pose(euler_map(b.euler_order), data.cosine + b.angle, data.sine + b.angle, f,
+                        data.rotation[k]);
+  else if constexpr (kAngles123<K>)
     angles_123_pose(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
   else
     data.rotation[k] = f.m * rotation_euler(angles);
   d = times_constant(s0j, b.offset, b.offset_shape);
-  if constexpr (kFreeJoint<K>) d += f.m * Vec3<S>(x[0], x[1], x[2]);
+  if constexpr (kFreeJoint<K>) d += f.m * joint_frame_vector<K>(b, x);
 }
 
 // Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
@@ -365,6 +396,12 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
         break;
       case JointKernel::kFreeEuler:
         ball_pose<JointKernel::kFreeEuler>(model, b, k, q, data, f, d);
+        break;
+      case JointKernel::kBallOrdered:
+        ball_pose<JointKernel::kBallOrdered>(model, b, k, q, data, f, d);
+        break;
+      case JointKernel::kFreeOrdered:
+        ball_pose<JointKernel::kFreeOrdered>(model, b, k, q, data, f, d);
         break;
       case JointKernel::kPlanar:
         planar_pose(model, b, k, q, data, d);
@@ -468,13 +505,16 @@ void motion_step(const Model& model, int k, const StateView<S>& state, const Dat
 // carried by M are a0 = M e1, a1 = (M A) e2, a2 = (M A B) e3, and their rates (eq. 4.5) are
 // a1' = alpha' (M A) e3 and a2' = -cos beta alpha' a1 + beta' (M A B) e1 (A' = A [e1]x alpha',
 // B' = B [e2]x beta'); linear in M, as C_k (angular_dot) carries them in joint_motion.
-template <Level L, typename S>
+// kSignedGamma: another order's (ordered_angles_pose), whose a2 carries the sign of gamma.
+template <Level L, bool kSignedGamma, typename S>
 void angles_123_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
-  const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1), a2 = f.mab.col(2);
+  const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1);
+  const Vec3<S> a2 = kSignedGamma ? Vec3<S>(f.mab.col(2) * f.gamma_sign) : Vec3<S>(f.mab.col(2));
   t.w = a0 * y[0] + a1 * y[1] + a2 * y[2];
   if constexpr (L == Level::kAcceleration) {
     const Vec3<S> a1_dot = f.ma.col(2) * y[0];
-    const Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
+    Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
+    if constexpr (kSignedGamma) a2_dot *= f.gamma_sign;
     t.wd = a0 * yd[0] + a1 * yd[1] + a2 * yd[2] + a1_dot * y[1] + a2_dot * y[2];
   }
 }
@@ -491,7 +531,7 @@ void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>&
     constexpr int kAngular = kFreeJoint<K> ? 3 : 0;  // the angles' first coordinate and speed
     const S *y = state.y + b.v_index, *yd = state.yd + b.v_index;
     if constexpr (kAngles123<K>) {
-      angles_123_rates<L>(f, y + kAngular, yd + kAngular, t);
+      angles_123_rates<L, kOrdered<K>>(f, y + kAngular, yd + kAngular, t);
     } else {
       Vec3<S> w, wd = Vec3<S>::Zero();  // wd: set only at kAcceleration
       detail::euler_rates(state.q + b.q_index + kAngular, y + kAngular,
@@ -500,25 +540,32 @@ void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>&
       if constexpr (L == Level::kAcceleration) t.wd = f.m * wd;
     }
     if constexpr (kFreeJoint<K>) {
-      t.sd = f.m * Vec3<S>(y[0], y[1], y[2]);
-      if constexpr (L == Level::kAcceleration) t.sdd = f.m * Vec3<S>(yd[0], yd[1], yd[2]);
+      t.sd = f.m * joint_frame_vector<K>(b, y);
+      if constexpr (L == Level::kAcceleration) t.sdd = f.m * joint_frame_vector<K>(b, yd);
     }
   }
   body_update<L, true, kFreeJoint<K>>(b, k, t, data);
 }
 
 // Column c of a ball or free joint's speeds in R, as ball_step sums them for a unit speed y_c
-// (bit for bit): M e_c for a translation, else a_c (1-2-3 angles) or M times the Euler
-// parameters' column. For partial_velocity_kinematics; f from pose_step, e: the Euler
-// parameters.
+// (bit for bit): M e_c for a translation (M P^T e_c for another Euler order), else a_c (angles,
+// any order) or M times the Euler parameters' column. For partial_velocity_kinematics; f from
+// pose_step, e: the Euler parameters.
 template <typename S>
-Vec3<S> ball_column(JointKernel kernel, SpeedKind speeds, const BallFrame<S>& f, const S* e,
-                    int c) {
-  const bool free = kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
+Vec3<S> ball_column(const BodyStep& b, SpeedKind speeds, const BallFrame<S>& f, const S* e, int c) {
+  const JointKernel kernel = b.kernel;
+  const bool free = kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
+                    kernel == JointKernel::kFreeOrdered;
   const int angle = free ? c - 3 : c;
+  if (angle < 0 && kernel == JointKernel::kFreeOrdered)
+    return f.m * euler_map(b.euler_order).p.transpose_times(Vec3<S>(Vec3<S>::Unit(c)));
   if (angle < 0) return f.m * Vec3<S>::Unit(c);
   if (kernel == JointKernel::kBall123 || kernel == JointKernel::kFree123)
     return angle == 0 ? Vec3<S>(f.m.col(0)) : angle == 1 ? f.ma.col(1) : f.mab.col(2);
+  if (kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered)
+    return angle == 0   ? Vec3<S>(f.m.col(0))
+           : angle == 1 ? Vec3<S>(f.ma.col(1))
+                        : Vec3<S>(f.mab.col(2) * f.gamma_sign);
   Vec3<S> angular[4];
   detail::euler_columns<S>(e, nullptr, speeds, angular, nullptr);
   return f.m * angular[angle];
@@ -791,6 +838,12 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         break;
       case JointKernel::kFreeEuler:
         ball_step<L, JointKernel::kFreeEuler>(model, b, k, state, data);
+        break;
+      case JointKernel::kBallOrdered:
+        ball_step<L, JointKernel::kBallOrdered>(model, b, k, state, data);
+        break;
+      case JointKernel::kFreeOrdered:
+        ball_step<L, JointKernel::kFreeOrdered>(model, b, k, state, data);
         break;
       case JointKernel::kPlanar:
         if constexpr (kFolded<S>)

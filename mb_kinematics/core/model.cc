@@ -32,9 +32,6 @@ void validate_body(Body& body, int k) {
   const Mat3<double> c = joint.rotation;
   if ((c.transpose() * c - Mat3<double>::Identity()).norm() > 1e-9 || c.determinant() < 0)
     fail(body, k, "joint rotation (C_k) is not a proper rotation");
-  if (joint.euler_order != EulerOrder::kXYZ)
-    fail(body, k,
-         "Euler order " + to_string(joint.euler_order) + " is not computed yet (only XYZ)");
   if (joint_traits(joint.type).uses_axis) {
     if (joint.axis.norm() < 1e-12) fail(body, k, "joint axis is zero");
     // Normalize unless already unit to rounding, so that finalizing twice changes nothing.

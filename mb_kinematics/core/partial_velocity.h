@@ -87,15 +87,17 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                        pv.omega_dot[bj + i].cross(d) +
                                        pv.omega[bj + i].cross(d_dot);
     }
-    const JointKernel kernel = model.steps.steps[k].kernel;
+    const BodyStep& step = model.steps.steps[k];
+    const JointKernel kernel = step.kernel;
     const bool ball = kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
-                      kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler;
+                      kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
+                      kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered;
     const S* e = state.position.data() + body.q_index + m.linear_speeds;  // Euler parameters
     for (int c = 0; c < m.speeds; ++c) {                                  // the joint's own columns
       const int i = bk + nj + c;
       const bool linear = c < m.linear_speeds;
       // In R as the recursion sums them (ball and free joints: through M = S0J C_k).
-      const Vec3<S> column = ball ? detail::ball_column(kernel, model.speeds, f, e, c)
+      const Vec3<S> column = ball ? detail::ball_column(step, model.speeds, f, e, c)
                                   : Vec3<S>(s0j * (linear ? m.linear[c] : m.angular[c]));
       pv.omega[i] = linear ? Vec3<S>::Zero() : column;
       pv.origin_velocity[i] = linear ? column : Vec3<S>::Zero();

@@ -82,8 +82,12 @@ void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, No
   p.model = defaults.model;
   p.lower_body_array = defaults.lower_body_array;
   p.joint_type = defaults.joint_type;
+  p.bvh = defaults.bvh;
   get(nh, "robot_description", p.robot_description, "a string (URDF)");
   get(pnh, "model", p.model, "a string (path)");
+  get(pnh, "scale", p.bvh.scale, "a number (metres per unit of a .bvh ~model)");
+  get(pnh, "body_mass", p.bvh.body_mass, "a number (kg)");
+  get(pnh, "sex", p.bvh.sex, "a string: male or female");
   get(pnh, "lower_body_array", p.lower_body_array, "a list of integers");
   get(pnh, "joint_type", p.joint_type, "a string");
 }
@@ -93,13 +97,13 @@ mbk::Model load_node_model(const NodeParams& p) {
   if (!p.lower_body_array.empty()) {
     model = mbk::make_bare_model(p.lower_body_array, mbk::joint_type_from_string(p.joint_type));
   } else if (!p.model.empty()) {
-    model = mbk::load_model_file(p.model);
+    model = mbk::load_model_file(p.model, p.bvh);
   } else if (!p.robot_description.empty()) {
     model = mbk::load_urdf_string(p.robot_description, "robot_description");
   } else {
     throw std::invalid_argument(
-        "no model: set the robot_description parameter (URDF), ~model (a .urdf or .yaml "
-        "path) or ~lower_body_array");
+        "no model: set the robot_description parameter (URDF), ~model (a .urdf, .yaml or "
+        ".bvh path) or ~lower_body_array");
   }
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {  // the node's speeds: q'
     model.speeds = mbk::SpeedKind::kCoordinateDerivatives;

@@ -69,6 +69,38 @@ TEST(BaseJoint, FreeJointCoordinatesReproduceTheMotion) {
   }
 }
 
+// free_123 in every Euler order; the proper Euler orders' gimbal lock is at beta = 0.
+TEST(BaseJoint, FreeJointCoordinatesInEveryEulerOrder) {
+  for (int i = 0; i <= static_cast<int>(mbk::EulerOrder::kLast); ++i) {
+    mbk::Model model = one_free_body(mbk::JointType::kFree123);
+    mbk::Joint& joint = model.bodies[1].joint;
+    joint.euler_order = static_cast<mbk::EulerOrder>(i);
+    mbk::finalize_model(model);
+    const mbk::BaseMotion m = some_motion();
+    mbk::JointState<double> s(model);
+    ASSERT_EQ(mbk::free_joint_coordinates(joint, m, s.position.data(), s.velocity.data(),
+                                          s.acceleration.data()),
+              "")
+        << mbk::to_string(joint.euler_order);
+    mbk::Data<double> d(model);
+    mbk::forward_kinematics(model, s, d);
+    EXPECT_LT((d.rotation[1] - m.rotation).norm(), kTol) << mbk::to_string(joint.euler_order);
+    expect_near(d.omega[1], m.omega, kTol, "omega");
+    expect_near(d.alpha[1], m.alpha, kTol, "alpha");
+    mbk::BaseMotion locked = m;
+    const std::array<int, 3> a = mbk::euler_axes(joint.euler_order);
+    const double beta = mbk::is_tait_bryan(joint.euler_order) ? M_PI / 2 : 0.0;
+    locked.rotation = joint.rotation * Eigen::AngleAxisd(0.3, V::Unit(a[0])) *
+                      Eigen::AngleAxisd(beta, V::Unit(a[1])) *
+                      Eigen::AngleAxisd(0.2, V::Unit(a[2]));
+    double q[6], qd[6];
+    const std::string error = mbk::free_joint_coordinates(joint, locked, q, qd, nullptr);
+    EXPECT_NE(error.find("gimbal lock of the " + mbk::to_string(joint.euler_order)),
+              std::string::npos)
+        << error;
+  }
+}
+
 TEST(BaseJoint, RefusesWhatItCannotConvert) {
   const mbk::Model model = one_free_body(mbk::JointType::kFree123);
   mbk::BaseMotion m = some_motion();

@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <set>
 #include <stdexcept>
+
+#include "mb_kinematics/core/joint_motion.h"
 
 namespace mbk {
 namespace {
@@ -39,6 +43,61 @@ TEST(EulerOrderTest, BadOrdersAreRefusedByName) {
     }
   }
   EXPECT_THROW(euler_order_from_axes({0, 0, 1}), std::invalid_argument);
+}
+
+// The three turns about the order's axes, by Eigen's angle-axis (independent of euler_map).
+Mat3<double> turns(EulerOrder order, double alpha, double beta, double gamma) {
+  const std::array<int, 3> a = euler_axes(order);
+  return (Eigen::AngleAxisd(alpha, Vec3<double>::Unit(a[0])) *
+          Eigen::AngleAxisd(beta, Vec3<double>::Unit(a[1])) *
+          Eigen::AngleAxisd(gamma, Vec3<double>::Unit(a[2])))
+      .toRotationMatrix();
+}
+
+// euler_order.h's identity R_a1 R_a2 R_a3 = P R_123(alpha, beta + shift, sign gamma) Q for every
+// order, with P and Q proper signed permutations (and the 1-2-3 map the identity).
+TEST(EulerOrderTest, EveryOrderIsThe123RotationBetweenTwoPermutations) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-M_PI, M_PI);
+  for (int i = 0; i <= static_cast<int>(EulerOrder::kLast); ++i) {
+    const auto order = static_cast<EulerOrder>(i);
+    const EulerMap& map = euler_map(order);
+    const Mat3<double> p = map.p.matrix(), q = map.q.matrix();
+    EXPECT_NEAR(p.determinant(), 1.0, 0.0) << to_string(order);
+    EXPECT_NEAR(q.determinant(), 1.0, 0.0) << to_string(order);
+    EXPECT_EQ(map.shifted, !is_tait_bryan(order));
+    for (int trial = 0; trial < 10; ++trial) {
+      const double a = u(rng), b = u(rng), g = u(rng);
+      const double shift = map.shifted ? M_PI / 2 : 0.0;
+      const Mat3<double> r = p * rotation_123(a, b + shift, map.gamma_sign * g) * q;
+      EXPECT_LT((r - turns(order, a, b, g)).norm(), 1e-14) << to_string(order);
+    }
+  }
+  const EulerMap& xyz = euler_map(EulerOrder::kXYZ);
+  EXPECT_TRUE(xyz.p.matrix().isIdentity() && xyz.q.matrix().isIdentity() && !xyz.shifted &&
+              xyz.gamma_sign == 1);
+}
+
+// joint_motion's rotation and joint_quaternion of a ball joint in each order are the three turns
+// (C_k times them).
+TEST(EulerOrderTest, JointMotionTurnsAboutTheOrdersAxes) {
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(-M_PI, M_PI);
+  for (int i = 0; i <= static_cast<int>(EulerOrder::kLast); ++i) {
+    Joint joint;
+    joint.type = JointType::kBall123;
+    joint.euler_order = static_cast<EulerOrder>(i);
+    joint.rotation = turns(EulerOrder::kZYX, u(rng), u(rng), u(rng));
+    const double q[3] = {u(rng), u(rng), u(rng)};
+    const Mat3<double> expected = joint.rotation * turns(joint.euler_order, q[0], q[1], q[2]);
+    JointMotion<double> m;
+    joint_motion<double>(joint, SpeedKind::kCoordinateDerivatives, q, nullptr, m);
+    EXPECT_LT((m.rotation - expected).norm(), 1e-14) << to_string(joint.euler_order);
+    const Eigen::Quaterniond offset(joint.rotation);
+    EXPECT_LT((joint_quaternion<double>(joint, offset, q).toRotationMatrix() - expected).norm(),
+              1e-14)
+        << to_string(joint.euler_order);
+  }
 }
 
 }  // namespace

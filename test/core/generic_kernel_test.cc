@@ -73,6 +73,25 @@ TEST(GenericKernel, MixedTreesAreTheGenericPath) {
     expect_same_kinematics(mbk::make_random_tree(40, seed), "mixed seed " + std::to_string(seed));
 }
 
+// Ball and free joints in each of the 12 Euler orders (kBallOrdered, kFreeOrdered; kBall123 for
+// XYZ), with and without C_k, and all orders mixed in one tree.
+TEST(GenericKernel, EveryEulerOrdersKernelIsTheGenericPath) {
+  constexpr int kOrders = static_cast<int>(mbk::EulerOrder::kLast) + 1;
+  for (JointType type : {JointType::kBall123, JointType::kFree123})
+    for (int order = 0; order <= kOrders; ++order)  // kOrders: all mixed
+      for (bool rotated : {false, true}) {
+        mbk::Model model = tree_of(type, 1, SpeedKind::kCoordinateDerivatives);
+        for (int k = 1; k <= model.body_count(); ++k) {
+          mbk::Joint& joint = model.bodies[k].joint;
+          joint.euler_order = static_cast<mbk::EulerOrder>(order < kOrders ? order : k % kOrders);
+          if (!rotated) joint.rotation.setIdentity();
+        }
+        mbk::finalize_model(model);
+        expect_same_kinematics(model, mbk::to_string(type) + " order " + std::to_string(order) +
+                                          (rotated ? " with C_k" : ""));
+      }
+}
+
 // A model whose bodies all run joint_motion really does: every step is kGeneric.
 TEST(GenericKernel, GenericOnlyPicksNoKernel) {
   const mbk::Model model = generic(mbk::make_random_tree(30, 1));

@@ -7,6 +7,7 @@
 
 #include "mb_kinematics/estimation/derivative_estimator.h"
 #include "mb_kinematics/ros/base_odometry_input.h"
+#include "mb_kinematics/ros/node_params.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -33,6 +34,20 @@ TEST(NodeInput, WithBaseOdometryTheKinematicsModelHasTheBase) {
     EXPECT_EQ(input.model().body_count(), n + 1);  // the base on its free joint first
     EXPECT_EQ(input.state().position.size(), input.model().nq);
   }
+}
+
+// ~model may be a BVH file, with ~scale, ~body_mass and ~sex for its skeleton.
+TEST(NodeParams, ABvhModelTakesItsScaleAndBodyMass) {
+  mbk_ros::NodeParams params;
+  params.model = mbk_test::source_path("test/io/data/cmu_walk.bvh");
+  params.bvh = {0.01, 70.0, "female"};
+  const mbk::Model model = mbk_ros::load_node_model(params);
+  EXPECT_EQ(model.body_count(), 29);
+  double mass = 0;
+  for (const mbk::Body& body : model.bodies) mass += body.mass;
+  EXPECT_NEAR(mass, 70.0, 1e-12 * 70);
+  EXPECT_TRUE(model.warnings.empty());
+  EXPECT_NEAR(model.bodies[3].joint.offset.y(), -0.06, 1e-15);  // LeftUpLeg, in metres
 }
 
 // Issue 24.9: a quaternion of finite but huge components (1e200 times a unit one) gives its
