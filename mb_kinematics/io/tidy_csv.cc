@@ -1,18 +1,29 @@
 #include "mb_kinematics/io/tidy_csv.h"
 
 #include <Eigen/Geometry>
-#include <charconv>
 #include <cstring>
 #include <stdexcept>
 
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 
+namespace {
+constexpr size_t kBufferBytes = 1 << 16;  // written out when full
+}  // namespace
+
 TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
-    : model_(model), path_(path), file_(std::fopen(path.c_str(), "w")) {
+    : model_(model),
+      path_(path),
+      file_(std::fopen(path.c_str(), "w")),
+      body_cells_(model.bodies.size()),
+      buffer_(kBufferBytes) {
   if (!file_) throw std::invalid_argument(path + ": cannot write (" + std::strerror(errno) + ")");
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
+  for (int k = 1; k <= model.body_count(); ++k)
+    body_cells_[k] = "," + model.bodies[k].name + "," + std::to_string(k) + "," +
+                     std::to_string(model.bodies[k].lower);
   std::fputs(header(), file_);
   std::fputc('\n', file_);
 }
@@ -27,47 +38,58 @@ const char* TidyCsvWriter::header() {
          "velocity_x,velocity_y,velocity_z,acceleration_x,acceleration_y,acceleration_z";
 }
 
-// The shortest text that reads back as the same double.
+void TidyCsvWriter::flush() {
+  std::fwrite(buffer_.data(), 1, used_, file_);  // an error is seen by close()
+  used_ = 0;
+}
+
 void TidyCsvWriter::number(double x) {
-  char buf[32];
-#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
-  const auto end = std::to_chars(buf, buf + sizeof buf, x + 0.0).ptr;
-  *end = '\0';
-#else
-  std::snprintf(buf, sizeof buf, "%.17g", x + 0.0);
-#endif
-  std::fputc(',', file_);
-  std::fputs(buf, file_);
+  if (used_ + 1 + kMaxDoubleChars > buffer_.size()) flush();
+  buffer_[used_++] = ',';
+  used_ = write_shortest(buffer_.data() + used_, x) - buffer_.data();
+}
+
+void TidyCsvWriter::text(const char* s, size_t n) {
+  if (used_ + n > buffer_.size()) flush();
+  if (n > buffer_.size()) {  // a body name longer than the buffer
+    std::fwrite(s, 1, n, file_);
+    return;
+  }
+  std::memcpy(buffer_.data() + used_, s, n);
+  used_ += n;
 }
 
 void TidyCsvWriter::write(double stamp, const Data<double>& d) {
-  char stamp_text[32];
-  std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
+  char stamp_text[400];  // once per sample; %.9f of the largest double fits
+  const size_t stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
   for (int k = 1; k <= model_.body_count(); ++k) {
-    std::fprintf(file_, "%s,%s,%d,%d", stamp_text, model_.bodies[k].name.c_str(), k,
-                 model_.bodies[k].lower);
+    text(stamp_text, stamp_size);
+    text(body_cells_[k]);
     const Eigen::Quaterniond q(d.rotation[k]);
     for (int i = 0; i < 3; ++i) number(d.origin[k][i]);
     for (double x : {q.x(), q.y(), q.z(), q.w()}) number(x);
     for (const auto* v :
          {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
       for (int i = 0; i < 3; ++i) number((*v)[k][i]);
-    std::fputc('\n', file_);
+    end_row();
   }
   if (total_mass_ <= 0) return;
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);
   const Vec3<double>&p = system.mass_center, &v = system.velocity, &a = system.acceleration;
-  std::fprintf(file_, "%s,system,0,0%s", stamp_text, ",,,,,,,");  // no origin, orientation
+  static const char kSystem[] = ",system,0,0,,,,,,,";  // no origin, orientation
+  text(stamp_text, stamp_size);
+  text(kSystem, sizeof kSystem - 1);
   for (int i = 0; i < 3; ++i) number(p[i]);
-  std::fputs(",,,,,,", file_);  // no omega, alpha
+  text(",,,,,,", 6);  // no omega, alpha
   for (const Vec3<double>* x : {&v, &a})
     for (int i = 0; i < 3; ++i) number((*x)[i]);
-  std::fputc('\n', file_);
+  end_row();
 }
 
 void TidyCsvWriter::close() {
   if (!file_) return;
+  flush();
   const bool ok = std::ferror(file_) == 0;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;
