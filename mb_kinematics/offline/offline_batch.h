@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -40,9 +41,10 @@ struct FloatingBaseTrack {
 class OfflineBatch {
  public:
   // `model`, `recording` and `base` (nullptr: a fixed base) must outlive this object. Starts
-  // `threads` (>= 1) workers, which wait for blocks.
+  // `threads` (>= 1) workers, which wait for blocks. velocity_everywhere: see OfflineStates.
   OfflineBatch(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
-               double max_gap, const FloatingBaseTrack* base, int threads);
+               double max_gap, const FloatingBaseTrack* base, int threads,
+               const std::vector<char>* velocity_everywhere = nullptr);
   ~OfflineBatch();  // ends the workers
   OfflineBatch(const OfflineBatch&) = delete;
   OfflineBatch& operator=(const OfflineBatch&) = delete;
@@ -89,5 +91,15 @@ class OfflineBatch {
 
 // std::thread::hardware_concurrency(), at least 1.
 int default_thread_count();
+
+// Rows [begin, end) of `batch`, a block at a time (rows_per_block(4 MB)), each handed to `use` in
+// order while the workers compute the next block; progress(rows done) after each block.
+// Returns the seconds the workers spent (summed) and the seconds spent in `use`.
+struct RowSeconds {
+  double compute = 0, use = 0;
+};
+RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int end,
+                        const std::function<void(const OfflineRow&)>& use,
+                        const std::function<void(int)>& progress);
 
 }  // namespace mbk
