@@ -17,8 +17,7 @@ TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
     : model_(model),
       path_(path),
       file_(std::fopen(path.c_str(), "w")),
-      body_cells_(model.bodies.size()),
-      buffer_(kBufferBytes) {
+      body_cells_(model.bodies.size()) {
   if (!file_) throw std::invalid_argument(path + ": cannot write (" + std::strerror(errno) + ")");
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
   for (int k = 1; k <= model.body_count(); ++k)
@@ -26,6 +25,7 @@ TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
                      std::to_string(model.bodies[k].lower);
   std::fputs(header(), file_);
   std::fputc('\n', file_);
+  buffer_.reserve(kBufferBytes + (1 << 14));
 }
 
 TidyCsvWriter::~TidyCsvWriter() {
@@ -39,52 +39,53 @@ const char* TidyCsvWriter::header() {
 }
 
 void TidyCsvWriter::flush() {
-  std::fwrite(buffer_.data(), 1, used_, file_);  // an error is seen by close()
-  used_ = 0;
+  std::fwrite(buffer_.data(), 1, buffer_.size(), file_);  // an error is seen by close()
+  buffer_.clear();
 }
 
-void TidyCsvWriter::number(double x) {
-  if (used_ + 1 + kMaxDoubleChars > buffer_.size()) flush();
-  buffer_[used_++] = ',';
-  used_ = write_shortest(buffer_.data() + used_, x) - buffer_.data();
+namespace {
+
+// ",x" appended to text.
+void number(std::string& text, double x) {
+  char cell[1 + kMaxDoubleChars] = {','};
+  text.append(cell, write_shortest(cell + 1, x));
 }
 
-void TidyCsvWriter::text(const char* s, size_t n) {
-  if (used_ + n > buffer_.size()) flush();
-  if (n > buffer_.size()) {  // a body name longer than the buffer
-    std::fwrite(s, 1, n, file_);
-    return;
-  }
-  std::memcpy(buffer_.data() + used_, s, n);
-  used_ += n;
-}
+}  // namespace
 
-void TidyCsvWriter::write(double stamp, const Data<double>& d) {
-  char stamp_text[400];  // once per sample; %.9f of the largest double fits
-  const size_t stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
+void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& text) const {
+  char stamp_text[400];  // %.9f of the largest double fits
+  const int stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
   for (int k = 1; k <= model_.body_count(); ++k) {
-    text(stamp_text, stamp_size);
-    text(body_cells_[k]);
+    text.append(stamp_text, stamp_size).append(body_cells_[k]);
     const Eigen::Quaterniond q(d.rotation[k]);
-    for (int i = 0; i < 3; ++i) number(d.origin[k][i]);
-    for (double x : {q.x(), q.y(), q.z(), q.w()}) number(x);
+    for (int i = 0; i < 3; ++i) number(text, d.origin[k][i]);
+    for (double x : {q.x(), q.y(), q.z(), q.w()}) number(text, x);
     for (const auto* v :
          {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
-      for (int i = 0; i < 3; ++i) number((*v)[k][i]);
-    end_row();
+      for (int i = 0; i < 3; ++i) number(text, (*v)[k][i]);
+    text += '\n';
   }
   if (total_mass_ <= 0) return;
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);
   const Vec3<double>&p = system.mass_center, &v = system.velocity, &a = system.acceleration;
-  static const char kSystem[] = ",system,0,0,,,,,,,";  // no origin, orientation
-  text(stamp_text, stamp_size);
-  text(kSystem, sizeof kSystem - 1);
-  for (int i = 0; i < 3; ++i) number(p[i]);
-  text(",,,,,,", 6);  // no omega, alpha
+  text.append(stamp_text, stamp_size).append(",system,0,0,,,,,,,");  // no origin, orientation
+  for (int i = 0; i < 3; ++i) number(text, p[i]);
+  text.append(",,,,,,");  // no omega, alpha
   for (const Vec3<double>* x : {&v, &a})
-    for (int i = 0; i < 3; ++i) number((*x)[i]);
-  end_row();
+    for (int i = 0; i < 3; ++i) number(text, (*x)[i]);
+  text += '\n';
+}
+
+void TidyCsvWriter::write(double stamp, const Data<double>& d) {
+  format(stamp, d, buffer_);
+  if (buffer_.size() >= kBufferBytes) flush();
+}
+
+void TidyCsvWriter::write_text(const std::string& text) {
+  if (!buffer_.empty()) flush();
+  std::fwrite(text.data(), 1, text.size(), file_);
 }
 
 void TidyCsvWriter::close() {

@@ -4,7 +4,8 @@
 // omega_x/y/z, alpha_x/y/z, velocity_x/y/z, acceleration_x/y/z (of the mass center); all in R.
 // The system row leaves origin, orientation, omega and alpha empty. Numbers in their shortest
 // round-trip form (io/number_format.h), the stamp with 9 decimals. Rows are formatted into a
-// buffer written out a block at a time: no allocation per row. ROS-free.
+// buffer written out a block at a time: no allocation per row. A column more: its header name
+// and one call in format(). ROS-free.
 #pragma once
 
 #include <cstdio>
@@ -26,15 +27,14 @@ class TidyCsvWriter {
 
   static const char* header();
   void write(double stamp, const Data<double>& data);
+  // The rows of one sample appended to `text` (const: any thread may format while this one
+  // writes; `text` keeps its capacity, so a reused string is not allocated again), and written.
+  void format(double stamp, const Data<double>& data, std::string& text) const;
+  void write_text(const std::string& text);
   // Flushes and closes; throws if the disk refused the data.
   void close();
 
  private:
-  // Cells are appended to buffer_; each call makes room for itself (a new column is one call).
-  void number(double x);               // ",x"
-  void text(const char* s, size_t n);  // s as it is
-  void text(const std::string& s) { text(s.data(), s.size()); }
-  void end_row() { text("\n", 1); }
   void flush();
 
   const Model& model_;
@@ -42,8 +42,7 @@ class TidyCsvWriter {
   std::FILE* file_ = nullptr;
   double total_mass_ = 0;
   std::vector<std::string> body_cells_;  // per body k: ",name,k,L(k)"
-  std::vector<char> buffer_;
-  size_t used_ = 0;
+  std::string buffer_;                   // rows not yet written
 };
 
 }  // namespace mbk

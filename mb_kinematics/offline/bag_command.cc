@@ -87,7 +87,7 @@ struct Outputs {
   std::unique_ptr<OutputFile> bag_file, csv_file;
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
-  bool floating = false;
+  bool floating = false, formatted = false;
   const mbk::Model* base_model = nullptr;        // with a base: the node's layout
   std::unique_ptr<mbk::Data<double>> base_data;  // of base_model
 
@@ -95,7 +95,20 @@ struct Outputs {
     const mbk::Data<double>* data = &row.data;
     if (floating) with_base_body(*base_model, row.data, *base_data), data = base_data.get();
     if (bag) bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
-    if (csv) csv->write(row.stamp, *data);
+    if (csv && formatted)
+      csv->write_text(row.text);
+    else if (csv)
+      csv->write(row.stamp, *data);
+  }
+  // The CSV's text formatted by the computing threads, beside the writing (without a base:
+  // with one, the rows are carried into the base's layout here first).
+  mbk::OfflineBatch::Formatter formatter() {
+    if (!csv || floating) return nullptr;
+    formatted = true;
+    return [csv = csv.get()](mbk::OfflineRow& row) {
+      row.text.clear();
+      csv->format(row.stamp, row.data, row.text);
+    };
   }
   void close() {
     if (bag) bag->close();
@@ -203,6 +216,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
         take(row, out, builder.log(), s.written);
         if (++rows % 1024 == 0) bar.update(rows, survey.rows);
       });
+  stream.set_formatter(out.formatter());
   builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
     stream.add(t, p, v, g);
   });
@@ -333,6 +347,7 @@ BagSummary run_bag(const BagOptions& o) {
   open_outputs(o, model, base_model, base.frame, out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
+  batch.set_formatter(out.formatter());
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
   if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);

@@ -96,8 +96,11 @@ void OfflineBatch::work(int worker) {
     const auto t0 = std::chrono::steady_clock::now();
     const int chunks = (rows_in_block_ + chunk_ - 1) / chunk_;
     for (int c = next_chunk_++; c < chunks; c = next_chunk_++)
-      for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j)
-        compute_row(workers_[worker], begin_ + j, (*out_)[j]);
+      for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j) {
+        OfflineRow& row = (*out_)[j];
+        compute_row(workers_[worker], begin_ + j, row);
+        if (formatter_ && row.drop_reason.empty()) formatter_(row);
+      }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::lock_guard<std::mutex> lock(mutex_);

@@ -29,7 +29,8 @@ struct OfflineRow {
   std::string drop_reason, drop_detail;  // reason empty: computed, to be written
   JointState<double> state;
   Data<double> data;
-  BaseMotion base;  // the floating base's motion, when there is one
+  BaseMotion base;   // the floating base's motion, when there is one
+  std::string text;  // the row's output, when the batch has a formatter (set_formatter)
 };
 
 // The odometry of a floating base (core/floating_base.h) and its accelerations.
@@ -61,6 +62,11 @@ class OfflineBatch {
     return finish();
   }
 
+  // Called by the worker that computed a row (not dropped), on it: output formatted on the
+  // workers, beside the writing. Set before start(); must be safe to call from any thread.
+  using Formatter = std::function<void(OfflineRow&)>;
+  void set_formatter(Formatter f) { formatter_ = std::move(f); }
+
   double max_gap() const { return workers_.front().max_gap(); }
   int threads() const { return static_cast<int>(workers_.size()); }
   std::vector<CoordinateError> error_summary() const { return workers_.front().error_summary(); }
@@ -75,6 +81,7 @@ class OfflineBatch {
   const Recording& rec_;
   const FloatingBaseTrack* base_;
   std::vector<OfflineStates> workers_;
+  Formatter formatter_;
 
   // The block in flight, set by start() under mutex_.
   int begin_ = 0, rows_in_block_ = 0, chunk_ = 1;

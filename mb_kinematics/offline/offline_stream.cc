@@ -78,6 +78,7 @@ int OfflineStream::ready_end() const {
 void OfflineStream::compute(int end) {
   OfflineBatch batch(model_, buffer_, estimator_, max_gap_, nullptr, threads_,
                      &velocity_everywhere_);
+  batch.set_formatter(formatter_);
   const RowSeconds s = compute_rows(batch, model_, next_, end, sink_, [](int) {});
   seconds_.compute += s.compute, seconds_.use += s.use;
   next_ = end;

@@ -48,6 +48,8 @@ class OfflineStream {
   void add(double t, const double* position, const double* velocity, const std::uint8_t* given);
   // Computes the rows left.
   void finish();
+  // Every chunk's OfflineBatch formats its rows with `f` (OfflineBatch::set_formatter).
+  void set_formatter(OfflineBatch::Formatter f) { formatter_ = std::move(f); }
 
   int buffered_rows() const { return buffer_.rows(); }
   int peak_buffered_rows() const { return peak_rows_; }
@@ -66,6 +68,7 @@ class OfflineStream {
   std::vector<char> velocity_everywhere_;
   int threads_, chunk_rows_;
   RowSink sink_;
+  OfflineBatch::Formatter formatter_;
   Recording buffer_;  // the rows kept, oldest first
   int next_ = 0;      // buffer row of the first row not yet computed
   int peak_rows_ = 0;

@@ -1,6 +1,7 @@
 // The tidy CSV writer (io/tidy_csv.h): the same text, byte for byte, as printing each cell on its
 // own (the documented form: stamp with 9 decimals, numbers in their shortest round-trip form,
-// -0 as 0), across many buffer flushes; and write_shortest (io/number_format.h).
+// -0 as 0), across many buffer flushes, whether written at once or formatted apart (format,
+// write_text) and interleaved; and write_shortest (io/number_format.h).
 #include "mb_kinematics/io/tidy_csv.h"
 
 #include <gtest/gtest.h>
@@ -61,6 +62,7 @@ TEST(TidyCsvWriterTest, SameTextAsEachCellPrintedAloneAcrossManyFlushes) {
   std::string expected = std::string(mbk::TidyCsvWriter::header()) + "\n";
   {
     mbk::TidyCsvWriter w(path, model);
+    std::string text;
     for (int r = 0; r < 600; ++r) {  // about 1.5 MB: many 64 kB buffers
       for (int i = 0; i < model.nq; ++i)
         state.position[i] = u(rng), state.velocity[i] = u(rng), state.acceleration[i] = u(rng);
@@ -68,7 +70,13 @@ TEST(TidyCsvWriterTest, SameTextAsEachCellPrintedAloneAcrossManyFlushes) {
       if (r % 7 == 0) data.origin[1].x() = -0.0, data.omega[2].y() = 1e-300;
       if (r % 11 == 0) data.alpha[1].z() = -1.2345678901234567e+300, data.omega[1].x() = 1e7;
       const double stamp = 1.7e9 + r / 1000.0;
-      w.write(stamp, data);
+      if (r % 2) {  // as the computing threads format rows for mbk bag
+        text.clear();
+        w.format(stamp, data, text);
+        w.write_text(text);
+      } else {
+        w.write(stamp, data);
+      }
       expected += reference_rows(model, stamp, data);
     }
     w.close();
