@@ -192,6 +192,7 @@ constexpr int kStreamChunkRows = 8192;
 bool run_streamed(const BagOptions& o, const mbk::Model& model,
                   const mbk::OfflineEstimator& estimator, const mbk::OfflineReach& reach,
                   BagSummary& s) {
+  const auto wall = Clock::now();
   mbk::RecordingSurvey survey(model.nq);
   {
     mbk::RecordingBuilder first(model);
@@ -203,19 +204,14 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
     first.finish();  // every coordinate named, or the error
   }
   if (!survey.streamable()) return false;
-  const auto wall = Clock::now();
+  s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   Outputs out;
   open_outputs(o, model, model, "", out);
   mbk::RecordingBuilder builder(model);
-  mbk::Progress bar("computing", o.progress);
-  long rows = 0;
   mbk::OfflineStream stream(
-      model, estimator, reach, o.max_gap > 0 ? o.max_gap : survey.default_max_gap(),
-      survey.velocity_everywhere, o.threads > 0 ? o.threads : mbk::default_thread_count(),
-      kStreamChunkRows, [&](const mbk::OfflineRow& row) {
-        take(row, out, builder.log(), s.written);
-        if (++rows % 1024 == 0) bar.update(rows, survey.rows);
-      });
+      model, estimator, reach, s.max_gap, survey.velocity_everywhere,
+      o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
+      [&](const mbk::OfflineRow& row) { take(row, out, builder.log(), s.written); });
   stream.set_formatter(out.formatter());
   builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
     stream.add(t, p, v, g);
@@ -223,11 +219,9 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   BaseOdometry unused;
   read_input(o, builder, unused, s, true);
   builder.finish();
-  stream.finish();
-  bar.finish();
+  stream.finish();  // the reading's progress bar is the computing's
   s.read = builder.samples_read();
   s.log = builder.log();
-  s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   s.threads = stream.threads();
   s.compute_seconds = stream.seconds().compute;
   const auto t_close = Clock::now();
