@@ -11,6 +11,9 @@
 //                                     (default estimator) or given; real (wall) time; counter
 //                                     x_real_time = samples/s / 1000
 //   kinematics_only/tree100           forward_kinematics alone on the same states, one thread
+//   csv_rows/human                    TidyCsvWriter alone: 1000 samples of the human model's
+//                                     kinematics (one row per body and the system row) to a file;
+//                                     counter rows/s
 // Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1) (joints of
 // every type, 349 coordinates); revolute100 = the same tree with every joint revolute (100).
 #include <benchmark/benchmark.h>
@@ -23,6 +26,7 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/offline_batch.h"
 
@@ -127,6 +131,28 @@ void compute(benchmark::State& state, const mbk::Model& model, bool given) {
   state.counters["x_real_time"] = benchmark::Counter(samples / 1000.0, benchmark::Counter::kIsRate);
 }
 
+// The tidy CSV writer alone, on computed kinematics (the demo trajectories at 1 kHz).
+void csv_rows(benchmark::State& state, const mbk::Model& model) {
+  const mbk::Recording rec = recording(model, 1000, 1, true);
+  std::vector<mbk::Data<double>> data(rec.rows(), mbk::Data<double>(model));
+  mbk::JointState<double> s(model);
+  for (int r = 0; r < rec.rows(); ++r) {
+    s.position = Eigen::Map<const Eigen::VectorXd>(rec.position.data() + r * model.nq, model.nq);
+    s.velocity = Eigen::Map<const Eigen::VectorXd>(rec.velocity.data() + r * model.nq, model.nq);
+    s.acceleration =
+        Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
+    mbk::forward_kinematics(model, s, data[r], mbk::Level::kAcceleration);
+  }
+  long rows = 0;
+  for (auto _ : state) {
+    mbk::TidyCsvWriter w("/tmp/mbk_bag_benchmark_rows.csv", model);
+    for (int r = 0; r < rec.rows(); ++r) w.write(rec.stamp[r], data[r]);
+    w.close();
+    rows += rec.rows() * (model.body_count() + 1);
+  }
+  state.counters["rows_per_s"] = benchmark::Counter(rows, benchmark::Counter::kIsRate);
+}
+
 const mbk::Model& human() {
   static const mbk::Model m = mbk::load_model_file(kHuman);
   return m;
@@ -168,6 +194,7 @@ BENCHMARK_CAPTURE(compute, revolute100 / estimated, revolute100(), false)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(kinematics_only, tree100, tree100())->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(csv_rows, human, human())->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -42,14 +42,9 @@ void window_range(const OfflineEstimator& e, const std::vector<double>& t, int s
 }  // namespace
 
 const std::vector<std::string>& offline_estimator_names() {
-  static const std::vector<std::string> names = {"centered_0.4s_4",
-                                                 "auto",
-                                                 "centered_0.1s_4",
-                                                 "centered_0.2s_4",
-                                                 "centered_0.3s_4",
-                                                 "centered_0.4s_5",
-                                                 "centered_9_4",
-                                                 "centered_15_3"};
+  static const std::vector<std::string> names = {
+      "centered_0.4s_4", "auto",         "centered_0.1s_4", "centered_0.2s_4", "centered_0.3s_4",
+      "centered_0.4s_5", "centered_9_4", "centered_15_3"};
   return names;
 }
 
@@ -84,6 +79,18 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
                                 "': need 2 <= order <= 5 and an odd sample window above the "
                                 "order (at most 41) or a positive time window");
   return e;
+}
+
+// window_range: a time window reaches half its span each side, twice that when shifted to one
+// side, then widens by up to order + 3 samples; a sample window reaches its own length each side
+// at most (shifted at an end).
+bool offline_reach(const OfflineEstimator& e, OfflineReach& reach) {
+  if (e.automatic) return false;
+  if (e.window_samples > 0)
+    reach = {0.0, e.window_samples};
+  else
+    reach = {e.window_seconds * (1 + 1e-6), e.order + 4};
+  return true;
 }
 
 Segments find_segments(const std::vector<double>& t, double max_gap) {
