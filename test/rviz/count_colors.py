@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Counts the pixels of each arrow color of the BodyKinematics display in a screenshot.
 
-    count_colors.py SHOT.png  ->  one line per quantity: "<name> <pixels>"
+    count_colors.py SHOT.png [--region X0,Y0,X1,Y1]  ->  one line per quantity: "<name> <pixels>"
+
+With --region, only pixels with X0 <= x < X1 and Y0 <= y < Y1 count.
 
 Shading scales a color's brightness but keeps its hue, so pixels are matched by hue (within
 HUE_TOL degrees of the default color's) among saturated, not too dark ones. The defaults
@@ -16,8 +18,13 @@ HUES = {"velocity": 192, "acceleration": 30, "omega": 300, "alpha": 54}  # (0,20
 HUE_TOL = 9  # degrees                                                   # (230,0,230) (255,230,0)
 
 
-def main(path):
-    raw = subprocess.run(["convert", path, "-depth", "8", "rgb:-"], check=True,
+def main(path, region=None):
+    if region:
+        x0, y0, x1, y1 = region
+        crop = ["-crop", f"{x1 - x0}x{y1 - y0}+{x0}+{y0}", "+repage"]
+    else:
+        crop = []
+    raw = subprocess.run(["convert", path] + crop + ["-depth", "8", "rgb:-"], check=True,
                          stdout=subprocess.PIPE).stdout
     counts = dict.fromkeys(HUES, 0)
     for i in range(0, len(raw) - 2, 3):
@@ -34,4 +41,7 @@ def main(path):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    if len(sys.argv) == 4 and sys.argv[2] == "--region":
+        main(sys.argv[1], [int(v) for v in sys.argv[3].split(",")])
+    else:
+        main(sys.argv[1])
