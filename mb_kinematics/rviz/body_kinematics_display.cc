@@ -94,7 +94,7 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
   makeSystemProperties();
 }
 
-BodyKinematicsDisplay::~BodyKinematicsDisplay() { failure_connection_.disconnect(); }
+BodyKinematicsDisplay::~BodyKinematicsDisplay() { frame_connection_.disconnect(); }
 
 void BodyKinematicsDisplay::makeSelectionProperties() {
   exclude_ = new rviz::StringProperty(
@@ -196,9 +196,8 @@ void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsA
 
 void BodyKinematicsDisplay::onInitialize() {
   MFDClass::onInitialize();
-  failure_connection_ = tf_filter_->registerFailureCallback(
-      [this](const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg,
-             tf2_ros::FilterFailureReason reason) { filterFailed(msg, reason); });
+  // The subscriber's callbacks run in rviz's GUI thread (update_nh_'s queue).
+  frame_connection_ = sub_.registerCallback(&BodyKinematicsDisplay::adoptFrame, this);
   updateHistoryLength();
   updateStyle();
   updateFilter();
@@ -219,17 +218,9 @@ void BodyKinematicsDisplay::onEnable() {
 
 void BodyKinematicsDisplay::updateAutoFrame() { framed_ = false; }
 
-// Called from the tf message filter's thread for messages it cannot transform to the Fixed
-// Frame (e.g. one that does not exist); the frame goes to the GUI thread.
-void BodyKinematicsDisplay::filterFailed(
-    const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg,
-    tf2_ros::FilterFailureReason /*reason*/) {
-  if (msg)
-    QMetaObject::invokeMethod(this, "adoptFrame", Qt::QueuedConnection,
-                              Q_ARG(QString, QString::fromStdString(msg->header.frame_id)));
-}
-
-void BodyKinematicsDisplay::adoptFrame(const QString& frame) {
+void BodyKinematicsDisplay::adoptFrame(
+    const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) {
+  const QString frame = QString::fromStdString(msg->header.frame_id);
   if (!auto_frame_->getBool() || frame.isEmpty() || frame == fixed_frame_) return;
   const auto tf = context_->getTF2BufferPtr();
   const std::string fixed = fixed_frame_.toStdString();

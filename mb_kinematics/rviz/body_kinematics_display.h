@@ -13,9 +13,9 @@
 #include <OgreQuaternion.h>
 #include <OgreVector3.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <message_filters/connection.h>
 #include <ros/time.h>
 #include <rviz/message_filter_display.h>
-#include <tf2_ros/message_filter.h>
 
 #include <array>
 #include <boost/circular_buffer.hpp>
@@ -59,8 +59,6 @@ class BodyKinematicsDisplay
   void updateHistoryLength();
   void updateMasses();
   void updateAutoFrame();
-  // Auto Frame: the Fixed Frame becomes `frame` (a message's) when tf does not know it.
-  void adoptFrame(const QString& frame);
 
  private:
   struct QuantityProperties {
@@ -78,8 +76,9 @@ class BodyKinematicsDisplay
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
   void makeSystemProperties();
   void makeSelectionProperties();
-  void filterFailed(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg,
-                    tf2_ros::FilterFailureReason reason);
+  // Auto Frame: the Fixed Frame becomes the message's frame when tf does not know it. Every
+  // message, before the tf filter (which holds back those it cannot transform to the Fixed Frame).
+  void adoptFrame(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg);
   void frameCamera(const std::vector<mbk::GlyphBody>& bodies, const Ogre::Vector3& position,
                    const Ogre::Quaternion& orientation);
   void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg, const Ogre::Vector3& position,
@@ -97,7 +96,7 @@ class BodyKinematicsDisplay
   std::map<std::string, double> masses_;  // link name -> kg, from Robot Description
   ros::WallTime masses_tried_;
   bool framed_ = false;  // the camera has framed the bodies since Auto Frame was turned on
-  message_filters::Connection failure_connection_;
+  message_filters::Connection frame_connection_;
 
   mbk::GlyphStyle style_;
   bool filter_ok_ = true;
