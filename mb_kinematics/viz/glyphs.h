@@ -31,7 +31,7 @@ const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega",
 // joints in URDFs written by `mbk urdf`.
 constexpr const char* kDefaultBodyFilter = "^(?!.*__)";
 // The default of GlyphStyle::min_mass_fraction (doc/rviz.md: what it leaves out on real robots).
-constexpr double kDefaultMinMassFraction = 0.01;
+constexpr double kDefaultMinMassFraction = 0.005;
 
 struct Rgba {
   float r, g, b, a;

@@ -163,7 +163,7 @@ std::vector<Vec3<double>> mass_centers(const Glyphs& g) { return g.mass_centers;
 
 TEST(KinematicsMarkers, LightBodiesLeftOutByMassFraction) {
   const std::vector<mbk::GlyphBody> bodies = weighed_bodies();
-  GlyphStyle style;  // default: below 1 % of the heaviest (0.05 kg) left out
+  GlyphStyle style;  // default: below 0.5 % of the heaviest (25 g) left out
   style.skeleton = true;
   EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({1, 0, 0, 1}));
   Glyphs g = mbk::make_glyphs(bodies, style);
