@@ -7,8 +7,9 @@
 #   test/rviz/screenshot_test.sh OUT_DIR    (in a sourced catkin workspace: devel/env.sh ...)
 # On another robot (test/rviz.cmake): DEMO_ARGS=model:=ROBOT.urdf; EXPECT_FRAME=LINK: the display
 # must have set the Fixed Frame (config/mb_kinematics.rviz says `world`) to LINK; REGION=X0,Y0,X1,Y1:
-# only pixels there count (the middle of the 3D view, where the framed robot is); SHOT_NAME: the
-# name of the kept files.
+# only pixels there count (the middle of the 3D view, where the framed robot is); CENTER=X,Y,TOL:
+# the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
+# camera frames the robot); SHOT_NAME: the name of the kept files.
 set -uo pipefail
 out_dir=${1:?usage: screenshot_test.sh OUT_DIR}
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -17,6 +18,7 @@ TIMEOUT=${TIMEOUT:-60}
 SHOT_NAME=${SHOT_NAME:-rviz_screenshot}
 EXPECT_FRAME=${EXPECT_FRAME:-}
 REGION=${REGION:-}
+CENTER=${CENTER:-}
 mkdir -p "$out_dir"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
 export ROS_HOME=$tmp/ros HOME=$tmp/home
@@ -66,7 +68,13 @@ while [ $((SECONDS - start)) -lt "$TIMEOUT" ]; do
   python3 "$src/test/rviz/count_colors.py" "$tmp/shot.png" ${REGION:+--region "$REGION"} \
     >"$tmp/counts" || continue
   cp "$tmp/shot.png" "$out_dir/$SHOT_NAME.png"
-  if awk -v min="$MIN_PIXELS" '$2 <= min { low = 1 } END { exit low }' "$tmp/counts"; then
+  if awk -v min="$MIN_PIXELS" -v center="$CENTER" '
+      $1 != "centroid" && $2 <= min { bad = 1 }
+      $1 == "centroid" && center != "" {
+        split(center, c, ",")
+        if ($2 < c[1] - c[3] || $2 > c[1] + c[3] || $3 < c[2] - c[3] || $3 > c[2] + c[3]) bad = 1
+      }
+      END { exit bad }' "$tmp/counts"; then
     passed=true
     break
   fi
@@ -82,6 +90,8 @@ $errors"
 if [ -n "$EXPECT_FRAME" ]; then
   grep -q "set to '$EXPECT_FRAME', the frame of the body kinematics" "$tmp/rviz.log" ||
     fail "the display did not set the Fixed Frame to '$EXPECT_FRAME'"
+elif grep -q "is not in tf; set to" "$tmp/rviz.log"; then
+  fail "the display changed the config's Fixed Frame, which tf knows"
 fi
-$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION} within $TIMEOUT s"
+$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s"
 echo "PASS"
