@@ -115,9 +115,9 @@ void BodyKinematicsDisplay::makeSelectionProperties() {
       SLOT(updateMasses()));
   auto_frame_ = new rviz::BoolProperty(
       "Auto Frame", true,
-      "On the first message: if tf does not know the Fixed Frame, set it to the message's frame "
-      "(the model's root link with the node's ~frame_prefix, or the odometry frame with "
-      "~base_odometry); and point the camera at the bodies from a distance that fits them. "
+      "Whenever tf does not know the Fixed Frame, set it to the messages' frame (the model's "
+      "root link with the node's ~frame_prefix, or the odometry frame with ~base_odometry); on "
+      "the first message drawn, point the camera at the bodies from a distance that fits them. "
       "Turn off to keep your own Fixed Frame and view.",
       this, SLOT(updateAutoFrame()));
 }
