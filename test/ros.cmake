@@ -35,7 +35,8 @@ target_link_libraries(heap_trim_test gtest_main)
 
 # The picture shared by the rviz display and ~publish_markers (no master needed).
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
-target_link_libraries(kinematics_markers_test mbk_markers gtest_main)
+target_link_libraries(kinematics_markers_test mbk_markers mbk_io gtest_main)
+target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
     two_robots missing)

@@ -1,16 +1,25 @@
 #include "mb_kinematics/rviz/body_kinematics_display.h"
 
+#include <OgreCamera.h>
 #include <OgreSceneNode.h>
+#include <ros/console.h>
 #include <rviz/frame_manager.h>
 #include <rviz/properties/bool_property.h>
 #include <rviz/properties/color_property.h>
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/int_property.h>
 #include <rviz/properties/string_property.h>
+#include <rviz/view_controller.h>
+#include <rviz/view_manager.h>
+#include <rviz/visualization_manager.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <pluginlib/class_list_macros.hpp>
+#include <stdexcept>
 
+#include "mb_kinematics/io/urdf_masses.h"
 #include "mb_kinematics/rviz/body_kinematics_visual.h"
 #include "mb_kinematics/rviz/system_kinematics_visual.h"
 #include "mb_kinematics/viz/glyph_bodies.h"
@@ -31,6 +40,8 @@ const char* const kWhat[mbk::GlyphQuantity::kCount] = {
     "velocity of each mass center G_k", "acceleration of each mass center G_k",
     "angular velocity omega_k of each body (arrow and arc)",
     "angular acceleration alpha_k of each body (arrow and arc)"};
+
+constexpr double kMinCameraDistance = 1.0;  // m, for a robot of a single point
 
 }  // namespace
 
@@ -75,6 +86,7 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
       "Regular expression (ECMAScript); bodies whose name it matches are drawn. The default "
       "leaves out the massless links <body>__<coord> of expanded ball and free joints.",
       this, SLOT(updateFilter()));
+  makeSelectionProperties();
   history_length_ = new rviz::IntProperty("History Length", 1, "Number of messages drawn.", this,
                                           SLOT(updateHistoryLength()));
   history_length_->setMin(1);
@@ -82,7 +94,33 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
   makeSystemProperties();
 }
 
-BodyKinematicsDisplay::~BodyKinematicsDisplay() = default;
+BodyKinematicsDisplay::~BodyKinematicsDisplay() { frame_connection_.disconnect(); }
+
+void BodyKinematicsDisplay::makeSelectionProperties() {
+  exclude_ = new rviz::StringProperty(
+      "Exclude Bodies", "",
+      "Regular expression (ECMAScript); bodies whose name it matches are left out, e.g. "
+      "'finger|_tip$' or a list 'a|b|c'. Empty: none.",
+      this, SLOT(updateFilter()));
+  min_mass_fraction_ = new rviz::FloatProperty(
+      "Min Mass Fraction", mbk::kDefaultMinMassFraction,
+      "Bodies lighter than this fraction of the heaviest body are left out (sensor frames, "
+      "fingers, dummy links). Masses come from Robot Description; 0 draws every body.",
+      this, SLOT(updateStyle()));
+  min_mass_fraction_->setMin(0);
+  min_mass_fraction_->setMax(1);
+  robot_description_ = new rviz::StringProperty(
+      "Robot Description", "robot_description",
+      "Parameter holding the URDF the masses are read from (as RobotModel's).", this,
+      SLOT(updateMasses()));
+  auto_frame_ = new rviz::BoolProperty(
+      "Auto Frame", true,
+      "Whenever tf does not know the Fixed Frame, set it to the messages' frame (the model's "
+      "root link with the node's ~frame_prefix, or the odometry frame with ~base_odometry); on "
+      "the first message drawn, point the camera at the bodies from a distance that fits them. "
+      "Turn off to keep your own Fixed Frame and view.",
+      this, SLOT(updateAutoFrame()));
+}
 
 void BodyKinematicsDisplay::makeQuantityProperties(int q, const QColor& color, double scale,
                                                    const QString& unit) {
@@ -158,9 +196,12 @@ void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsA
 
 void BodyKinematicsDisplay::onInitialize() {
   MFDClass::onInitialize();
+  // The subscriber's callbacks run in rviz's GUI thread (update_nh_'s queue).
+  frame_connection_ = sub_.registerCallback(&BodyKinematicsDisplay::adoptFrame, this);
   updateHistoryLength();
   updateStyle();
   updateFilter();
+  updateMasses();
 }
 
 void BodyKinematicsDisplay::reset() {
@@ -168,6 +209,68 @@ void BodyKinematicsDisplay::reset() {
   visuals_.clear();
   pending_.clear();
   system_visual_.reset();
+}
+
+void BodyKinematicsDisplay::onEnable() {
+  MFDClass::onEnable();
+  framed_ = false;
+}
+
+void BodyKinematicsDisplay::updateAutoFrame() { framed_ = false; }
+
+void BodyKinematicsDisplay::adoptFrame(
+    const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) {
+  const QString frame = QString::fromStdString(msg->header.frame_id);
+  if (!auto_frame_->getBool() || frame.isEmpty() || frame == fixed_frame_) return;
+  const auto tf = context_->getTF2BufferPtr();
+  const std::string fixed = fixed_frame_.toStdString();
+  if (tf->_frameExists(fixed) || !tf->_frameExists(frame.toStdString())) return;
+  auto* manager = dynamic_cast<rviz::VisualizationManager*>(context_);
+  if (!manager) return;
+  ROS_INFO_STREAM("BodyKinematics: Fixed Frame '" << fixed << "' is not in tf; set to '"
+                                                  << frame.toStdString()
+                                                  << "', the frame of the body kinematics");
+  manager->setFixedFrame(frame);
+}
+
+// The camera looks at the centre of the box around every O_k and G_k from where the box's
+// bounding sphere fills the view's height.
+void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& bodies,
+                                        const Ogre::Vector3& position,
+                                        const Ogre::Quaternion& orientation) {
+  rviz::ViewController* view = context_->getViewManager()->getCurrent();
+  Eigen::AlignedBox3d box;
+  for (const mbk::GlyphBody& b : bodies)
+    if (b.origin.allFinite() && b.mass_center.allFinite())
+      box.extend(b.origin).extend(b.mass_center);
+  if (!view || box.isEmpty()) return;
+  const Eigen::Vector3d c = box.center();
+  const double radius = 0.5 * box.diagonal().norm() + auto_length_->getFloat();
+  const double half_fov = 0.5 * view->getCamera()->getFOVy().valueRadians();
+  view->lookAt(position + orientation * Ogre::Vector3(c.x(), c.y(), c.z()));
+  view->subProp("Distance")->setValue(std::max(kMinCameraDistance, radius / std::sin(half_fov)));
+}
+
+void BodyKinematicsDisplay::updateMasses() {
+  masses_.clear();
+  masses_tried_ = ros::WallTime::now();
+  const std::string param = robot_description_->getStdString();
+  std::string urdf;
+  if (!update_nh_.getParam(param, urdf)) {
+    setStatus(rviz::StatusProperty::Warn, "Masses",
+              QString::fromStdString("no parameter '" + param +
+                                     "': Min Mass Fraction leaves nothing out"));
+    return;
+  }
+  try {
+    masses_ = mbk::urdf_link_masses(urdf);
+    setStatus(rviz::StatusProperty::Ok, "Masses",
+              QString::number(masses_.size()) + " links from '" + param.c_str() + "'");
+  } catch (const std::exception& e) {
+    setStatus(rviz::StatusProperty::Warn, "Masses",
+              QString::fromStdString("parameter '" + param + "': " + e.what() +
+                                     "; Min Mass Fraction leaves nothing out"));
+  }
 }
 
 void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
@@ -189,17 +292,23 @@ void BodyKinematicsDisplay::updateStyle() {
   style_.skeleton_color = rgba(skeleton_color_->getColor());
   style_.width = width_->getFloat();
   style_.arc_radius = arc_radius_->getFloat();
+  style_.min_mass_fraction = min_mass_fraction_->getFloat();
 }
 
 void BodyKinematicsDisplay::updateFilter() {
+  const char* property = "Body Filter";
   try {
     style_.filter = std::regex(filter_->getStdString());
+    property = "Exclude Bodies";
+    const std::string exclude = exclude_->getStdString();
+    style_.exclude.reset();
+    if (!exclude.empty()) style_.exclude = std::regex(exclude);
     filter_ok_ = true;
     deleteStatus("Body Filter");
   } catch (const std::regex_error& e) {
     filter_ok_ = false;
     setStatus(rviz::StatusProperty::Error, "Body Filter",
-              QString("not a regular expression: ") + e.what());
+              QString(property) + ": not a regular expression: " + e.what());
   }
 }
 
@@ -257,7 +366,13 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
   }
   deleteStatus("Transform");
   if (!filter_ok_) return;
-  const std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
+  if (masses_.empty() && (ros::WallTime::now() - masses_tried_).toSec() > 1) updateMasses();
+  std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
+  mbk::set_masses(masses_, bodies);
+  if (auto_frame_->getBool() && !framed_) {
+    frameCamera(bodies, position, orientation);
+    framed_ = true;
+  }
   autoScale(bodies);
   const mbk::Glyphs glyphs = mbk::make_glyphs(bodies, style_);
   reportSkipped(glyphs);

@@ -2,7 +2,10 @@
 // manner of rviz's own screw_display): per body arrows for the mass-center velocity and
 // acceleration at G_k, omega and alpha as arrows with a circular arc for the sense of rotation,
 // a sphere at each mass center, optionally the skeleton. Bodies with invalid floats are skipped
-// with a status warning. The whole system (the message's `system`, when filled): a larger sphere
+// with a status warning; bodies lighter than a fraction of the heaviest (masses from the
+// robot_description URDF) or named by a regex are left out. Auto Frame: on the first message,
+// a Fixed Frame that tf does not know becomes the message's frame, and the camera frames the
+// bodies. The whole system (the message's `system`, when filled): a larger sphere
 // at its mass center G, G's velocity and acceleration, G's projection on R's x-y plane.
 #pragma once
 
@@ -10,11 +13,15 @@
 #include <OgreQuaternion.h>
 #include <OgreVector3.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
+#include <message_filters/connection.h>
+#include <ros/time.h>
 #include <rviz/message_filter_display.h>
 
 #include <array>
 #include <boost/circular_buffer.hpp>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "mb_kinematics/viz/glyphs.h"
@@ -43,12 +50,15 @@ class BodyKinematicsDisplay
  protected:
   void onInitialize() override;
   void reset() override;
+  void onEnable() override;
   void update(float wall_dt, float ros_dt) override;
 
  private Q_SLOTS:
   void updateStyle();
   void updateFilter();
   void updateHistoryLength();
+  void updateMasses();
+  void updateAutoFrame();
 
  private:
   struct QuantityProperties {
@@ -65,6 +75,12 @@ class BodyKinematicsDisplay
   void reportSkipped(const mbk::Glyphs& glyphs);
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
   void makeSystemProperties();
+  void makeSelectionProperties();
+  // Auto Frame: the Fixed Frame becomes the message's frame when tf does not know it. Every
+  // message, before the tf filter (which holds back those it cannot transform to the Fixed Frame).
+  void adoptFrame(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg);
+  void frameCamera(const std::vector<mbk::GlyphBody>& bodies, const Ogre::Vector3& position,
+                   const Ogre::Quaternion& orientation);
   void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg, const Ogre::Vector3& position,
                   const Ogre::Quaternion& orientation);
 
@@ -72,8 +88,15 @@ class BodyKinematicsDisplay
   rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
   rviz::FloatProperty *auto_length_, *alpha_, *width_, *arc_radius_, *sphere_radius_;
   rviz::ColorProperty *mass_center_color_, *skeleton_color_;
-  rviz::StringProperty* filter_;
+  rviz::StringProperty *filter_, *exclude_, *robot_description_;
+  rviz::FloatProperty* min_mass_fraction_;
+  rviz::BoolProperty* auto_frame_;
   rviz::IntProperty* history_length_;
+
+  std::map<std::string, double> masses_;  // link name -> kg, from Robot Description
+  ros::WallTime masses_tried_;
+  bool framed_ = false;  // the camera has framed the bodies since Auto Frame was turned on
+  message_filters::Connection frame_connection_;
 
   mbk::GlyphStyle style_;
   bool filter_ok_ = true;

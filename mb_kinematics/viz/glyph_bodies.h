@@ -3,6 +3,8 @@
 // it reads name, index, lower_body, pose, mass_center, twist and accel of each body.
 #pragma once
 
+#include <map>
+#include <string>
 #include <vector>
 
 #include "mb_kinematics/viz/glyphs.h"
@@ -29,6 +31,16 @@ std::vector<GlyphBody> glyph_bodies(const BodyKinematicsArray& msg) {
     g.vectors[GlyphQuantity::kAlpha] = vec(b.accel.angular);
   }
   return out;
+}
+
+// Each body's mass from `masses` (by name, e.g. mbk::urdf_link_masses of robot_description);
+// a body not in it keeps an unknown mass.
+inline void set_masses(const std::map<std::string, double>& masses,
+                       std::vector<GlyphBody>& bodies) {
+  for (GlyphBody& b : bodies) {
+    const auto it = masses.find(b.name);
+    if (it != masses.end()) b.mass = it->second;
+  }
 }
 
 }  // namespace mbk

@@ -15,8 +15,11 @@ bool finite(const GlyphBody& b) {
   return ok;
 }
 
-bool drawn(const GlyphStyle& style, const GlyphBody& b) {
-  return std::regex_search(b.name, style.filter);
+double heaviest(const std::vector<GlyphBody>& bodies) {
+  double m = 0;
+  for (const GlyphBody& b : bodies)
+    if (std::isfinite(b.mass)) m = std::max(m, b.mass);
+  return m;
 }
 
 // A 3/4 arc about the arrow's axis, centred half-way along it, turning the right-hand way.
@@ -52,7 +55,7 @@ void add_vectors(const GlyphBody& b, const GlyphStyle& style, Glyphs& out) {
 }
 
 // Lines from each drawn body's joint point O_k to that of its nearest drawn lower body.
-void add_skeleton(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
+void add_skeleton(const std::vector<GlyphBody>& bodies, const std::vector<char>& selected,
                   const std::vector<char>& ok, Glyphs& out) {
   std::vector<int> at;  // body index k -> position in bodies
   for (size_t i = 0; i < bodies.size(); ++i) {
@@ -64,7 +67,7 @@ void add_skeleton(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!ok[i]) continue;
     int j = position(bodies[i].lower);
-    for (int steps = 0; j >= 0 && !drawn(style, bodies[j]) && steps < 1000; ++steps)
+    for (int steps = 0; j >= 0 && !selected[j] && steps < 1000; ++steps)
       j = position(bodies[j].lower);
     if (j < 0 || !ok[j]) continue;
     const Vec3<double>& a = bodies[j].origin;
@@ -91,10 +94,23 @@ const char* glyph_quantity_name(int q) {
   return "?";
 }
 
+std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
+  const double min_mass = style.min_mass_fraction * heaviest(bodies);
+  std::vector<char> selected(bodies.size(), 0);
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const GlyphBody& b = bodies[i];
+    selected[i] = std::regex_search(b.name, style.filter) &&
+                  !(style.exclude && std::regex_search(b.name, *style.exclude)) &&
+                  !(b.mass < min_mass);  // NaN (unknown) is kept
+  }
+  return selected;
+}
+
 double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q) {
+  const std::vector<char> selected = selected_bodies(bodies, style);
   double m = 0;
-  for (const GlyphBody& b : bodies)
-    if (finite(b) && drawn(style, b)) m = std::max(m, b.vectors[q].norm());
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (selected[i] && finite(bodies[i])) m = std::max(m, bodies[i].vectors[q].norm());
   return m;
 }
 
@@ -105,6 +121,7 @@ double AutoScale::update(double max, double length, double decay) {
 
 Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
   Glyphs out;
+  const std::vector<char> selected = selected_bodies(bodies, style);
   std::vector<char> ok(bodies.size(), 0);
   for (size_t i = 0; i < bodies.size(); ++i) {
     const GlyphBody& b = bodies[i];
@@ -112,12 +129,12 @@ Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style
       out.skipped.push_back(b.name);
       continue;
     }
-    if (!drawn(style, b)) continue;
+    if (!selected[i]) continue;
     ok[i] = 1;
     add_vectors(b, style, out);
     if (style.mass_centers) out.mass_centers.push_back(b.mass_center);
   }
-  if (style.skeleton) add_skeleton(bodies, style, ok, out);
+  if (style.skeleton) add_skeleton(bodies, selected, ok, out);
   return out;
 }
 

@@ -9,6 +9,8 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <regex>
 #include <string>
 #include <utility>
@@ -28,6 +30,8 @@ const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega",
 // The default body filter: leaves out the massless links `<body>__<coord>` of ball and free
 // joints in URDFs written by `mbk urdf`.
 constexpr const char* kDefaultBodyFilter = "^(?!.*__)";
+// The default of GlyphStyle::min_mass_fraction (doc/rviz.md: what it leaves out on real robots).
+constexpr double kDefaultMinMassFraction = 0.005;
 
 struct Rgba {
   float r, g, b, a;
@@ -50,16 +54,22 @@ struct GlyphStyle {
   double sphere_radius = 0.035;  // m
   double min_length = 1e-3;      // arrows shorter than this (m) are left out
   std::regex filter{kDefaultBodyFilter};  // bodies drawn: names it matches (regex_search)
+  std::optional<std::regex> exclude;      // bodies left out: names it matches
+  // Bodies lighter than this fraction of the heaviest body (of those with a
+  // known mass) are left out (sensor frames,
+  // fingers, dummy links: their glyphs crowd the heavy bodies' without telling more).
+  double min_mass_fraction = kDefaultMinMassFraction;
 };
 
 // One body's kinematics as drawn, everything in R.
 struct GlyphBody {
   std::string name;
-  uint32_t index = 0, lower = 0;  // k and L(k)
-  Vec3<double> origin = Vec3<double>::Zero();  // O_k
+  uint32_t index = 0, lower = 0;                                    // k and L(k)
+  Vec3<double> origin = Vec3<double>::Zero();                       // O_k
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // S0K (checked finite)
   Vec3<double> mass_center = Vec3<double>::Zero();                  // G_k
-  std::array<Vec3<double>, GlyphQuantity::kCount> vectors;          // by GlyphQuantity
+  double mass = std::numeric_limits<double>::quiet_NaN();   // kg; NaN: unknown, never left out
+  std::array<Vec3<double>, GlyphQuantity::kCount> vectors;  // by GlyphQuantity
 };
 
 struct GlyphArrow {
@@ -82,6 +92,10 @@ struct Glyphs {
 
 // The largest |vector| of quantity q over the bodies drawn (finite ones).
 double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q);
+
+// Whether each body is drawn: its name matches the filter and not the exclusion, and it is not
+// lighter than min_mass_fraction of the heaviest body. Says nothing of non-finite values.
+std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style);
 
 // Auto-scale: the largest vector of a quantity drawn `length` m long; the maximum follows rises
 // at once and falls slowly (by `decay` per message), so arrows do not flicker.

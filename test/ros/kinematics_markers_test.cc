@@ -1,6 +1,7 @@
 // The picture of body_kinematics shared by the rviz display and the node's MarkerArray
 // (mb_kinematics/ros/kinematics_markers.h): arrows where and as long as they should be, arcs
-// that turn the right-hand way, the body filter, the skeleton, and invalid floats skipped.
+// that turn the right-hand way, the body filter, the skeleton, and invalid floats skipped; the
+// bodies left out by mass (masses from a URDF) and by the exclusion regex.
 #include "mb_kinematics/ros/kinematics_markers.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+
+#include "mb_kinematics/io/text_file.h"
+#include "mb_kinematics/io/urdf_masses.h"
 
 namespace {
 
@@ -141,6 +145,74 @@ TEST(KinematicsMarkers, MarkerArrayHasArrowsPerQuantity) {
   }
   for (const char* ns : {"velocity", "acceleration", "omega", "alpha"}) EXPECT_EQ(arrows[ns], 2);
   EXPECT_EQ(arrows["omega_arc"], 2);  // the heads of the arcs
+}
+
+// Bodies heavy (5 kg), finger (0.015 kg), mount (massless), unknown (no mass given), in a
+// chain; the finger moves fastest.
+std::vector<mbk::GlyphBody> weighed_bodies() {
+  auto msg = message();
+  msg.bodies = {body("heavy", 1, 0, 0.0), body("finger", 2, 1, 0.5), body("mount", 3, 2, 1.0),
+                body("unknown", 4, 3, 1.5)};
+  set(msg.bodies[1].twist.linear, 10, 0, 0);
+  std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
+  mbk::set_masses({{"heavy", 5.0}, {"finger", 0.015}, {"mount", 0.0}, {"other", 9.0}}, bodies);
+  return bodies;
+}
+
+std::vector<Vec3<double>> mass_centers(const Glyphs& g) { return g.mass_centers; }
+
+TEST(KinematicsMarkers, LightBodiesLeftOutByMassFraction) {
+  const std::vector<mbk::GlyphBody> bodies = weighed_bodies();
+  GlyphStyle style;  // default: below 0.5 % of the heaviest (25 g) left out
+  style.skeleton = true;
+  EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({1, 0, 0, 1}));
+  Glyphs g = mbk::make_glyphs(bodies, style);
+  EXPECT_EQ(g.arrows.size(), 8u);    // heavy and unknown
+  ASSERT_EQ(g.skeleton.size(), 1u);  // O_heavy to O_unknown, across the two left out
+  EXPECT_LT((g.skeleton[0].second - Vec3<double>(0, 0, 1.5)).norm(), 1e-12);
+  EXPECT_NEAR(mbk::max_norm(bodies, style, mbk_ros::GlyphQuantity::kVelocity), 1, 1e-12);
+  style.min_mass_fraction = 0.001;  // 5 g: the finger is back, the massless mount not
+  EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({1, 1, 0, 1}));
+  EXPECT_NEAR(mbk::max_norm(bodies, style, mbk_ros::GlyphQuantity::kVelocity), 10, 1e-12);
+  style.min_mass_fraction = 0;  // every body
+  EXPECT_EQ(mbk::make_glyphs(bodies, style).arrows.size(), 16u);
+}
+
+TEST(KinematicsMarkers, ExcludedNamesLeftOut) {
+  const std::vector<mbk::GlyphBody> bodies = weighed_bodies();
+  GlyphStyle style;
+  style.min_mass_fraction = 0;
+  style.exclude = std::regex("^(finger|unknown)$");
+  EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({1, 0, 1, 0}));
+  EXPECT_EQ(mass_centers(mbk::make_glyphs(bodies, style)).size(), 2u);
+  style.exclude = std::regex("heavy|mount");  // a name list
+  style.filter = std::regex("^(?!unknown)");  // and the inclusion filter still applies
+  EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({0, 1, 0, 0}));
+}
+
+// On the Panda (test/robots/): the default leaves out the two 15 g fingers and the massless
+// flange and hand frames, and keeps the seven links and the hand.
+TEST(KinematicsMarkers, PandaDefaultLeavesOutFingersAndFrames) {
+  const auto masses =
+      mbk::urdf_link_masses(mbk::read_text_file(MBK_SOURCE_DIR "/test/robots/panda.urdf", "panda"));
+  EXPECT_DOUBLE_EQ(masses.at("panda_leftfinger"), 0.015);
+  std::vector<mbk::GlyphBody> bodies;
+  for (const auto& [name, mass] : masses) {
+    bodies.emplace_back();
+    bodies.back().name = name;
+    bodies.back().mass = mass;
+  }
+  const std::vector<char> selected = mbk::selected_bodies(bodies, GlyphStyle());
+  std::vector<std::string> left_out;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (!selected[i]) left_out.push_back(bodies[i].name);
+  EXPECT_EQ(left_out, std::vector<std::string>({"panda_hand_tcp", "panda_leftfinger", "panda_link8",
+                                                "panda_rightfinger"}));
+}
+
+TEST(KinematicsMarkers, UrdfMassesRefuseWhatIsNotAUrdf) {
+  EXPECT_THROW(mbk::urdf_link_masses("<robot name='r'><link></robot>"), std::runtime_error);
+  EXPECT_EQ(mbk::urdf_link_masses("<robot name='r'><link name='a'/></robot>").at("a"), 0.0);
 }
 
 TEST(KinematicsMarkers, AutoScaleFollowsTheLargestVector) {

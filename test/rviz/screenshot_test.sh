@@ -5,11 +5,20 @@
 # pixels (up to TIMEOUT s). Fails if the plugin does not load, rviz reports a plugin or display
 # error, or nothing is drawn. Keeps the last screenshot and rviz's output in OUT_DIR.
 #   test/rviz/screenshot_test.sh OUT_DIR    (in a sourced catkin workspace: devel/env.sh ...)
+# On another robot (test/rviz.cmake): DEMO_ARGS=model:=ROBOT.urdf; EXPECT_FRAME=LINK: the display
+# must have set the Fixed Frame (config/mb_kinematics.rviz says `world`) to LINK; REGION=X0,Y0,X1,Y1:
+# only pixels there count (the middle of the 3D view, where the framed robot is); CENTER=X,Y,TOL:
+# the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
+# camera frames the robot); SHOT_NAME: the name of the kept files.
 set -uo pipefail
 out_dir=${1:?usage: screenshot_test.sh OUT_DIR}
 src=$(cd "$(dirname "$0")/../.." && pwd)
 MIN_PIXELS=${MIN_PIXELS:-50}
 TIMEOUT=${TIMEOUT:-60}
+SHOT_NAME=${SHOT_NAME:-rviz_screenshot}
+EXPECT_FRAME=${EXPECT_FRAME:-}
+REGION=${REGION:-}
+CENTER=${CENTER:-}
 mkdir -p "$out_dir"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
 export ROS_HOME=$tmp/ros HOME=$tmp/home
@@ -25,7 +34,7 @@ stop() {  # the processes started here, newest first: SIGINT, then SIGKILL after
     kill -KILL "$p" 2>/dev/null
     wait "$p" 2>/dev/null
   done
-  cp "$tmp/rviz.log" "$out_dir/rviz_screenshot_rviz.log" 2>/dev/null
+  cp "$tmp/rviz.log" "$out_dir/${SHOT_NAME}_rviz.log" 2>/dev/null
   rm -rf "$tmp"
 }
 trap stop EXIT
@@ -46,30 +55,43 @@ pids+=($!)
 for _ in $(seq 300); do grep -q "coordinates, max depth" "$tmp/launch.log" && break; sleep 0.1; done
 grep -q "coordinates, max depth" "$tmp/launch.log" || fail "demo.launch did not start: $(tail "$tmp/launch.log")"
 
-rviz -d "$src/config/mb_kinematics.rviz" >"$tmp/rviz.log" 2>&1 &
+stdbuf -oL rviz -d "$src/config/mb_kinematics.rviz" >"$tmp/rviz.log" 2>&1 &
 rviz_pid=$!
 pids+=($rviz_pid)
 
 passed=false
 start=$SECONDS
 while [ $((SECONDS - start)) -lt "$TIMEOUT" ]; do
-  sleep 3
+  sleep 1
   kill -0 "$rviz_pid" 2>/dev/null || fail "rviz exited: $(tail -n 20 "$tmp/rviz.log")"
   import -window root "$tmp/shot.png" 2>/dev/null || continue
-  python3 "$src/test/rviz/count_colors.py" "$tmp/shot.png" >"$tmp/counts" || continue
-  cp "$tmp/shot.png" "$out_dir/rviz_screenshot.png"
-  if awk -v min="$MIN_PIXELS" '$2 <= min { low = 1 } END { exit low }' "$tmp/counts"; then
+  python3 "$src/test/rviz/count_colors.py" "$tmp/shot.png" ${REGION:+--region "$REGION"} \
+    >"$tmp/counts" || continue
+  cp "$tmp/shot.png" "$out_dir/$SHOT_NAME.png"
+  if awk -v min="$MIN_PIXELS" -v center="$CENTER" '
+      $1 != "centroid" && $2 <= min { bad = 1 }
+      $1 == "centroid" && center != "" {
+        split(center, c, ",")
+        if ($2 < c[1] - c[3] || $2 > c[1] + c[3] || $3 < c[2] - c[3] || $3 > c[2] + c[3]) bad = 1
+      }
+      END { exit bad }' "$tmp/counts"; then
     passed=true
     break
   fi
 done
-echo "pixels per arrow color after $((SECONDS - start)) s (more than $MIN_PIXELS needed):"
+echo "pixels per arrow color${REGION:+ in $REGION} after $((SECONDS - start)) s (more than $MIN_PIXELS needed):"
 sed 's/^/  /' "$tmp/counts" 2>/dev/null
-echo "screenshot: $out_dir/rviz_screenshot.png"
+echo "screenshot: $out_dir/$SHOT_NAME.png"
 
 # Plugin or display errors (Debian's rviz always logs the harmless media_export one).
 errors=$(grep -iE 'error|failed|exception' "$tmp/rviz.log" | grep -v -e 'no such package media_export' -e '\[librospack\]: error while executing command')
 [ -z "$errors" ] || fail "rviz reported errors:
 $errors"
-$passed || fail "the display's arrow colors did not show within $TIMEOUT s"
+if [ -n "$EXPECT_FRAME" ]; then
+  grep -q "set to '$EXPECT_FRAME', the frame of the body kinematics" "$tmp/rviz.log" ||
+    fail "the display did not set the Fixed Frame to '$EXPECT_FRAME'"
+elif grep -q "is not in tf; set to" "$tmp/rviz.log"; then
+  fail "the display changed the config's Fixed Frame, which tf knows"
+fi
+$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s"
 echo "PASS"
