@@ -8,8 +8,11 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/message_event.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "mb_kinematics/core/kinematics.h"
 #include "test/ros/ros_test_support.h"
@@ -67,7 +70,9 @@ class BaseOdometryTest : public ::testing::Test {
     connect(states_, floating_recorder_);
   }
   // The floating model's state at tau: the base on root/x y z (quadratic) and root/gamma
-  // (quadratic; alpha, beta constant: one fixed axis), the other coordinates on `joints`.
+  // (quadratic; alpha, beta constant: one fixed axis), the other coordinates on `joints`. With
+  // uniform_ the base's x y z and gamma are linear in tau: a constant velocity and a constant
+  // angular velocity about a fixed axis, which slerp and linear interpolation follow exactly.
   mbk::JointState<double> full_state(double tau) const {
     mbk::JointState<double> s(floating_);
     const mbk::JointState<double> j = joints_.at(tau);
@@ -78,9 +83,10 @@ class BaseOdometryTest : public ::testing::Test {
     const double c0[6] = {0.4, -0.3, 0.2, 0.3, -0.4, 0.5}, c1[6] = {0.5, 0.2, -0.1, 0, 0, 0.7},
                  c2[6] = {0.3, -0.6, 0.2, 0, 0, -0.9};
     for (int i = 0; i < n; ++i) {
-      s.position[i] = c0[i] + c1[i] * tau + c2[i] * tau * tau;
-      s.velocity[i] = c1[i] + 2 * c2[i] * tau;
-      s.acceleration[i] = 2 * c2[i];
+      const double c2i = uniform_ ? 0 : c2[i];
+      s.position[i] = c0[i] + c1[i] * tau + c2i * tau * tau;
+      s.velocity[i] = c1[i] + 2 * c2i * tau;
+      s.acceleration[i] = 2 * c2i;
     }
     return s;
   }
@@ -141,6 +147,7 @@ class BaseOdometryTest : public ::testing::Test {
   }
 
   ros::NodeHandle nh_;
+  bool uniform_ = false;
   mbk::Model model_ = test_model();
   mbk::Model floating_ = mbk::load_urdf_file(source_path("test/ros/test_robot_floating.urdf"));
   Quadratic joints_{model_};
@@ -166,6 +173,82 @@ TEST_F(BaseOdometryTest, AbsoluteKinematicsInTheOdometryFrame) {
   EXPECT_EQ(parents["/mb_kinematics"].count("base_link -> slider"), 1u);
   EXPECT_EQ(parents["/floating/mb_kinematics"].count("odom -> f/base_link"), 1u);
   EXPECT_EQ(parents["/floating/mb_kinematics"].count("f/base_link -> f/slider"), 1u);
+}
+
+// The transforms to `child` on /tf, by stamp.
+class TransformRecorder {
+ public:
+  TransformRecorder(ros::NodeHandle& nh, std::string child)
+      : child_(std::move(child)), sub_(nh.subscribe("/tf", 1000, &TransformRecorder::on, this)) {}
+  std::map<ros::Time, geometry_msgs::Transform> get() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return by_stamp_;
+  }
+
+ private:
+  void on(const tf2_msgs::TFMessage& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& t : msg.transforms)
+      if (t.child_frame_id == child_) by_stamp_[t.header.stamp] = t.transform;
+  }
+  std::string child_;
+  mutable std::mutex mutex_;
+  std::map<ros::Time, geometry_msgs::Transform> by_stamp_;
+  ros::Subscriber sub_;
+};
+
+// Issue 25.4: odometry stamped half a period after each joint sample and sent after it. Each
+// sample waits (~base_odometry_wait, default) for the odometry after its stamp and takes the base
+// interpolated between the two around it: on a base motion that slerp and lerp follow exactly,
+// the published base (tf and every body of body_kinematics) is the exact one to 1e-9 m.
+TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
+  uniform_ = true;
+  TransformRecorder base_tf(nh_, "f/base_link");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const ros::Time start(150.0);
+  const int n = 12;
+  odom_.publish(odometry(-0.5 * kDt, start - ros::Duration(0.5 * kDt)));
+  for (int i = 0; i < n; ++i) {
+    const ros::Time stamp = start + ros::Duration(i * kDt);
+    states_.publish(joint_state_msg(model_, joints_.at(i * kDt), stamp, true));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // the odometry comes later
+    odom_.publish(odometry((i + 0.5) * kDt, stamp + ros::Duration(0.5 * kDt)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(recorder_.wait_for(start + ros::Duration((n - 1) * kDt)));
+  ASSERT_TRUE(floating_recorder_.wait_for(start + ros::Duration((n - 1) * kDt)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const std::map<ros::Time, geometry_msgs::Transform> tf = base_tf.get();
+  double position = 0, rotation = 0;  // the largest errors of the published poses
+  size_t poses = 0;
+  for (int i = 0; i < n; ++i) {
+    const ros::Time stamp = start + ros::Duration(i * kDt);
+    const mbk::Data<double> d = expected_kinematics(floating_, full_state(i * kDt));
+    const auto add = [&](const mbk::Vec3<double>& p, const Eigen::Quaterniond& q, int k) {
+      position = std::max(position, (p - d.origin[k]).norm());
+      rotation = std::max(rotation, (q.toRotationMatrix() - d.rotation[k]).norm());
+      ++poses;
+    };
+    const auto t = tf.find(stamp);
+    ASSERT_NE(t, tf.end()) << "no odom -> f/base_link at sample " << i;
+    const auto& r = t->second.rotation;
+    add(vec(t->second.translation), Eigen::Quaterniond(r.w, r.x, r.y, r.z), 1);
+    for (const KinematicsRecorder* recorder : {&recorder_, &floating_recorder_}) {
+      const auto msgs = recorder->at(stamp);
+      if (i < 3 && msgs.empty()) continue;  // the base's acceleration is not estimated yet
+      ASSERT_EQ(msgs.size(), 1u) << "sample " << i << ": published once, none dropped";
+      for (int k = 1; k <= floating_.body_count(); ++k) {
+        const auto& o = msgs[0].bodies.at(k - 1).pose.orientation;
+        add(vec(msgs[0].bodies[k - 1].pose.position), Eigen::Quaterniond(o.w, o.x, o.y, o.z), k);
+      }
+      SCOPED_TRACE("sample " + std::to_string(i));
+      expect_kinematics(msgs[0], floating_, d, kTol);  // the rest of the kinematics as well
+    }
+  }
+  std::printf("  %zu poses: %.1e m, %.1e (rotation matrix difference)\n", poses, position,
+              rotation);
+  EXPECT_LT(position, 1e-9);
+  EXPECT_LT(rotation, 1e-9);
 }
 
 TEST_F(BaseOdometryTest, NaNAndAnotherFrameAreRefused) {
