@@ -208,6 +208,7 @@ TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
   const ros::Time start(150.0);
   const int n = 12;
   odom_.publish(odometry(-0.5 * kDt, start - ros::Duration(0.5 * kDt)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));
   for (int i = 0; i < n; ++i) {
     const ros::Time stamp = start + ros::Duration(i * kDt);
     states_.publish(joint_state_msg(model_, joints_.at(i * kDt), stamp, true));
@@ -230,9 +231,11 @@ TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
       ++poses;
     };
     const auto t = tf.find(stamp);
-    ASSERT_NE(t, tf.end()) << "no odom -> f/base_link at sample " << i;
-    const auto& r = t->second.rotation;
-    add(vec(t->second.translation), Eigen::Quaterniond(r.w, r.x, r.y, r.z), 1);
+    EXPECT_NE(t, tf.end()) << "no odom -> f/base_link at sample " << i;
+    if (t != tf.end()) {
+      const auto& r = t->second.rotation;
+      add(vec(t->second.translation), Eigen::Quaterniond(r.w, r.x, r.y, r.z), 1);
+    }
     for (const KinematicsRecorder* recorder : {&recorder_, &floating_recorder_}) {
       const auto msgs = recorder->at(stamp);
       if (i < 3 && msgs.empty()) continue;  // the base's acceleration is not estimated yet
