@@ -8,11 +8,8 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/message_event.h>
-#include <tf2_msgs/TFMessage.h>
 
 #include <cmath>
-#include <map>
-#include <utility>
 
 #include "mb_kinematics/core/kinematics.h"
 #include "test/ros/ros_test_support.h"
@@ -93,27 +90,8 @@ class BaseOdometryTest : public ::testing::Test {
   nav_msgs::Odometry odometry(double tau, const ros::Time& stamp) const {
     mbk::Data<double> d(floating_);
     mbk::forward_kinematics(floating_, full_state(tau), d);
-    nav_msgs::Odometry o;
-    o.header.stamp = stamp;
-    o.header.frame_id = "odom";
-    o.child_frame_id = "base_link";
-    const Eigen::Quaterniond q(d.rotation[1]);
-    o.pose.pose.position.x = d.origin[1].x();
-    o.pose.pose.position.y = d.origin[1].y();
-    o.pose.pose.position.z = d.origin[1].z();
-    o.pose.pose.orientation.x = q.x();
-    o.pose.pose.orientation.y = q.y();
-    o.pose.pose.orientation.z = q.z();
-    o.pose.pose.orientation.w = q.w();
-    const mbk::Vec3<double> v = d.rotation[1].transpose() * d.origin_velocity[1];
-    const mbk::Vec3<double> w = d.rotation[1].transpose() * d.omega[1];  // in child_frame_id
-    o.twist.twist.linear.x = v.x();
-    o.twist.twist.linear.y = v.y();
-    o.twist.twist.linear.z = v.z();
-    o.twist.twist.angular.x = w.x();
-    o.twist.twist.angular.y = w.y();
-    o.twist.twist.angular.z = w.z();
-    return o;
+    return odometry_msg("odom", stamp, d.origin[1], Eigen::Quaterniond(d.rotation[1]),
+                        d.origin_velocity[1], d.omega[1]);
   }
   // n samples from `start` (tau = i dt): odometry one step ahead of joint_states, as a faster
   // odometry source would be. `odometry_shift` moves the odometry's stamps (and so its tau).
@@ -175,35 +153,13 @@ TEST_F(BaseOdometryTest, AbsoluteKinematicsInTheOdometryFrame) {
   EXPECT_EQ(parents["/floating/mb_kinematics"].count("f/base_link -> f/slider"), 1u);
 }
 
-// The transforms to `child` on /tf, by stamp.
-class TransformRecorder {
- public:
-  TransformRecorder(ros::NodeHandle& nh, std::string child)
-      : child_(std::move(child)), sub_(nh.subscribe("/tf", 1000, &TransformRecorder::on, this)) {}
-  std::map<ros::Time, geometry_msgs::Transform> get() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return by_stamp_;
-  }
-
- private:
-  void on(const tf2_msgs::TFMessage& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& t : msg.transforms)
-      if (t.child_frame_id == child_) by_stamp_[t.header.stamp] = t.transform;
-  }
-  std::string child_;
-  mutable std::mutex mutex_;
-  std::map<ros::Time, geometry_msgs::Transform> by_stamp_;
-  ros::Subscriber sub_;
-};
-
 // Issue 25.4: odometry stamped half a period after each joint sample and sent after it. Each
 // sample waits (~base_odometry_wait, default) for the odometry after its stamp and takes the base
 // interpolated between the two around it: on a base motion that slerp and lerp follow exactly,
 // the published base (tf and every body of body_kinematics) is the exact one to 1e-9 m.
 TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
   uniform_ = true;
-  TransformRecorder base_tf(nh_, "f/base_link");
+  Transforms base_tf(nh_, "/tf", false);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const ros::Time start(150.0);
   const int n = 12;
@@ -219,7 +175,7 @@ TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
   ASSERT_TRUE(recorder_.wait_for(start + ros::Duration((n - 1) * kDt)));
   ASSERT_TRUE(floating_recorder_.wait_for(start + ros::Duration((n - 1) * kDt)));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  const std::map<ros::Time, geometry_msgs::Transform> tf = base_tf.get();
+  const std::map<Key, geometry_msgs::TransformStamped> tf = base_tf.get();
   double position = 0, rotation = 0;  // the largest errors of the published poses
   size_t poses = 0;
   for (int i = 0; i < n; ++i) {
@@ -230,11 +186,11 @@ TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
       rotation = std::max(rotation, (q.toRotationMatrix() - d.rotation[k]).norm());
       ++poses;
     };
-    const auto t = tf.find(stamp);
+    const auto t = tf.find({"f/base_link", stamp.toSec()});
     EXPECT_NE(t, tf.end()) << "no odom -> f/base_link at sample " << i;
     if (t != tf.end()) {
-      const auto& r = t->second.rotation;
-      add(vec(t->second.translation), Eigen::Quaterniond(r.w, r.x, r.y, r.z), 1);
+      const auto& r = t->second.transform.rotation;
+      add(vec(t->second.transform.translation), Eigen::Quaterniond(r.w, r.x, r.y, r.z), 1);
     }
     for (const KinematicsRecorder* recorder : {&recorder_, &floating_recorder_}) {
       const auto msgs = recorder->at(stamp);

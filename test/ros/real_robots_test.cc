@@ -26,30 +26,6 @@ using namespace mbk_ros_test;
 
 namespace {
 
-using Key = std::pair<std::string, double>;  // child frame, stamp (0 for /tf_static)
-
-class Transforms {
- public:
-  Transforms(ros::NodeHandle& nh, const std::string& topic, bool latched)
-      : latched_(latched), sub_(nh.subscribe(topic, 1000, &Transforms::on, this)) {}
-  bool connected() const { return sub_.getNumPublishers() > 0; }
-  std::map<Key, geometry_msgs::TransformStamped> get() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return transforms_;
-  }
-
- private:
-  void on(const tf2_msgs::TFMessage& msg) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& t : msg.transforms)
-      transforms_[{t.child_frame_id, latched_ ? 0.0 : t.header.stamp.toSec()}] = t;
-  }
-  bool latched_;
-  mutable std::mutex mutex_;
-  std::map<Key, geometry_msgs::TransformStamped> transforms_;
-  ros::Subscriber sub_;
-};
-
 // Largest translation (m) and rotation (rad, 2 asin |vec(q_a^-1 q_b)|) differences.
 void compare(const std::map<Key, geometry_msgs::TransformStamped>& ours,
              const std::map<Key, geometry_msgs::TransformStamped>& theirs, double& position,
@@ -85,26 +61,7 @@ struct BaseMotion {
     const Eigen::Quaterniond q =
         Eigen::AngleAxisd(w.norm() * tau, w.normalized()) *
         Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()));
-    const Eigen::Vector3d p = Eigen::Vector3d(1.0, -0.5, 0.9) + v * tau;
-    const Eigen::Vector3d v_base = q.conjugate() * v, w_base = q.conjugate() * w;
-    nav_msgs::Odometry o;
-    o.header.stamp = stamp;
-    o.header.frame_id = "odom";
-    o.child_frame_id = "base";
-    o.pose.pose.position.x = p.x();
-    o.pose.pose.position.y = p.y();
-    o.pose.pose.position.z = p.z();
-    o.pose.pose.orientation.w = q.w();
-    o.pose.pose.orientation.x = q.x();
-    o.pose.pose.orientation.y = q.y();
-    o.pose.pose.orientation.z = q.z();
-    o.twist.twist.linear.x = v_base.x();
-    o.twist.twist.linear.y = v_base.y();
-    o.twist.twist.linear.z = v_base.z();
-    o.twist.twist.angular.x = w_base.x();
-    o.twist.twist.angular.y = w_base.y();
-    o.twist.twist.angular.z = w_base.z();
-    return o;
+    return odometry_msg("odom", stamp, Eigen::Vector3d(1.0, -0.5, 0.9) + v * tau, q, v, w);
   }
 };
 
