@@ -126,4 +126,33 @@ TEST_P(OdometryWait, ReleasedByTheLaterOdometryOrAfterTheWait) {
 
 INSTANTIATE_TEST_SUITE_P(HeldOrExtrapolated, OdometryWait, ::testing::Bool());
 
+// More than ~queue_size samples waiting: the oldest goes on at once (held), none is lost.
+TEST(OdometryQueue, BeyondTheQueueSizeTheOldestGoesOn) {
+  using Fill = mbk_ros::NodeInput::Fill;
+  mbk_ros::NodeParams params;
+  params.base_odometry = "odom";
+  params.acceleration_estimator = "backward_difference";
+  params.queue_size = 2;
+  mbk_ros::NodeInput input(params, "/odom");
+  const mbk::Model chain = mbk_test::revolute_chain(2);
+  input.load(chain);
+  input.add(odometry_at(1.0));
+  const auto now = mbk_ros::NodeInput::Clock::now();
+  mbk::Level level = mbk::Level::kPose;
+  ros::Time stamp;
+  for (const double t : {1.02, 1.03, 1.04}) {
+    ASSERT_TRUE(input.add(joint_sample(chain, t), t));
+    ASSERT_EQ(input.fill(t, ros::Time(t), level, now), Fill::kWaiting);
+  }
+  ASSERT_EQ(input.release(now, stamp, level), Fill::kReady);
+  EXPECT_EQ(stamp, ros::Time(1.02));
+  EXPECT_EQ(input.release(now, stamp, level), Fill::kWaiting) << "two wait: within the size";
+  input.add(odometry_at(1.05));
+  for (const double t : {1.03, 1.04}) {
+    ASSERT_EQ(input.release(now, stamp, level), Fill::kReady);
+    EXPECT_EQ(stamp, ros::Time(t)) << "in order";
+  }
+  EXPECT_EQ(input.tally().problems(mbk_ros::InputProblem::kBaseHeld), 1);
+}
+
 }  // namespace
