@@ -267,6 +267,26 @@ TEST_F(BaseOdometryTest, OdometryTooNewOrTooOldPublishesNothing) {
   EXPECT_EQ(counters.next(kDropped), before + 20) << "every sample of both runs dropped";
 }
 
+// A wait out of range or an extrapolate flag that is no bool: the node says which and exits.
+TEST(BaseOdometryParams, BadWaitOrExtrapolateExitsNonZero) {
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("/robot_description", urdf));
+  nh.setParam("/bad_wait/robot_description", urdf);
+  std::string output;
+  EXPECT_GT(
+      run_node("__ns:=/bad_wait __name:=n _base_odometry:=odom _base_odometry_wait:=-0.5", output),
+      0);
+  EXPECT_NE(output.find("base_odometry_wait must be in [0, 10]"), std::string::npos) << output;
+  output.clear();
+  EXPECT_GT(run_node("__ns:=/bad_wait __name:=m _base_odometry:=odom "  // its own parameters
+                     "_base_odometry_extrapolate:=sometimes",
+                     output),
+            0);
+  EXPECT_NE(output.find("base_odometry_extrapolate must be true or false"), std::string::npos)
+      << output;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
