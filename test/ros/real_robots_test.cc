@@ -3,8 +3,9 @@
 // robot_state_publisher's on the same joint_states stream to 1e-12 m and 1e-12 rad (the angle of
 // the quaternion difference), mimic joints published off their rule included (the published
 // value wins, as in robot_state_publisher), and body_kinematics' system mass is the URDF's sum.
-// With ~odometry (odometry:=true) the base floats on ~base_odometry: R -> base and every body's
-// pose in R agree with the odometry's pose composed with robot_state_publisher's tf. Then mbk bag
+// With ~odometry (odometry:=true) the base floats on ~base_odometry, its odometry half a period
+// late: R -> base and every body's pose in R agree with the base's exact pose composed with
+// robot_state_publisher's tf. Then mbk bag
 // on the stream the node got (joint_states with velocities, joint_accelerations, the odometry)
 // gives the node's tf and body_kinematics to 1e-12.
 #include <mb_kinematics_msgs/JointAccelerations.h>
@@ -146,11 +147,16 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisherAndMbkBag) {
   rosbag::Bag recorded(in_bag, rosbag::bagmode::Write);  // what the node gets, for mbk bag
   const BaseMotion base;
   const ros::Time start(50.0);
+  // The odometry at 100 Hz, half a period after each joint sample and sent after it (issue
+  // 25.4): each sample waits for it and takes the base interpolated, exact on this motion.
+  const auto send_odometry = [&](double tau) {
+    const ros::Time stamp = start + ros::Duration(tau);
+    odometry.publish(base.at(tau, stamp));
+    recorded.write("/odom", stamp, base.at(tau, stamp));
+  };
   if (floating) {  // R is known: the node advertises its outputs in R
     ASSERT_TRUE(wait_until([&] { return odometry.getNumSubscribers() > 0; }, 20));
-    odometry.publish(base.at(-0.01, start - ros::Duration(0.01)));
-    recorded.write("/odom", start - ros::Duration(0.01),
-                   base.at(-0.01, start - ros::Duration(0.01)));
+    send_odometry(-0.005);
   }
   ASSERT_TRUE(wait_until(
       [&] {
@@ -165,11 +171,6 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisherAndMbkBag) {
     mbk::JointState<double> state = trajectory.at(i * 0.01);  // a published value wins in both
     for (const mbk::Mimic& m : model.mimics) state.position[m.coordinate] += 0.01;
     const ros::Time stamp = start + ros::Duration(i * 0.01);
-    if (floating) {
-      odometry.publish(base.at(i * 0.01, stamp));
-      recorded.write("/odom", stamp, base.at(i * 0.01, stamp));
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
     const auto js = joint_state_msg(model, state, stamp, true, model.coordinate_names);
     mb_kinematics_msgs::JointAccelerations a;
     a.header.stamp = stamp;
@@ -179,7 +180,9 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisherAndMbkBag) {
     accelerations.publish(a);
     recorded.write("/joint_states", stamp, js);
     recorded.write("/joint_accelerations", stamp, a);
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (floating) send_odometry(i * 0.01 + 0.005);
+    std::this_thread::sleep_for(std::chrono::milliseconds(45));
   }
   recorded.close();
   ASSERT_TRUE(kinematics.wait_for(start + ros::Duration((samples - 1) * 0.01)));
@@ -195,7 +198,7 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisherAndMbkBag) {
   EXPECT_LT(rotation, 1e-12);
   const double sum = mbk_test::urdf_mass_sum(xml);
   EXPECT_NEAR(kinematics.latest().system.mass, sum, 1e-12 * sum);
-  if (floating) {  // R -> base and every body's pose in R: the odometry's pose, composed with rsp
+  if (floating) {  // R -> base and every body's pose in R: the exact base pose, composed with rsp
     const std::string root = model.frame;  // the root link
     double base_position = 0, base_rotation = 0, body_position = 0, body_rotation = 0;
     size_t bodies = 0;
