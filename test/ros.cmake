@@ -54,15 +54,19 @@ add_rostest(test/ros/launch_description.test DEPENDENCIES mb_kinematics_node rsp
 # The real-robot conformance set (test/robots/): the node against robot_state_publisher.
 add_executable(real_robots_test EXCLUDE_FROM_ALL test/ros/real_robots_test.cc)
 add_dependencies(tests real_robots_test)
-add_dependencies(real_robots_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
+add_dependencies(real_robots_test mb_kinematics_node mbk mbk_bag
+  mb_kinematics_msgs_generate_messages_cpp)
 target_include_directories(real_robots_test SYSTEM PRIVATE ${GTEST_INCLUDE_DIRS})
 target_link_libraries(real_robots_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES}
   ${GTEST_LIBRARIES})
 target_compile_definitions(real_robots_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-  MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
+  MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>" MBK_MBK_PATH="$<TARGET_FILE:mbk>")
 foreach(robot panda anymal_c solo12 romeo_small pr2 baxter)
   add_rostest(test/ros/real_robots.test ARGS robot:=${robot} DEPENDENCIES real_robots_test)
 endforeach()
+# The humanoid with a floating base from ~base_odometry.
+add_rostest(test/ros/real_robots.test ARGS robot:=romeo_small odometry:=true
+  DEPENDENCIES real_robots_test)
 add_rostest_gtest(nodelet_load_test test/ros/nodelet_load.test test/ros/nodelet_load_test.cc)
 add_dependencies(nodelet_load_test mbk_nodelet demo_publisher)
 target_link_libraries(nodelet_load_test ${catkin_LIBRARIES})

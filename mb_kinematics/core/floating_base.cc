@@ -24,6 +24,21 @@ bool interpolate_base(const std::vector<BaseSample>& samples,
   return true;
 }
 
+void extrapolate_base(const BaseSample& s, const Vec3<double>& linear_acceleration,
+                      const Vec3<double>& angular_acceleration, double dt, BaseMotion& out) {
+  const Vec3<double> w = s.orientation * s.angular, v = s.orientation * s.linear;  // in R
+  const double angle = w.norm() * dt;
+  const Eigen::Quaterniond turn =
+      angle == 0 ? Eigen::Quaterniond::Identity()
+                 : Eigen::Quaterniond(Eigen::AngleAxisd(angle, w.normalized()));
+  out.rotation = (turn * s.orientation).toRotationMatrix();
+  out.position = s.position + dt * v;
+  out.velocity = v;
+  out.omega = w;
+  out.acceleration = linear_acceleration;
+  out.alpha = angular_acceleration;
+}
+
 void apply_floating_base(const BaseMotion& base, Data<double>& data) {
   const Mat3<double>& rb = base.rotation;
   const Vec3<double>& w = base.omega;

@@ -40,6 +40,12 @@ bool interpolate_base(const std::vector<BaseSample>& samples,
                       const std::vector<Vec3<double>>& angular_acceleration, double t,
                       BaseMotion& out);
 
+// The base `dt` seconds after sample `s` (before it for dt < 0) with its twist in R held
+// constant: R = exp(dt [omega]x) R_s, p = p_s + dt v; the accelerations given are kept. Exact
+// for a constant linear velocity and a constant angular velocity about a fixed axis.
+void extrapolate_base(const BaseSample& s, const Vec3<double>& linear_acceleration,
+                      const Vec3<double>& angular_acceleration, double dt, BaseMotion& out);
+
 // Carries `data` (computed in the root frame) into R for a root frame moving as `base`:
 // S0K <- R_b S0K, p <- p_b + R_b p, omega <- w_b + R_b omega, v <- v_b + w_b x R_b p + R_b v,
 // alpha <- a_b' + w_b x R_b omega + R_b alpha,

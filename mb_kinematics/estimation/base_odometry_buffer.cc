@@ -71,19 +71,24 @@ std::string BaseOdometryBuffer::add(const BaseSample& input) {
   return "";
 }
 
-BaseOdometryBuffer::Fit BaseOdometryBuffer::at(double t, BaseMotion& out,
-                                               bool& has_acceleration) const {
+BaseOdometryBuffer::Fit BaseOdometryBuffer::at(double t, BaseMotion& out, bool& has_acceleration,
+                                               bool extrapolate) const {
   if (samples_.empty()) return Fit::kEmpty;
   if (t < first_stamp() - max_gap_) return Fit::kTooOld;
   if (t > last_stamp() + max_gap_) return Fit::kTooNew;
-  const bool held = t < first_stamp() || t > last_stamp();
-  const double u = held ? (t < first_stamp() ? first_stamp() : last_stamp()) : t;
-  interpolate_base(samples_, linear_acceleration_, angular_acceleration_, u, out);
-  const auto after = std::lower_bound(samples_.begin(), samples_.end(), u,
+  if (t < first_stamp() || t > last_stamp()) {  // beyond the ends: the nearest sample's motion
+    const size_t i = t < first_stamp() ? 0 : samples_.size() - 1;
+    has_acceleration = valid_[i];
+    const double dt = extrapolate ? t - samples_[i].t : 0;
+    extrapolate_base(samples_[i], linear_acceleration_[i], angular_acceleration_[i], dt, out);
+    return extrapolate ? Fit::kExtrapolated : Fit::kHeld;
+  }
+  interpolate_base(samples_, linear_acceleration_, angular_acceleration_, t, out);
+  const auto after = std::lower_bound(samples_.begin(), samples_.end(), t,
                                       [](const BaseSample& s, double x) { return s.t < x; });
   const size_t j = after - samples_.begin(), i = j == 0 ? 0 : j - 1;
   has_acceleration = valid_[i] && valid_[j];
-  return held ? Fit::kHeld : Fit::kInterpolated;
+  return Fit::kInterpolated;
 }
 
 }  // namespace mbk

@@ -1,8 +1,9 @@
 // The node's online buffer of a floating base's odometry (doc/node.md "Floating base from
 // odometry"): the newest BaseSamples (core/floating_base.h) with the base's acceleration from an
 // online DerivativeEstimator on the velocities in R, read at a joint sample's stamp by
-// interpolate_base (pose by slerp, twist linearly) or held within a gap beyond the first or last
-// sample. mbk bag reads the same BaseSample/BaseMotion offline. ROS-free (Eigen only).
+// interpolate_base (pose by slerp, twist linearly) or, within a gap beyond the first or last
+// sample, held or extrapolated. mbk bag reads the same BaseSample/BaseMotion offline. ROS-free
+// (Eigen only).
 #pragma once
 
 #include <memory>
@@ -31,12 +32,16 @@ class BaseOdometryBuffer {
   std::string add(const BaseSample& s);
   void reset();
 
-  enum class Fit { kEmpty, kInterpolated, kHeld, kTooOld, kTooNew };
+  enum class Fit { kEmpty, kInterpolated, kHeld, kExtrapolated, kTooOld, kTooNew };
   // The motion at time t: between two samples interpolated (interpolate_base); within max_gap
-  // of the first or last sample, that sample's (held); farther, kTooOld (t before the first
-  // sample) or kTooNew (after the last), and `out` is unchanged. `has_acceleration` is false
-  // while the estimator has too few samples for the samples used (accelerations then zero).
-  Fit at(double t, BaseMotion& out, bool& has_acceleration) const;
+  // of the first or last sample, that sample's (held), or with `extrapolate` that sample's twist
+  // carried on to t (extrapolate_base); farther, kTooOld (t before the first sample) or kTooNew
+  // (after the last), and `out` is unchanged. `has_acceleration` is false while the estimator
+  // has too few samples for the samples used (accelerations then zero).
+  Fit at(double t, BaseMotion& out, bool& has_acceleration, bool extrapolate = false) const;
+
+  // True once a sample at or after t has come: at(t) interpolates, no later sample changes it.
+  bool covers(double t) const { return !samples_.empty() && last_stamp() >= t; }
 
   double first_stamp() const { return samples_.empty() ? 0 : samples_.front().t; }
   double last_stamp() const { return samples_.empty() ? 0 : samples_.back().t; }

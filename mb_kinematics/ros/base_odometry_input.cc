@@ -47,11 +47,12 @@ std::string BaseOdometryInput::add(const nav_msgs::Odometry& msg, double t) {
 
 std::string BaseOdometryInput::fill(double t, const mbk::Model& model,
                                     const mbk::JointState<double>& joints,
-                                    mbk::JointState<double>& state, mbk::Level& level) const {
+                                    mbk::JointState<double>& state, mbk::Level& level,
+                                    bool extrapolate, mbk::BaseOdometryBuffer::Fit& fit) const {
   using Fit = mbk::BaseOdometryBuffer::Fit;
   mbk::BaseMotion m;
   bool has_acceleration = false;
-  const Fit fit = buffer_.at(t, m, has_acceleration);
+  fit = buffer_.at(t, m, has_acceleration, extrapolate);
   if (fit == Fit::kEmpty) return "no base odometry yet";
   if (fit == Fit::kTooOld || fit == Fit::kTooNew) {
     const bool old = fit == Fit::kTooOld;
@@ -70,6 +71,18 @@ std::string BaseOdometryInput::fill(double t, const mbk::Model& model,
   return mbk::free_joint_coordinates(model.bodies[1].joint, m, state.position.data(),
                                      state.velocity.data(),
                                      has_acceleration ? state.acceleration.data() : nullptr);
+}
+
+std::string BaseOdometryInput::beyond(double t, bool extrapolated) const {
+  const bool before = t < buffer_.first_stamp();
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3) << "base odometry "
+      << (extrapolated ? "extrapolated" : "held") << " for the sample at " << t
+      << " s: the odometry " << (before ? "starts " : "ends ")
+      << std::abs(t - (before ? buffer_.first_stamp() : buffer_.last_stamp())) << " s "
+      << (before ? "after" : "before") << " it, none "
+      << (before ? "earlier" : "later within ~base_odometry_wait");
+  return out.str();
 }
 
 void BaseOdometryInput::reset() { buffer_.reset(); }

@@ -34,11 +34,18 @@ class BaseOdometryInput {
   const std::string& topic() const { return topic_; }
 
   // `state` (of `model`, from split) at time t: the base's coordinates from the odometry
-  // (interpolated, or held within the gap), the joints' from `joints` (of `input`). Lowers
-  // `level` to velocities while the base's acceleration is not estimated yet. Returns why
-  // there is no base motion for t (and leaves `state` unspecified), else "".
+  // (interpolated, or held within the gap, or with `extrapolate` extrapolated: `fit` says
+  // which), the joints' from `joints` (of `input`). Lowers `level` to velocities while the
+  // base's acceleration is not estimated yet. Returns why there is no base motion for t (and
+  // leaves `state` unspecified), else "".
   std::string fill(double t, const mbk::Model& model, const mbk::JointState<double>& joints,
-                   mbk::JointState<double>& state, mbk::Level& level) const;
+                   mbk::JointState<double>& state, mbk::Level& level, bool extrapolate,
+                   mbk::BaseOdometryBuffer::Fit& fit) const;
+  // What was done for a sample at t beyond the odometry's ends (held, or extrapolated), and how
+  // far beyond, for the diagnostics.
+  std::string beyond(double t, bool extrapolated) const;
+  // True once odometry at or after t has come (BaseOdometryBuffer::covers).
+  bool covers(double t) const { return buffer_.covers(t); }
 
   void reset();  // forgets the samples and the estimates (R stays)
 

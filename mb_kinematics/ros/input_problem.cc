@@ -36,6 +36,10 @@ const char* diagnostic_key(InputProblem problem) {
       return "repaired: Euler parameters negated (sign flip)";
     case InputProblem::kUnpaired:
       return "repaired: joint_accelerations missing, estimated";
+    case InputProblem::kBaseHeld:
+      return "held: base odometry, none after the sample";
+    case InputProblem::kBaseExtrapolated:
+      return "extrapolated: base odometry, none after the sample";
     case InputProblem::kMissingJoints:
       return "waiting: joints never received";
     case InputProblem::kNoOdometry:

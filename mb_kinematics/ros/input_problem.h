@@ -24,6 +24,9 @@ enum class InputProblem {
   kEstimatorReset,  // an estimate went beyond 1e50 or non-finite: that coordinate restarted
   kEulerSignFlip,   // Euler parameters negated to stay continuous
   kUnpaired,        // its joint_accelerations never came: accelerations estimated
+  // ~base_odometry: no odometry after the sample's stamp within ~base_odometry_wait
+  kBaseHeld,          // the base's last odometry held
+  kBaseExtrapolated,  // ~base_odometry_extrapolate: its twist carried on to the stamp
   // waiting
   kMissingJoints,  // some coordinate never received: nothing published yet
   kNoOdometry,     // ~base_odometry: no odometry received yet, R unknown: nothing published

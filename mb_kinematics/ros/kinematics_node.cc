@@ -68,6 +68,13 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       [this](const ros::WallTimerEvent&) { pairing_ = accelerations_sub_.getNumPublishers() > 0; });
   if (!params_.base_odometry.empty())
     odometry_sub_ = subscribe(params_.base_odometry, &KinematicsNode::on_odometry);
+  if (!params_.base_odometry.empty() && params_.base_odometry_wait > 0)
+    wait_timer_ = nh_.createSteadyTimer(ros::WallDuration(params_.base_odometry_wait / 4),
+                                        [this](const ros::SteadyTimerEvent&) {
+                                          std::lock_guard<std::mutex> lock(queue_.mutex());
+                                          if (input_.waiting())
+                                            release_waiting(NodeInput::Clock::now());
+                                        });
   reload_service_ = pnh_.advertiseService("reload", &KinematicsNode::on_reload, this);
 }
 
@@ -149,6 +156,7 @@ bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::R
 
 void KinematicsNode::on_odometry(const nav_msgs::OdometryConstPtr& msg) {
   if (input_.add(*msg)) make_outputs_in_r();  // R is known now
+  release_waiting(NodeInput::Clock::now());   // the samples this message completes
 }
 
 void KinematicsNode::on_joint_states(const sensor_msgs::JointStateConstPtr& msg) {
@@ -201,16 +209,34 @@ void KinematicsNode::publish(const ros::Time& stamp, const Sample& sample, bool 
 }
 
 void KinematicsNode::process(const NodeInput::Ready& ready) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = NodeInput::Clock::now();
+  release_waiting(start);  // the samples before this one first
   const ros::Time& given = ready.sample->header.stamp;
   const ros::Time stamp = given.isZero() ? ros::Time::now() : given;
   if (!input_.add(ready, stamp.toSec())) return;
   if (rate_.skip(stamp.toSec())) return;  // the estimators have taken the sample in
   const mbk::Level wanted = wanted_level();
   mbk::Level level = wanted;
-  if (!input_.fill(stamp.toSec(), level)) return;
+  const NodeInput::Fill fill = input_.fill(stamp.toSec(), stamp, level, start);
+  if (fill == NodeInput::Fill::kReady) emit(stamp, level, wanted, start);
+  if (fill == NodeInput::Fill::kWaiting) release_waiting(start);  // more than ~queue_size wait
+}
+
+void KinematicsNode::release_waiting(NodeInput::Clock::time_point now) {
+  ros::Time stamp;
+  mbk::Level level = mbk::Level::kPose;
+  for (NodeInput::Fill fill;
+       (fill = input_.release(now, stamp, level)) != NodeInput::Fill::kWaiting;)
+    if (fill == NodeInput::Fill::kReady) {
+      const mbk::Level wanted = wanted_level();
+      emit(stamp, std::min(level, wanted), wanted, NodeInput::Clock::now());
+    }
+}
+
+void KinematicsNode::emit(const ros::Time& stamp, mbk::Level level, mbk::Level wanted,
+                          NodeInput::Clock::time_point start) {
   const Sample sample{input_.model(), input_.state(),     data_,
-                      level,          input_.published(), input_.coverage().complete()};
+                      level,          input_.published(), input_.complete()};
   publish(stamp, sample, false);  // from the joint state alone (tf) first
   if (!compute(level)) return;
   publish(stamp, sample, true);
@@ -218,8 +244,7 @@ void KinematicsNode::process(const NodeInput::Ready& ready) {
     ROS_INFO_STREAM_THROTTLE(kThrottle,
                              "mb_kinematics: estimating derivatives, "
                              "velocities/accelerations follow after 3 samples");
-  input_.tally().published(
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  input_.tally().published(std::chrono::duration<double>(NodeInput::Clock::now() - start).count());
 }
 
 }  // namespace mbk_ros

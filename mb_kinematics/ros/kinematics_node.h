@@ -50,7 +50,12 @@ class KinematicsNode {
   OutputSetup setup();
   void process(const std::vector<NodeInput::Ready>& ready);
   void process(const NodeInput::Ready& ready);  // one sample: merge, compute, publish
-  mbk::Level wanted_level();                    // asks each output once whether it is listened to
+  // The samples waiting for odometry that are due at `now` (NodeInput::release), in order.
+  void release_waiting(NodeInput::Clock::time_point now);
+  // Computes and publishes the sample filled (or released) up to `level`.
+  void emit(const ros::Time& stamp, mbk::Level level, mbk::Level wanted,
+            NodeInput::Clock::time_point start);
+  mbk::Level wanted_level();  // asks each output once whether it is listened to
   bool compute(mbk::Level level);
   void publish(const ros::Time& stamp, const Sample& sample, bool uses_data);
 
@@ -68,6 +73,7 @@ class KinematicsNode {
   // manager's lock, taken in the other order by a nodelet loading beside it: a deadlock).
   std::atomic<bool> pairing_{false};
   ros::WallTimer pairing_timer_;
+  ros::SteadyTimer wait_timer_;  // ~base_odometry_wait: releases the samples whose wait ended
   ros::ServiceServer reload_service_;
 };
 

@@ -3,7 +3,9 @@
 #include <ros/console.h>
 #include <ros/time.h>
 
+#include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
@@ -57,6 +59,9 @@ void NodeInput::load(const mbk::Model& loaded) {
   input_state_ = mbk::JointState<double>(*input_model_);
   state_ = mbk::JointState<double>(*model_);
   if (base_) base_->reset();
+  published_now_ = &published_;
+  waiting_.clear();
+  waiting_first_ = waiting_count_ = 0;
   frame_ = base_                      ? base_->frame()
            : params_.frame_id.empty() ? mbk_messages::model_frame(*model_, params_.frame_prefix)
                                       : params_.frame_id;
@@ -147,33 +152,92 @@ bool NodeInput::cover(double t) {
   return true;
 }
 
-bool NodeInput::fill(double t, mbk::Level& level) {
+NodeInput::Fill NodeInput::fill(double t, const ros::Time& stamp, mbk::Level& level,
+                                Clock::time_point now) {
   level = input_->fill(level, input_->paired(t), base_ ? input_state_ : state_,
                        &coverage_->from_input());
-  if (base_) {  // the base's coordinates from the odometry at t, the joints' after them
-    const std::string why = base_->fill(t, *model_, input_state_, state_, level);
-    if (!why.empty()) {
-      tally_.warn(InputProblem::kNoBaseMotion, "joint_states sample dropped: " + why);
-      return false;
-    }
+  snapshot_published();
+  if (!base_) return check() ? Fill::kReady : Fill::kDropped;
+  if (params_.base_odometry_wait > 0 && (waiting_count_ > 0 || !base_->covers(t))) {
+    wait(t, stamp, level, now);  // in order behind the samples waiting already
+    return Fill::kWaiting;
   }
-  const std::string bad = mbk::check_state(*model_, state_);  // NaN/Inf, zero quaternions, ...
-  if (!bad.empty()) {  // estimates of given velocities, mimics: the input checked the rest
-    tally_.warn(bad.find("not finite") != std::string::npos ? InputProblem::kNonFinite
-                                                            : InputProblem::kTooLarge,
-                bad + "; sample dropped");
-    return false;
-  }
-  return true;
+  return fill_base(t, level) ? Fill::kReady : Fill::kDropped;
 }
 
-// coverage_'s bodies, after the base (body 1) with ~base_odometry (its model_ body k + 1 is
-// input_model_'s body k; base_odometry_input.h).
-const std::vector<char>& NodeInput::published() {
+// Keeps the sample just filled at the end of the ring, grown by one when full.
+void NodeInput::wait(double t, const ros::Time& stamp, mbk::Level level, Clock::time_point now) {
+  if (waiting_count_ == waiting_.size()) {
+    std::rotate(waiting_.begin(), waiting_.begin() + waiting_first_, waiting_.end());
+    waiting_first_ = 0;
+    waiting_.emplace_back(*input_model_);
+  }
+  Waiting& w = waiting_[(waiting_first_ + waiting_count_++) % waiting_.size()];
+  w.t = t;
+  w.stamp = stamp;
+  w.level = level;
+  w.until = now + std::chrono::duration_cast<Clock::duration>(
+                      std::chrono::duration<double>(params_.base_odometry_wait));
+  w.joints = input_state_;  // storage reused
+  w.published = *published_now_;
+  w.complete = complete_now_;
+}
+
+NodeInput::Fill NodeInput::release(Clock::time_point now, ros::Time& stamp, mbk::Level& level) {
+  if (waiting_count_ == 0) return Fill::kWaiting;
+  Waiting& w = waiting_[waiting_first_];
+  const bool overflow = waiting_count_ > static_cast<size_t>(params_.queue_size);
+  if (!base_->covers(w.t) && now < w.until && !overflow) return Fill::kWaiting;
+  waiting_first_ = (waiting_first_ + 1) % waiting_.size();
+  --waiting_count_;
+  std::swap(input_state_, w.joints);
+  std::swap(published_, w.published);
+  published_now_ = &published_;
+  complete_now_ = w.complete;
+  stamp = w.stamp;
+  level = w.level;
+  return fill_base(w.t, level) ? Fill::kReady : Fill::kDropped;
+}
+
+// The base's coordinates from the odometry at t (interpolated; held or extrapolated, counted),
+// the joints' after them.
+bool NodeInput::fill_base(double t, mbk::Level& level) {
+  using Fit = mbk::BaseOdometryBuffer::Fit;
+  Fit fit = Fit::kEmpty;
+  const std::string why =
+      base_->fill(t, *model_, input_state_, state_, level, params_.base_odometry_extrapolate, fit);
+  if (!why.empty()) {
+    tally_.warn(InputProblem::kNoBaseMotion, "joint_states sample dropped: " + why);
+    return false;
+  }
+  if (fit == Fit::kHeld || fit == Fit::kExtrapolated)
+    tally_.warn(fit == Fit::kHeld ? InputProblem::kBaseHeld : InputProblem::kBaseExtrapolated,
+                base_->beyond(t, fit == Fit::kExtrapolated));
+  return check();
+}
+
+// The state against check_state (NaN/Inf, zero quaternions, ...): estimates of given
+// velocities, mimics; the input checked the rest.
+bool NodeInput::check() {
+  const std::string bad = mbk::check_state(*model_, state_);
+  if (bad.empty()) return true;
+  tally_.warn(bad.find("not finite") != std::string::npos ? InputProblem::kNonFinite
+                                                          : InputProblem::kTooLarge,
+              bad + "; sample dropped");
+  return false;
+}
+
+// The current sample's published bodies: coverage_'s, after the base (body 1) with
+// ~base_odometry (its model_ body k + 1 is input_model_'s body k; base_odometry_input.h).
+void NodeInput::snapshot_published() {
+  complete_now_ = coverage_->complete();
   const std::vector<char>& covered = coverage_->published();
-  if (!base_) return covered;
+  if (!base_) {
+    published_now_ = &covered;
+    return;
+  }
   for (size_t k = 1; k < covered.size(); ++k) published_[k + 1] = covered[k];
-  return published_;
+  published_now_ = &published_;
 }
 
 }  // namespace mbk_ros

@@ -10,6 +10,7 @@
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/JointState.h>
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,16 +59,44 @@ class NodeInput {
   // A sample taken in at time t (its stamp, or its time of arrival for stamp 0): false (with
   // the warning) when nothing is to be published for it (dropped, or waiting).
   bool add(const Ready& ready, double t);
-  // The state of the sample at t up to `level`, which it lowers while the estimates lag behind;
-  // false (with the warning) if there is none (no base motion, a value check_state refuses).
-  bool fill(double t, mbk::Level& level);
+
+  using Clock = std::chrono::steady_clock;
+  enum class Fill { kDropped, kWaiting, kReady };
+  // The state of the sample at t, stamped `stamp`, up to `level`, which it lowers while the
+  // estimates lag behind. kDropped (with the warning) if there is none (no base motion, a value
+  // check_state refuses). With ~base_odometry, kWaiting while the odometry after t has not come
+  // (or an earlier sample waits): the sample, its joints filled, waits in order until release
+  // gives it, at most ~base_odometry_wait after `now`.
+  Fill fill(double t, const ros::Time& stamp, mbk::Level& level, Clock::time_point now);
+  // The oldest waiting sample if it is due at `now` (its odometry came, its wait ended, or more
+  // than ~queue_size wait): kReady with its state, stamp and level as fill gives them, kDropped
+  // (with the warning) if the odometry gives no base motion for it; kWaiting if none is due.
+  Fill release(Clock::time_point now, ros::Time& stamp, mbk::Level& level);
+  bool waiting() const { return waiting_count_ > 0; }
+
   const mbk::JointState<double>& state() const { return state_; }
-  // Per body of model() (index k; [0] is R): published with this sample.
-  const std::vector<char>& published();
+  // Per body of model() (index k; [0] is R): published with the sample filled (or released).
+  const std::vector<char>& published() const { return *published_now_; }
+  bool complete() const { return complete_now_; }  // no coordinate missing for that sample
 
  private:
+  // A sample whose joints are filled, waiting for the odometry after its stamp.
+  struct Waiting {
+    explicit Waiting(const mbk::Model& input) : joints(input) {}
+    double t = 0;
+    ros::Time stamp;
+    mbk::Level level = mbk::Level::kPose;
+    Clock::time_point until;
+    mbk::JointState<double> joints;  // of input_model_
+    std::vector<char> published;
+    bool complete = false;
+  };
   bool report(const JointStateInput::Update& update);
   bool cover(double t);  // ~missing_coordinates
+  void snapshot_published();
+  bool fill_base(double t, mbk::Level& level);
+  bool check();
+  void wait(double t, const ros::Time& stamp, mbk::Level level, Clock::time_point now);
 
   const NodeParams& params_;
   mbk::Model loaded_;
@@ -79,6 +108,12 @@ class NodeInput {
   std::optional<JointStateInput> input_;        // over input_model_
   std::optional<CoordinateCoverage> coverage_;  // over input_model_
   std::vector<char> published_;  // with ~base_odometry: the base, then coverage_'s bodies
+  const std::vector<char>* published_now_ = &published_;  // the current sample's
+  bool complete_now_ = false;
+  // The samples waiting for odometry: a ring (its entries' storage reused), oldest at
+  // waiting_first_.
+  std::vector<Waiting> waiting_;
+  size_t waiting_first_ = 0, waiting_count_ = 0;
   mbk::JointState<double> input_state_, state_;  // input_state_: with ~base_odometry only
   std::unique_ptr<BaseOdometryInput> base_;      // with ~base_odometry
   std::string frame_;

@@ -53,6 +53,11 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "base_odometry_max_gap", p.base_odometry_max_gap, "a number of seconds");
   if (!(p.base_odometry_max_gap > 0 && std::isfinite(p.base_odometry_max_gap)))
     throw std::invalid_argument(pnh.resolveName("base_odometry_max_gap") + " must be > 0 (s)");
+  get(pnh, "base_odometry_wait", p.base_odometry_wait, "a number of seconds");
+  if (!(p.base_odometry_wait >= 0 && p.base_odometry_wait <= 10))
+    throw std::invalid_argument(pnh.resolveName("base_odometry_wait") +
+                                " must be in [0, 10] (s; 0: no wait)");
+  get(pnh, "base_odometry_extrapolate", p.base_odometry_extrapolate, "true or false");
   get(pnh, "publish_base_tf", p.publish_base_tf, "true or false");
   p.missing_coordinates = missing_coordinates(pnh);
   std::vector<std::string> outputs;

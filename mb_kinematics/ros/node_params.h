@@ -39,7 +39,10 @@ struct NodeParams {
   int queue_size = 50;           // ~queue_size: of the joint_states and joint_accelerations queues
   std::string base_odometry;     // ~base_odometry: nav_msgs/Odometry of the base; "" = off
   double base_odometry_max_gap = 0.2;  // ~base_odometry_max_gap (s): odometry held this long
-  bool publish_base_tf = false;        // ~publish_base_tf: R -> base on /tf too
+  // ~base_odometry_wait (s): how long a joint sample waits for the odometry after its stamp
+  double base_odometry_wait = 0.1;
+  bool base_odometry_extrapolate = false;  // ~base_odometry_extrapolate: else the odometry held
+  bool publish_base_tf = false;            // ~publish_base_tf: R -> base on /tf too
   MissingCoordinates missing_coordinates = MissingCoordinates::kSkip;  // ~missing_coordinates
 };
 

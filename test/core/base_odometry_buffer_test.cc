@@ -1,6 +1,6 @@
-// The node's odometry buffer (estimation/base_odometry_buffer.h): it interpolates, holds and
-// refuses as documented, and its estimator gives the acceleration of motions it differentiates
-// exactly.
+// The node's odometry buffer (estimation/base_odometry_buffer.h): it interpolates, holds,
+// extrapolates (only when told to) and refuses as documented, exactly on a motion slerp and lerp
+// follow exactly, and its estimator gives the acceleration of motions it differentiates exactly.
 #include "mb_kinematics/estimation/base_odometry_buffer.h"
 
 #include <gtest/gtest.h>
@@ -107,6 +107,78 @@ TEST(BaseOdometryBuffer, AccelerationFromTheEstimatorOnTheVelocitiesInR) {
   ASSERT_TRUE(has_acceleration);
   expect_near(m.acceleration, a, 1e-9, "acceleration");
   expect_near(m.alpha, V(0, 0, alpha), 1e-9, "alpha");
+}
+
+// Constant linear velocity v and constant angular velocity w about a fixed axis, both in R:
+// p = p0 + v t, R = exp(t [w]x) R0, the twist constant in R (given in the base's frame).
+class ConstantTwist {
+ public:
+  mbk::BaseSample at(double t) const {
+    mbk::BaseSample s;
+    s.t = t;
+    s.position = p0_ + v_ * t;
+    s.orientation = Eigen::AngleAxisd(w_.norm() * t, w_.normalized()) * q0_;
+    s.linear = s.orientation.conjugate() * v_;
+    s.angular = s.orientation.conjugate() * w_;
+    return s;
+  }
+  const V& v() const { return v_; }
+  const V& w() const { return w_; }
+
+ private:
+  V p0_{0.4, -1.2, 0.9}, v_{0.7, -0.3, 0.2}, w_{0.9, -1.6, 0.5};
+  Eigen::Quaterniond q0_{Eigen::AngleAxisd(0.6, V(1, 1, 0).normalized())};
+};
+
+void expect_exact(const mbk::BaseMotion& m, const mbk::BaseSample& s, const ConstantTwist& motion) {
+  EXPECT_LT((m.rotation - s.orientation.toRotationMatrix()).norm(), kTol) << "at " << s.t;
+  expect_near(m.position, s.position, kTol, "position");
+  expect_near(m.velocity, motion.v(), kTol, "velocity in R");
+  expect_near(m.omega, motion.w(), kTol, "omega in R");
+  expect_near(m.acceleration, V::Zero(), 1e-9, "acceleration");
+  expect_near(m.alpha, V::Zero(), 1e-9, "alpha");
+}
+
+// Odometry at 100 Hz read half a period after each sample (issue 25.4): exact to 1e-12.
+TEST(BaseOdometryBuffer, InterpolationIsExactOnAConstantTwistAboutAFixedAxis) {
+  auto estimator = mbk::make_derivative_estimator("backward_difference");
+  mbk::BaseOdometryBuffer buffer(*estimator, 0.5);
+  const ConstantTwist motion;
+  for (int i = 0; i < 40; ++i) {
+    const double t = 3.0 + 0.01 * i;
+    ASSERT_EQ(buffer.add(motion.at(t)), "");
+    EXPECT_TRUE(buffer.covers(t));
+    EXPECT_FALSE(buffer.covers(t + 0.005)) << "the later odometry has not come yet";
+    if (i < 3) continue;  // the estimator's first samples
+    mbk::BaseMotion m;
+    bool has_acceleration = false;
+    ASSERT_EQ(buffer.at(t - 0.005, m, has_acceleration), Fit::kInterpolated);
+    EXPECT_TRUE(has_acceleration);
+    expect_exact(m, motion.at(t - 0.005), motion);
+  }
+}
+
+// Beyond the last sample (and before the first) the motion is held unless extrapolation is
+// asked for; extrapolated, a constant twist is exact; each is flagged by its Fit.
+TEST(BaseOdometryBuffer, ExtrapolationIsOffByDefaultAndFlaggedWhenOn) {
+  auto estimator = mbk::make_derivative_estimator("backward_difference");
+  mbk::BaseOdometryBuffer buffer(*estimator, 0.5);
+  const ConstantTwist motion;
+  for (int i = 0; i < 10; ++i) ASSERT_EQ(buffer.add(motion.at(0.01 * i)), "");
+  mbk::BaseMotion m;
+  bool has_acceleration = false;
+  for (const double t : {0.09 + 0.03, -0.02}) {
+    const mbk::BaseSample end = motion.at(t > 0 ? 0.09 : 0.0);
+    ASSERT_EQ(buffer.at(t, m, has_acceleration), Fit::kHeld) << t;
+    expect_near(m.position, end.position, kTol, "held position");
+    EXPECT_LT((m.rotation - end.orientation.toRotationMatrix()).norm(), kTol);
+    ASSERT_EQ(buffer.at(t, m, has_acceleration, true), Fit::kExtrapolated) << t;
+    EXPECT_LT((m.rotation - motion.at(t).orientation.toRotationMatrix()).norm(), kTol);
+    expect_near(m.position, motion.at(t).position, kTol, "extrapolated position");
+    expect_near(m.velocity, motion.v(), kTol, "extrapolated velocity");
+    expect_near(m.omega, motion.w(), kTol, "extrapolated omega");
+  }
+  EXPECT_EQ(buffer.at(0.09 + 0.6, m, has_acceleration, true), Fit::kTooNew) << "not beyond the gap";
 }
 
 }  // namespace

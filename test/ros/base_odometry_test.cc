@@ -67,7 +67,9 @@ class BaseOdometryTest : public ::testing::Test {
     connect(states_, floating_recorder_);
   }
   // The floating model's state at tau: the base on root/x y z (quadratic) and root/gamma
-  // (quadratic; alpha, beta constant: one fixed axis), the other coordinates on `joints`.
+  // (quadratic; alpha, beta constant: one fixed axis), the other coordinates on `joints`. With
+  // uniform_ the base's x y z and gamma are linear in tau: a constant velocity and a constant
+  // angular velocity about a fixed axis, which slerp and linear interpolation follow exactly.
   mbk::JointState<double> full_state(double tau) const {
     mbk::JointState<double> s(floating_);
     const mbk::JointState<double> j = joints_.at(tau);
@@ -78,36 +80,18 @@ class BaseOdometryTest : public ::testing::Test {
     const double c0[6] = {0.4, -0.3, 0.2, 0.3, -0.4, 0.5}, c1[6] = {0.5, 0.2, -0.1, 0, 0, 0.7},
                  c2[6] = {0.3, -0.6, 0.2, 0, 0, -0.9};
     for (int i = 0; i < n; ++i) {
-      s.position[i] = c0[i] + c1[i] * tau + c2[i] * tau * tau;
-      s.velocity[i] = c1[i] + 2 * c2[i] * tau;
-      s.acceleration[i] = 2 * c2[i];
+      const double c2i = uniform_ ? 0 : c2[i];
+      s.position[i] = c0[i] + c1[i] * tau + c2i * tau * tau;
+      s.velocity[i] = c1[i] + 2 * c2i * tau;
+      s.acceleration[i] = 2 * c2i;
     }
     return s;
   }
   nav_msgs::Odometry odometry(double tau, const ros::Time& stamp) const {
     mbk::Data<double> d(floating_);
     mbk::forward_kinematics(floating_, full_state(tau), d);
-    nav_msgs::Odometry o;
-    o.header.stamp = stamp;
-    o.header.frame_id = "odom";
-    o.child_frame_id = "base_link";
-    const Eigen::Quaterniond q(d.rotation[1]);
-    o.pose.pose.position.x = d.origin[1].x();
-    o.pose.pose.position.y = d.origin[1].y();
-    o.pose.pose.position.z = d.origin[1].z();
-    o.pose.pose.orientation.x = q.x();
-    o.pose.pose.orientation.y = q.y();
-    o.pose.pose.orientation.z = q.z();
-    o.pose.pose.orientation.w = q.w();
-    const mbk::Vec3<double> v = d.rotation[1].transpose() * d.origin_velocity[1];
-    const mbk::Vec3<double> w = d.rotation[1].transpose() * d.omega[1];  // in child_frame_id
-    o.twist.twist.linear.x = v.x();
-    o.twist.twist.linear.y = v.y();
-    o.twist.twist.linear.z = v.z();
-    o.twist.twist.angular.x = w.x();
-    o.twist.twist.angular.y = w.y();
-    o.twist.twist.angular.z = w.z();
-    return o;
+    return odometry_msg("odom", stamp, d.origin[1], Eigen::Quaterniond(d.rotation[1]),
+                        d.origin_velocity[1], d.omega[1]);
   }
   // n samples from `start` (tau = i dt): odometry one step ahead of joint_states, as a faster
   // odometry source would be. `odometry_shift` moves the odometry's stamps (and so its tau).
@@ -141,6 +125,7 @@ class BaseOdometryTest : public ::testing::Test {
   }
 
   ros::NodeHandle nh_;
+  bool uniform_ = false;
   mbk::Model model_ = test_model();
   mbk::Model floating_ = mbk::load_urdf_file(source_path("test/ros/test_robot_floating.urdf"));
   Quadratic joints_{model_};
@@ -166,6 +151,63 @@ TEST_F(BaseOdometryTest, AbsoluteKinematicsInTheOdometryFrame) {
   EXPECT_EQ(parents["/mb_kinematics"].count("base_link -> slider"), 1u);
   EXPECT_EQ(parents["/floating/mb_kinematics"].count("odom -> f/base_link"), 1u);
   EXPECT_EQ(parents["/floating/mb_kinematics"].count("f/base_link -> f/slider"), 1u);
+}
+
+// Issue 25.4: odometry stamped half a period after each joint sample and sent after it. Each
+// sample waits (~base_odometry_wait, default) for the odometry after its stamp and takes the base
+// interpolated between the two around it: on a base motion that slerp and lerp follow exactly,
+// the published base (tf and every body of body_kinematics) is the exact one to 1e-9 m.
+TEST_F(BaseOdometryTest, OdometryHalfAPeriodLateIsInterpolated) {
+  uniform_ = true;
+  Transforms base_tf(nh_, "/tf", false);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const ros::Time start(150.0);
+  const int n = 12;
+  odom_.publish(odometry(-0.5 * kDt, start - ros::Duration(0.5 * kDt)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < n; ++i) {
+    const ros::Time stamp = start + ros::Duration(i * kDt);
+    states_.publish(joint_state_msg(model_, joints_.at(i * kDt), stamp, true));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // the odometry comes later
+    odom_.publish(odometry((i + 0.5) * kDt, stamp + ros::Duration(0.5 * kDt)));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(recorder_.wait_for(start + ros::Duration((n - 1) * kDt)));
+  ASSERT_TRUE(floating_recorder_.wait_for(start + ros::Duration((n - 1) * kDt)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const std::map<Key, geometry_msgs::TransformStamped> tf = base_tf.get();
+  double position = 0, rotation = 0;  // the largest errors of the published poses
+  size_t poses = 0;
+  for (int i = 0; i < n; ++i) {
+    const ros::Time stamp = start + ros::Duration(i * kDt);
+    const mbk::Data<double> d = expected_kinematics(floating_, full_state(i * kDt));
+    const auto add = [&](const mbk::Vec3<double>& p, const Eigen::Quaterniond& q, int k) {
+      position = std::max(position, (p - d.origin[k]).norm());
+      rotation = std::max(rotation, (q.toRotationMatrix() - d.rotation[k]).norm());
+      ++poses;
+    };
+    const auto t = tf.find({"f/base_link", stamp.toSec()});
+    EXPECT_NE(t, tf.end()) << "no odom -> f/base_link at sample " << i;
+    if (t != tf.end()) {
+      const auto& r = t->second.transform.rotation;
+      add(vec(t->second.transform.translation), Eigen::Quaterniond(r.w, r.x, r.y, r.z), 1);
+    }
+    for (const KinematicsRecorder* recorder : {&recorder_, &floating_recorder_}) {
+      const auto msgs = recorder->at(stamp);
+      if (i < 3 && msgs.empty()) continue;  // the base's acceleration is not estimated yet
+      ASSERT_EQ(msgs.size(), 1u) << "sample " << i << ": published once, none dropped";
+      for (int k = 1; k <= floating_.body_count(); ++k) {
+        const auto& o = msgs[0].bodies.at(k - 1).pose.orientation;
+        add(vec(msgs[0].bodies[k - 1].pose.position), Eigen::Quaterniond(o.w, o.x, o.y, o.z), k);
+      }
+      SCOPED_TRACE("sample " + std::to_string(i));
+      expect_kinematics(msgs[0], floating_, d, kTol);  // the rest of the kinematics as well
+    }
+  }
+  std::printf("  %zu poses: %.1e m, %.1e (rotation matrix difference)\n", poses, position,
+              rotation);
+  EXPECT_LT(position, 1e-9);
+  EXPECT_LT(rotation, 1e-9);
 }
 
 TEST_F(BaseOdometryTest, NaNAndAnotherFrameAreRefused) {
@@ -223,6 +265,26 @@ TEST_F(BaseOdometryTest, OdometryTooNewOrTooOldPublishesNothing) {
   ASSERT_TRUE(recorder_.wait_for(later + ros::Duration(7 * kDt)));
   EXPECT_GE(check_run(later, 8, recorder_), 4u);
   EXPECT_EQ(counters.next(kDropped), before + 20) << "every sample of both runs dropped";
+}
+
+// A wait out of range or an extrapolate flag that is no bool: the node says which and exits.
+TEST(BaseOdometryParams, BadWaitOrExtrapolateExitsNonZero) {
+  ros::NodeHandle nh;
+  std::string urdf;
+  ASSERT_TRUE(nh.getParam("/robot_description", urdf));
+  nh.setParam("/bad_wait/robot_description", urdf);
+  std::string output;
+  EXPECT_GT(
+      run_node("__ns:=/bad_wait __name:=n _base_odometry:=odom _base_odometry_wait:=-0.5", output),
+      0);
+  EXPECT_NE(output.find("base_odometry_wait must be in [0, 10]"), std::string::npos) << output;
+  output.clear();
+  EXPECT_GT(run_node("__ns:=/bad_wait __name:=m _base_odometry:=odom "  // its own parameters
+                     "_base_odometry_extrapolate:=sometimes",
+                     output),
+            0);
+  EXPECT_NE(output.find("base_odometry_extrapolate must be true or false"), std::string::npos)
+      << output;
 }
 
 }  // namespace

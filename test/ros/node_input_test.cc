@@ -1,6 +1,7 @@
 // NodeInput's models (mb_kinematics/ros/node_input.h), no master needed: without
 // ~base_odometry the input and the kinematics read the loaded model itself (no copies: 8 MB saved
-// at 10,000 bodies), also after a reload to another model; with it, the model split in two.
+// at 10,000 bodies), also after a reload to another model; with it, the model split in two, and
+// joint samples wait (bounded, in order) for the odometry after their stamp.
 #include "mb_kinematics/ros/node_input.h"
 
 #include <gtest/gtest.h>
@@ -65,11 +66,108 @@ TEST(BaseOdometryInput, HugeQuaternionIsItsRotation) {
   mbk_ros::BaseOdometryInput::split(mbk_test::revolute_chain(2), in, model);
   mbk::JointState<double> joints(in), state(model);
   mbk::Level level = mbk::Level::kAcceleration;
-  ASSERT_EQ(input.fill(0.2, model, joints, state, level), "");
+  mbk::BaseOdometryBuffer::Fit fit;
+  ASSERT_EQ(input.fill(0.2, model, joints, state, level, false, fit), "");
   const mbk::Body& base = model.bodies[1];
   const int e1 = base.q_index + mbk::first_euler_parameter(base.joint.type);
   EXPECT_NEAR(state.position[e1 + 2], q.z(), 1e-12);
   EXPECT_NEAR(state.position[e1 + 3], q.w(), 1e-12);
+}
+
+nav_msgs::Odometry odometry_at(double x) {  // the base at x on the x axis, moving at 1 m/s
+  nav_msgs::Odometry o;
+  o.header.frame_id = "odom";
+  o.header.stamp = ros::Time(x);
+  o.pose.pose.position.x = x;
+  o.pose.pose.orientation.w = 1;
+  o.twist.twist.linear.x = 1;
+  return o;
+}
+
+mbk_ros::NodeInput::Ready joint_sample(const mbk::Model& model, double t) {
+  sensor_msgs::JointStatePtr msg(new sensor_msgs::JointState);
+  msg->header.stamp = ros::Time(t);
+  msg->name = model.coordinate_names;
+  msg->position.assign(model.nq, 0.1);
+  return {msg, false};
+}
+
+// Issue 25.4: a sample waits for the odometry after its stamp (released by it, interpolated),
+// at most ~base_odometry_wait (then held, or extrapolated when asked, and counted), in order.
+class OdometryWait : public ::testing::TestWithParam<bool> {};
+
+TEST_P(OdometryWait, ReleasedByTheLaterOdometryOrAfterTheWait) {
+  using Fill = mbk_ros::NodeInput::Fill;
+  using Problem = mbk_ros::InputProblem;
+  mbk_ros::NodeParams params;
+  params.base_odometry = "odom";
+  params.acceleration_estimator = "backward_difference";
+  params.base_odometry_extrapolate = GetParam();
+  EXPECT_EQ(params.base_odometry_wait, 0.1) << "the documented default";
+  mbk_ros::NodeInput input(params, "/odom");
+  const mbk::Model chain = mbk_test::revolute_chain(2);
+  input.load(chain);
+  const int base_x = input.model().bodies[1].q_index;  // the base's free joint: x first
+  input.add(odometry_at(1.0));
+  const auto now = mbk_ros::NodeInput::Clock::now();
+  const auto after = [&](double s) {
+    return now + std::chrono::duration_cast<mbk_ros::NodeInput::Clock::duration>(
+                     std::chrono::duration<double>(s));
+  };
+  mbk::Level level = mbk::Level::kPose;
+  ros::Time stamp;
+  for (const double t : {1.005, 1.012}) {  // both wait, in order
+    ASSERT_TRUE(input.add(joint_sample(chain, t), t));
+    ASSERT_EQ(input.fill(t, ros::Time(t), level, now), Fill::kWaiting);
+  }
+  EXPECT_EQ(input.release(after(0.05), stamp, level), Fill::kWaiting) << "within the wait";
+  input.add(odometry_at(1.01));  // completes the first only
+  ASSERT_EQ(input.release(after(0.05), stamp, level), Fill::kReady);
+  EXPECT_EQ(stamp, ros::Time(1.005));
+  EXPECT_NEAR(input.state().position[base_x], 1.005, 1e-12) << "interpolated";
+  EXPECT_EQ(input.release(after(0.099), stamp, level), Fill::kWaiting) << "the second waits";
+  ASSERT_EQ(input.release(after(0.1), stamp, level), Fill::kReady) << "its wait has ended";
+  EXPECT_EQ(stamp, ros::Time(1.012));
+  EXPECT_NEAR(input.state().position[base_x], GetParam() ? 1.012 : 1.01, 1e-12);
+  EXPECT_FALSE(input.waiting());
+  EXPECT_EQ(input.tally().problems(Problem::kBaseHeld), GetParam() ? 0 : 1);
+  EXPECT_EQ(input.tally().problems(Problem::kBaseExtrapolated), GetParam() ? 1 : 0);
+  EXPECT_NE(input.tally().last_problem().find(GetParam() ? "extrapolated" : "held"),
+            std::string::npos)
+      << input.tally().last_problem();
+  ASSERT_TRUE(input.add(joint_sample(chain, 1.008), 1.008));  // covered already: not waiting
+  EXPECT_EQ(input.fill(1.008, ros::Time(1.008), level, now), Fill::kReady);
+}
+
+INSTANTIATE_TEST_SUITE_P(HeldOrExtrapolated, OdometryWait, ::testing::Bool());
+
+// More than ~queue_size samples waiting: the oldest goes on at once (held), none is lost.
+TEST(OdometryQueue, BeyondTheQueueSizeTheOldestGoesOn) {
+  using Fill = mbk_ros::NodeInput::Fill;
+  mbk_ros::NodeParams params;
+  params.base_odometry = "odom";
+  params.acceleration_estimator = "backward_difference";
+  params.queue_size = 2;
+  mbk_ros::NodeInput input(params, "/odom");
+  const mbk::Model chain = mbk_test::revolute_chain(2);
+  input.load(chain);
+  input.add(odometry_at(1.0));
+  const auto now = mbk_ros::NodeInput::Clock::now();
+  mbk::Level level = mbk::Level::kPose;
+  ros::Time stamp;
+  for (const double t : {1.02, 1.03, 1.04}) {
+    ASSERT_TRUE(input.add(joint_sample(chain, t), t));
+    ASSERT_EQ(input.fill(t, ros::Time(t), level, now), Fill::kWaiting);
+  }
+  ASSERT_EQ(input.release(now, stamp, level), Fill::kReady);
+  EXPECT_EQ(stamp, ros::Time(1.02));
+  EXPECT_EQ(input.release(now, stamp, level), Fill::kWaiting) << "two wait: within the size";
+  input.add(odometry_at(1.05));
+  for (const double t : {1.03, 1.04}) {
+    ASSERT_EQ(input.release(now, stamp, level), Fill::kReady);
+    EXPECT_EQ(stamp, ros::Time(t)) << "in order";
+  }
+  EXPECT_EQ(input.tally().problems(mbk_ros::InputProblem::kBaseHeld), 1);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <mb_kinematics_msgs/LowerBodyArray.h>
+#include <nav_msgs/Odometry.h>
 #include <ros/message_event.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -22,6 +23,7 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "mb_kinematics/core/partial_velocity.h"
@@ -218,6 +220,53 @@ class TfRecorder {
   std::map<std::string, std::set<std::string>> by_publisher_, by_child_;
   ros::Subscriber tf_, tf_static_;
 };
+
+using Key = std::pair<std::string, double>;  // child frame, stamp (0 for /tf_static)
+
+// Every transform on one tf topic, by child frame and stamp (latched: by child frame only).
+class Transforms {
+ public:
+  Transforms(ros::NodeHandle& nh, const std::string& topic, bool latched)
+      : latched_(latched), sub_(nh.subscribe(topic, 1000, &Transforms::on, this)) {}
+  bool connected() const { return sub_.getNumPublishers() > 0; }
+  std::map<Key, geometry_msgs::TransformStamped> get() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return transforms_;
+  }
+
+ private:
+  void on(const tf2_msgs::TFMessage& msg) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& t : msg.transforms)
+      transforms_[{t.child_frame_id, latched_ ? 0.0 : t.header.stamp.toSec()}] = t;
+  }
+  bool latched_;
+  mutable std::mutex mutex_;
+  std::map<Key, geometry_msgs::TransformStamped> transforms_;
+  ros::Subscriber sub_;
+};
+
+// An odometry message in `frame` of the pose (p, q) and the twist (v, w) in R, which it gives in
+// the base's frame (nav_msgs: child_frame_id).
+inline nav_msgs::Odometry odometry_msg(const std::string& frame, const ros::Time& stamp,
+                                       const mbk::Vec3<double>& p, const Eigen::Quaterniond& q,
+                                       const mbk::Vec3<double>& v, const mbk::Vec3<double>& w) {
+  nav_msgs::Odometry o;
+  o.header.stamp = stamp;
+  o.header.frame_id = frame;
+  o.child_frame_id = "base_link";
+  const auto set = [](auto& m, const mbk::Vec3<double>& x) {
+    m.x = x.x();
+    m.y = x.y();
+    m.z = x.z();
+  };
+  set(o.pose.pose.position, p);
+  o.pose.pose.orientation.w = q.w();
+  set(o.pose.pose.orientation, q.vec());
+  set(o.twist.twist.linear, q.conjugate() * v);
+  set(o.twist.twist.angular, q.conjugate() * w);
+  return o;
+}
 
 // Runs mb_kinematics_node (MBK_NODE_PATH, test/ros.cmake) with `arguments` until it exits;
 // returns its exit code (-1 if it did not exit normally) and puts what it printed to stderr into
