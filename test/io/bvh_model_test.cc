@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -209,18 +210,19 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 TEST(BvhModel, ChannelsNoJointTakesNameTheirSegmentsLine) {
-  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 2 Xrotation Yrotation",
-                              "CHANNELS 2 Yrotation Yrotation")),
-            "walk.bvh:20: JOINT Chest: two successive rotations about one axis");
-  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 4 Zposition Xposition Xrotation Yrotation",
-                              "CHANNELS 4 Xrotation Yrotation Zrotation Xrotation")),
-            "walk.bvh:24: JOINT Neck: more than three rotation channels");
-  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 4 Zposition Xposition Xrotation Yrotation",
-                              "CHANNELS 4 Zposition Zposition Xrotation Yrotation")),
-            "walk.bvh:24: JOINT Neck: two position channels along one axis");
-  EXPECT_EQ(error_of(replaced(kSkeleton, "Zposition Xrotation Yrotation Zrotation",
-                              "Zposition Xrotation Xrotation Zrotation")),
-            "walk.bvh:2: ROOT Hips: two successive rotations about one axis");
+  const char* const neck = "CHANNELS 4 Zposition Xposition Xrotation Yrotation";
+  const std::vector<std::array<const char*, 3>> cases = {
+      // channels, replaced by, error
+      {"CHANNELS 2 Xrotation Yrotation", "CHANNELS 2 Yrotation Yrotation",
+       "walk.bvh:20: JOINT Chest: two successive rotations about one axis"},
+      {neck, "CHANNELS 4 Xrotation Yrotation Zrotation Xrotation",
+       "walk.bvh:24: JOINT Neck: more than three rotation channels"},
+      {neck, "CHANNELS 4 Zposition Zposition Xrotation Yrotation",
+       "walk.bvh:24: JOINT Neck: two position channels along one axis"},
+      {"Zposition Xrotation Yrotation Zrotation", "Zposition Xrotation Xrotation Zrotation",
+       "walk.bvh:2: ROOT Hips: two successive rotations about one axis"}};
+  for (const auto& [from, to, error] : cases)
+    EXPECT_EQ(error_of(replaced(kSkeleton, from, to)), error);
 }
 
 TEST(BvhModel, ASegmentNameUsedTwiceNamesBothLines) {
