@@ -34,7 +34,7 @@ catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers gtest_main)
 
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
-    two_robots missing)
+    two_robots missing deep_partials)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)
   add_dependencies(${name}_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
   target_link_libraries(${name}_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES})

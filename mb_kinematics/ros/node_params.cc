@@ -55,6 +55,10 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
     throw std::invalid_argument(pnh.resolveName("base_odometry_max_gap") + " must be > 0 (s)");
   get(pnh, "publish_base_tf", p.publish_base_tf, "true or false");
   p.missing_coordinates = missing_coordinates(pnh);
+  get(pnh, "partial_velocities_max_entries", p.partial_velocities_max_entries, "an integer");
+  if (p.partial_velocities_max_entries < 0)
+    throw std::invalid_argument(pnh.resolveName("partial_velocities_max_entries") +
+                                " must be >= 0");
   std::vector<std::string> outputs;
   get(pnh, "outputs", outputs, "a list of strings, e.g. [tf, body_kinematics]");
   if (pnh.hasParam("outputs")) {

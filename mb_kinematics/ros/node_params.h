@@ -39,6 +39,9 @@ struct NodeParams {
   double base_odometry_max_gap = 0.2;  // ~base_odometry_max_gap (s): odometry held this long
   bool publish_base_tf = false;        // ~publish_base_tf: R -> base on /tf too
   MissingCoordinates missing_coordinates = MissingCoordinates::kSkip;  // ~missing_coordinates
+  // ~partial_velocities_max_entries: a ~get_partial_velocities request needing more columns
+  // (entries: a speed's 4 vectors, about 100 bytes) is refused (doc/node.md).
+  int partial_velocities_max_entries = 100000;
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.
