@@ -44,6 +44,7 @@ endforeach()
 add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
+add_rostest(test/ros/deep_partials_nodelet.test DEPENDENCIES mbk_nodelet deep_partials_test)
 add_rostest(test/ros/launch_description.test DEPENDENCIES mb_kinematics_node rsp_compare_test)
 
 # The real-robot conformance set (test/robots/): the node against robot_state_publisher.
