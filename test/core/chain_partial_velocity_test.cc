@@ -83,6 +83,13 @@ TEST(ChainPartialVelocities, SameAsTheWholeTreeOnRandomTrees) {
   }
 }
 
+// Deep chains: the chain's sums of O_k - O_b against the whole tree's running sums.
+TEST(ChainPartialVelocities, SameAsTheWholeTreeOnDeepChains) {
+  expect_whole_tree_columns(mbk::make_chain(600, mbk::JointType::kRevolute), 7);
+  expect_whole_tree_columns(mbk::make_chain(300, mbk::JointType::kBall123), 8);
+  expect_whole_tree_columns(mbk::make_random_tree(500, 9), 9);
+}
+
 // Mimic coordinates (a mimic of a mimic too): their columns fold into their sources'.
 TEST(ChainPartialVelocities, MimicColumnsFoldAsTheWholeTree) {
   mbk::Model model = mbk::make_random_revolute_tree(30, 3);
