@@ -39,7 +39,7 @@ target_link_libraries(kinematics_markers_test mbk_markers mbk_io gtest_main)
 target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
-    two_robots missing)
+    two_robots missing deep_partials)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)
   add_dependencies(${name}_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
   target_link_libraries(${name}_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES})
@@ -49,6 +49,7 @@ endforeach()
 add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
+add_rostest(test/ros/deep_partials_nodelet.test DEPENDENCIES mbk_nodelet deep_partials_test)
 add_rostest(test/ros/launch_description.test DEPENDENCIES mb_kinematics_node rsp_compare_test)
 
 # The real-robot conformance set (test/robots/): the node against robot_state_publisher.

@@ -60,6 +60,10 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
   get(pnh, "base_odometry_extrapolate", p.base_odometry_extrapolate, "true or false");
   get(pnh, "publish_base_tf", p.publish_base_tf, "true or false");
   p.missing_coordinates = missing_coordinates(pnh);
+  get(pnh, "partial_velocities_max_entries", p.partial_velocities_max_entries, "an integer");
+  if (p.partial_velocities_max_entries < 0)
+    throw std::invalid_argument(pnh.resolveName("partial_velocities_max_entries") +
+                                " must be >= 0");
   std::vector<std::string> outputs;
   get(pnh, "outputs", outputs, "a list of strings, e.g. [tf, body_kinematics]");
   if (pnh.hasParam("outputs")) {

@@ -44,6 +44,9 @@ struct NodeParams {
   bool base_odometry_extrapolate = false;  // ~base_odometry_extrapolate: else the odometry held
   bool publish_base_tf = false;            // ~publish_base_tf: R -> base on /tf too
   MissingCoordinates missing_coordinates = MissingCoordinates::kSkip;  // ~missing_coordinates
+  // ~partial_velocities_max_entries: a ~get_partial_velocities request needing more columns
+  // (entries: a speed's 4 vectors, about 100 bytes) is refused (doc/node.md).
+  int partial_velocities_max_entries = 100000;
 };
 
 // Reads the parameters; throws std::invalid_argument naming a bad one.

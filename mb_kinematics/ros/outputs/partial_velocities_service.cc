@@ -1,7 +1,8 @@
 #include "mb_kinematics/ros/outputs/partial_velocities_service.h"
 
-#include "mb_kinematics/core/independent_speeds.h"
-#include "mb_kinematics/core/partial_velocity.h"
+#include <ros/advertise_service_options.h>
+
+#include "mb_kinematics/core/chain_partial_velocity.h"
 #include "mb_kinematics/messages/fields.h"
 
 namespace mbk_ros {
@@ -14,11 +15,11 @@ geometry_msgs::Vector3 vector3(const mbk::Vec3<double>& v) {
   return out;
 }
 
-// Body k's columns (core/independent_speeds.h) into `out`; false if one is not finite.
-bool fill_body(const mbk::Model& model, const mbk::PartialVelocities<double>& pv, int k,
+// Body k's columns into `out`; false if one is not finite.
+bool fill_body(const mbk::Model& model, int k, const std::vector<mbk::SpeedColumn>& columns,
                mb_kinematics_msgs::BodyPartialVelocities& out) {
   out.body = model.bodies[k].name;
-  for (const mbk::SpeedColumn& c : mbk::independent_columns(model, pv, k)) {
+  for (const mbk::SpeedColumn& c : columns) {
     if (!(c.omega.allFinite() && c.velocity.allFinite() && c.omega_dot.allFinite() &&
           c.velocity_dot.allFinite()))
       return false;
@@ -35,58 +36,92 @@ bool fill_body(const mbk::Model& model, const mbk::PartialVelocities<double>& pv
 
 PartialVelocitiesService::PartialVelocitiesService(const OutputSetup& setup)
     : model_(setup.model),
-      mutex_(setup.mutex),
       frame_(setup.frame),
+      max_entries_(setup.params.partial_velocities_max_entries),
+      chain_speeds_(mbk::chain_speed_counts(setup.model)),
       latest_(setup.model),
-      published_(setup.model.body_count() + 1, 1) {
-  server_ =
-      setup.pnh.advertiseService("get_partial_velocities", &PartialVelocitiesService::answer, this);
+      spinner_(1, &queue_) {
+  ros::AdvertiseServiceOptions options;
+  options.init<Request, Response>("get_partial_velocities",
+                                  [this](Request& q, Response& r) { return answer(q, r); });
+  options.callback_queue = &queue_;
+  server_ = setup.pnh.advertiseService(options);
+  spinner_.start();
+}
+
+PartialVelocitiesService::~PartialVelocitiesService() {
+  server_.shutdown();  // waits for a call in progress
+  spinner_.stop();
 }
 
 void PartialVelocitiesService::publish(const ros::Time& stamp, const Sample& sample) {
-  latest_.position = sample.state.position;  // same sizes: no allocation
-  latest_.velocity = sample.state.velocity;
-  published_ = sample.published;  // same size: no allocation
-  stamp_ = stamp;
-  has_sample_ = true;
+  std::lock_guard<std::mutex> lock(latest_mutex_);
+  latest_.state.position = sample.state.position;  // same sizes: no allocation
+  latest_.state.velocity = sample.state.velocity;
+  latest_.published = sample.published;  // same size: no allocation
+  latest_.stamp = stamp;
+  latest_.has_sample = true;
 }
 
-bool PartialVelocitiesService::answer(
-    mb_kinematics_msgs::GetPartialVelocities::Request& request,
-    mb_kinematics_msgs::GetPartialVelocities::Response& response) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  response.header.stamp = stamp_;
-  response.header.frame_id = frame_;
-  if (!has_sample_) {
-    response.message = "no joint sample with velocities yet";
-    return true;
-  }
-  std::vector<int> bodies;
+bool PartialVelocitiesService::bodies(const Request& request, const Latest& latest,
+                                      std::vector<int>& out, std::string& message) const {
   for (const std::string& name : request.bodies) {
     const int k = model_.body_index(name);
     if (k < 1) {
-      response.message = "unknown body '" + name + "'";
-      return true;
+      message = "unknown body '" + name + "'";
+      return false;
     }
-    if (!published_[k]) {
-      response.message = "body '" + name +
-                         "' is left out: a joint on its chain has never been received, or is "
-                         "stale (~missing_coordinates)";
-      return true;
+    if (!latest.published[k]) {
+      message = "body '" + name +
+                "' is left out: a joint on its chain has never been received, or is "
+                "stale (~missing_coordinates)";
+      return false;
     }
-    bodies.push_back(k);
+    out.push_back(k);
   }
   if (request.bodies.empty())  // every body published
     for (int k = 1; k <= model_.body_count(); ++k)
-      if (published_[k]) bodies.push_back(k);
-  mbk::PartialVelocities<double> pv(model_);
-  mbk::Data<double> data(model_);
-  mbk::partial_velocity_kinematics(model_, latest_, pv, data);  // the _dot columns need q, y
-  for (int k : bodies) {
+      if (latest.published[k]) out.push_back(k);
+  return true;
+}
+
+bool PartialVelocitiesService::within_limit(const Request& request, const std::vector<int>& bodies,
+                                            std::string& message) const {
+  long entries = 0;
+  for (int k : bodies) entries += chain_speeds_[k];
+  if (entries <= max_entries_) return true;
+  message = "refused: " + std::to_string(bodies.size()) +
+            (request.bodies.empty() ? " bodies (every body)" : " bodies") + " need " +
+            std::to_string(entries) +
+            " entries (speed columns, about 100 bytes each), more than "
+            "~partial_velocities_max_entries = " +
+            std::to_string(max_entries_) + "; ask for fewer bodies or raise the limit";
+  return false;
+}
+
+bool PartialVelocitiesService::answer(Request& request, Response& response) {
+  Latest latest(model_);
+  {
+    std::lock_guard<std::mutex> lock(latest_mutex_);  // a copy: the outputs go on meanwhile
+    latest = latest_;
+  }
+  response.header.stamp = latest.stamp;
+  response.header.frame_id = frame_;
+  std::vector<int> asked;
+  if (!latest.has_sample) {
+    response.message = "no joint sample with velocities yet";
+    return true;
+  }
+  if (!bodies(request, latest, asked, response.message) ||
+      !within_limit(request, asked, response.message))
+    return true;
+  const auto columns = mbk::chain_partial_velocities(model_, latest.state, asked);
+  for (size_t i = 0; i < asked.size(); ++i) {
     response.partials.emplace_back();
-    if (!fill_body(model_, pv, k, response.partials.back())) {
+    if (!fill_body(model_, asked[i], columns[i], response.partials.back())) {
       response.partials.clear();
-      response.message = "body '" + model_.bodies[k].name + "': partial velocities not finite";
+      response.message =
+          "body '" + model_.bodies[asked[i]].name + "': partial velocities not finite";
       return true;
     }
   }
