@@ -17,7 +17,9 @@
 //   (KDL has no forward acceleration solver.)
 //
 // Scenes: human = config/human_body.yaml (16 bodies, its ball and free joints as such: ours and
-// Pinocchio's spherical and free-flyer joints);
+// Pinocchio's spherical and free-flyer joints); human_zyx, human_zxz = the same with every ball
+// and free joint's angles in the Tait-Bryan order ZYX or the proper Euler order ZXZ (ours only:
+// the Euler order families beside 1-2-3);
 // human_urdf = config/human_body.urdf (37 links: ball and free joints expanded into one-axis
 // joints); humanoid29 = 29 revolute joints shaped like Pinocchio's simple_humanoid (legs of 6,
 // waist of 3, arms of 7); random64 = a random tree of 64 revolute joints with random axes,
@@ -291,6 +293,14 @@ mbk::Model random_revolute_tree(int n, unsigned seed) {
   return model;
 }
 
+// The model with every ball and free joint's angles in `order`.
+mbk::Model in_order(mbk::Model model, mbk::EulerOrder order) {
+  for (mbk::Body& body : model.bodies)
+    if (mbk::takes_euler_order(body.joint.type)) body.joint.euler_order = order;
+  mbk::finalize_model(model);
+  return model;
+}
+
 // A scene that every side reads from the same URDF text.
 std::unique_ptr<Scene> urdf_scene(const std::string& name, const std::string& urdf) {
   return std::make_unique<Scene>(Scene{name, mbk::load_urdf_string(urdf, name), urdf, true, true});
@@ -303,6 +313,10 @@ int main(int argc, char** argv) {
   const std::string human_urdf = read_file(source_path("config/human_body.urdf"));
   scenes.push_back(std::make_unique<Scene>(Scene{
       "human", mbk::load_model_file(source_path("config/human_body.yaml")), "", false, true}));
+  for (auto [name, order] : {std::pair{"human_zyx", mbk::EulerOrder::kZYX},
+                             std::pair{"human_zxz", mbk::EulerOrder::kZXZ}})
+    scenes.push_back(
+        std::make_unique<Scene>(Scene{name, in_order(scenes[0]->model, order), "", false, false}));
   scenes.push_back(urdf_scene("human_urdf", human_urdf));
   scenes.push_back(urdf_scene("humanoid29", mbk::write_urdf(humanoid29(), "humanoid29")));
   scenes.push_back(

@@ -104,7 +104,7 @@ JointState<S> euler_state(const Model& model, const Model& euler_model,
     if (uses_euler_parameters(from.joint.type)) {
       e1 = q[t], e2 = q[t + 1], e3 = q[t + 2], e4 = q[t + 3];
     } else {
-      quaternion_from_rotation(rotation_123(q[t], q[t + 1], q[t + 2]), e1, e2, e3, e4);
+      quaternion_from_rotation(m.rotation, e1, e2, e3, e4);  // the angles' in their order
     }
     const Vec3<S> e(e1, e2, e3);
     S* qo = out.position.data() + to.q_index + t;

@@ -151,14 +151,16 @@ void for_each_coordinate(const Model& model, JointState<double>& state,
 // the lock (alpha' = -gamma' = 1e3 rad/s: omega ~ (alpha' + gamma') e1 there) and angular
 // accelerations of 1e6 rad/s^2. The lock is a singularity of the rate map (angles' from omega),
 // not of the rotation or of omega from (angles, rates): the per-link bound holds unchanged
-// (T includes |rates|, so the bound is relative to them).
-JointState<double> gimbal_state(const Model& model, double delta, unsigned seed) {
+// (T includes |rates|, so the bound is relative to them). proper: the chain's angles are in a
+// proper Euler order, whose lock is at beta = 0 and pi (euler_order.h).
+JointState<double> gimbal_state(const Model& model, double delta, unsigned seed, bool proper) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   JointState<double> s = random_state(model, rng);
   for (int k = 1; k <= model.body_count(); ++k) {
     const int a = model.bodies[k].q_index + 3, v = model.bodies[k].v_index + 3;
-    s.position[a + 1] = (k % 2 ? M_PI_2 : -M_PI_2) + (k % 3 ? delta : -delta);
+    const double lock = proper ? (k % 2 ? 0.0 : M_PI) : (k % 2 ? M_PI_2 : -M_PI_2);
+    s.position[a + 1] = lock + (k % 3 ? delta : -delta);
     const double rate = 1e3 * (1 + 0.1 * u(rng));
     s.velocity[v] = rate, s.velocity[v + 1] = 1e3 * u(rng), s.velocity[v + 2] = -rate;
     for (int c = 0; c < 3; ++c) s.acceleration[v + c] = 1e6 * u(rng);
@@ -170,12 +172,19 @@ std::vector<StabilityRow> gimbal_lock() {
   std::vector<StabilityRow> rows;
   const Model model = make_chain(4, JointType::kFree123);
   const Model euler = with_euler_parameters(model, SpeedKind::kCoordinateDerivatives);
+  Model zxz = model;
+  for (Body& body : zxz.bodies) body.joint.euler_order = EulerOrder::kZXZ;
+  finalize_model(zxz);
   for (double delta : {0.0, 1e-12, 1e-9, 1e-6}) {
     const std::string name =
         delta == 0 ? "beta = +-pi/2 (double nearest)" : "beta = +-pi/2 +- " + fmt("%g", delta);
-    const JointState<double> state = gimbal_state(model, delta, 11);
+    const JointState<double> state = gimbal_state(model, delta, 11, false);
     rows.push_back(
         kinematics_row("gimbal_lock", "1-2-3 " + name, stability_error<Quad>(model, state)));
+    const std::string proper_name =
+        delta == 0 ? "beta = 0, pi (double nearest)" : "beta = 0, pi +- " + fmt("%g", delta);
+    rows.push_back(kinematics_row("gimbal_lock", "ZXZ (proper Euler) " + proper_name,
+                                  stability_error<Quad>(zxz, gimbal_state(zxz, delta, 11, true))));
     // The same motion in Euler parameters: e, e', e'' computed in quad, rounded to double (the
     // double inputs), the reference on those.
     const JointState<Quad> exact = euler_state(model, euler, cast_state<Quad>(model, state));

@@ -124,6 +124,10 @@ int first_euler_parameter(JointType type) {
 
 bool uses_euler_parameters(JointType type) { return first_euler_parameter(type) >= 0; }
 
+bool takes_euler_order(JointType type) {
+  return type == JointType::kBall123 || type == JointType::kFree123;
+}
+
 int speed_count(JointType type, SpeedKind speeds) {
   const int n = coordinate_count(type);
   return uses_euler_parameters(type) && speeds == SpeedKind::kAngularVelocity ? n - 1 : n;

@@ -86,6 +86,8 @@ int speed_count(JointType type, SpeedKind speeds);
 int translation_count(JointType type);  // leading translation coordinates (= linear speeds)
 bool uses_euler_parameters(JointType type);
 int first_euler_parameter(JointType type);  // index of e1 among the joint's coordinates; -1 if none
+// Ball and free joints with angles (kBall123, kFree123): they take Joint::euler_order.
+bool takes_euler_order(JointType type);
 
 struct Joint {
   std::string name;

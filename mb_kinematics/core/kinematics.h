@@ -505,17 +505,18 @@ void motion_step(const Model& model, int k, const StateView<S>& state, const Dat
 // carried by M are a0 = M e1, a1 = (M A) e2, a2 = (M A B) e3, and their rates (eq. 4.5) are
 // a1' = alpha' (M A) e3 and a2' = -cos beta alpha' a1 + beta' (M A B) e1 (A' = A [e1]x alpha',
 // B' = B [e2]x beta'); linear in M, as C_k (angular_dot) carries them in joint_motion.
-// kSignedGamma: another order's (ordered_angles_pose), whose a2 carries the sign of gamma.
+// kSignedGamma: another order's (ordered_angles_pose), whose a2 and a2' carry the sign of gamma,
+// here on gamma's rates (exact: the sign is +-1).
 template <Level L, bool kSignedGamma, typename S>
 void angles_123_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
-  const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1);
-  const Vec3<S> a2 = kSignedGamma ? Vec3<S>(f.mab.col(2) * f.gamma_sign) : Vec3<S>(f.mab.col(2));
-  t.w = a0 * y[0] + a1 * y[1] + a2 * y[2];
+  const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1), a2 = f.mab.col(2);
+  const S gamma_rate = kSignedGamma ? f.gamma_sign * y[2] : y[2];
+  t.w = a0 * y[0] + a1 * y[1] + a2 * gamma_rate;
   if constexpr (L == Level::kAcceleration) {
     const Vec3<S> a1_dot = f.ma.col(2) * y[0];
-    Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
-    if constexpr (kSignedGamma) a2_dot *= f.gamma_sign;
-    t.wd = a0 * yd[0] + a1 * yd[1] + a2 * yd[2] + a1_dot * y[1] + a2_dot * y[2];
+    const Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
+    const S gamma_acceleration = kSignedGamma ? f.gamma_sign * yd[2] : yd[2];
+    t.wd = a0 * yd[0] + a1 * yd[1] + a2 * gamma_acceleration + a1_dot * y[1] + a2_dot * gamma_rate;
   }
 }
 

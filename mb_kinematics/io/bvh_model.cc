@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "mb_kinematics/io/bvh_anthropometry.h"
 
@@ -93,6 +94,18 @@ double rest_extent(const BvhFile& bvh, double scale) {
   return (high - low).maxCoeff();
 }
 
+// A name used twice would make two bodies, tf frames and coordinate sets of one name.
+void refuse_repeated_names(const BvhFile& bvh) {
+  std::unordered_map<std::string, int> first;  // name -> segment
+  for (size_t i = 0; i < bvh.segments.size(); ++i) {
+    const auto [it, fresh] = first.emplace(bvh.segments[i].name, static_cast<int>(i));
+    if (!fresh)
+      fail(bvh, bvh.segments[i],
+           "a second segment of this name (the first at line " +
+               std::to_string(bvh.segments[it->second].line) + ")");
+  }
+}
+
 std::string height_warning(const BvhFile& bvh, double scale) {
   const double height = rest_extent(bvh, scale);
   if (height >= kHumanHeight[0] && height <= kHumanHeight[1]) return "";
@@ -133,6 +146,7 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
   if (!(options.body_mass >= 0) || !std::isfinite(options.body_mass))
     throw std::invalid_argument("body mass: must be a number of kg >= 0 (0: massless segments)");
   const Sex sex = sex_from_string(options.sex);
+  refuse_repeated_names(bvh);
   Model model;
   model.bodies.resize(bvh.segments.size() + 1);
   for (size_t i = 0; i < bvh.segments.size(); ++i) {

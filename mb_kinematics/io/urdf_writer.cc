@@ -1,5 +1,6 @@
 #include "mb_kinematics/io/urdf_writer.h"
 
+#include <array>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -151,18 +152,22 @@ std::string visuals(const Model& model, int k, const std::vector<int>& children)
 }
 
 // A joint as a one-axis URDF joint per coordinate (UrdfForm::kAxisChain): translations
-// prismatic along x, y, z, then 1-2-3 angles continuous about x, the new y and the new z
-// (doc/method.md 2), through massless links <body>__<coord>.
+// prismatic along x, y, z, then the angles continuous about the joint's Euler order's axes, each
+// the new one (1-2-3: x, the new y, the new z; doc/method.md 2), through massless links
+// <body>__<coord>.
 void write_axis_chain(UrdfOut& out, const Body& body, const std::string& parent) {
   const Joint& joint = body.joint;
   const std::vector<Coordinate>& coordinates = joint_traits(joint.type).coordinates;
+  const std::array<int, 3> angle_axes =
+      takes_euler_order(joint.type) ? euler_axes(joint.euler_order) : std::array<int, 3>{0, 1, 2};
   std::string from = parent;
   int translations = 0, angles = 0;
   for (size_t i = 0; i < coordinates.size(); ++i) {
     const Coordinate& c = coordinates[i];
     const bool last = i + 1 == coordinates.size();
     const bool translation = c.kind == CoordinateKind::kTranslation;
-    const Vec3<double> axis = Vec3<double>::Unit(translation ? translations++ : angles++);
+    const Vec3<double> axis =
+        Vec3<double>::Unit(translation ? translations++ : angle_axes[angles++]);
     const std::string to = last ? body.name : body.name + "__" + c.suffix;
     write_joint(out, joint.name + "/" + c.suffix, translation ? "prismatic" : "continuous", from,
                 to,

@@ -1,7 +1,8 @@
 // A Model as URDF text, so that robot_state_publisher, KDL and rviz's RobotModel can use
 // YAML scenes. Joints URDF lacks are expanded into chains of URDF joints with the same
 // coordinate names: ball_123 into revolutes `<joint>/alpha` (x), `/beta` (new y), `/gamma`
-// (new z) (doc/method.md 2: "three hinges about x, then the new y, then the new z"); free_123 into
+// (new z) (doc/method.md 2: "three hinges about x, then the new y, then the new z"; about the
+// axes of the joint's euler_order in its order, e.g. z, new x, new y for ZXY); free_123 into
 // prismatics `<joint>/x`, `/y`, `/z` then the same three revolutes. The intermediate links,
 // `<body>__<coordinate>`, are massless. Simple visuals (material `mbk_body`, grey-blue): a
 // sphere at each mass center and a capsule from each joint point to the next. Mimics are

@@ -62,6 +62,18 @@ int read_lower(const YAML::Node& body_node, const std::unordered_map<std::string
   return lower;
 }
 
+// euler_order: XYZ (default), ZXY, ZXZ, ... or 312, ... for ball_123 and free_123 joints.
+void read_euler_order(const YAML::Node& node, Joint& joint, const std::string& where) {
+  if (!takes_euler_order(joint.type))
+    throw SceneError(node, where + ": euler_order is for ball_123 and free_123 joints, not " +
+                               to_string(joint.type));
+  try {
+    joint.euler_order = euler_order_from_string(node.Scalar());
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(node, where + ": " + e.what());
+  }
+}
+
 void read_joint(const YAML::Node& body_node, Body& body, int k) {
   const std::string where = "body " + std::to_string(k) + " joint";
   const YAML::Node node = body_node["joint"];
@@ -74,6 +86,7 @@ void read_joint(const YAML::Node& body_node, Body& body, int k) {
   } catch (const std::invalid_argument& e) {
     throw SceneError(node["type"], where + ": " + e.what());
   }
+  if (node["euler_order"]) read_euler_order(node["euler_order"], body.joint, where);
   if (node["origin"]) body.joint.offset = read_vec3(node["origin"], where + " origin");
   if (node["rpy"]) {
     const Vec3<double> rpy = read_vec3(node["rpy"], where + " rpy");

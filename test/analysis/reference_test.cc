@@ -66,9 +66,13 @@ TEST(Reference, ErrorIsRelativeToEachQuantitysScale) {
 
 // euler_state (used for the "Euler" rows of the report) converts 1-2-3 angle joints of a state
 // into Euler parameters describing the same motion: in quad, every quantity agrees to rounding.
+// Seeds 6 to 8: the angle joints in all 12 Euler orders (Joint::euler_order).
 TEST(Reference, EulerStateDescribesTheSameMotion) {
-  for (unsigned seed = 1; seed <= 5; ++seed) {
-    const mbk::Model model = mbk::make_random_tree(30, seed);
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    mbk::Model model = mbk::make_random_tree(30, seed);
+    for (int k = 1; k <= model.body_count() && seed > 5; ++k)
+      model.bodies[k].joint.euler_order = static_cast<mbk::EulerOrder>(k % 12);
+    mbk::finalize_model(model);
     std::mt19937 rng(seed);
     const mbk::JointState<double> state = mbk::random_state(model, rng);
     const mbk::JointState<Quad> exact = mbk::cast_state<Quad>(model, state);

@@ -6,16 +6,18 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mb_kinematics/core/kinematics.h"
 
 namespace {
 
-// Every rotation order X Y Z here (until every order is computed); a 6-channel root, a free
-// non-root joint, one- and two-rotation joints, a fixed one, End Sites.
+// A 6-channel root, a free non-root joint, one- and two-rotation joints, a fixed one, End Sites;
+// every rotation order X Y Z here (kMixed below has others).
 const char kSkeleton[] =
     "HIERARCHY\n"                                                                 // 1
     "ROOT Hips\n"                                                                 // 2
@@ -61,6 +63,20 @@ const char kSkeleton[] =
     "Frame Time: 0.01\n"                                                          // 42
     "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n"                                           // 43
     "1.5 -2 3 10 -20 30 40 -50 60 -70 15 25 3 -4 35 -45\n";                       // 44
+
+// kSkeleton with the orders of real files mixed: the root as CMU's (ZYX), a proper Euler order
+// (ZXZ), a pair that is not X Y (Z X: a ball ZXY whose gamma stays 0), a free joint turning about
+// Y then Z (YZX).
+std::string mixed() {
+  std::string text = kSkeleton;
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"Zposition Xrotation Yrotation Zrotation", "Zposition Zrotation Yrotation Xrotation"},
+           {"CHANNELS 3 Xrotation Yrotation Zrotation", "CHANNELS 3 Zrotation Xrotation Zrotation"},
+           {"CHANNELS 2 Xrotation Yrotation", "CHANNELS 2 Zrotation Xrotation"},
+           {"Zposition Xposition Xrotation Yrotation", "Zposition Xposition Yrotation Zrotation"}})
+    text.replace(text.find(from), from.size(), to);
+  return text;
+}
 
 constexpr double kScale = 0.01;  // centimetres
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -122,7 +138,12 @@ TEST(BvhModel, FrameValuesBecomeCoordinatesInRadiansAndMetres) {
 // The BVH format's own forward kinematics: a segment's origin is its parent's origin plus the
 // parent's rotation times (OFFSET + position channels); its rotation is the parent's times the
 // rotation channels' elementary rotations in channel order.
-std::vector<Eigen::Vector3d> bvh_joint_positions(const mbk::BvhFile& bvh, int frame) {
+struct Poses {
+  std::vector<Eigen::Vector3d> origin;
+  std::vector<Eigen::Matrix3d> rotation;
+};
+
+Poses bvh_poses(const mbk::BvhFile& bvh, int frame) {
   std::vector<Eigen::Vector3d> origin(bvh.segments.size());
   std::vector<Eigen::Matrix3d> rotation(bvh.segments.size());
   for (size_t i = 0; i < bvh.segments.size(); ++i) {
@@ -143,22 +164,44 @@ std::vector<Eigen::Vector3d> bvh_joint_positions(const mbk::BvhFile& bvh, int fr
     rotation[i] = root ? turn : Eigen::Matrix3d(rotation[s.parent] * turn);
   }
   for (Eigen::Vector3d& p : origin) p *= kScale;
-  return origin;
+  return {origin, rotation};
 }
 
-TEST(BvhModel, JointPositionsAgreeWithTheFormatsForwardKinematics) {
-  const mbk::BvhFile bvh = mbk::parse_bvh(kSkeleton, "walk.bvh");
+void expect_the_formats_forward_kinematics(const std::string& text) {
+  const mbk::BvhFile bvh = mbk::parse_bvh(text, "walk.bvh");
   const mbk::Model model = mbk::model_from_bvh(bvh, {kScale});
   mbk::JointState<double> state(model);
   mbk::Data<double> data(model);
   const std::vector<double> q = mbk::bvh_frame_coordinates(bvh, model, 1, kScale);
   state.position = Eigen::Map<const Eigen::VectorXd>(q.data(), q.size());
   mbk::forward_kinematics(model, state, data);
-  const std::vector<Eigen::Vector3d> expected = bvh_joint_positions(bvh, 1);
-  for (int k = 1; k <= model.body_count(); ++k)
-    EXPECT_LT((data.origin[k] - expected[k - 1]).norm(), 1e-12 * expected[k - 1].norm())
+  const Poses expected = bvh_poses(bvh, 1);
+  for (int k = 1; k <= model.body_count(); ++k) {
+    EXPECT_LT((data.origin[k] - expected.origin[k - 1]).norm(),
+              1e-12 * expected.origin[k - 1].norm())
         << model.bodies[k].name << ": " << data.origin[k].transpose() << " vs "
-        << expected[k - 1].transpose();
+        << expected.origin[k - 1].transpose();
+    EXPECT_LT((data.rotation[k] - expected.rotation[k - 1]).norm(), 1e-14) << model.bodies[k].name;
+  }
+}
+
+TEST(BvhModel, JointPositionsAgreeWithTheFormatsForwardKinematics) {
+  expect_the_formats_forward_kinematics(kSkeleton);
+}
+
+TEST(BvhModel, MixedOrdersAgreeWithTheFormatsForwardKinematics) {
+  const mbk::Model model = model_of(mixed());
+  const std::vector<mbk::JointType> types = {mbk::JointType::kFree123,  mbk::JointType::kBall123,
+                                             mbk::JointType::kRevolute, mbk::JointType::kBall123,
+                                             mbk::JointType::kFree123,  mbk::JointType::kFixed};
+  const std::vector<mbk::EulerOrder> orders = {mbk::EulerOrder::kZYX, mbk::EulerOrder::kZXZ,
+                                               mbk::EulerOrder::kXYZ, mbk::EulerOrder::kZXY,
+                                               mbk::EulerOrder::kYZX, mbk::EulerOrder::kXYZ};
+  for (int k = 1; k <= 6; ++k) {
+    EXPECT_EQ(model.bodies[k].joint.type, types[k - 1]) << k;
+    EXPECT_EQ(model.bodies[k].joint.euler_order, orders[k - 1]) << k;
+  }
+  expect_the_formats_forward_kinematics(mixed());
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -167,18 +210,24 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 TEST(BvhModel, ChannelsNoJointTakesNameTheirSegmentsLine) {
-  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 2 Xrotation Yrotation",
-                              "CHANNELS 2 Yrotation Yrotation")),
-            "walk.bvh:20: JOINT Chest: two successive rotations about one axis");
-  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 4 Zposition Xposition Xrotation Yrotation",
-                              "CHANNELS 4 Xrotation Yrotation Zrotation Xrotation")),
-            "walk.bvh:24: JOINT Neck: more than three rotation channels");
-  EXPECT_EQ(error_of(replaced(kSkeleton, "CHANNELS 4 Zposition Xposition Xrotation Yrotation",
-                              "CHANNELS 4 Zposition Zposition Xrotation Yrotation")),
-            "walk.bvh:24: JOINT Neck: two position channels along one axis");
-  EXPECT_EQ(error_of(replaced(kSkeleton, "Zposition Xrotation Yrotation Zrotation",
-                              "Zposition Xrotation Xrotation Zrotation")),
-            "walk.bvh:2: ROOT Hips: two successive rotations about one axis");
+  const char* const neck = "CHANNELS 4 Zposition Xposition Xrotation Yrotation";
+  const std::vector<std::array<const char*, 3>> cases = {
+      // channels, replaced by, error
+      {"CHANNELS 2 Xrotation Yrotation", "CHANNELS 2 Yrotation Yrotation",
+       "walk.bvh:20: JOINT Chest: two successive rotations about one axis"},
+      {neck, "CHANNELS 4 Xrotation Yrotation Zrotation Xrotation",
+       "walk.bvh:24: JOINT Neck: more than three rotation channels"},
+      {neck, "CHANNELS 4 Zposition Zposition Xrotation Yrotation",
+       "walk.bvh:24: JOINT Neck: two position channels along one axis"},
+      {"Zposition Xrotation Yrotation Zrotation", "Zposition Xrotation Xrotation Zrotation",
+       "walk.bvh:2: ROOT Hips: two successive rotations about one axis"}};
+  for (const auto& [from, to, error] : cases)
+    EXPECT_EQ(error_of(replaced(kSkeleton, from, to)), error);
+}
+
+TEST(BvhModel, ASegmentNameUsedTwiceNamesBothLines) {
+  EXPECT_EQ(error_of(replaced(kSkeleton, "JOINT Head", "JOINT LeftLeg")),
+            "walk.bvh:28: JOINT LeftLeg: a second segment of this name (the first at line 10)");
 }
 
 TEST(BvhModel, AScaleThatMakesNoHumanIsWarnedAbout) {

@@ -98,6 +98,18 @@ TEST(YamlSceneErrors, UnknownJointTypeListsTheKnownOnes) {
                     {"scene.yaml:1:", "unknown joint type 'hinge'", "known: fixed"});
 }
 
+TEST(YamlSceneErrors, EulerOrders) {
+  EXPECT_EQ(mbk::load_yaml_scene_string(one_body("joint: {type: ball_123, euler_order: zxy}"))
+                .bodies[1]
+                .joint.euler_order,
+            mbk::EulerOrder::kZXY);
+  expect_yaml_error(one_body("joint: {type: ball_123, euler_order: ZZY}"),
+                    {"scene.yaml:3:", "body 1 joint", "unknown Euler order 'ZZY'", "ZXY"});
+  expect_yaml_error(one_body("joint: {type: revolute, euler_order: ZXY}"),
+                    {"scene.yaml:3:", "body 1 joint", "euler_order is for ball_123 and free_123",
+                     "not revolute"});
+}
+
 TEST(YamlSceneErrors, LowerBodyMustBeAnEarlierBody) {
   const std::string head =
       "bodies:\n"
