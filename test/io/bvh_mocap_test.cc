@@ -1,7 +1,7 @@
-// The real recording (test/mocap/131_01.bvh, CMU trial 131_01: start, walk, stop; two Euler
-// orders in one skeleton) through the BVH loader and the core, against a forward kinematics of
-// the BVH written here on its own (long double, the file's channels composed in the file's
-// order): every joint position to 1e-12 relative, every segment's angular velocity against a
+// The real recordings (test/mocap/: CMU trials 131_01, start, walk, stop, and 131_03, start, hop,
+// stop; two Euler orders in one skeleton) through the BVH loader and the core, against a forward
+// kinematics of the BVH written here on its own (long double, the file's channels composed in the
+// file's order): every joint position to 1e-12 relative, every segment's angular velocity against a
 // central difference of the orientations, and the whole-body mass against --body-mass.
 #include <gtest/gtest.h>
 
@@ -21,7 +21,12 @@ namespace {
 using Mat3L = Eigen::Matrix<long double, 3, 3>;
 using Vec3L = Eigen::Matrix<long double, 3, 1>;
 
-const std::string kWalk = std::string(MBK_SOURCE_DIR) + "/test/mocap/131_01.bvh";
+// A recording of test/mocap/ and its number of frames.
+struct Recording {
+  const char* file;
+  int frames;
+};
+const Recording kRecordings[] = {{"131_01.bvh", 994}, {"131_03.bvh", 1102}};
 constexpr double kCmuScale = 0.0254 / 0.45;  // metres per CMU unit (test/mocap/README.md)
 
 // The BVH's pose of every segment at one frame, in the file's own terms: origins (scaled) and
@@ -94,10 +99,10 @@ Vec3L central_omega(const Mat3L& before, const Mat3L& after, long double h) {
   return turn.axis() * turn.angle() / (2 * h);
 }
 
-class RealWalk : public ::testing::Test {
+class RealRecording : public ::testing::TestWithParam<Recording> {
  protected:
   void SetUp() override {
-    bvh_ = mbk::read_bvh(kWalk);
+    bvh_ = mbk::read_bvh(std::string(MBK_SOURCE_DIR) + "/test/mocap/" + GetParam().file);
     mbk::unwrap_rotations(bvh_);
     options_.scale = kCmuScale;
     options_.body_mass = 68.5;
@@ -122,17 +127,17 @@ class RealWalk : public ::testing::Test {
   std::vector<int> body_;  // body_[segment]: its body in the model
 };
 
-TEST_F(RealWalk, TheRecordingIsTheOnePublished) {
+TEST_P(RealRecording, TheRecordingIsTheOnePublished) {
   EXPECT_EQ(bvh_.segments.size(), 31u);
   EXPECT_EQ(bvh_.channel_count, 96);
-  EXPECT_EQ(bvh_.frame_count, 994);
+  EXPECT_EQ(bvh_.frame_count, GetParam().frames);
   EXPECT_EQ(bvh_.frame_time, 0.0083333);
   for (int b : body_) EXPECT_GT(b, 0) << "a BVH segment is no body of the model";
 }
 
 // Every joint position (the origin O_k of every body) of every frame from the core equals the
 // independent forward kinematics to 1e-12 of the skeleton's reach from R's origin.
-TEST_F(RealWalk, JointPositionsAgreeWithAnIndependentForwardKinematics) {
+TEST_P(RealRecording, JointPositionsAgreeWithAnIndependentForwardKinematics) {
   mbk::Data<double> data(model_);
   double worst = 0;
   for (int f = 1; f + 1 < bvh_.frame_count; ++f) {
@@ -174,7 +179,7 @@ std::vector<long double> chain_rates(const mbk::BvhFile& bvh,
 // difference's error is at most h^2 / 6 times the third derivative of R, so below h^2 L^3 with L
 // the segment's chain_rates; rounding adds about 1e-19 / h = 1e-13 rad/s in long double and the
 // core's double about 1e-15 |omega|: 1e-9 rad/s covers both.
-TEST_F(RealWalk, AngularVelocitiesAgreeWithDifferencesOfTheOrientations) {
+TEST_P(RealRecording, AngularVelocitiesAgreeWithDifferencesOfTheOrientations) {
   constexpr long double h = 1e-6L;
   mbk::Data<double> data(model_);
   double worst = 0, fastest = 0;
@@ -204,10 +209,16 @@ TEST_F(RealWalk, AngularVelocitiesAgreeWithDifferencesOfTheOrientations) {
               fastest);
 }
 
-TEST_F(RealWalk, WholeBodyMassIsTheBodyMass) {
+TEST_P(RealRecording, WholeBodyMassIsTheBodyMass) {
   double mass = 0;
   for (int k = 1; k <= model_.body_count(); ++k) mass += model_.bodies[k].mass;
   EXPECT_NEAR(mass, options_.body_mass, 1e-12 * options_.body_mass);
 }
+
+INSTANTIATE_TEST_SUITE_P(Cmu, RealRecording, ::testing::ValuesIn(kRecordings),
+                         [](const ::testing::TestParamInfo<Recording>& info) {
+                           return "trial_" +
+                                  std::string(info.param.file).substr(0, 6);  // trial_131_01
+                         });
 
 }  // namespace
