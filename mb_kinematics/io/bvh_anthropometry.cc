@@ -149,10 +149,12 @@ const Found* find_row(const std::vector<Found>& found, int row, int side) {
   return nullptr;
 }
 
-// The lowest Neck* above the head (the head itself if none): its origin stands for CERV/SUPR.
+// The lowest joint named *neck* above the head (CMU's Neck, cgspeed's lowerneck; the head itself
+// if none): its origin stands for CERV/SUPR.
 int cervical(const Skeleton& s, int head) {
   int c = head;
-  while (c > 0 && side_and_part(s.name(s.parent(c))).second.rfind("neck", 0) == 0) c = s.parent(c);
+  while (c > 0 && side_and_part(s.name(s.parent(c))).second.find("neck") != std::string::npos)
+    c = s.parent(c);
   return c;
 }
 

@@ -2,6 +2,7 @@
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
 //       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
 //       [--frame-prefix P] [--max-gap S] [--threads N]
+//   mbk bag WALK.bvh [--model FILE] [--scale M] [--body-mass KG] [--sex male|female] ...
 #include <console_bridge/console.h>
 
 #include <iostream>

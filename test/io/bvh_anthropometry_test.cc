@@ -134,6 +134,17 @@ TEST(DeLeva, BiovisionAndMixamoNamesMapAsCmus) {
   EXPECT_GT(body(cmu, "LeftForeArm").mass, 0);
 }
 
+// CMU's cgspeed conversions name the neck lowerneck, Neck: CERV is the lowest *neck* joint.
+TEST(DeLeva, TheHeadReachesDownToTheLowestNeckJoint) {
+  const std::string text = renamed(mbk_test::source_path("test/io/data/cmu_walk.bvh"),
+                                   {{"Neck", "lowerneck"}, {"Neck1", "Neck"}});
+  const mbk::Model model =
+      mbk::model_from_bvh(mbk::parse_bvh(text, "cgspeed.bvh"), {0.01, kMass, "male"});
+  EXPECT_TRUE(
+      body(model, "Head").mass_center.isApprox(Eigen::Vector3d(0, 0.18 - 0.5002 * 0.28, 0), 1e-12));
+  EXPECT_TRUE(model.warnings.empty()) << model.warnings.front();
+}
+
 TEST(DeLeva, WhatIsNotMappedIsMasslessAndNamedInOneNote) {
   // Paws, not hands: they and their fingers are massless, the hands' fractions go to the others.
   const std::string text = renamed(mbk_test::source_path("test/io/data/cmu_walk.bvh"),

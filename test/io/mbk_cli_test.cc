@@ -735,6 +735,25 @@ TEST(MbkCli, ABvhFileIsAModel) {
   for (int k = 1; k <= model.body_count(); ++k)
     for (int i = 0; i < 3; ++i)
       EXPECT_NEAR(bodies.array[k - 1].at("origin").array[i].number, data.origin[k][i], 1e-12);
+  // mbk urdf of the skeleton: the same bodies at the same places, the same masses.
+  const Output urdf_run = mbk("urdf " + walk + " --scale 0.01 --body-mass 61.5 --sex female");
+  ASSERT_EQ(urdf_run.status, 0) << urdf_run.err;
+  const mbk::Model urdf = mbk::load_urdf_string(urdf_run.out, "walk.urdf");
+  mbk::JointState<double> urdf_state(urdf);
+  for (int i = 0; i < model.nq; ++i)
+    urdf_state.position[urdf.coordinate_index(model.coordinate_names[i])] = q[i];
+  mbk::Data<double> urdf_data(urdf);
+  mbk::forward_kinematics(urdf, urdf_state, urdf_data);
+  double urdf_mass = 0;
+  for (const mbk::Body& b : urdf.bodies) urdf_mass += b.mass;
+  EXPECT_NEAR(urdf_mass, 61.5, 1e-9);
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const int u = urdf.body_index(model.bodies[k].name);
+    ASSERT_GE(u, 0) << model.bodies[k].name;
+    EXPECT_LT((urdf_data.origin[u] - data.origin[k]).norm(), 1e-12) << model.bodies[k].name;
+    EXPECT_LT((urdf_data.mass_center[u] - data.mass_center[k]).norm(), 1e-9)
+        << model.bodies[k].name;
+  }
   const Output unscaled = mbk("urdf " + walk);
   EXPECT_EQ(unscaled.status, 0);
   EXPECT_NE(unscaled.err.find("mbk: warning: test/io/data/cmu_walk.bvh: the skeleton's standing "
