@@ -72,13 +72,13 @@ def walk(plt, series, bodies, t0, up, path):
     t = [s - t0 for s in system["stamp"]]
     fig = plt.figure(figsize=(14, 10))
     grid = fig.add_gridspec(3, 3)
-    top = fig.add_subplot(grid[0, :2])
+    top = fig.add_subplot(grid[0, 0])
     top.plot(system["mass_center" + across[0]], system["mass_center" + across[1]], linewidth=1.2)
     top.set_aspect("equal", adjustable="datalim")
     top.set_xlabel("%s (m)" % across[0])
     top.set_ylabel("%s (m)" % across[1])
-    top.set_title("whole-body mass center, path seen from above (%s up)" % up, fontsize=9)
-    height = fig.add_subplot(grid[0, 2])
+    top.set_title("whole-body mass center seen from above (%s up)" % up, fontsize=9)
+    height = fig.add_subplot(grid[0, 1:])
     height.plot(t, system["mass_center" + up], linewidth=1.2)
     height.set_title("whole-body mass center, height %s (m)" % up, fontsize=9)
     for col, c in enumerate("xyz"):

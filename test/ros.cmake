@@ -47,6 +47,10 @@ foreach(name node pairing rsp_compare markers hostile frame_prefix system base_o
     MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 endforeach()
 add_dependencies(two_robots_test demo_publisher)  # launch/two_robots.launch runs it
+# launch/bvh.launch on the real recording test/mocap/131_01.bvh.
+add_rostest_gtest(bvh_launch_test test/ros/bvh_launch.test test/ros/bvh_launch_test.cc)
+add_dependencies(bvh_launch_test mb_kinematics_node bvh_player mbk)
+target_link_libraries(bvh_launch_test mbk_io mbk_core ${catkin_LIBRARIES})
 add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
 add_rostest(test/ros/deep_partials_nodelet.test DEPENDENCIES mbk_nodelet deep_partials_test)

@@ -21,3 +21,10 @@ foreach(robot_frame panda:panda_link0 anymal_c:base)
   set_tests_properties(rviz_robot_${robot} PROPERTIES RUN_SERIAL TRUE TIMEOUT 60 ENVIRONMENT
     "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};REGION=520,200,1080,700;CENTER=814,432,120;SHOT_NAME=rviz_${robot};TIMEOUT=20")
 endforeach()
+
+# The same on launch/bvh.launch and config/bvh.rviz: the real walk test/mocap/131_01.bvh.
+add_test(NAME rviz_screenshot_bvh
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+    ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/bvh)
+set_tests_properties(rviz_screenshot_bvh PROPERTIES RUN_SERIAL TRUE TIMEOUT 150 ENVIRONMENT
+  "LAUNCH=bvh.launch;RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz;DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")

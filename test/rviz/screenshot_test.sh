@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The rviz display on the demo, headless: its own ROS master (a free port), demo.launch on the
-# human body model, rviz with config/mb_kinematics.rviz on an Xvfb screen of its own; screenshots
+# human body model, rviz with config/mb_kinematics.rviz (or LAUNCH, DEMO_ARGS and RVIZ_CONFIG:
+# bvh.launch and config/bvh.rviz on the real walk) on an Xvfb screen of its own; screenshots
 # (`import -window root`) until each arrow color of the display shows on more than MIN_PIXELS
 # pixels (up to TIMEOUT s). Fails if the plugin does not load, rviz reports a plugin or display
 # error, or nothing is drawn. Keeps the last screenshot and rviz's output in OUT_DIR.
@@ -50,12 +51,12 @@ export DISPLAY=:$(head -n1 "$tmp/display")
 
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI=http://localhost:$port
-stdbuf -oL roslaunch -p "$port" mb_kinematics demo.launch ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
+stdbuf -oL roslaunch -p "$port" mb_kinematics ${LAUNCH:-demo.launch} ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
 pids+=($!)
 for _ in $(seq 300); do grep -q "coordinates, max depth" "$tmp/launch.log" && break; sleep 0.1; done
 grep -q "coordinates, max depth" "$tmp/launch.log" || fail "demo.launch did not start: $(tail "$tmp/launch.log")"
 
-stdbuf -oL rviz -d "$src/config/mb_kinematics.rviz" >"$tmp/rviz.log" 2>&1 &
+stdbuf -oL rviz -d "${RVIZ_CONFIG:-$src/config/mb_kinematics.rviz}" >"$tmp/rviz.log" 2>&1 &
 rviz_pid=$!
 pids+=($rviz_pid)
 
