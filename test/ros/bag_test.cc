@@ -139,8 +139,8 @@ TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
     }
   }
   EXPECT_EQ(i, 300);
-  // The default estimator at 100 Hz on clean data, away from the ends: the joint accelerations
-  // are within 6.8e-4 of their scale (doc/recorded_data.md); alpha sums a few of them.
+  // The default estimator (auto) at 100 Hz on clean data, away from the ends: the joint
+  // accelerations are within 4.2e-7 of their scale (doc/error_vs_runtime.md); alpha sums a few.
   EXPECT_LT(worst_alpha / scale_alpha, 2e-3);
   rosbag::View tf(bag, rosbag::TopicQuery("/tf"));
   const auto first = tf.begin()->instantiate<tf2_msgs::TFMessage>();
