@@ -15,6 +15,9 @@
 //                                     at 1 kHz with 1e-4 rad of noise, for the default (auto) and
 //                                     the old default (centered_0.4s_4); counter
 //                                     ns_per_sample_coordinate
+//   csv_rows/human                    TidyCsvWriter alone: 1000 samples of the human model's
+//                                     kinematics (one row per body and the system row) to a file;
+//                                     counter rows/s
 // Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1) (joints of
 // every type, 349 coordinates); revolute100 = the same tree with every joint revolute (100).
 #include <benchmark/benchmark.h>
@@ -29,6 +32,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/offline_batch.h"
 
@@ -165,52 +169,74 @@ void estimates(benchmark::State& state, const mbk::Model& model, const std::stri
   state.counters["ns_per_sample_coordinate"] =
       benchmark::Counter(static_cast<double>(values) * 1e-9,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-}
+  // The tidy CSV writer alone, on computed kinematics (the demo trajectories at 1 kHz).
+  void csv_rows(benchmark::State & state, const mbk::Model& model) {
+    const mbk::Recording rec = recording(model, 1000, 1, true);
+    std::vector<mbk::Data<double>> data(rec.rows(), mbk::Data<double>(model));
+    mbk::JointState<double> s(model);
+    for (int r = 0; r < rec.rows(); ++r) {
+      s.position = Eigen::Map<const Eigen::VectorXd>(rec.position.data() + r * model.nq, model.nq);
+      s.velocity = Eigen::Map<const Eigen::VectorXd>(rec.velocity.data() + r * model.nq, model.nq);
+      s.acceleration =
+          Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
+      mbk::forward_kinematics(model, s, data[r], mbk::Level::kAcceleration);
+    }
+    long rows = 0;
+    for (auto _ : state) {
+      mbk::TidyCsvWriter w("/tmp/mbk_bag_benchmark_rows.csv", model);
+      for (int r = 0; r < rec.rows(); ++r) w.write(rec.stamp[r], data[r]);
+      w.close();
+      rows += rec.rows() * (model.body_count() + 1);
+    }
+    state.counters["rows_per_s"] = benchmark::Counter(rows, benchmark::Counter::kIsRate);
+  }
 
-const mbk::Model& human() {
-  static const mbk::Model m = mbk::load_model_file(kHuman);
-  return m;
-}
-const mbk::Model& tree100() {
-  static const mbk::Model m = mbk::make_random_tree(100, 1);
-  return m;
-}
-const mbk::Model& revolute100() {
-  static const mbk::Model m = mbk::make_random_revolute_tree(100, 1);
-  return m;
-}
+  const mbk::Model& human() {
+    static const mbk::Model m = mbk::load_model_file(kHuman);
+    return m;
+  }
+  const mbk::Model& tree100() {
+    static const mbk::Model m = mbk::make_random_tree(100, 1);
+    return m;
+  }
+  const mbk::Model& revolute100() {
+    static const mbk::Model m = mbk::make_random_revolute_tree(100, 1);
+    return m;
+  }
 
-BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_and_csv_out, 1000.0, true)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(compute, human / estimated, human(), false)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(compute, revolute100 / estimated, revolute100(), false)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
-BENCHMARK_CAPTURE(kinematics_only, tree100, tree100())->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(estimates, human / auto, human(), "auto") -> Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(estimates, human / old_default, human(), "centered_0.4s_4")
-    ->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)
+      ->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_and_csv_out, 1000.0, true)
+      ->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(compute, human / estimated, human(), false)
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  BENCHMARK_CAPTURE(compute, tree100 / estimated, tree100(), false)
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  BENCHMARK_CAPTURE(compute, tree100 / given, tree100(), true)
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  BENCHMARK_CAPTURE(compute, revolute100 / estimated, revolute100(), false)
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  BENCHMARK_CAPTURE(kinematics_only, tree100, tree100())->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(estimates, human / auto, human(), "auto")->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(estimates, human / old_default, human(), "centered_0.4s_4")
+      ->Unit(benchmark::kMillisecond);
+  BENCHMARK_CAPTURE(csv_rows, human, human())->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

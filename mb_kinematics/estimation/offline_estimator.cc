@@ -86,6 +86,18 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
   return e;
 }
 
+// window_range: a time window reaches half its span each side, twice that when shifted to one
+// side, then widens by up to order + 3 samples; a sample window reaches its own length each side
+// at most (shifted at an end).
+bool offline_reach(const OfflineEstimator& e, OfflineReach& reach) {
+  if (e.automatic) return false;
+  if (e.window_samples > 0)
+    reach = {0.0, e.window_samples};
+  else
+    reach = {e.window_seconds * (1 + 1e-6), e.order + 4};
+  return true;
+}
+
 Segments find_segments(const std::vector<double>& t, double max_gap) {
   Segments s;
   s.segment_of.resize(t.size());

@@ -32,6 +32,17 @@ const char* default_offline_estimator();
 // rate.
 constexpr int kMaxOfflineWindow = 41;
 
+// How far one sample's estimate reaches, for computing a recording piece by piece
+// (offline/offline_stream.h): the estimate at t_i reads, and where its window lies depends on,
+// only the samples within `seconds` of t_i and the `samples` next ones beyond those on either
+// side (and the gaps between them). An estimator that reaches every sample ("auto": it chooses
+// its smoothing over the whole series) cannot say: offline_reach returns false.
+struct OfflineReach {
+  double seconds = 0;
+  int samples = 0;
+};
+bool offline_reach(const OfflineEstimator& e, OfflineReach& reach);
+
 // Weights of one sample's estimate: x'(t_i) = sum_j first[j] x[row(j)], likewise x''.
 struct DerivativeWeights {
   int begin = 0, count = 0, stride = 1;

@@ -8,4 +8,11 @@ namespace mbk {
 // The shortest of %.15g, %.16g, %.17g that reads back as the same double; no "-0".
 std::string format_double(double x);
 
+// The most characters write_shortest writes.
+constexpr int kMaxDoubleChars = 32;
+
+// Writes at `out` the shortest text that reads back as the same double (std::to_chars; the
+// form of the tidy CSV, doc/recorded_data.md), "0" for -0; no allocation. Returns the end.
+char* write_shortest(char* out, double x);
+
 }  // namespace mbk

@@ -1,20 +1,31 @@
 #include "mb_kinematics/io/tidy_csv.h"
 
 #include <Eigen/Geometry>
-#include <charconv>
 #include <cstring>
 #include <stdexcept>
 
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 
+namespace {
+constexpr size_t kBufferBytes = 1 << 16;  // written out when full
+}  // namespace
+
 TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
-    : model_(model), path_(path), file_(std::fopen(path.c_str(), "w")) {
+    : model_(model),
+      path_(path),
+      file_(std::fopen(path.c_str(), "w")),
+      body_cells_(model.bodies.size()) {
   if (!file_) throw std::invalid_argument(path + ": cannot write (" + std::strerror(errno) + ")");
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
+  for (int k = 1; k <= model.body_count(); ++k)
+    body_cells_[k] = "," + model.bodies[k].name + "," + std::to_string(k) + "," +
+                     std::to_string(model.bodies[k].lower);
   std::fputs(header(), file_);
   std::fputc('\n', file_);
+  buffer_.reserve(kBufferBytes + (1 << 14));
 }
 
 TidyCsvWriter::~TidyCsvWriter() {
@@ -27,47 +38,59 @@ const char* TidyCsvWriter::header() {
          "velocity_x,velocity_y,velocity_z,acceleration_x,acceleration_y,acceleration_z";
 }
 
-// The shortest text that reads back as the same double.
-void TidyCsvWriter::number(double x) {
-  char buf[32];
-#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
-  const auto end = std::to_chars(buf, buf + sizeof buf, x + 0.0).ptr;
-  *end = '\0';
-#else
-  std::snprintf(buf, sizeof buf, "%.17g", x + 0.0);
-#endif
-  std::fputc(',', file_);
-  std::fputs(buf, file_);
+void TidyCsvWriter::flush() {
+  std::fwrite(buffer_.data(), 1, buffer_.size(), file_);  // an error is seen by close()
+  buffer_.clear();
 }
 
-void TidyCsvWriter::write(double stamp, const Data<double>& d) {
-  char stamp_text[32];
-  std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
+namespace {
+
+// ",x" appended to text.
+void number(std::string& text, double x) {
+  char cell[1 + kMaxDoubleChars] = {','};
+  text.append(cell, write_shortest(cell + 1, x));
+}
+
+}  // namespace
+
+void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& text) const {
+  char stamp_text[400];  // %.9f of the largest double fits
+  const int stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
   for (int k = 1; k <= model_.body_count(); ++k) {
-    std::fprintf(file_, "%s,%s,%d,%d", stamp_text, model_.bodies[k].name.c_str(), k,
-                 model_.bodies[k].lower);
+    text.append(stamp_text, stamp_size).append(body_cells_[k]);
     const Eigen::Quaterniond q(d.rotation[k]);
-    for (int i = 0; i < 3; ++i) number(d.origin[k][i]);
-    for (double x : {q.x(), q.y(), q.z(), q.w()}) number(x);
+    for (int i = 0; i < 3; ++i) number(text, d.origin[k][i]);
+    for (double x : {q.x(), q.y(), q.z(), q.w()}) number(text, x);
     for (const auto* v :
          {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
-      for (int i = 0; i < 3; ++i) number((*v)[k][i]);
-    std::fputc('\n', file_);
+      for (int i = 0; i < 3; ++i) number(text, (*v)[k][i]);
+    text += '\n';
   }
   if (total_mass_ <= 0) return;
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);
   const Vec3<double>&p = system.mass_center, &v = system.velocity, &a = system.acceleration;
-  std::fprintf(file_, "%s,system,0,0%s", stamp_text, ",,,,,,,");  // no origin, orientation
-  for (int i = 0; i < 3; ++i) number(p[i]);
-  std::fputs(",,,,,,", file_);  // no omega, alpha
+  text.append(stamp_text, stamp_size).append(",system,0,0,,,,,,,");  // no origin, orientation
+  for (int i = 0; i < 3; ++i) number(text, p[i]);
+  text.append(",,,,,,");  // no omega, alpha
   for (const Vec3<double>* x : {&v, &a})
-    for (int i = 0; i < 3; ++i) number((*x)[i]);
-  std::fputc('\n', file_);
+    for (int i = 0; i < 3; ++i) number(text, (*x)[i]);
+  text += '\n';
+}
+
+void TidyCsvWriter::write(double stamp, const Data<double>& d) {
+  format(stamp, d, buffer_);
+  if (buffer_.size() >= kBufferBytes) flush();
+}
+
+void TidyCsvWriter::write_text(const std::string& text) {
+  if (!buffer_.empty()) flush();
+  std::fwrite(text.data(), 1, text.size(), file_);
 }
 
 void TidyCsvWriter::close() {
   if (!file_) return;
+  flush();
   const bool ok = std::ferror(file_) == 0;
   const bool closed = std::fclose(file_) == 0;
   file_ = nullptr;

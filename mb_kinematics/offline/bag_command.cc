@@ -18,6 +18,7 @@
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
 #include "mb_kinematics/offline/offline_batch.h"
+#include "mb_kinematics/offline/offline_stream.h"
 #include "mb_kinematics/offline/output_file.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/trajectory_csv.h"
@@ -86,7 +87,7 @@ struct Outputs {
   std::unique_ptr<OutputFile> bag_file, csv_file;
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
-  bool floating = false;
+  bool floating = false, formatted = false;
   const mbk::Model* base_model = nullptr;        // with a base: the node's layout
   std::unique_ptr<mbk::Data<double>> base_data;  // of base_model
 
@@ -94,7 +95,20 @@ struct Outputs {
     const mbk::Data<double>* data = &row.data;
     if (floating) with_base_body(*base_model, row.data, *base_data), data = base_data.get();
     if (bag) bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
-    if (csv) csv->write(row.stamp, *data);
+    if (csv && formatted)
+      csv->write_text(row.text);
+    else if (csv)
+      csv->write(row.stamp, *data);
+  }
+  // The CSV's text formatted by the computing threads, beside the writing (without a base:
+  // with one, the rows are carried into the base's layout here first).
+  mbk::OfflineBatch::Formatter formatter() {
+    if (!csv || floating) return nullptr;
+    formatted = true;
+    return [csv = csv.get()](mbk::OfflineRow& row) {
+      row.text.clear();
+      csv->format(row.stamp, row.data, row.text);
+    };
   }
   void close() {
     if (bag) bag->close();
@@ -117,34 +131,104 @@ mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
   return track;
 }
 
+// A computed row written, or its drop counted (in order).
+void take(const mbk::OfflineRow& row, Outputs& out, mbk::DropLog& log, long& written) {
+  if (row.drop_reason.empty())
+    out.write(row), ++written;
+  else
+    log.drop(row.drop_reason, row.drop_detail);
+}
+
 // Every row, computed by the batch's workers a block at a time while this thread writes the
 // block before (two blocks of results), written in order; drops are counted in order.
 void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int rows, Outputs& out,
                        bool progress, BagSummary& s) {
   mbk::Progress bar("computing", progress);
-  const int block = batch.rows_per_block(4 << 20);
-  std::vector<mbk::OfflineRow> ready(block, mbk::OfflineRow(model)), next = ready;
-  if (rows > 0) s.compute_seconds += batch.compute(0, std::min(block, rows), ready);
-  for (int begin = 0; begin < rows; begin += block) {
-    const int end = std::min(begin + block, rows);
-    if (end < rows) batch.start(end, std::min(end + block, rows), next);
-    const auto t0 = Clock::now();
-    for (int r = begin; r < end; ++r) {
-      const mbk::OfflineRow& row = ready[r - begin];
-      if (row.drop_reason.empty())
-        out.write(row), ++s.written;
-      else
-        s.log.drop(row.drop_reason, row.drop_detail);
-    }
-    s.write_seconds += since(t0);
-    bar.update(end, rows);
-    if (end < rows) s.compute_seconds += batch.finish();
-    std::swap(ready, next);
-  }
+  const mbk::RowSeconds t = mbk::compute_rows(
+      batch, model, 0, rows, [&](const mbk::OfflineRow& row) { take(row, out, s.log, s.written); },
+      [&](int done) { bar.update(done, rows); });
+  s.compute_seconds += t.compute, s.write_seconds += t.use;
   bar.finish();
   const auto t_close = Clock::now();
   out.close();
   s.write_seconds += since(t_close);
+}
+
+// Every sample of the input into `builder` (a trajectory CSV or a bag); `checked`: the bag was
+// read safely before (read_bag).
+void read_input(const BagOptions& o, mbk::RecordingBuilder& builder, BaseOdometry& base,
+                BagSummary& s, bool checked) {
+  mbk::Progress bar("reading  ", o.progress);
+  if (ends_with(o.input, ".csv")) return mbk::read_trajectory_csv(o.input, builder);
+  Unreadable unreadable;
+  read_bag(
+      o.input, {o.joint_states, o.joint_accelerations, o.base_odometry}, builder, base, unreadable,
+      [&](long done, long total) { bar.update(done, total); }, checked);
+  s.unreadable = unreadable.count;
+  s.unreadable_example = unreadable.first;
+}
+
+// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies.
+void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model& base_model,
+                  const std::string& base_frame, Outputs& out) {
+  if (!o.out_bag.empty()) {
+    out.bag_file = std::make_unique<OutputFile>(o.out_bag);
+    out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
+                                          base_frame, base_model);
+  }
+  if (!o.out_csv.empty()) {
+    out.csv_file = std::make_unique<OutputFile>(o.out_csv);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model);
+  }
+  out.base_model = &base_model;
+}
+
+// Rows computed per OfflineStream chunk: a few blocks, small beside a long recording.
+constexpr int kStreamChunkRows = 8192;
+
+// The bounded-memory path (offline/offline_stream.h): a first pass surveys the input (without
+// keeping it), the second computes and writes the rows as they are read. False, with nothing
+// written, when the recording needs the whole-recording path (a coordinate in some samples only).
+bool run_streamed(const BagOptions& o, const mbk::Model& model,
+                  const mbk::OfflineEstimator& estimator, const mbk::OfflineReach& reach,
+                  BagSummary& s) {
+  const auto wall = Clock::now();
+  mbk::RecordingSurvey survey(model.nq);
+  {
+    mbk::RecordingBuilder first(model);
+    first.stream_to([&](double t, const double*, const double*, const std::uint8_t* given) {
+      survey.add(t, given);
+    });
+    BaseOdometry unused;
+    read_input(o, first, unused, s, false);
+    first.finish();  // every coordinate named, or the error
+  }
+  if (!survey.streamable()) return false;
+  s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
+  Outputs out;
+  open_outputs(o, model, model, "", out);
+  mbk::RecordingBuilder builder(model);
+  mbk::OfflineStream stream(
+      model, estimator, reach, s.max_gap, survey.velocity_everywhere,
+      o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
+      [&](const mbk::OfflineRow& row) { take(row, out, builder.log(), s.written); });
+  stream.set_formatter(out.formatter());
+  builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
+    stream.add(t, p, v, g);
+  });
+  BaseOdometry unused;
+  read_input(o, builder, unused, s, true);
+  builder.finish();
+  stream.finish();  // the reading's progress bar is the computing's
+  s.read = builder.samples_read();
+  s.log = builder.log();
+  s.threads = stream.threads();
+  s.compute_seconds = stream.seconds().compute;
+  const auto t_close = Clock::now();
+  out.close();
+  s.write_seconds = stream.seconds().use + since(t_close);
+  s.read_seconds = std::max(0.0, since(wall) - s.write_seconds);
+  return true;
 }
 
 }  // namespace
@@ -218,23 +302,20 @@ BagSummary run_bag(const BagOptions& o) {
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
   s.estimator = estimator.name;
-  // Read everything first: the centred estimates look ahead.
-  mbk::RecordingBuilder builder(model);
-  BaseOdometry base;
   if (!o.base_odometry.empty() && ends_with(o.input, ".csv"))
     throw std::invalid_argument("--base-odometry needs a bag input");
-  {
-    mbk::Progress bar("reading  ", o.progress);
-    if (ends_with(o.input, ".csv")) {
-      mbk::read_trajectory_csv(o.input, builder);
-    } else {
-      Unreadable unreadable;
-      read_bag(o.input, {o.joint_states, o.joint_accelerations, o.base_odometry}, builder, base,
-               unreadable, [&](long done, long total) { bar.update(done, total); });
-      s.unreadable = unreadable.count;
-      s.unreadable_example = unreadable.first;
-    }
+  // In bounded memory when the estimator says how far it reaches; else (or for a recording with
+  // joint_accelerations, a floating base, a coordinate in some samples only) all of it at once.
+  mbk::OfflineReach reach;
+  const bool may_stream = o.base_odometry.empty() && o.joint_accelerations.empty() &&
+                          mbk::offline_reach(estimator, reach);
+  if (may_stream && run_streamed(o, model, estimator, reach, s)) {
+    s.wall_seconds = since(wall);
+    return s;
   }
+  mbk::RecordingBuilder builder(model);
+  BaseOdometry base;
+  read_input(o, builder, base, s, may_stream);
   const mbk::Recording rec = builder.finish();
   s.read = builder.samples_read();
   s.log = builder.log();
@@ -257,18 +338,10 @@ BagSummary run_bag(const BagOptions& o) {
     with_base = std::make_unique<const mbk::Model>(
         mbk::with_floating_base(model, base.frame, "base_odometry"));
   const mbk::Model& base_model = floating ? *with_base : model;
-  if (!o.out_bag.empty()) {
-    out.bag_file = std::make_unique<OutputFile>(o.out_bag);
-    out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
-                                          base.frame, base_model);
-  }
-  if (!o.out_csv.empty()) {
-    out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model);
-  }
+  open_outputs(o, model, base_model, base.frame, out);
   out.floating = floating;
-  out.base_model = &base_model;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
+  batch.set_formatter(out.formatter());
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
   if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);

@@ -265,9 +265,8 @@ void survive_or_refuse(const std::string& path) {
 
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
               BaseOdometry& base, Unreadable& unreadable,
-              const std::function<void(long, long)>& progress) {
-  check_record_lengths(path);
-  survive_or_refuse(path);
+              const std::function<void(long, long)>& progress, bool checked) {
+  if (!checked) check_record_lengths(path), survive_or_refuse(path);
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);

@@ -13,10 +13,11 @@ int default_thread_count() { return std::max(1u, std::thread::hardware_concurren
 
 OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
                            const OfflineEstimator& estimator, double max_gap,
-                           const FloatingBaseTrack* base, int threads)
+                           const FloatingBaseTrack* base, int threads,
+                           const std::vector<char>* velocity_everywhere)
     : model_(model), rec_(recording), base_(base) {
   workers_.reserve(std::max(1, threads));
-  workers_.emplace_back(model, recording, estimator, max_gap);
+  workers_.emplace_back(model, recording, estimator, max_gap, velocity_everywhere);
   while (static_cast<int>(workers_.size()) < threads)
     workers_.push_back(workers_.front());  // a copy: no second scan of the rows
   for (int i = 0; i < this->threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);
@@ -95,14 +96,38 @@ void OfflineBatch::work(int worker) {
     const auto t0 = std::chrono::steady_clock::now();
     const int chunks = (rows_in_block_ + chunk_ - 1) / chunk_;
     for (int c = next_chunk_++; c < chunks; c = next_chunk_++)
-      for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j)
-        compute_row(workers_[worker], begin_ + j, (*out_)[j]);
+      for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j) {
+        OfflineRow& row = (*out_)[j];
+        compute_row(workers_[worker], begin_ + j, row);
+        if (formatter_ && row.drop_reason.empty()) formatter_(row);
+      }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::lock_guard<std::mutex> lock(mutex_);
     seconds_ += seconds;
     if (--running_ == 0) finished_.notify_all();
   }
+}
+
+RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int end,
+                        const std::function<void(const OfflineRow&)>& use,
+                        const std::function<void(int)>& progress) {
+  using Clock = std::chrono::steady_clock;
+  RowSeconds s;
+  const int block = batch.rows_per_block(4 << 20);
+  std::vector<OfflineRow> ready(block, OfflineRow(model)), next = ready;
+  if (begin < end) s.compute += batch.compute(begin, std::min(begin + block, end), ready);
+  for (int first = begin; first < end; first += block) {
+    const int last = std::min(first + block, end);
+    if (last < end) batch.start(last, std::min(last + block, end), next);
+    const auto t0 = Clock::now();
+    for (int r = first; r < last; ++r) use(ready[r - first]);
+    s.use += std::chrono::duration<double>(Clock::now() - t0).count();
+    progress(last);
+    if (last < end) s.compute += batch.finish();
+    std::swap(ready, next);
+  }
+  return s;
 }
 
 }  // namespace mbk

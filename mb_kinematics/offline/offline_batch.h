@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -28,7 +29,8 @@ struct OfflineRow {
   std::string drop_reason, drop_detail;  // reason empty: computed, to be written
   JointState<double> state;
   Data<double> data;
-  BaseMotion base;  // the floating base's motion, when there is one
+  BaseMotion base;   // the floating base's motion, when there is one
+  std::string text;  // the row's output, when the batch has a formatter (set_formatter)
 };
 
 // The odometry of a floating base (core/floating_base.h) and its accelerations.
@@ -40,9 +42,10 @@ struct FloatingBaseTrack {
 class OfflineBatch {
  public:
   // `model`, `recording` and `base` (nullptr: a fixed base) must outlive this object. Starts
-  // `threads` (>= 1) workers, which wait for blocks.
+  // `threads` (>= 1) workers, which wait for blocks. velocity_everywhere: see OfflineStates.
   OfflineBatch(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
-               double max_gap, const FloatingBaseTrack* base, int threads);
+               double max_gap, const FloatingBaseTrack* base, int threads,
+               const std::vector<char>* velocity_everywhere = nullptr);
   ~OfflineBatch();  // ends the workers
   OfflineBatch(const OfflineBatch&) = delete;
   OfflineBatch& operator=(const OfflineBatch&) = delete;
@@ -59,6 +62,11 @@ class OfflineBatch {
     return finish();
   }
 
+  // Called by the worker that computed a row (not dropped), on it: output formatted on the
+  // workers, beside the writing. Set before start(); must be safe to call from any thread.
+  using Formatter = std::function<void(OfflineRow&)>;
+  void set_formatter(Formatter f) { formatter_ = std::move(f); }
+
   double max_gap() const { return workers_.front().max_gap(); }
   int threads() const { return static_cast<int>(workers_.size()); }
   std::vector<CoordinateError> error_summary() const { return workers_.front().error_summary(); }
@@ -73,6 +81,7 @@ class OfflineBatch {
   const Recording& rec_;
   const FloatingBaseTrack* base_;
   std::vector<OfflineStates> workers_;
+  Formatter formatter_;
 
   // The block in flight, set by start() under mutex_.
   int begin_ = 0, rows_in_block_ = 0, chunk_ = 1;
@@ -89,5 +98,15 @@ class OfflineBatch {
 
 // std::thread::hardware_concurrency(), at least 1.
 int default_thread_count();
+
+// Rows [begin, end) of `batch`, a block at a time (rows_per_block(4 MB)), each handed to `use` in
+// order while the workers compute the next block; progress(rows done) after each block.
+// Returns the seconds the workers spent (summed) and the seconds spent in `use`.
+struct RowSeconds {
+  double compute = 0, use = 0;
+};
+RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int end,
+                        const std::function<void(const OfflineRow&)>& use,
+                        const std::function<void(int)>& progress);
 
 }  // namespace mbk

@@ -5,7 +5,8 @@
 namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
-                             const OfflineEstimator& estimator, double max_gap)
+                             const OfflineEstimator& estimator, double max_gap,
+                             const std::vector<char>* velocity_everywhere)
     : model_(model),
       rec_(recording),
       estimator_(estimator),
@@ -23,6 +24,7 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       everywhere[c] = everywhere[c] && (g & Recording::kPosition);
       velocity_everywhere_[c] = velocity_everywhere_[c] && (g & Recording::kVelocity);
     }
+  if (velocity_everywhere) velocity_everywhere_ = *velocity_everywhere;
   for (const Mimic& m : model.mimics) {  // the rule places a mimic until it is recorded
     int& r = rule_until_[m.coordinate];
     while (r < rec_.rows() && !(rec_.given[r * nq + m.coordinate] & Recording::kPosition)) ++r;

@@ -26,9 +26,11 @@ struct CoordinateError {
 class OfflineStates {
  public:
   // `model` (coordinate-derivative speeds) and `recording` must outlive this object. max_gap:
-  // seconds; 0 means default_max_gap of the stamps.
+  // seconds; 0 means default_max_gap of the stamps. When `recording` is a piece of a longer one
+  // (offline/offline_stream.h), `velocity_everywhere` (per coordinate: velocities given in every
+  // row) is the whole recording's.
   OfflineStates(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
-                double max_gap);
+                double max_gap, const std::vector<char>* velocity_everywhere = nullptr);
 
   // Fills `state` for row r; returns "" or why the row cannot be computed (too few samples
   // around it for the derivatives). Rows in increasing order, each at most once; rows may be

@@ -91,10 +91,10 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
   const std::string error = validate(names, position, velocity);
   if (!error.empty())
     return log_.drop("bad sample (lengths, duplicates, NaN/Inf)", where + ": " + error);
-  if (!rec_.stamp.empty() && t <= rec_.stamp.back())
+  if (has_last_stamp_ && t <= last_stamp_)
     return log_.drop(
-        t == rec_.stamp.back() ? "repeated stamp" : "stamp goes backwards",
-        where + ": stamp " + std::to_string(t) + " after " + std::to_string(rec_.stamp.back()));
+        t == last_stamp_ ? "repeated stamp" : "stamp goes backwards",
+        where + ": stamp " + std::to_string(t) + " after " + std::to_string(last_stamp_));
   std::vector<std::string> unknown;
   for (const std::string& name : names)
     if (!index_.count(name)) unknown.push_back(name);
@@ -115,6 +115,27 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
     if (row[i] != before[i]) vrow[i] = -vrow[i];
     if (given[i]) seen_[i] = 1, last_[i] = row[i];
   }
+  emit(t, row, vrow, given);
+}
+
+// The coordinates (mimics aside) no sample has named so far.
+std::vector<std::string> RecordingBuilder::not_named_yet() const {
+  std::vector<std::string> names;
+  for (int i = 0; i < model_.nq; ++i)
+    if (!mimic_[i] && !seen_[i]) names.push_back(model_.coordinate_names[i]);
+  return names;
+}
+
+void RecordingBuilder::emit(double t, const std::vector<double>& row,
+                            const std::vector<double>& vrow,
+                            const std::vector<std::uint8_t>& given) {
+  has_last_stamp_ = true, last_stamp_ = t;
+  if (sink_) {  // as finish() drops the rows before every coordinate was named
+    const std::vector<std::string> missing = not_named_yet();
+    if (missing.empty()) return sink_(t, row.data(), vrow.data(), given.data());
+    return log_.drop("missing joints (not named yet)",
+                     "sample at t = " + std::to_string(t) + ": " + join(missing));
+  }
   rec_.stamp.push_back(t);
   rec_.position.insert(rec_.position.end(), row.begin(), row.end());
   rec_.velocity.insert(rec_.velocity.end(), vrow.begin(), vrow.end());
@@ -124,6 +145,7 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
 void RecordingBuilder::add_accelerations(double t, const std::vector<std::string>& names,
                                          const std::vector<double>& acceleration,
                                          const std::string& where) {
+  if (sink_) throw std::logic_error("RecordingBuilder: joint_accelerations while streaming");
   if (acceleration.size() != names.size())
     return log_.note("joint_accelerations ignored",
                      where + ": " + std::to_string(names.size()) + " names but " +
@@ -146,9 +168,7 @@ void RecordingBuilder::add_accelerations(double t, const std::vector<std::string
 
 Recording RecordingBuilder::finish() {
   const int nq = model_.nq, rows = rec_.rows();
-  std::vector<std::string> never;
-  for (int i = 0; i < nq; ++i)
-    if (!mimic_[i] && !seen_[i]) never.push_back(model_.coordinate_names[i]);
+  const std::vector<std::string> never = not_named_yet();
   if (!never.empty() && read_ > 0) {
     std::string why = "no sample names the joints " + join(never);
     auto most = log_.drops.begin();  // why the samples that might have named them were dropped
@@ -159,6 +179,11 @@ Recording RecordingBuilder::finish() {
              " samples dropped, " + std::to_string(most->second) + " as " + most->first +
              "; first: " + log_.example.at(most->first) + ")";
     throw std::invalid_argument(why);
+  }
+  if (sink_) {
+    Recording empty;
+    empty.nq = nq;
+    return empty;
   }
   // The first row from which every coordinate has a value; earlier rows are dropped.
   std::vector<char> named(nq, 0);
@@ -174,12 +199,14 @@ Recording RecordingBuilder::finish() {
     log_.drop("missing joints (not named yet)",
               "sample at t = " + std::to_string(rec_.stamp[first]) + ": " + join(names));
   }
-  Recording out;
-  out.nq = nq;
-  out.stamp.assign(rec_.stamp.begin() + first, rec_.stamp.end());
-  out.position.assign(rec_.position.begin() + first * nq, rec_.position.end());
-  out.velocity.assign(rec_.velocity.begin() + first * nq, rec_.velocity.end());
-  out.given.assign(rec_.given.begin() + first * nq, rec_.given.end());
+  // The builder's arrays move into the table (no copy beside them); the dropped rows go.
+  Recording out = std::move(rec_);
+  rec_ = Recording();
+  rec_.nq = nq;
+  out.stamp.erase(out.stamp.begin(), out.stamp.begin() + first);
+  out.position.erase(out.position.begin(), out.position.begin() + first * nq);
+  out.velocity.erase(out.velocity.begin(), out.velocity.begin() + first * nq);
+  out.given.erase(out.given.begin(), out.given.begin() + first * nq);
   out.acceleration.assign(out.position.size(), 0.0);
   for (int r = 0; r < out.rows(); ++r) {
     auto it = accelerations_.find(out.stamp[r]);

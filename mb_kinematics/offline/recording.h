@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -53,7 +54,15 @@ class RecordingBuilder {
   void add_accelerations(double t, const std::vector<std::string>& names,
                          const std::vector<double>& acceleration, const std::string& where);
 
+  // Streaming: every accepted row goes to `sink` as it is added instead of into the table, and
+  // rows before every coordinate was named are dropped then (the same drops as finish()'s).
+  // Set before the first add; joint_accelerations need the table (add_accelerations refuses).
+  using RowSink = std::function<void(double t, const double* position, const double* velocity,
+                                     const std::uint8_t* given)>;
+  void stream_to(RowSink sink) { sink_ = std::move(sink); }
+
   // The table; rows before every coordinate was named are dropped here ("missing joints").
+  // Streaming: checks that every coordinate was named and returns an empty table.
   Recording finish();
   DropLog& log() { return log_; }
   long samples_read() const { return read_; }
@@ -62,6 +71,9 @@ class RecordingBuilder {
   std::string validate(const std::vector<std::string>& names, const std::vector<double>& position,
                        const std::vector<double>& velocity);
   void align_euler_signs(std::vector<double>& row, const std::vector<std::uint8_t>& given) const;
+  void emit(double t, const std::vector<double>& row, const std::vector<double>& vrow,
+            const std::vector<std::uint8_t>& given);
+  std::vector<std::string> not_named_yet() const;
 
   const Model& model_;
   std::unordered_map<std::string, int> index_;
@@ -73,6 +85,9 @@ class RecordingBuilder {
   std::map<double, std::pair<std::vector<double>, std::vector<char>>> accelerations_;
   DropLog log_;
   long read_ = 0;
+  RowSink sink_;
+  bool has_last_stamp_ = false;
+  double last_stamp_ = 0;  // of the last row accepted
 };
 
 }  // namespace mbk
