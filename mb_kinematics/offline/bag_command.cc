@@ -107,7 +107,9 @@ struct Outputs {
     formatted = true;
     return [csv = csv.get()](mbk::OfflineRow& row) {
       row.text.clear();
-      csv->format(row.stamp, row.data, row.text);
+      const bool errors = !row.alpha_se.empty();
+      csv->format(row.stamp, row.data, row.text, errors ? &row.alpha_se : nullptr,
+                  errors ? &row.acceleration_se : nullptr);
     };
   }
   void close() {
@@ -168,9 +170,10 @@ void read_input(const BagOptions& o, mbk::RecordingBuilder& builder, BaseOdometr
   s.unreadable_example = unreadable.first;
 }
 
-// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies.
+// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies; errors: the
+// CSV has the error bars' columns.
 void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model& base_model,
-                  const std::string& base_frame, Outputs& out) {
+                  const std::string& base_frame, bool errors, Outputs& out) {
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
     out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
@@ -178,7 +181,7 @@ void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors);
   }
   out.base_model = &base_model;
 }
@@ -206,7 +209,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   if (!survey.streamable()) return false;
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   Outputs out;
-  open_outputs(o, model, model, "", out);
+  open_outputs(o, model, model, "", false, out);
   mbk::RecordingBuilder builder(model);
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, survey.velocity_everywhere,
@@ -338,7 +341,8 @@ BagSummary run_bag(const BagOptions& o) {
     with_base = std::make_unique<const mbk::Model>(
         mbk::with_floating_base(model, base.frame, "base_odometry"));
   const mbk::Model& base_model = floating ? *with_base : model;
-  open_outputs(o, model, base_model, base.frame, out);
+  // The error bars' columns with auto (in the model's frame: not with a base).
+  open_outputs(o, model, base_model, base.frame, estimator.automatic && !floating, out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());

@@ -31,6 +31,9 @@ struct OfflineRow {
   Data<double> data;
   BaseMotion base;   // the floating base's motion, when there is one
   std::string text;  // the row's output, when the batch has a formatter (set_formatter)
+  // "auto": per body, the standard errors of alpha and of the mass-center acceleration
+  // (OfflineStates::body_errors); empty otherwise.
+  std::vector<Vec3<double>> alpha_se, acceleration_se;
 };
 
 // The odometry of a floating base (core/floating_base.h) and its accelerations.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mb_kinematics/core/body_errors.h"
+
 namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
@@ -115,6 +117,29 @@ std::vector<CoordinateError> OfflineStates::error_summary() const {
       add(partial_[i], a, 0, velocity_everywhere_[partial_[i]] ? &a : nullptr);
     }
   return out;
+}
+
+bool OfflineStates::body_errors(int r, const JointState<double>& state,
+                                std::vector<Vec3<double>>& alpha_se,
+                                std::vector<Vec3<double>>& acceleration_se) {
+  if (!positions_fit_ || !partial_.empty() || model_.speeds != SpeedKind::kCoordinateDerivatives)
+    return false;
+  const int nq = rec_.nq;
+  if (!scratch_.pv) {
+    scratch_.pv = std::make_unique<PartialVelocities<double>>(model_);
+    scratch_.data = std::make_unique<Data<double>>(model_);
+    speed_se_.setZero(nq), speed_dot_se_.setZero(nq);
+  }
+  for (int c : full_) {  // y = q': coordinate c's speed is c
+    const size_t at = static_cast<size_t>(r) * nq + c;
+    const bool velocity = velocity_everywhere_[c] && velocities_fit_;
+    speed_se_[c] = velocity ? 0.0 : positions_fit_->first_se[at];
+    speed_dot_se_[c] = velocity ? velocities_fit_->first_se[at] : positions_fit_->second_se[at];
+  }
+  partial_velocity_kinematics(model_, state, *scratch_.pv, *scratch_.data);
+  body_acceleration_errors(model_, *scratch_.pv, *scratch_.data, speed_se_.data(),
+                           speed_dot_se_.data(), alpha_se, acceleration_se);
+  return true;
 }
 
 // "auto": full_'s derivatives at row r from the fits.

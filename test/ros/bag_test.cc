@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,6 +26,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
 
 namespace {
@@ -188,6 +190,50 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   const std::string from_bag = sa.str(), from_csv = sb.str();
   EXPECT_EQ(std::count(from_bag.begin(), from_bag.end(), '\n'), 1 + 50 * 17);  // 16 bodies, system
   EXPECT_EQ(from_bag, from_csv);
+}
+
+// With auto (the default) the tidy CSV carries each body's propagated error bars: six columns
+// more, finite and non-negative on every body row, positive on noisy data, empty on the system
+// row; a fixed estimator's CSV has none of them.
+TEST(BagTest, CsvCarriesTheBodiesErrorBars) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  const std::string in = write_bag("noisy.bag", 100, 2.0, [&](int, sensor_msgs::JointState& js) {
+    for (double& q : js.position) q += noise(rng);
+  });
+  mbk_offline::BagOptions o = options(in, "");
+  o.out_csv = temp("errors_out.csv");
+  mbk_offline::run_bag(o);
+  std::ifstream f(o.out_csv);
+  std::string line;
+  std::getline(f, line);
+  EXPECT_EQ(line, std::string(mbk::TidyCsvWriter::header()) + mbk::TidyCsvWriter::errors_header());
+  int rows = 0;
+  double largest = 0;
+  while (std::getline(f, line)) {
+    std::vector<std::string> cells;
+    std::stringstream cs(line);
+    for (std::string c; std::getline(cs, c, ',');) cells.push_back(c);
+    if (line.back() == ',') cells.push_back("");
+    ASSERT_EQ(cells.size(), 32u) << line;
+    for (int i = 26; i < 32; ++i) {
+      if (cells[1] == "system") {
+        EXPECT_EQ(cells[i], "") << line;
+        continue;
+      }
+      const double se = std::stod(cells[i]);
+      EXPECT_TRUE(std::isfinite(se) && se >= 0) << line;
+      largest = std::max(largest, se);
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 200 * 17);
+  EXPECT_GT(largest, 0);
+  o.estimator = "centered_0.4s_4";
+  mbk_offline::run_bag(o);
+  std::ifstream g(o.out_csv);
+  std::getline(g, line);
+  EXPECT_EQ(line, mbk::TidyCsvWriter::header());
 }
 
 std::string read_file(const std::string& path) {
