@@ -346,6 +346,7 @@ BagSummary run_bag(const BagOptions& o) {
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());
+  batch.set_body_errors(out.csv && estimator.automatic && !floating);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
   if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);

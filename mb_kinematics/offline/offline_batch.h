@@ -69,6 +69,9 @@ class OfflineBatch {
   // workers, beside the writing. Set before start(); must be safe to call from any thread.
   using Formatter = std::function<void(OfflineRow&)>;
   void set_formatter(Formatter f) { formatter_ = std::move(f); }
+  // Rows carry their bodies' error bars (OfflineRow::alpha_se; "auto", no floating base): the
+  // CSV's columns. Set before start().
+  void set_body_errors(bool on) { body_errors_ = on; }
 
   double max_gap() const { return workers_.front().max_gap(); }
   int threads() const { return static_cast<int>(workers_.size()); }
@@ -85,6 +88,7 @@ class OfflineBatch {
   const FloatingBaseTrack* base_;
   std::vector<OfflineStates> workers_;
   Formatter formatter_;
+  bool body_errors_ = false;
 
   // The block in flight, set by start() under mutex_.
   int begin_ = 0, rows_in_block_ = 0, chunk_ = 1;
