@@ -130,11 +130,14 @@ bool OfflineStates::body_errors(int r, const JointState<double>& state,
     scratch_.data = std::make_unique<Data<double>>(model_);
     speed_se_.setZero(nq), speed_dot_se_.setZero(nq);
   }
-  for (int c : full_) {  // y = q': coordinate c's speed is c
+  for (int c : full_) {  // y = q': coordinate c's speed is c; what the sample gives is exact
     const size_t at = static_cast<size_t>(r) * nq + c;
+    const std::uint8_t given = rec_.given[at];
     const bool velocity = velocity_everywhere_[c] && velocities_fit_;
-    speed_se_[c] = velocity ? 0.0 : positions_fit_->first_se[at];
-    speed_dot_se_[c] = velocity ? velocities_fit_->first_se[at] : positions_fit_->second_se[at];
+    speed_se_[c] = velocity || (given & Recording::kVelocity) ? 0.0 : positions_fit_->first_se[at];
+    speed_dot_se_[c] = given & Recording::kAcceleration ? 0.0
+                       : velocity                       ? velocities_fit_->first_se[at]
+                                                        : positions_fit_->second_se[at];
   }
   partial_velocity_kinematics(model_, state, *scratch_.pv, *scratch_.data);
   body_acceleration_errors(model_, *scratch_.pv, *scratch_.data, speed_se_.data(),
