@@ -279,8 +279,8 @@ BagOptions parse_bag_options(int argc, char** argv) {
 }
 
 // OUT.csv's side file of error bars: OUT.errors.csv.
-std::string errors_path(const std::string& csv) {
-  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + ".errors.csv";
+std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
+  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
 }
 
 // One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
@@ -292,6 +292,33 @@ void write_errors(const std::string& path, const std::vector<mbk::CoordinateErro
   f.precision(6);
   for (const mbk::CoordinateError& e : errors)
     f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
+  f.close();
+  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
+  file.commit();
+}
+
+// OUT.csv's side file of each sample's error bars, OUT.sample_errors.csv ("auto", every
+// coordinate in every sample): stamp, then <coordinate>_velocity_se, <coordinate>_acceleration_se
+// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read.
+void write_sample_errors(const std::string& path, const mbk::Model& model,
+                         const mbk::Recording& rec, const mbk::OfflineStates& states) {
+  std::vector<double> v(model.nq, 0.0), a(model.nq, 0.0);
+  if (rec.rows() == 0 || !states.coordinate_errors(0, v.data(), a.data())) return;
+  OutputFile file(path);
+  std::ofstream f(file.writing());
+  f << "stamp";
+  for (const std::string& name : model.coordinate_names)
+    f << "," << name << "_velocity_se," << name << "_acceleration_se";
+  f << "\n";
+  f.precision(6);
+  for (int r = 0; r < rec.rows(); ++r) {
+    states.coordinate_errors(r, v.data(), a.data());
+    char stamp[64];
+    std::snprintf(stamp, sizeof stamp, "%.9f", rec.stamp[r]);
+    f << stamp;
+    for (int c = 0; c < model.nq; ++c) f << "," << v[c] << "," << a[c];
+    f << "\n";
+  }
   f.close();
   if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
   file.commit();
@@ -349,7 +376,10 @@ BagSummary run_bag(const BagOptions& o) {
   batch.set_body_errors(out.csv && estimator.automatic && !floating);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
-  if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);
+  if (!o.out_csv.empty() && !s.errors.empty()) {
+    write_errors(errors_path(o.out_csv), s.errors);
+    write_sample_errors(errors_path(o.out_csv, ".sample_errors.csv"), model, rec, batch.states());
+  }
   s.wall_seconds = since(wall);
   return s;
 }

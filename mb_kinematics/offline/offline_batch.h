@@ -76,6 +76,7 @@ class OfflineBatch {
   double max_gap() const { return workers_.front().max_gap(); }
   int threads() const { return static_cast<int>(workers_.size()); }
   std::vector<CoordinateError> error_summary() const { return workers_.front().error_summary(); }
+  const OfflineStates& states() const { return workers_.front(); }  // not while computing
   // Rows per block that keep one block's results within `bytes` (at least 4 per thread).
   int rows_per_block(size_t bytes) const;
 

@@ -46,6 +46,10 @@ class OfflineStates {
   // `state` (from state_at), propagated from the coordinates' (core/body_errors.h; given
   // derivatives and mimic rules count as exact). False, with nothing set, without them: a fixed
   // estimator, or a coordinate estimated over its own samples.
+  // "auto": the standard errors of row r's joint velocities and accelerations into the
+  // coordinates' places of velocity_se and acceleration_se (nq each; a coordinate set by a mimic
+  // rule is left as it is); false, with nothing set, as for body_errors.
+  bool coordinate_errors(int r, double* velocity_se, double* acceleration_se) const;
   bool body_errors(int r, const JointState<double>& state, std::vector<Vec3<double>>& alpha_se,
                    std::vector<Vec3<double>>& acceleration_se);
 

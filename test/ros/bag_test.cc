@@ -194,7 +194,7 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
 
 // With auto (the default) the tidy CSV carries each body's propagated error bars: six columns
 // more, finite and non-negative on every body row, positive on noisy data, empty on the system
-// row; a fixed estimator's CSV has none of them.
+// row; OUT.sample_errors.csv each sample's coordinates'; a fixed estimator's CSV has none.
 TEST(BagTest, CsvCarriesTheBodiesErrorBars) {
   std::mt19937 rng(5);
   std::normal_distribution<double> noise(0.0, 1e-3);
@@ -229,6 +229,19 @@ TEST(BagTest, CsvCarriesTheBodiesErrorBars) {
   }
   EXPECT_EQ(rows, 200 * 17);
   EXPECT_GT(largest, 0);
+  // Each sample's coordinates' error bars beside it: OUT.sample_errors.csv, a row per sample.
+  const mbk::Model model = mbk::load_model_file(kModel);
+  std::ifstream se(temp("errors_out.sample_errors.csv"));
+  std::getline(se, line);
+  EXPECT_EQ(line.rfind("stamp," + model.coordinate_names[0] + "_velocity_se,", 0), 0u) << line;
+  int samples = 0;
+  while (std::getline(se, line)) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 2 * model.nq) << line;
+    const size_t a = line.find(',') + 1, b = line.find(',', a);
+    EXPECT_GT(std::stod(line.substr(a, b - a)), 0) << line;  // noise 1e-3: a velocity se
+    ++samples;
+  }
+  EXPECT_EQ(samples, 200);
   o.estimator = "centered_0.4s_4";
   mbk_offline::run_bag(o);
   std::ifstream g(o.out_csv);
