@@ -136,20 +136,27 @@ struct Chosen {
   std::vector<double> bias2;
 };
 
-// The weights of candidate k at sample i, and where they are shifted (an end, a gap) those of the
-// candidate before it (`shorter`) and of that one at order kEndOrder at most (`end`).
+// The weights of candidate k at sample i, those of the candidate before it (`shorter`), and where
+// they are shifted (an end, a gap) those of that one at order kEndOrder at most (`end`).
+// Per derivative d at [d - 1], shared by every series: |w|^2, |w - shorter|^2 and |end''|.
 struct SampleWeights {
   DerivativeWeights w, shorter, end;
-  bool shifted = false;
+  bool shifted = false, has_shorter = false;
+  double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
   void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
             const Segments& segments, int i, int k) {
     derivative_weights(candidates[k], t, segments, i, w);
+    for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
     shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
-    if (!shifted) return;
+    has_shorter = k > 0 && w.valid == 2;
+    if (!has_shorter) return;
     derivative_weights(candidates[k - 1], t, segments, i, shorter);
+    for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
+    if (!shifted) return;
     OfflineEstimator e = candidates[k - 1];
     e.order = std::min(e.order, kEndOrder);
     derivative_weights(e, t, segments, i, end);
+    end_norm = std::sqrt(norm2(end.second, end.count));
   }
 };
 
@@ -161,22 +168,22 @@ double apply(const DerivativeWeights& w, int d, const double* x, int ld, int c) 
 }
 
 // Series c's estimate of its chosen derivative at a sample and its standard error: noise and
-// the bias the choice's last step showed; where the window is shifted, widened by the bias the
-// step from the shorter window shows at this sample, and the accelerations from the shorter
-// window at order kEndOrder at most (a one-sided fit's bias and variance grow faster with its
-// length and order).
+// the squared bias the choice's last step showed (its mean over the samples, or where larger
+// the step from the shorter window at this sample beyond the noise: the bias is not uniform);
+// where the window is shifted, the accelerations from the shorter window at order kEndOrder at
+// most (a one-sided fit's bias and variance grow faster with its length and order).
 void final_estimate(const SampleWeights& s, const double* x, int ld, int c, double sigma,
                     const Chosen& chosen, double& estimate, double& se) {
   const int d = chosen.d;
   estimate = apply(s.w, d, x, ld, c);
-  se = std::sqrt(sigma * sigma * norm2(weights_of(s.w, d), s.w.count) + chosen.bias2[c]);
-  if (!s.shifted) return;
+  se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + chosen.bias2[c]);
+  if (!s.has_shorter) return;
   const double step = estimate - apply(s.shorter, d, x, ld, c);
-  const double own = step * step - sigma * sigma * difference2(s.w, s.shorter, d);
+  const double own = step * step - sigma * sigma * s.step2[d - 1];
   se = std::sqrt(se * se + std::max(0.0, own - chosen.bias2[c]));
-  if (d == 1) return;
+  if (!s.shifted || d == 1) return;
   estimate = apply(s.end, 2, x, ld, c);
-  se = std::max(se, sigma * std::sqrt(norm2(s.end.second, s.end.count)));
+  se = std::max(se, sigma * s.end_norm);
 }
 
 // Every sample's estimates of both derivatives with the chosen windows: the weights of each

@@ -13,7 +13,8 @@
 //   sigma^2 = sum_i (x_i - x^_i)^2 / (n - tr H),  tr H = sum_i h_ii,
 // h_ii being the fit's own weight on x_i. The standard errors follow from the weights:
 // se(x'_i) = sigma |w'_i|, se(x''_i) = sigma |w''_i| (white noise), widened by the squared bias
-// the last accepted step showed beyond the noise. One pass chooses (each window's weights once per
+// the last accepted step showed beyond the noise: its mean over the samples, or the sample's own
+// step where larger. One pass chooses (each window's weights once per
 // sample, shared by every series), one estimates (the chosen windows' weights once per sample):
 // linear in the length.
 #pragma once
