@@ -8,9 +8,13 @@
 //   compute/<model>/<estimated|given>/threads:T   the computation as mbk bag runs it
 //                                     (OfflineBatch: estimates, state checks, forward_kinematics)
 //                                     on T threads, for 5 s at 1 kHz, derivatives estimated
-//                                     (default estimator) or given; real (wall) time; counter
+//                                     (centered_0.4s_4) or given; real (wall) time; counter
 //                                     x_real_time = samples/s / 1000
 //   kinematics_only/tree100           forward_kinematics alone on the same states, one thread
+//   estimates/human/<auto|old_default>  the joint derivatives alone as mbk bag estimates them, 10 s
+//                                     at 1 kHz with 1e-4 rad of noise, for the default (auto) and
+//                                     the old default (centered_0.4s_4); counter
+//                                     ns_per_sample_coordinate
 //   csv_rows/human                    TidyCsvWriter alone: 1000 samples of the human model's
 //                                     kinematics (one row per body and the system row) to a file;
 //                                     counter rows/s
@@ -20,11 +24,13 @@
 #include <rosbag/bag.h>
 #include <sensor_msgs/JointState.h>
 
+#include <random>
 #include <string>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
@@ -114,7 +120,7 @@ void kinematics_only(benchmark::State& state, const mbk::Model& model) {
 // state.range(0) threads, block by block, without writing; real time, since threads run at once.
 void compute(benchmark::State& state, const mbk::Model& model, bool given) {
   const mbk::Recording rec = recording(model, 1000, 5, given);
-  const mbk::OfflineEstimator e = mbk::make_offline_estimator(mbk::default_offline_estimator());
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_0.4s_4");
   const int threads = static_cast<int>(state.range(0));
   const int block = mbk::OfflineBatch(model, rec, e, 0, nullptr, threads).rows_per_block(4 << 20);
   std::vector<mbk::OfflineRow> rows(block, mbk::OfflineRow(model));
@@ -129,6 +135,40 @@ void compute(benchmark::State& state, const mbk::Model& model, bool given) {
   state.SetItemsProcessed(samples);
   state.counters["coordinates"] = model.nq;
   state.counters["x_real_time"] = benchmark::Counter(samples / 1000.0, benchmark::Counter::kIsRate);
+}
+
+// Both derivatives of every coordinate at every sample: "auto" by estimate_auto, a fixed one by
+// its weights once per sample for all coordinates (apply_weights), as OfflineStates does.
+void estimates(benchmark::State& state, const mbk::Model& model, const std::string& name) {
+  const mbk::Recording rec = recording(model, 1000, 10, false);
+  std::vector<double> x = rec.position;
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(0.0, 1e-4);
+  for (double& v : x) v += noise(rng);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator(name);
+  const int nq = model.nq, rows = rec.rows();
+  std::vector<double> first(static_cast<size_t>(rows) * nq), second(first.size());
+  long values = 0;
+  for (auto _ : state) {
+    const double max_gap = mbk::default_max_gap(rec.stamp);
+    if (e.automatic) {
+      mbk::AutoEstimate a;
+      mbk::estimate_auto(rec.stamp, x.data(), nq, nq, max_gap, a);
+      benchmark::DoNotOptimize(a.second.back());
+    } else {
+      const mbk::Segments segments = mbk::find_segments(rec.stamp, max_gap);
+      mbk::DerivativeWeights w;
+      for (int r = 0; r < rows; ++r) {
+        mbk::derivative_weights(e, rec.stamp, segments, r, w);
+        mbk::apply_weights(w, x.data(), nq, nq, &first[r * nq], &second[r * nq]);
+      }
+      benchmark::DoNotOptimize(second.back());
+    }
+    values += static_cast<long>(rows) * nq;
+  }
+  state.counters["ns_per_sample_coordinate"] =
+      benchmark::Counter(static_cast<double>(values) * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 // The tidy CSV writer alone, on computed kinematics (the demo trajectories at 1 kHz).
@@ -194,6 +234,9 @@ BENCHMARK_CAPTURE(compute, revolute100 / estimated, revolute100(), false)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(kinematics_only, tree100, tree100())->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(estimates, human / auto, human(), "auto") -> Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(estimates, human / old_default, human(), "centered_0.4s_4")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(csv_rows, human, human())->Unit(benchmark::kMillisecond);
 
 }  // namespace

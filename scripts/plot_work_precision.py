@@ -2,8 +2,9 @@
 """Log-log plot of error against run time from work_precision.csv (mbk_work_precision).
 
 usage: plot_work_precision.py CSV PNG
-Left: kinematics formulations per scene (time per update). Right: joint-derivative estimators
-(time per sample and coordinate), one point per stream.
+Left: kinematics formulations per scene (time per update). Middle: joint-derivative estimators
+(time per sample and coordinate), one point per stream. Right: mbk bag's default (auto) against
+the best fixed offline estimator chosen in hindsight and the old default, per offline stream.
 """
 import csv
 import sys
@@ -14,11 +15,33 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def default_panel(axes, offline):
+    """Per stream: auto, the best fixed estimator in hindsight, the old default centered_0.4s_4."""
+    streams = []
+    for r in offline:
+        if r["scene"] not in streams:
+            streams.append(r["scene"])
+    error = {(r["method"], r["scene"]): float(r["error"]) for r in offline}
+    best = [min(e for (m, s), e in error.items() if s == stream and m != "auto")
+            for stream in streams]
+    x = range(len(streams))
+    axes.plot(x, [error.get(("auto", s), float("nan")) for s in streams], "o", label="default auto")
+    axes.plot(x, best, "s", mfc="none", label="best fixed (in hindsight)")
+    axes.plot(x, [error.get(("centered_0.4s_4", s), float("nan")) for s in streams], "x",
+              label="old default centered_0.4s_4")
+    axes.set_xticks(list(x))
+    axes.set_xticklabels(streams, rotation=90, fontsize=6)
+    axes.set(yscale="log", ylabel="max relative error of the joint acceleration (ends included)",
+             title="mbk bag: default vs best fixed vs old default, per stream")
+    axes.grid(True, which="both", alpha=0.3)
+    axes.legend(fontsize=7)
+
+
 def main(csv_path, png_path):
     rows = list(csv.DictReader(open(csv_path)))
     formulations = [r for r in rows if "Hz" not in r["scene"]]
     estimators = [r for r in rows if "Hz" in r["scene"]]
-    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 6))
+    fig, (left, right, third) = plt.subplots(1, 3, figsize=(21, 6))
     markers = "osD^v<>ph*"
     for i, method in enumerate(sorted({r["method"] for r in formulations})):
         pts = [r for r in formulations if r["method"] == method]
@@ -43,6 +66,7 @@ def main(csv_path, png_path):
               title="Joint accelerations estimated from positions (100 Hz, 1 kHz; jitter; noise)")
     right.grid(True, which="both", alpha=0.3)
     right.legend(fontsize=7)
+    default_panel(third, [r for r in estimators if "offline" in r["note"]])
     fig.tight_layout()
     fig.savefig(png_path, dpi=110)
 

@@ -7,9 +7,9 @@
 #include <memory>
 #include <random>
 
+#include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
-#include "mb_kinematics/estimation/auto_estimator.h"
 
 namespace mbk {
 
@@ -167,6 +167,16 @@ EstimatorResult run_offline_estimator(const std::string& name, const std::vector
           ns.back(),
           accuracy.acceleration,
           note};
+}
+
+std::vector<Wave> human_like_waves(const Model& model) {
+  std::vector<Wave> waves = demo_waves(model);
+  for (size_t i = 0; i < waves.size(); ++i) {
+    const double f = 0.2 * std::pow(25.0, std::fmod(0.618034 * (i + 1), 1.0));  // 0.2 to 5 Hz
+    waves[i].w = 2 * M_PI * f;
+    waves[i].a /= std::max(1.0, f);
+  }
+  return waves;
 }
 
 std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, bool quick) {

@@ -26,6 +26,11 @@ struct EstimatorResult {
 // estimator per coordinate, each wave sampled at the same stamps).
 std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, bool quick);
 
+// A human-like recording: the demo's waves (demo_waves) with frequencies spread over 0.2 to
+// 5 Hz (log-spaced by the golden ratio), amplitudes falling as 1/f above 1 Hz (the demo's
+// 0.4 rad, 0.05 m, 0.2 below).
+std::vector<Wave> human_like_waves(const Model& model);
+
 // One stream: samples at `rate` Hz over `seconds`, stamps jittered uniformly by +-jitter/rate
 // (exact stamps), Gaussian position noise of standard deviation `noise`; the run time is the
 // median over `repetitions`.

@@ -11,8 +11,10 @@ namespace {
 // A window is kept while the squared change of its estimates stays within this many times what
 // the noise explains.
 constexpr double kLepski = 2.0;
-// At the ends, the window this many candidates shorter than the one chosen away from them.
-constexpr int kEndStep = 1;
+// At the ends and gaps, the accelerations' order at most.
+constexpr int kEndOrder = 4;
+// The choice looks at every stride-th sample: n / kSelectionSamples, within [1, kMaxStride].
+constexpr int kSelectionSamples = 1000, kMaxStride = 8;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -44,12 +46,12 @@ bool centred_window(const std::vector<double>& t, int i, const DerivativeWeights
 
 // Each series' noise level from the shortest window's residuals: sigma^2 = RSS / (n - tr H).
 void noise_levels(const OfflineEstimator& e, const std::vector<double>& t, const Segments& segments,
-                  const double* x, int ld, int m, std::vector<double>& sigma) {
+                  const double* x, int ld, int m, int stride, std::vector<double>& sigma) {
   const int n = static_cast<int>(t.size());
   DerivativeWeights w;
   std::vector<double> rss(m, 0.0);
-  double trace = 0;
-  for (int i = 0; i < n; ++i) {
+  double trace = 0, count = 0;
+  for (int i = 0; i < n; i += stride, ++count) {
     derivative_weights(e, t, segments, i, w);
     if (w.valid < 2) {  // an unsmoothed sample: interpolated, h_ii = 1
       trace += 1;
@@ -64,116 +66,152 @@ void noise_levels(const OfflineEstimator& e, const std::vector<double>& t, const
     }
   }
   sigma.assign(m, 0.0);
-  for (int c = 0; c < m; ++c) sigma[c] = n - trace > 0.5 ? std::sqrt(rss[c] / (n - trace)) : 0;
+  for (int c = 0; c < m; ++c)
+    sigma[c] = count - trace > 0.5 ? std::sqrt(rss[c] / (count - trace)) : 0;
 }
 
-// One window's derivative d of the active series: estimate[i * m + c], its noise-only standard
-// error, and valid; tested[i]: both this window and the previous are centred on sample i (then
-// change += |w_k,i - w_k-1,i|^2).
-struct Pass {
-  std::vector<double> estimate, se;
-  std::vector<int> valid;
-  std::vector<char> tested;
-  std::vector<double> step2;  // |w_k,i - w_k-1,i|^2
-  double change = 0, tested_count = 0;
+// Lepski's statistics of both derivatives (d = 1, 2 at [d - 1]) over the selection samples:
+// per candidate k >= 1, over the samples where both k and k - 1 are centred,
+// moved[k * m + c] = sum_i (x_k,i - x_k-1,i)^2 (series c), change[k] = sum_i |w_k,i - w_k-1,i|^2
+// and count[k] such samples.
+struct Statistics {
+  std::vector<double> moved, change, count;
 };
 
-void fit_window(const OfflineEstimator& e, const OfflineEstimator* previous,
-                const std::vector<double>& t, const Segments& segments, const double* x, int ld,
-                int m, int d, const std::vector<int>& active, const std::vector<double>& sigma,
-                Pass& pass) {
-  const int n = static_cast<int>(t.size());
-  DerivativeWeights w, p;
-  pass.change = pass.tested_count = 0;
-  for (int i = 0; i < n; ++i) {
-    derivative_weights(e, t, segments, i, w);
-    pass.tested[i] = 0;
-    if (previous) {
-      derivative_weights(*previous, t, segments, i, p);
-      pass.tested[i] =
-          w.valid == 2 && p.valid == 2 && centred_window(t, i, w) && centred_window(t, i, p);
-      pass.step2[i] = w.valid == 2 && p.valid == 2 ? difference2(w, p, d) : 0;
-      if (pass.tested[i]) pass.change += pass.step2[i], pass.tested_count += 1;
-    }
-    const std::vector<double>& weights = weights_of(w, d);
-    const double norm = std::sqrt(norm2(weights, w.count));
-    for (int c : active) {
-      const size_t at = static_cast<size_t>(i) * m + c;
-      double sum = 0;
-      for (int j = 0; j < w.count; ++j) sum += weights[j] * x[w.row(j) * ld + c];
-      pass.estimate[at] = sum;
-      pass.se[at] = sigma[c] * norm;
-      pass.valid[at] = w.valid;
+void lepski_statistics(const std::vector<OfflineEstimator>& candidates,
+                       const std::vector<double>& t, const Segments& segments, const double* x,
+                       int ld, int m, int stride, Statistics (&stats)[2]) {
+  const int n = static_cast<int>(t.size()), kc = static_cast<int>(candidates.size());
+  for (Statistics& s : stats)
+    s.moved.assign(static_cast<size_t>(kc) * m, 0.0), s.change.assign(kc, 0.0),
+        s.count.assign(kc, 0.0);
+  DerivativeWeights w[2];
+  std::vector<double> estimate[2] = {std::vector<double>(2 * m), std::vector<double>(2 * m)};
+  for (int i = 0; i < n; i += stride) {
+    for (int k = 0; k < kc; ++k) {
+      DerivativeWeights &cur = w[k % 2], &prev = w[(k + 1) % 2];
+      derivative_weights(candidates[k], t, segments, i, cur);
+      if (cur.valid < 2 || !centred_window(t, i, cur)) break;  // longer ones are not either
+      std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
+      for (int d = 1; d <= 2; ++d) {
+        const std::vector<double>& weights = weights_of(cur, d);
+        for (int c = 0; c < m; ++c) {
+          double sum = 0;
+          for (int j = 0; j < cur.count; ++j) sum += weights[j] * x[cur.row(j) * ld + c];
+          now[(d - 1) * m + c] = sum;
+        }
+        if (k == 0) continue;
+        Statistics& s = stats[d - 1];
+        s.change[k] += difference2(cur, prev, d);
+        s.count[k] += 1;
+        for (int c = 0; c < m; ++c) {
+          const double step = now[(d - 1) * m + c] - before[(d - 1) * m + c];
+          if (std::isfinite(step)) s.moved[k * m + c] += step * step;
+        }
+      }
     }
   }
 }
 
-// Lepski's choice of derivative d per series over the samples away from the ends: the longest
-// window before the first whose estimates moved more than the noise explains. Into `out`'s
-// estimate, se (with the bias the last step showed) and valid; the choice per series.
-void choose_windows(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-                    const Segments& segments, const double* x, int ld, int m, int d,
-                    const std::vector<double>& sigma, Pass& out, std::vector<int>& choice) {
+// Lepski's choice per series: the longest window before the first whose estimates moved more
+// than the noise explains, sum_i (x_k,i - x_k-1,i)^2 <= kLepski sigma^2 sum_i |w_k,i - w_k-1,i|^2;
+// bias2: the squared bias per sample its last step showed beyond the noise (for the error bar).
+void choose(const Statistics& s, const std::vector<double>& sigma, std::vector<int>& choice,
+            std::vector<double>& bias2) {
+  const int m = static_cast<int>(sigma.size()), kc = static_cast<int>(s.change.size());
+  choice.assign(m, 0), bias2.assign(m, 0.0);
+  for (int c = 0; c < m; ++c)
+    for (int k = 1; k < kc; ++k) {
+      const double moved = s.moved[k * m + c], explained = sigma[c] * sigma[c] * s.change[k];
+      if (!(moved <= kLepski * explained)) break;  // Lepski's test
+      choice[c] = k;
+      bias2[c] = s.count[k] > 0 ? std::max(0.0, moved - explained) / s.count[k] : 0.0;
+    }
+}
+
+// One derivative's choice per series, with what its final pass needs.
+struct Chosen {
+  int d = 2;
+  std::vector<int> choice;
+  std::vector<double> bias2;
+};
+
+// The weights of candidate k at sample i, those of the candidate before it (`shorter`), and where
+// they are shifted (an end, a gap) those of that one at order kEndOrder at most (`end`).
+// Per derivative d at [d - 1], shared by every series: |w|^2, |w - shorter|^2 and |end''|.
+struct SampleWeights {
+  DerivativeWeights w, shorter, end;
+  bool shifted = false, has_shorter = false;
+  double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
+  void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+            const Segments& segments, int i, int k) {
+    derivative_weights(candidates[k], t, segments, i, w);
+    for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
+    shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
+    has_shorter = k > 0 && w.valid == 2;
+    if (!has_shorter) return;
+    derivative_weights(candidates[k - 1], t, segments, i, shorter);
+    for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
+    if (!shifted) return;
+    OfflineEstimator e = candidates[k - 1];
+    e.order = std::min(e.order, kEndOrder);
+    derivative_weights(e, t, segments, i, end);
+    end_norm = std::sqrt(norm2(end.second, end.count));
+  }
+};
+
+double apply(const DerivativeWeights& w, int d, const double* x, int ld, int c) {
+  const std::vector<double>& weights = weights_of(w, d);
+  double sum = 0;
+  for (int j = 0; j < w.count; ++j) sum += weights[j] * x[w.row(j) * ld + c];
+  return sum;
+}
+
+// Series c's estimate of its chosen derivative at a sample and its standard error: noise and
+// the squared bias the choice's last step showed (its mean over the samples, or where larger
+// the step from the shorter window at this sample beyond the noise: the bias is not uniform);
+// where the window is shifted, the accelerations from the shorter window at order kEndOrder at
+// most (a one-sided fit's bias and variance grow faster with its length and order).
+void final_estimate(const SampleWeights& s, const double* x, int ld, int c, double sigma,
+                    const Chosen& chosen, double& estimate, double& se) {
+  const int d = chosen.d;
+  estimate = apply(s.w, d, x, ld, c);
+  se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + chosen.bias2[c]);
+  if (!s.has_shorter) return;
+  const double step = estimate - apply(s.shorter, d, x, ld, c);
+  const double own = step * step - sigma * sigma * s.step2[d - 1];
+  se = std::sqrt(se * se + std::max(0.0, own - chosen.bias2[c]));
+  if (!s.shifted || d == 1) return;
+  estimate = apply(s.end, 2, x, ld, c);
+  se = std::max(se, sigma * s.end_norm);
+}
+
+// Every sample's estimates of both derivatives with the chosen windows: the weights of each
+// window in use once per sample, for every series that uses it.
+void final_pass(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+                const Segments& segments, const double* x, int ld, int m,
+                const std::vector<double>& sigma, const Chosen (&chosen)[2], AutoEstimate& out) {
   const size_t n = t.size(), size = n * m;
-  Pass cur;
-  for (Pass* p : {&cur, &out}) {
-    p->estimate.assign(size, 0.0), p->se.assign(size, 0.0), p->valid.assign(size, 0);
-    p->tested.assign(n, 0), p->step2.assign(n, 0.0);
-  }
-  std::vector<int> active(m);
-  for (int c = 0; c < m; ++c) active[c] = c;
-  choice.assign(m, -1);
-  for (size_t k = 0; k < candidates.size() && !active.empty(); ++k) {
-    fit_window(candidates[k], k ? &candidates[k - 1] : nullptr, t, segments, x, ld, m, d, active,
-               sigma, cur);
-    std::vector<int> still;
-    for (int c : active) {
-      double moved = 0;  // sum_i (x_k,i - x_k-1,i)^2
-      for (size_t i = 0; k > 0 && i < n; ++i) {
-        const double step = cur.estimate[i * m + c] - out.estimate[i * m + c];
-        if (cur.tested[i] && std::isfinite(step)) moved += step * step;
-      }
-      const double explained = sigma[c] * sigma[c] * cur.change;
-      if (k > 0 && !(moved <= kLepski * explained)) continue;  // Lepski's test
-      // The squared bias this step added beyond the noise, per sample, kept in the error bar:
-      // the mean over the centred samples, or the sample's own where the window is shifted.
-      const double bias2 = k > 0 ? std::max(0.0, moved - explained) / cur.tested_count : 0;
-      for (size_t i = 0; i < n; ++i) {
+  out.first.assign(size, 0.0), out.second.assign(size, 0.0);
+  out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
+  std::vector<int> in_use;
+  for (const Chosen& ch : chosen) in_use.insert(in_use.end(), ch.choice.begin(), ch.choice.end());
+  std::sort(in_use.begin(), in_use.end());
+  in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
+  SampleWeights w;
+  for (size_t i = 0; i < n; ++i)
+    for (int k : in_use) {
+      w.load(candidates, t, segments, static_cast<int>(i), k);
+      for (int c = 0; c < m; ++c) {
         const size_t at = i * m + c;
-        const double step = cur.estimate[at] - out.estimate[at];
-        const double own =
-            k > 0 && !cur.tested[i] ? step * step - sigma[c] * sigma[c] * cur.step2[i] : 0.0;
-        out.estimate[at] = cur.estimate[at], out.valid[at] = cur.valid[at];
-        out.se[at] = std::sqrt(cur.se[at] * cur.se[at] + std::max(bias2, own));
+        if (chosen[0].choice[c] != k && chosen[1].choice[c] != k) continue;
+        out.valid[at] = std::min(out.valid[at], w.w.valid);
+        if (chosen[0].choice[c] == k)
+          final_estimate(w, x, ld, c, sigma[c], chosen[0], out.first[at], out.first_se[at]);
+        if (chosen[1].choice[c] == k)
+          final_estimate(w, x, ld, c, sigma[c], chosen[1], out.second[at], out.second_se[at]);
       }
-      choice[c] = static_cast<int>(k);
-      still.push_back(c);
     }
-    active.swap(still);
-  }
-}
-
-// Where the chosen window is shifted (an end, a gap), the accelerations of the window kEndStep
-// candidates shorter: a one-sided fit's bias grows faster with its length.
-void ends_step_down(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-                    const Segments& segments, const double* x, int ld, int m,
-                    const std::vector<double>& sigma, const std::vector<int>& choice, Pass& pass) {
-  DerivativeWeights w, shorter;
-  for (int c = 0; c < m; ++c) {
-    if (choice[c] < kEndStep) continue;
-    for (size_t i = 0; i < t.size(); ++i) {
-      derivative_weights(candidates[choice[c]], t, segments, static_cast<int>(i), w);
-      if (w.valid < 2 || centred_window(t, static_cast<int>(i), w)) continue;
-      derivative_weights(candidates[choice[c] - kEndStep], t, segments, static_cast<int>(i),
-                         shorter);
-      double sum = 0;
-      for (int j = 0; j < shorter.count; ++j) sum += shorter.second[j] * x[shorter.row(j) * ld + c];
-      const size_t at = i * m + c;
-      pass.estimate[at] = sum;
-      pass.se[at] =
-          std::max(pass.se[at], sigma[c] * std::sqrt(norm2(shorter.second, shorter.count)));
-    }
-  }
 }
 
 }  // namespace
@@ -200,18 +238,18 @@ void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m,
                    AutoEstimate& out) {
   const Segments segments = find_segments(t, max_gap);
   const std::vector<OfflineEstimator> candidates = auto_candidates(t);
-  noise_levels(candidates.front(), t, segments, x, ld, m, out.noise);
-  Pass velocity, acceleration;
-  std::vector<int> velocity_choice;
-  choose_windows(candidates, t, segments, x, ld, m, 1, out.noise, velocity, velocity_choice);
-  choose_windows(candidates, t, segments, x, ld, m, 2, out.noise, acceleration, out.choice);
+  const int stride = std::clamp(static_cast<int>(t.size()) / kSelectionSamples, 1, kMaxStride);
+  noise_levels(candidates.front(), t, segments, x, ld, m, stride, out.noise);
+  Statistics stats[2];
+  lepski_statistics(candidates, t, segments, x, ld, m, stride, stats);
+  Chosen chosen[2];
+  for (int d = 1; d <= 2; ++d) {
+    chosen[d - 1].d = d;
+    choose(stats[d - 1], out.noise, chosen[d - 1].choice, chosen[d - 1].bias2);
+  }
   out.series = m;
-  out.first = std::move(velocity.estimate), out.first_se = std::move(velocity.se);
-  ends_step_down(candidates, t, segments, x, ld, m, out.noise, out.choice, acceleration);
-  out.second = std::move(acceleration.estimate), out.second_se = std::move(acceleration.se);
-  out.valid.resize(acceleration.valid.size());
-  for (size_t at = 0; at < out.valid.size(); ++at)
-    out.valid[at] = std::min(velocity.valid[at], acceleration.valid[at]);
+  out.choice = chosen[1].choice;
+  final_pass(candidates, t, segments, x, ld, m, out.noise, chosen, out);
 }
 
 }  // namespace mbk

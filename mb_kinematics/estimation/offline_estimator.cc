@@ -42,9 +42,14 @@ void window_range(const OfflineEstimator& e, const std::vector<double>& t, int s
 }  // namespace
 
 const std::vector<std::string>& offline_estimator_names() {
-  static const std::vector<std::string> names = {
-      "centered_0.4s_4", "auto",         "centered_0.1s_4", "centered_0.2s_4", "centered_0.3s_4",
-      "centered_0.4s_5", "centered_9_4", "centered_15_3"};
+  static const std::vector<std::string> names = {"auto",
+                                                 "centered_0.4s_4",
+                                                 "centered_0.1s_4",
+                                                 "centered_0.2s_4",
+                                                 "centered_0.3s_4",
+                                                 "centered_0.4s_5",
+                                                 "centered_9_4",
+                                                 "centered_15_3"};
   return names;
 }
 

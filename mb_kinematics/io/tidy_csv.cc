@@ -13,7 +13,7 @@ namespace {
 constexpr size_t kBufferBytes = 1 << 16;  // written out when full
 }  // namespace
 
-TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
+TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model, bool errors)
     : model_(model),
       path_(path),
       file_(std::fopen(path.c_str(), "w")),
@@ -24,7 +24,9 @@ TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model)
     body_cells_[k] = "," + model.bodies[k].name + "," + std::to_string(k) + "," +
                      std::to_string(model.bodies[k].lower);
   std::fputs(header(), file_);
+  if (errors) std::fputs(errors_header(), file_);
   std::fputc('\n', file_);
+  errors_ = errors;
   buffer_.reserve(kBufferBytes + (1 << 14));
 }
 
@@ -36,6 +38,10 @@ const char* TidyCsvWriter::header() {
   return "stamp,body,index,lower_body,origin_x,origin_y,origin_z,qx,qy,qz,qw,mass_center_x,"
          "mass_center_y,mass_center_z,omega_x,omega_y,omega_z,alpha_x,alpha_y,alpha_z,"
          "velocity_x,velocity_y,velocity_z,acceleration_x,acceleration_y,acceleration_z";
+}
+
+const char* TidyCsvWriter::errors_header() {
+  return ",alpha_se_x,alpha_se_y,alpha_se_z,acceleration_se_x,acceleration_se_y,acceleration_se_z";
 }
 
 void TidyCsvWriter::flush() {
@@ -53,7 +59,10 @@ void number(std::string& text, double x) {
 
 }  // namespace
 
-void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& text) const {
+void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& text,
+                           const std::vector<Vec3<double>>* alpha_se,
+                           const std::vector<Vec3<double>>* acceleration_se) const {
+  const bool have = errors_ && alpha_se && acceleration_se;
   char stamp_text[400];  // %.9f of the largest double fits
   const int stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
   for (int k = 1; k <= model_.body_count(); ++k) {
@@ -64,6 +73,11 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
     for (const auto* v :
          {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
       for (int i = 0; i < 3; ++i) number(text, (*v)[k][i]);
+    if (have)
+      for (const auto* v : {alpha_se, acceleration_se})
+        for (int i = 0; i < 3; ++i) number(text, (*v)[k][i]);
+    else if (errors_)
+      text.append(",,,,,,");
     text += '\n';
   }
   if (total_mass_ <= 0) return;
@@ -75,11 +89,14 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
   text.append(",,,,,,");  // no omega, alpha
   for (const Vec3<double>* x : {&v, &a})
     for (int i = 0; i < 3; ++i) number(text, (*x)[i]);
+  if (errors_) text.append(",,,,,,");
   text += '\n';
 }
 
-void TidyCsvWriter::write(double stamp, const Data<double>& d) {
-  format(stamp, d, buffer_);
+void TidyCsvWriter::write(double stamp, const Data<double>& d,
+                          const std::vector<Vec3<double>>* alpha_se,
+                          const std::vector<Vec3<double>>* acceleration_se) {
+  format(stamp, d, buffer_, alpha_se, acceleration_se);
   if (buffer_.size() >= kBufferBytes) flush();
 }
 

@@ -5,7 +5,9 @@
 // The system row leaves origin, orientation, omega and alpha empty. Numbers in their shortest
 // round-trip form (io/number_format.h), the stamp with 9 decimals. Rows are formatted into a
 // buffer written out a block at a time: no allocation per row. A column more: its header name
-// and one call in format(). ROS-free.
+// and one call in format(). With error bars (mbk bag's auto estimator), six columns more:
+// alpha_se_x/y/z and acceleration_se_x/y/z, each R component's standard error (core/body_errors.h),
+// empty where there are none (the system row; a row without them). ROS-free.
 #pragma once
 
 #include <cstdio>
@@ -20,16 +22,22 @@ namespace mbk {
 class TidyCsvWriter {
  public:
   // Throws std::invalid_argument if `path` cannot be written.
-  TidyCsvWriter(const std::string& path, const Model& model);
+  TidyCsvWriter(const std::string& path, const Model& model, bool errors = false);
   ~TidyCsvWriter();
   TidyCsvWriter(const TidyCsvWriter&) = delete;
   TidyCsvWriter& operator=(const TidyCsvWriter&) = delete;
 
   static const char* header();
-  void write(double stamp, const Data<double>& data);
+  static const char* errors_header();  // the error bars' columns, after header()'s
+  // alpha_se, acceleration_se: per body, or nullptr (empty cells) when the writer has errors.
+  void write(double stamp, const Data<double>& data,
+             const std::vector<Vec3<double>>* alpha_se = nullptr,
+             const std::vector<Vec3<double>>* acceleration_se = nullptr);
   // The rows of one sample appended to `text` (const: any thread may format while this one
   // writes; `text` keeps its capacity, so a reused string is not allocated again), and written.
-  void format(double stamp, const Data<double>& data, std::string& text) const;
+  void format(double stamp, const Data<double>& data, std::string& text,
+              const std::vector<Vec3<double>>* alpha_se = nullptr,
+              const std::vector<Vec3<double>>* acceleration_se = nullptr) const;
   void write_text(const std::string& text);
   // Flushes and closes; throws if the disk refused the data.
   void close();
@@ -41,6 +49,7 @@ class TidyCsvWriter {
   std::string path_;
   std::FILE* file_ = nullptr;
   double total_mass_ = 0;
+  bool errors_ = false;
   std::vector<std::string> body_cells_;  // per body k: ",name,k,L(k)"
   std::string buffer_;                   // rows not yet written
 };

@@ -109,7 +109,9 @@ struct Outputs {
     formatted = true;
     return [csv = csv.get()](mbk::OfflineRow& row) {
       row.text.clear();
-      csv->format(row.stamp, row.data, row.text);
+      const bool errors = !row.alpha_se.empty();
+      csv->format(row.stamp, row.data, row.text, errors ? &row.alpha_se : nullptr,
+                  errors ? &row.acceleration_se : nullptr);
     };
   }
   void close() {
@@ -172,9 +174,10 @@ void read_input(const BagOptions& o, const mbk::Model& model, mbk::RecordingBuil
   s.unreadable_example = unreadable.first;
 }
 
-// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies.
+// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies; errors: the
+// CSV has the error bars' columns.
 void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model& base_model,
-                  const std::string& base_frame, Outputs& out) {
+                  const std::string& base_frame, bool errors, Outputs& out) {
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
     out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
@@ -182,7 +185,7 @@ void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors);
   }
   out.base_model = &base_model;
 }
@@ -210,7 +213,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   if (!survey.streamable()) return false;
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   Outputs out;
-  open_outputs(o, model, model, "", out);
+  open_outputs(o, model, model, "", false, out);
   mbk::RecordingBuilder builder(model);
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, survey.velocity_everywhere,
@@ -288,8 +291,8 @@ BagOptions parse_bag_options(int argc, char** argv) {
 }
 
 // OUT.csv's side file of error bars: OUT.errors.csv.
-std::string errors_path(const std::string& csv) {
-  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + ".errors.csv";
+std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
+  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
 }
 
 // One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
@@ -301,6 +304,33 @@ void write_errors(const std::string& path, const std::vector<mbk::CoordinateErro
   f.precision(6);
   for (const mbk::CoordinateError& e : errors)
     f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
+  f.close();
+  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
+  file.commit();
+}
+
+// OUT.csv's side file of each sample's error bars, OUT.sample_errors.csv ("auto", every
+// coordinate in every sample): stamp, then <coordinate>_velocity_se, <coordinate>_acceleration_se
+// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read.
+void write_sample_errors(const std::string& path, const mbk::Model& model,
+                         const mbk::Recording& rec, const mbk::OfflineStates& states) {
+  std::vector<double> v(model.nq, 0.0), a(model.nq, 0.0);
+  if (rec.rows() == 0 || !states.coordinate_errors(0, v.data(), a.data())) return;
+  OutputFile file(path);
+  std::ofstream f(file.writing());
+  f << "stamp";
+  for (const std::string& name : model.coordinate_names)
+    f << "," << name << "_velocity_se," << name << "_acceleration_se";
+  f << "\n";
+  f.precision(6);
+  for (int r = 0; r < rec.rows(); ++r) {
+    states.coordinate_errors(r, v.data(), a.data());
+    char stamp[64];
+    std::snprintf(stamp, sizeof stamp, "%.9f", rec.stamp[r]);
+    f << stamp;
+    for (int c = 0; c < model.nq; ++c) f << "," << v[c] << "," << a[c];
+    f << "\n";
+  }
   f.close();
   if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
   file.commit();
@@ -350,13 +380,18 @@ BagSummary run_bag(const BagOptions& o) {
     with_base = std::make_unique<const mbk::Model>(
         mbk::with_floating_base(model, base.frame, "base_odometry"));
   const mbk::Model& base_model = floating ? *with_base : model;
-  open_outputs(o, model, base_model, base.frame, out);
+  // The error bars' columns with auto (in the model's frame: not with a base).
+  open_outputs(o, model, base_model, base.frame, estimator.automatic && !floating, out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());
+  batch.set_body_errors(out.csv && estimator.automatic && !floating);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
-  if (!o.out_csv.empty() && !s.errors.empty()) write_errors(errors_path(o.out_csv), s.errors);
+  if (!o.out_csv.empty() && !s.errors.empty()) {
+    write_errors(errors_path(o.out_csv), s.errors);
+    write_sample_errors(errors_path(o.out_csv, ".sample_errors.csv"), model, rec, batch.states());
+  }
   s.wall_seconds = since(wall);
   return s;
 }

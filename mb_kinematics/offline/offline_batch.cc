@@ -59,6 +59,10 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
     apply_floating_base(out.base, out.data);
   }
   if (!finite_kinematics(out.data, Level::kAcceleration)) return drop("kinematics not finite", "");
+  // The error bars in the model's frame; with a base, R is the odometry's: none.
+  if (!body_errors_ || base_ ||
+      !states.body_errors(r, out.state, out.alpha_se, out.acceleration_se))
+    out.alpha_se.clear(), out.acceleration_se.clear();
 }
 
 void OfflineBatch::start(int begin, int end, std::vector<OfflineRow>& rows) {

@@ -31,6 +31,9 @@ struct OfflineRow {
   Data<double> data;
   BaseMotion base;   // the floating base's motion, when there is one
   std::string text;  // the row's output, when the batch has a formatter (set_formatter)
+  // "auto": per body, the standard errors of alpha and of the mass-center acceleration
+  // (OfflineStates::body_errors); empty otherwise.
+  std::vector<Vec3<double>> alpha_se, acceleration_se;
 };
 
 // The odometry of a floating base (core/floating_base.h) and its accelerations.
@@ -66,10 +69,14 @@ class OfflineBatch {
   // workers, beside the writing. Set before start(); must be safe to call from any thread.
   using Formatter = std::function<void(OfflineRow&)>;
   void set_formatter(Formatter f) { formatter_ = std::move(f); }
+  // Rows carry their bodies' error bars (OfflineRow::alpha_se; "auto", no floating base): the
+  // CSV's columns. Set before start().
+  void set_body_errors(bool on) { body_errors_ = on; }
 
   double max_gap() const { return workers_.front().max_gap(); }
   int threads() const { return static_cast<int>(workers_.size()); }
   std::vector<CoordinateError> error_summary() const { return workers_.front().error_summary(); }
+  const OfflineStates& states() const { return workers_.front(); }  // not while computing
   // Rows per block that keep one block's results within `bytes` (at least 4 per thread).
   int rows_per_block(size_t bytes) const;
 
@@ -82,6 +89,7 @@ class OfflineBatch {
   const FloatingBaseTrack* base_;
   std::vector<OfflineStates> workers_;
   Formatter formatter_;
+  bool body_errors_ = false;
 
   // The block in flight, set by start() under mutex_.
   int begin_ = 0, rows_in_block_ = 0, chunk_ = 1;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mb_kinematics/core/body_errors.h"
+
 namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
@@ -115,6 +117,39 @@ std::vector<CoordinateError> OfflineStates::error_summary() const {
       add(partial_[i], a, 0, velocity_everywhere_[partial_[i]] ? &a : nullptr);
     }
   return out;
+}
+
+bool OfflineStates::coordinate_errors(int r, double* velocity_se, double* acceleration_se) const {
+  if (!positions_fit_ || !partial_.empty()) return false;
+  const int nq = rec_.nq;
+  for (int c : full_) {  // what the sample gives is exact
+    const size_t at = static_cast<size_t>(r) * nq + c;
+    const std::uint8_t given = rec_.given[at];
+    const bool velocity = velocity_everywhere_[c] && velocities_fit_;
+    velocity_se[c] =
+        velocity || (given & Recording::kVelocity) ? 0.0 : positions_fit_->first_se[at];
+    acceleration_se[c] = given & Recording::kAcceleration ? 0.0
+                         : velocity                       ? velocities_fit_->first_se[at]
+                                                          : positions_fit_->second_se[at];
+  }
+  return true;
+}
+
+bool OfflineStates::body_errors(int r, const JointState<double>& state,
+                                std::vector<Vec3<double>>& alpha_se,
+                                std::vector<Vec3<double>>& acceleration_se) {
+  if (!positions_fit_ || !partial_.empty() || model_.speeds != SpeedKind::kCoordinateDerivatives)
+    return false;
+  if (!scratch_.pv) {
+    scratch_.pv = std::make_unique<PartialVelocities<double>>(model_);
+    scratch_.data = std::make_unique<Data<double>>(model_);
+    speed_se_.setZero(rec_.nq), speed_dot_se_.setZero(rec_.nq);
+  }
+  coordinate_errors(r, speed_se_.data(), speed_dot_se_.data());  // y = q': speed c is q_c'
+  partial_velocity_kinematics(model_, state, *scratch_.pv, *scratch_.data);
+  body_acceleration_errors(model_, *scratch_.pv, *scratch_.data, speed_se_.data(),
+                           speed_dot_se_.data(), alpha_se, acceleration_se);
+  return true;
 }
 
 // "auto": full_'s derivatives at row r from the fits.

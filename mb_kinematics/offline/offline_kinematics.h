@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
@@ -40,6 +42,16 @@ class OfflineStates {
   double max_gap() const { return max_gap_; }
   // Every estimated coordinate's error bars ("auto" only; empty for the fixed estimators).
   std::vector<CoordinateError> error_summary() const;
+  // "auto": the standard errors of each body's alpha and mass-center acceleration at row r, in
+  // `state` (from state_at), propagated from the coordinates' (core/body_errors.h; given
+  // derivatives and mimic rules count as exact). False, with nothing set, without them: a fixed
+  // estimator, or a coordinate estimated over its own samples.
+  // "auto": the standard errors of row r's joint velocities and accelerations into the
+  // coordinates' places of velocity_se and acceleration_se (nq each; a coordinate set by a mimic
+  // rule is left as it is); false, with nothing set, as for body_errors.
+  bool coordinate_errors(int r, double* velocity_se, double* acceleration_se) const;
+  bool body_errors(int r, const JointState<double>& state, std::vector<Vec3<double>>& alpha_se,
+                   std::vector<Vec3<double>>& acceleration_se);
 
  private:
   // The samples of coordinates that are not in every row.
@@ -78,6 +90,15 @@ class OfflineStates {
   // workers), of the positions and of the given velocities.
   std::shared_ptr<const AutoEstimate> positions_fit_, velocities_fit_;
   Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
+  Eigen::VectorXd speed_se_, speed_dot_se_;          // body_errors' scratch, nq
+  // body_errors' scratch, made at its first call; a copy (another worker's) starts without.
+  struct Scratch {
+    Scratch() = default;
+    Scratch(const Scratch&) {}
+    Scratch& operator=(const Scratch&) { return *this; }
+    std::unique_ptr<PartialVelocities<double>> pv;
+    std::unique_ptr<Data<double>> data;
+  } scratch_;
 };
 
 }  // namespace mbk

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,6 +26,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
 
 namespace {
@@ -139,8 +141,8 @@ TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
     }
   }
   EXPECT_EQ(i, 300);
-  // The default estimator at 100 Hz on clean data, away from the ends: the joint accelerations
-  // are within 6.8e-4 of their scale (doc/recorded_data.md); alpha sums a few of them.
+  // The default estimator (auto) at 100 Hz on clean data, away from the ends: the joint
+  // accelerations are within 4.2e-7 of their scale (doc/error_vs_runtime.md); alpha sums a few.
   EXPECT_LT(worst_alpha / scale_alpha, 2e-3);
   rosbag::View tf(bag, rosbag::TopicQuery("/tf"));
   const auto first = tf.begin()->instantiate<tf2_msgs::TFMessage>();
@@ -188,6 +190,63 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   const std::string from_bag = sa.str(), from_csv = sb.str();
   EXPECT_EQ(std::count(from_bag.begin(), from_bag.end(), '\n'), 1 + 50 * 17);  // 16 bodies, system
   EXPECT_EQ(from_bag, from_csv);
+}
+
+// With auto (the default) the tidy CSV carries each body's propagated error bars: six columns
+// more, finite and non-negative on every body row, positive on noisy data, empty on the system
+// row; OUT.sample_errors.csv each sample's coordinates'; a fixed estimator's CSV has none.
+TEST(BagTest, CsvCarriesTheBodiesErrorBars) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  const std::string in = write_bag("noisy.bag", 100, 2.0, [&](int, sensor_msgs::JointState& js) {
+    for (double& q : js.position) q += noise(rng);
+  });
+  mbk_offline::BagOptions o = options(in, "");
+  o.out_csv = temp("errors_out.csv");
+  mbk_offline::run_bag(o);
+  std::ifstream f(o.out_csv);
+  std::string line;
+  std::getline(f, line);
+  EXPECT_EQ(line, std::string(mbk::TidyCsvWriter::header()) + mbk::TidyCsvWriter::errors_header());
+  int rows = 0;
+  double largest = 0;
+  while (std::getline(f, line)) {
+    std::vector<std::string> cells;
+    std::stringstream cs(line);
+    for (std::string c; std::getline(cs, c, ',');) cells.push_back(c);
+    if (line.back() == ',') cells.push_back("");
+    ASSERT_EQ(cells.size(), 32u) << line;
+    for (int i = 26; i < 32; ++i) {
+      if (cells[1] == "system") {
+        EXPECT_EQ(cells[i], "") << line;
+        continue;
+      }
+      const double se = std::stod(cells[i]);
+      EXPECT_TRUE(std::isfinite(se) && se >= 0) << line;
+      largest = std::max(largest, se);
+    }
+    ++rows;
+  }
+  EXPECT_EQ(rows, 200 * 17);
+  EXPECT_GT(largest, 0);
+  // Each sample's coordinates' error bars beside it: OUT.sample_errors.csv, a row per sample.
+  const mbk::Model model = mbk::load_model_file(kModel);
+  std::ifstream se(temp("errors_out.sample_errors.csv"));
+  std::getline(se, line);
+  EXPECT_EQ(line.rfind("stamp," + model.coordinate_names[0] + "_velocity_se,", 0), 0u) << line;
+  int samples = 0;
+  while (std::getline(se, line)) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 2 * model.nq) << line;
+    const size_t a = line.find(',') + 1, b = line.find(',', a);
+    EXPECT_GT(std::stod(line.substr(a, b - a)), 0) << line;  // noise 1e-3: a velocity se
+    ++samples;
+  }
+  EXPECT_EQ(samples, 200);
+  o.estimator = "centered_0.4s_4";
+  mbk_offline::run_bag(o);
+  std::ifstream g(o.out_csv);
+  std::getline(g, line);
+  EXPECT_EQ(line, mbk::TidyCsvWriter::header());
 }
 
 std::string read_file(const std::string& path) {
