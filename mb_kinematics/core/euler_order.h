@@ -76,6 +76,12 @@ struct SignedPermutation {  // column j is sign[j] times the unit vector e_{inde
   std::array<int, 3> sign;
   Mat3<double> matrix() const;
   template <typename S>
+  Vec3<S> times(const Vec3<S>& v) const {  // P v = sum_j v_j sign_j e_{index_j}
+    Vec3<S> out;
+    for (int j = 0; j < 3; ++j) out[index[j]] = S(sign[j]) * v[j];
+    return out;
+  }
+  template <typename S>
   Vec3<S> transpose_times(const Vec3<S>& v) const {  // row j of P^T is column j of P
     return Vec3<S>(S(sign[0]) * v[index[0]], S(sign[1]) * v[index[1]], S(sign[2]) * v[index[2]]);
   }

@@ -113,17 +113,20 @@ Mat3<S> angles_motion(EulerOrder order, const S* q, const S* qd, Vec3<S>* angula
     sb = c;
   }
   sg *= S(map.gamma_sign);
-  const Mat3<S> p = map.p.matrix().cast<S>();
   if (qd) {
     angles_123_columns(ca, sa, cb, sb, qd, angular, angular_dot);
     angular[2] *= S(map.gamma_sign);  // the rate of sign * gamma is sign * gamma'
     angular_dot[2] *= S(map.gamma_sign);
     for (int i = 0; i < 3; ++i) {
-      angular[i] = p * angular[i];
-      angular_dot[i] = p * angular_dot[i];
+      angular[i] = map.p.times(angular[i]);
+      angular_dot[i] = map.p.times(angular_dot[i]);
     }
   }
-  return p * rotation_123(ca, sa, cb, sb, cg, sg) * map.q.matrix().cast<S>();
+  const Mat3<S> r = rotation_123(ca, sa, cb, sb, cg, sg);
+  Mat3<S> out;  // P r Q, column j of r Q = sign_j r e_{index_j}
+  for (int j = 0; j < 3; ++j)
+    out.col(j) = map.p.times(Vec3<S>(S(map.q.sign[j]) * r.col(map.q.index[j])));
+  return out;
 }
 
 // Euler-parameter columns: w = 2 (e4 e' - e4' e + e x e') / |e|^2, with coordinate-derivative

@@ -230,4 +230,26 @@ TEST(Numbering, UrdfBreadthFirstInFileJointOrder) {
   EXPECT_EQ(m.coordinate_names, (std::vector<std::string>{"z_top", "a_deep", "y_side", "b_deep"}));
 }
 
+// Ball and free joints in mixed Euler orders (test/io/data/euler_orders.yaml) as chains of URDF
+// joints about each order's axes: read back by the URDF loader, every body has the scene's
+// pose, angular velocity and acceleration on the same coordinates.
+TEST(SceneEquivalence, UrdfAxisChainsFollowEachJointsEulerOrder) {
+  const mbk::Model yaml = mbk::load_model_file(source_path("test/io/data/euler_orders.yaml"));
+  const mbk::Model urdf = mbk::load_urdf_string(mbk::write_urdf(yaml, "orders"), "orders.urdf");
+  mbk::JointState<double> ys(yaml), us(urdf);
+  random_states(yaml, urdf, 5, ys, us);
+  mbk::Data<double> yd(yaml), ud(urdf);
+  mbk::forward_kinematics(yaml, ys, yd);
+  mbk::forward_kinematics(urdf, us, ud);
+  for (int k = 1; k <= yaml.body_count(); ++k) {
+    const std::string& name = yaml.bodies[k].name;
+    const int uk = urdf.body_index(name);
+    ASSERT_GE(uk, 0) << name;
+    EXPECT_LT((yd.rotation[k] - ud.rotation[uk]).norm(), 1e-13) << name;
+    EXPECT_LT((yd.origin[k] - ud.origin[uk]).norm(), 1e-13) << name;
+    EXPECT_LT((yd.omega[k] - ud.omega[uk]).norm(), 1e-12) << name;
+    EXPECT_LT((yd.alpha[k] - ud.alpha[uk]).norm(), 1e-11) << name;
+  }
+}
+
 }  // namespace

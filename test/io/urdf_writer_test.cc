@@ -5,12 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <map>
-#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/yaml_scene.h"
@@ -140,36 +138,6 @@ TEST(UrdfWriter, RefusesNameClashesOfExpandedJoints) {
       "bodies:\n  - {name: s, lower: 0, joint: {name: j, type: ball_123}}\n"
       "  - {name: t, lower: s, joint: {name: j/beta, type: fixed}}\n",
       {"joint name 'j/beta'", "body 1 's'", "body 2 't'"});
-}
-
-// Ball and free joints in mixed Euler orders (test/io/data/euler_orders.yaml) as chains of URDF
-// joints about each order's axes: read back by the URDF loader, every body has the scene's
-// pose, angular velocity and acceleration on the same coordinates (matched by name).
-TEST(UrdfWriter, AxisChainsFollowEachJointsEulerOrder) {
-  const mbk::Model model =
-      mbk::load_model_file(mbk_test::source_path("test/io/data/euler_orders.yaml"));
-  const mbk::Model urdf = mbk::load_urdf_string(mbk::write_urdf(model, "orders"), "orders.urdf");
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  mbk::JointState<double> s(model), us(urdf);
-  for (int i = 0; i < model.nq; ++i) {
-    const int j = urdf.coordinate_index(model.coordinate_names[i]);
-    ASSERT_GE(j, 0) << model.coordinate_names[i];
-    us.position[j] = s.position[i] = M_PI * u(rng);
-    us.velocity[j] = s.velocity[i] = 2.0 * u(rng);
-    us.acceleration[j] = s.acceleration[i] = 5.0 * u(rng);
-  }
-  mbk::Data<double> d(model), ud(urdf);
-  mbk::forward_kinematics(model, s, d);
-  mbk::forward_kinematics(urdf, us, ud);
-  for (int k = 1; k <= model.body_count(); ++k) {
-    const int uk = urdf.body_index(model.bodies[k].name);
-    ASSERT_GE(uk, 0) << model.bodies[k].name;
-    EXPECT_LT((d.rotation[k] - ud.rotation[uk]).norm(), 1e-13) << model.bodies[k].name;
-    EXPECT_LT((d.origin[k] - ud.origin[uk]).norm(), 1e-13) << model.bodies[k].name;
-    EXPECT_LT((d.omega[k] - ud.omega[uk]).norm(), 1e-12) << model.bodies[k].name;
-    EXPECT_LT((d.alpha[k] - ud.alpha[uk]).norm(), 1e-11) << model.bodies[k].name;
-  }
 }
 
 }  // namespace
