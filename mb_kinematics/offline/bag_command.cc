@@ -196,7 +196,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                   const mbk::OfflineEstimator& estimator, const mbk::OfflineReach& reach,
                   BagSummary& s) {
   const auto wall = Clock::now();
-  mbk::RecordingSurvey survey(model.nq);
+  mbk::RecordingSurvey survey(model.nq, o.max_gap <= 0);
   {
     mbk::RecordingBuilder first(model);
     first.stream_to([&](double t, const double*, const double*, const std::uint8_t* given) {

@@ -4,11 +4,15 @@
 
 namespace mbk {
 
-RecordingSurvey::RecordingSurvey(int nq)
-    : nq(nq), position_everywhere(nq, 1), position_somewhere(nq, 0), velocity_everywhere(nq, 1) {}
+RecordingSurvey::RecordingSurvey(int nq, bool keep_intervals)
+    : nq(nq),
+      keep_intervals(keep_intervals),
+      position_everywhere(nq, 1),
+      position_somewhere(nq, 0),
+      velocity_everywhere(nq, 1) {}
 
 void RecordingSurvey::add(double t, const std::uint8_t* given) {
-  if (rows > 0) ++intervals[t - last_stamp];
+  if (rows > 0 && keep_intervals) ++intervals[t - last_stamp];
   last_stamp = t;
   ++rows;
   for (int c = 0; c < nq; ++c) {

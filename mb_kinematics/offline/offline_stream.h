@@ -21,7 +21,8 @@ namespace mbk {
 // row by row (a first pass over the input): in bounded memory but for the intervals, one entry
 // per distinct interval between stamps (a few at a steady rate).
 struct RecordingSurvey {
-  explicit RecordingSurvey(int nq);
+  // keep_intervals false: the user gave max_gap; the intervals are not counted.
+  explicit RecordingSurvey(int nq, bool keep_intervals = true);
   void add(double t, const std::uint8_t* given);  // a row as RecordingBuilder's sink gives it
   // 5 x the median interval: default_max_gap of the stamps, without holding them.
   double default_max_gap() const;
@@ -29,6 +30,7 @@ struct RecordingSurvey {
   bool streamable() const;
 
   int nq;
+  bool keep_intervals;
   long rows = 0;
   std::vector<char> position_everywhere, position_somewhere, velocity_everywhere;
   std::map<double, long> intervals;  // t[i] - t[i - 1], counted
