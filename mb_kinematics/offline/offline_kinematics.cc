@@ -132,7 +132,8 @@ std::vector<CoordinateError> OfflineStates::error_summary(const ErrorColumns* wh
   if (positions_fit_)
     for (size_t k = 0; k < full_.size(); ++k)
       out.push_back({model_.coordinate_names[full_[k]], positions_fit_->noise[full_[k]],
-                     median(columns.velocity[k]), median(columns.acceleration[k])});
+                     median({columns.velocity[k].begin(), columns.velocity[k].end()}),
+                     median({columns.acceleration[k].begin(), columns.acceleration[k].end()})});
   for (size_t i = 0; i < partial_.size(); ++i)
     if (series_[i].fit) {
       const AutoEstimate& a = *series_[i].fit;
