@@ -16,7 +16,8 @@
 // the last accepted step showed beyond the noise: its mean over the samples, or the sample's own
 // step where larger. One pass chooses (each window's weights once per
 // sample, shared by every series), one estimates (the chosen windows' weights once per sample):
-// linear in the length.
+// linear in the length. Both also run a piece of the recording at a time (AutoChooser,
+// estimate_chosen; offline/offline_stream.h), with the same results bit for bit.
 #pragma once
 
 #include <vector>
