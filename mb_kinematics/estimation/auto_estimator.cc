@@ -240,8 +240,6 @@ AutoChooser::AutoChooser(double median_interval, long rows, int m)
     s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
 }
 
-AutoChooser::~AutoChooser() = default;
-
 OfflineReach AutoChooser::reach() const {
   OfflineReach reach;
   offline_reach(candidates_.back(), reach);

@@ -46,7 +46,6 @@ struct AutoChoice {
 class AutoChooser {
  public:
   AutoChooser(double dt, long rows, int m);
-  ~AutoChooser();
   // How far a selection sample's sums reach (the longest candidate's).
   OfflineReach reach() const;
   // Rows [from, to) of a piece of the recording whose row 0 is the recording's row `first`:
