@@ -44,70 +44,67 @@ bool centred_window(const std::vector<double>& t, int i, const DerivativeWeights
   return std::abs(before - after) <= 0.25 * (before + after);
 }
 
-// Each series' noise level from the shortest window's residuals: sigma^2 = RSS / (n - tr H).
-void noise_levels(const OfflineEstimator& e, const std::vector<double>& t, const Segments& segments,
-                  const double* x, int ld, int m, int stride, std::vector<double>& sigma) {
-  const int n = static_cast<int>(t.size());
-  DerivativeWeights w;
-  std::vector<double> rss(m, 0.0);
-  double trace = 0, count = 0;
-  for (int i = 0; i < n; i += stride, ++count) {
-    derivative_weights(e, t, segments, i, w);
-    if (w.valid < 2) {  // an unsmoothed sample: interpolated, h_ii = 1
-      trace += 1;
-      continue;
-    }
-    trace += w.value[(i - w.begin) / w.stride];
-    for (int c = 0; c < m; ++c) {
-      double fit = 0;
-      for (int j = 0; j < w.count; ++j) fit += w.value[j] * x[w.row(j) * ld + c];
-      const double r = x[i * ld + c] - fit;
-      if (std::isfinite(r)) rss[c] += r * r;  // a bad sample spoils its fits, not the level
-    }
+// Selection sample i's share of each series' noise level from the shortest window's residuals,
+// sigma^2 = RSS / (n - tr H): rss per series, the trace and the samples counted.
+using Residuals = AutoChooser::Residuals;
+
+void add_residuals(const OfflineEstimator& e, const std::vector<double>& t,
+                   const Segments& segments, const double* x, int ld, int i, DerivativeWeights& w,
+                   Residuals& res) {
+  const int m = static_cast<int>(res.rss.size());
+  derivative_weights(e, t, segments, i, w);
+  res.count += 1;
+  if (w.valid < 2) {  // an unsmoothed sample: interpolated, h_ii = 1
+    res.trace += 1;
+    return;
   }
-  sigma.assign(m, 0.0);
-  for (int c = 0; c < m; ++c)
-    sigma[c] = count - trace > 0.5 ? std::sqrt(rss[c] / (count - trace)) : 0;
+  res.trace += w.value[(i - w.begin) / w.stride];
+  for (int c = 0; c < m; ++c) {
+    double fit = 0;
+    for (int j = 0; j < w.count; ++j) fit += w.value[j] * x[w.row(j) * ld + c];
+    const double r = x[i * ld + c] - fit;
+    if (std::isfinite(r)) res.rss[c] += r * r;  // a bad sample spoils its fits, not the level
+  }
+}
+
+std::vector<double> noise_levels(const Residuals& res) {
+  std::vector<double> sigma(res.rss.size(), 0.0);
+  for (size_t c = 0; c < sigma.size(); ++c)
+    sigma[c] = res.count - res.trace > 0.5 ? std::sqrt(res.rss[c] / (res.count - res.trace)) : 0;
+  return sigma;
 }
 
 // Lepski's statistics of both derivatives (d = 1, 2 at [d - 1]) over the selection samples:
 // per candidate k >= 1, over the samples where both k and k - 1 are centred,
 // moved[k * m + c] = sum_i (x_k,i - x_k-1,i)^2 (series c), change[k] = sum_i |w_k,i - w_k-1,i|^2
 // and count[k] such samples.
-struct Statistics {
-  std::vector<double> moved, change, count;
-};
+using Statistics = AutoChooser::Statistics;
 
-void lepski_statistics(const std::vector<OfflineEstimator>& candidates,
-                       const std::vector<double>& t, const Segments& segments, const double* x,
-                       int ld, int m, int stride, Statistics (&stats)[2]) {
-  const int n = static_cast<int>(t.size()), kc = static_cast<int>(candidates.size());
-  for (Statistics& s : stats)
-    s.moved.assign(static_cast<size_t>(kc) * m, 0.0), s.change.assign(kc, 0.0),
-        s.count.assign(kc, 0.0);
-  DerivativeWeights w[2];
-  std::vector<double> estimate[2] = {std::vector<double>(2 * m), std::vector<double>(2 * m)};
-  for (int i = 0; i < n; i += stride) {
-    for (int k = 0; k < kc; ++k) {
-      DerivativeWeights &cur = w[k % 2], &prev = w[(k + 1) % 2];
-      derivative_weights(candidates[k], t, segments, i, cur);
-      if (cur.valid < 2 || !centred_window(t, i, cur)) break;  // longer ones are not either
-      std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
-      for (int d = 1; d <= 2; ++d) {
-        const std::vector<double>& weights = weights_of(cur, d);
-        for (int c = 0; c < m; ++c) {
-          double sum = 0;
-          for (int j = 0; j < cur.count; ++j) sum += weights[j] * x[cur.row(j) * ld + c];
-          now[(d - 1) * m + c] = sum;
-        }
-        if (k == 0) continue;
-        Statistics& s = stats[d - 1];
-        s.change[k] += difference2(cur, prev, d);
-        s.count[k] += 1;
-        for (int c = 0; c < m; ++c) {
-          const double step = now[(d - 1) * m + c] - before[(d - 1) * m + c];
-          if (std::isfinite(step)) s.moved[k * m + c] += step * step;
-        }
+// Selection sample i's share of Lepski's statistics; w, estimate: scratch.
+void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+                const Segments& segments, const double* x, int ld, int m, int i,
+                DerivativeWeights (&w)[2], std::vector<double> (&estimate)[2],
+                Statistics (&stats)[2]) {
+  const int kc = static_cast<int>(candidates.size());
+  for (int k = 0; k < kc; ++k) {
+    DerivativeWeights &cur = w[k % 2], &prev = w[(k + 1) % 2];
+    derivative_weights(candidates[k], t, segments, i, cur);
+    if (cur.valid < 2 || !centred_window(t, i, cur)) break;  // longer ones are not either
+    std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
+    for (int d = 1; d <= 2; ++d) {
+      const std::vector<double>& weights = weights_of(cur, d);
+      for (int c = 0; c < m; ++c) {
+        double sum = 0;
+        for (int j = 0; j < cur.count; ++j) sum += weights[j] * x[cur.row(j) * ld + c];
+        now[(d - 1) * m + c] = sum;
+      }
+      if (k == 0) continue;
+      Statistics& s = stats[d - 1];
+      s.change[k] += difference2(cur, prev, d);
+      s.count[k] += 1;
+      for (int c = 0; c < m; ++c) {
+        const double step = now[(d - 1) * m + c] - before[(d - 1) * m + c];
+        if (std::isfinite(step)) s.moved[k * m + c] += step * step;
       }
     }
   }
@@ -128,13 +125,6 @@ void choose(const Statistics& s, const std::vector<double>& sigma, std::vector<i
       bias2[c] = s.count[k] > 0 ? std::max(0.0, moved - explained) / s.count[k] : 0.0;
     }
 }
-
-// One derivative's choice per series, with what its final pass needs.
-struct Chosen {
-  int d = 2;
-  std::vector<int> choice;
-  std::vector<double> bias2;
-};
 
 // The weights of candidate k at sample i, those of the candidate before it (`shorter`), and where
 // they are shifted (an end, a gap) those of that one at order kEndOrder at most (`end`).
@@ -172,15 +162,14 @@ double apply(const DerivativeWeights& w, int d, const double* x, int ld, int c) 
 // the step from the shorter window at this sample beyond the noise: the bias is not uniform);
 // where the window is shifted, the accelerations from the shorter window at order kEndOrder at
 // most (a one-sided fit's bias and variance grow faster with its length and order).
-void final_estimate(const SampleWeights& s, const double* x, int ld, int c, double sigma,
-                    const Chosen& chosen, double& estimate, double& se) {
-  const int d = chosen.d;
+void final_estimate(const SampleWeights& s, const double* x, int ld, int c, double sigma, int d,
+                    double bias2, double& estimate, double& se) {
   estimate = apply(s.w, d, x, ld, c);
-  se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + chosen.bias2[c]);
+  se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + bias2);
   if (!s.has_shorter) return;
   const double step = estimate - apply(s.shorter, d, x, ld, c);
   const double own = step * step - sigma * sigma * s.step2[d - 1];
-  se = std::sqrt(se * se + std::max(0.0, own - chosen.bias2[c]));
+  se = std::sqrt(se * se + std::max(0.0, own - bias2));
   if (!s.shifted || d == 1) return;
   estimate = apply(s.end, 2, x, ld, c);
   se = std::max(se, sigma * s.end_norm);
@@ -188,28 +177,31 @@ void final_estimate(const SampleWeights& s, const double* x, int ld, int c, doub
 
 // Every sample's estimates of both derivatives with the chosen windows: the weights of each
 // window in use once per sample, for every series that uses it.
-void final_pass(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-                const Segments& segments, const double* x, int ld, int m,
-                const std::vector<double>& sigma, const Chosen (&chosen)[2], AutoEstimate& out) {
+void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Segments& segments,
+                const double* x, int ld, int m, AutoEstimate& out) {
   const size_t n = t.size(), size = n * m;
   out.first.assign(size, 0.0), out.second.assign(size, 0.0);
   out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
-  std::vector<int> in_use;
-  for (const Chosen& ch : chosen) in_use.insert(in_use.end(), ch.choice.begin(), ch.choice.end());
+  const std::vector<int>(&choice)[2] = chosen.choice;
+  std::vector<int> in_use = choice[0];
+  in_use.insert(in_use.end(), choice[1].begin(), choice[1].end());
   std::sort(in_use.begin(), in_use.end());
   in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
   SampleWeights w;
   for (size_t i = 0; i < n; ++i)
     for (int k : in_use) {
-      w.load(candidates, t, segments, static_cast<int>(i), k);
+      w.load(chosen.candidates, t, segments, static_cast<int>(i), k);
       for (int c = 0; c < m; ++c) {
         const size_t at = i * m + c;
-        if (chosen[0].choice[c] != k && chosen[1].choice[c] != k) continue;
+        if (choice[0][c] != k && choice[1][c] != k) continue;
         out.valid[at] = std::min(out.valid[at], w.w.valid);
-        if (chosen[0].choice[c] == k)
-          final_estimate(w, x, ld, c, sigma[c], chosen[0], out.first[at], out.first_se[at]);
-        if (chosen[1].choice[c] == k)
-          final_estimate(w, x, ld, c, sigma[c], chosen[1], out.second[at], out.second_se[at]);
+        const double sigma = chosen.noise[c];
+        if (choice[0][c] == k)
+          final_estimate(w, x, ld, c, sigma, 1, chosen.bias2[0][c], out.first[at],
+                         out.first_se[at]);
+        if (choice[1][c] == k)
+          final_estimate(w, x, ld, c, sigma, 2, chosen.bias2[1][c], out.second[at],
+                         out.second_se[at]);
       }
     }
 }
@@ -217,7 +209,10 @@ void final_pass(const std::vector<OfflineEstimator>& candidates, const std::vect
 }  // namespace
 
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t) {
-  const double dt = default_max_gap(t) / 5;  // the median interval
+  return auto_candidates(default_max_gap(t) / 5);  // the median interval
+}
+
+std::vector<OfflineEstimator> auto_candidates(double dt) {
   std::vector<OfflineEstimator> out;
   for (int samples : {7, 11, 15, 21, 31, 41, 61, 81, 121, 161, 241, 321, 481, 641}) {
     OfflineEstimator e;
@@ -234,22 +229,62 @@ std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t) {
   return out;
 }
 
+AutoChooser::AutoChooser(double median_interval, long rows, int m)
+    : candidates_(auto_candidates(median_interval)),
+      stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
+      m_(m),
+      residuals_{std::vector<double>(m, 0.0)},
+      estimate_{std::vector<double>(2 * m), std::vector<double>(2 * m)} {
+  const size_t kc = candidates_.size();
+  for (Statistics& s : stats_)
+    s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
+}
+
+OfflineReach AutoChooser::reach() const {
+  OfflineReach reach;
+  offline_reach(candidates_.back(), reach);
+  return reach;
+}
+
+void AutoChooser::add(const std::vector<double>& t, const Segments& segments, const double* x,
+                      int ld, long first, int from, int to) {
+  for (int i = from; i < to; ++i) {
+    if ((first + i) % stride_ != 0) continue;
+    add_residuals(candidates_.front(), t, segments, x, ld, i, w_[0], residuals_);
+    add_lepski(candidates_, t, segments, x, ld, m_, i, w_, estimate_, stats_);
+  }
+}
+
+AutoChoice AutoChooser::choice() const {
+  AutoChoice out;
+  out.candidates = candidates_;
+  out.noise = noise_levels(residuals_);
+  for (int d = 1; d <= 2; ++d)
+    choose(stats_[d - 1], out.noise, out.choice[d - 1], out.bias2[d - 1]);
+  return out;
+}
+
+int AutoChoice::longest() const {
+  int k = 0;
+  for (const std::vector<int>& c : choice)
+    for (int v : c) k = std::max(k, v);
+  return k;
+}
+
+void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
+                     int ld, double max_gap, AutoEstimate& out) {
+  const int m = static_cast<int>(choice.noise.size());
+  out.series = m;
+  out.noise = choice.noise;
+  out.choice = choice.choice[1];
+  final_pass(choice, t, find_segments(t, max_gap), x, ld, m, out);
+}
+
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
                    AutoEstimate& out) {
-  const Segments segments = find_segments(t, max_gap);
-  const std::vector<OfflineEstimator> candidates = auto_candidates(t);
-  const int stride = std::clamp(static_cast<int>(t.size()) / kSelectionSamples, 1, kMaxStride);
-  noise_levels(candidates.front(), t, segments, x, ld, m, stride, out.noise);
-  Statistics stats[2];
-  lepski_statistics(candidates, t, segments, x, ld, m, stride, stats);
-  Chosen chosen[2];
-  for (int d = 1; d <= 2; ++d) {
-    chosen[d - 1].d = d;
-    choose(stats[d - 1], out.noise, chosen[d - 1].choice, chosen[d - 1].bias2);
-  }
-  out.series = m;
-  out.choice = chosen[1].choice;
-  final_pass(candidates, t, segments, x, ld, m, out.noise, chosen, out);
+  AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m);
+  chooser.add(t, find_segments(t, max_gap), x, ld, 0, 0, static_cast<int>(t.size()));
+  estimate_chosen(chooser.choice(), t, x, ld, max_gap, out);
 }
 
 }  // namespace mbk

@@ -16,7 +16,8 @@
 // the last accepted step showed beyond the noise: its mean over the samples, or the sample's own
 // step where larger. One pass chooses (each window's weights once per
 // sample, shared by every series), one estimates (the chosen windows' weights once per sample):
-// linear in the length.
+// linear in the length. Both also run a piece of the recording at a time (AutoChooser,
+// estimate_chosen; offline/offline_stream.h), with the same results bit for bit.
 #pragma once
 
 #include <vector>
@@ -25,8 +26,54 @@
 
 namespace mbk {
 
-// The windows tried on the stamps t, shortest first.
+// The windows tried on the stamps t, shortest first; on stamps of median interval dt.
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t);
+std::vector<OfflineEstimator> auto_candidates(double dt);
+
+// What the choice pass found for m series: the windows tried, each series' noise level sigma and,
+// per derivative d at [d - 1], its window (index in candidates) and the squared bias per sample
+// its last accepted step showed beyond the noise.
+struct AutoChoice {
+  std::vector<OfflineEstimator> candidates;
+  std::vector<double> noise;
+  std::vector<int> choice[2];
+  std::vector<double> bias2[2];
+  int longest() const;  // the longest window chosen (its reach is the estimating pass's)
+};
+
+// The choice pass over a recording of `rows` samples of median interval dt (default_max_gap / 5),
+// given a piece at a time (offline/offline_stream.h) or whole: the same sums in the same order.
+class AutoChooser {
+ public:
+  AutoChooser(double dt, long rows, int m);
+  // How far a selection sample's sums reach (the longest candidate's).
+  OfflineReach reach() const;
+  // Rows [from, to) of a piece of the recording whose row 0 is the recording's row `first`:
+  // stamps t, their segments, series x[r * ld + c]; each such row's reach must lie in the piece
+  // as it does in the recording (or the piece holds the recording's end there). In order.
+  void add(const std::vector<double>& t, const Segments& segments, const double* x, int ld,
+           long first, int from, int to);
+  AutoChoice choice() const;
+
+  // Per series: the shortest window's residuals' squares, its trace and the samples counted;
+  // per candidate k >= 1, over the samples where both k and k - 1 are centred,
+  // moved[k * m + c] = sum_i (x_k,i - x_k-1,i)^2, change[k] = sum_i |w_k,i - w_k-1,i|^2, count[k].
+  struct Residuals {
+    std::vector<double> rss;
+    double trace = 0, count = 0;
+  };
+  struct Statistics {
+    std::vector<double> moved, change, count;
+  };
+
+ private:
+  std::vector<OfflineEstimator> candidates_;
+  int stride_, m_;
+  Residuals residuals_;
+  Statistics stats_[2];  // per derivative d at [d - 1]
+  DerivativeWeights w_[2];
+  std::vector<double> estimate_[2];
+};
 
 struct AutoEstimate {
   int series = 0;                           // m
@@ -41,5 +88,10 @@ struct AutoEstimate {
 // own windows (one for the velocities, one for the accelerations); choice: the latter.
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
                    AutoEstimate& out);
+// The estimating pass with a choice made before (AutoChooser), on the whole recording or a piece
+// of it (each row's estimate is the whole recording's where the longest chosen window's reach lies
+// in the piece as in the recording).
+void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
+                     int ld, double max_gap, AutoEstimate& out);
 
 }  // namespace mbk

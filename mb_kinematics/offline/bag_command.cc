@@ -190,17 +190,96 @@ void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model
   out.base_model = &base_model;
 }
 
+// OUT.csv's side file of each sample's error bars, OUT.sample_errors.csv ("auto", every
+// coordinate in every sample): stamp, then <coordinate>_velocity_se, <coordinate>_acceleration_se
+// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read;
+// written a piece at a time, under a temporary name until commit().
+class SampleErrorsFile {
+ public:
+  SampleErrorsFile(std::string path, const mbk::Model& model)
+      : path_(std::move(path)), model_(model), v_(model.nq, 0.0), a_(model.nq, 0.0) {}
+  // Rows [begin, end) of `rec`; nothing without error bars (states.coordinate_errors).
+  void write(const mbk::Recording& rec, const mbk::OfflineStates& states, int begin, int end) {
+    if (begin >= end || !states.coordinate_errors(begin, v_.data(), a_.data())) return;
+    if (!file_) open();
+    for (int r = begin; r < end; ++r) {
+      states.coordinate_errors(r, v_.data(), a_.data());
+      char stamp[64];
+      std::snprintf(stamp, sizeof stamp, "%.9f", rec.stamp[r]);
+      f_ << stamp;
+      for (int c = 0; c < model_.nq; ++c) f_ << "," << v_[c] << "," << a_[c];
+      f_ << "\n";
+    }
+  }
+  void commit() {
+    if (!file_) return;
+    f_.close();
+    if (!f_) throw std::invalid_argument(path_ + ": cannot write the error bars");
+    file_->commit();
+  }
+
+ private:
+  void open() {
+    file_ = std::make_unique<OutputFile>(path_);
+    f_.open(file_->writing());
+    f_ << "stamp";
+    for (const std::string& name : model_.coordinate_names)
+      f_ << "," << name << "_velocity_se," << name << "_acceleration_se";
+    f_ << "\n";
+    f_.precision(6);
+  }
+  std::string path_;
+  const mbk::Model& model_;
+  std::vector<double> v_, a_;
+  std::unique_ptr<OutputFile> file_;
+  std::ofstream f_;
+};
+
+// OUT.csv's side file of error bars: OUT.errors.csv.
+std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
+  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
+}
+
+// One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
+// Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
+void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
+  OutputFile file(path);
+  std::ofstream f(file.writing());
+  f << "coordinate,noise,velocity_se,acceleration_se\n";
+  f.precision(6);
+  for (const mbk::CoordinateError& e : errors)
+    f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
+  f.close();
+  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
+  file.commit();
+}
+
 // Rows computed per OfflineStream chunk: a few blocks, small beside a long recording.
 constexpr int kStreamChunkRows = 8192;
 
+// "auto"'s choice pass (offline/offline_stream.h) over the input: the whole recording's choices
+// and the estimating pass's reach.
+mbk::WholeRecording choose_auto(const BagOptions& o, const mbk::Model& model,
+                                const mbk::RecordingSurvey& survey, double max_gap,
+                                mbk::OfflineReach& reach, BagSummary& s) {
+  mbk::AutoChoosePass pass(survey, max_gap, kStreamChunkRows);
+  mbk::RecordingBuilder builder(model);
+  builder.stream_to(
+      [&](double t, const double* p, const double* v, const std::uint8_t*) { pass.add(t, p, v); });
+  BaseOdometry unused;
+  read_input(o, builder, unused, s, true);
+  builder.finish();
+  return pass.finish(reach);
+}
+
 // The bounded-memory path (offline/offline_stream.h): a first pass surveys the input (without
-// keeping it), the second computes and writes the rows as they are read. False, with nothing
-// written, when the recording needs the whole-recording path (a coordinate in some samples only).
+// keeping it), "auto" chooses its windows in a second, the last computes and writes the rows as
+// they are read. False, with nothing written, when the recording needs the whole-recording path
+// (a coordinate in some samples only).
 bool run_streamed(const BagOptions& o, const mbk::Model& model,
-                  const mbk::OfflineEstimator& estimator, const mbk::OfflineReach& reach,
-                  BagSummary& s) {
+                  const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
-  mbk::RecordingSurvey survey(model.nq, o.max_gap <= 0);
+  mbk::RecordingSurvey survey(model.nq, o.max_gap <= 0 || estimator.automatic);
   {
     mbk::RecordingBuilder first(model);
     first.stream_to([&](double t, const double*, const double*, const std::uint8_t* given) {
@@ -212,14 +291,26 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   }
   if (!survey.streamable()) return false;
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
+  mbk::WholeRecording whole;
+  whole.velocity_everywhere = survey.velocity_everywhere;
+  if (estimator.automatic) whole = choose_auto(o, model, survey, s.max_gap, reach, s);
   Outputs out;
-  open_outputs(o, model, model, "", false, out);
+  open_outputs(o, model, model, "", estimator.automatic, out);
   mbk::RecordingBuilder builder(model);
   mbk::OfflineStream stream(
-      model, estimator, reach, s.max_gap, survey.velocity_everywhere,
+      model, estimator, reach, s.max_gap, std::move(whole),
       o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, builder.log(), s.written); });
   stream.set_formatter(out.formatter());
+  stream.set_body_errors(out.csv && estimator.automatic);
+  std::unique_ptr<SampleErrorsFile> sample_errors;
+  if (out.csv && estimator.automatic) {
+    sample_errors =
+        std::make_unique<SampleErrorsFile>(errors_path(o.out_csv, ".sample_errors.csv"), model);
+    stream.set_chunk_hook([&](const mbk::OfflineStates& states, const mbk::Recording& piece,
+                              int begin,
+                              int end) { sample_errors->write(piece, states, begin, end); });
+  }
   builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
     stream.add(t, p, v, g);
   });
@@ -233,6 +324,11 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   s.compute_seconds = stream.seconds().compute;
   const auto t_close = Clock::now();
   out.close();
+  s.errors = stream.error_summary();
+  if (!o.out_csv.empty() && !s.errors.empty()) {
+    write_errors(errors_path(o.out_csv), s.errors);
+    sample_errors->commit();
+  }
   s.write_seconds = stream.seconds().use + since(t_close);
   s.read_seconds = std::max(0.0, since(wall) - s.write_seconds);
   return true;
@@ -290,52 +386,6 @@ BagOptions parse_bag_options(int argc, char** argv) {
   return o;
 }
 
-// OUT.csv's side file of error bars: OUT.errors.csv.
-std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
-  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
-}
-
-// One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
-// Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
-void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
-  OutputFile file(path);
-  std::ofstream f(file.writing());
-  f << "coordinate,noise,velocity_se,acceleration_se\n";
-  f.precision(6);
-  for (const mbk::CoordinateError& e : errors)
-    f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
-  f.close();
-  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
-  file.commit();
-}
-
-// OUT.csv's side file of each sample's error bars, OUT.sample_errors.csv ("auto", every
-// coordinate in every sample): stamp, then <coordinate>_velocity_se, <coordinate>_acceleration_se
-// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read.
-void write_sample_errors(const std::string& path, const mbk::Model& model,
-                         const mbk::Recording& rec, const mbk::OfflineStates& states) {
-  std::vector<double> v(model.nq, 0.0), a(model.nq, 0.0);
-  if (rec.rows() == 0 || !states.coordinate_errors(0, v.data(), a.data())) return;
-  OutputFile file(path);
-  std::ofstream f(file.writing());
-  f << "stamp";
-  for (const std::string& name : model.coordinate_names)
-    f << "," << name << "_velocity_se," << name << "_acceleration_se";
-  f << "\n";
-  f.precision(6);
-  for (int r = 0; r < rec.rows(); ++r) {
-    states.coordinate_errors(r, v.data(), a.data());
-    char stamp[64];
-    std::snprintf(stamp, sizeof stamp, "%.9f", rec.stamp[r]);
-    f << stamp;
-    for (int c = 0; c < model.nq; ++c) f << "," << v[c] << "," << a[c];
-    f << "\n";
-  }
-  f.close();
-  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
-  file.commit();
-}
-
 BagSummary run_bag(const BagOptions& o) {
   const auto wall = Clock::now();
   refuse_same_files(o);
@@ -350,7 +400,7 @@ BagSummary run_bag(const BagOptions& o) {
   // joint_accelerations, a floating base, a coordinate in some samples only) all of it at once.
   mbk::OfflineReach reach;
   const bool may_stream = o.base_odometry.empty() && o.joint_accelerations.empty() &&
-                          mbk::offline_reach(estimator, reach);
+                          (estimator.automatic || mbk::offline_reach(estimator, reach));
   if (may_stream && run_streamed(o, model, estimator, reach, s)) {
     s.wall_seconds = since(wall);
     return s;
@@ -390,7 +440,9 @@ BagSummary run_bag(const BagOptions& o) {
   s.errors = batch.error_summary();
   if (!o.out_csv.empty() && !s.errors.empty()) {
     write_errors(errors_path(o.out_csv), s.errors);
-    write_sample_errors(errors_path(o.out_csv, ".sample_errors.csv"), model, rec, batch.states());
+    SampleErrorsFile sample_errors(errors_path(o.out_csv, ".sample_errors.csv"), model);
+    sample_errors.write(rec, batch.states(), 0, rec.rows());
+    sample_errors.commit();
   }
   s.wall_seconds = since(wall);
   return s;

@@ -13,11 +13,10 @@ int default_thread_count() { return std::max(1u, std::thread::hardware_concurren
 
 OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
                            const OfflineEstimator& estimator, double max_gap,
-                           const FloatingBaseTrack* base, int threads,
-                           const std::vector<char>* velocity_everywhere)
+                           const FloatingBaseTrack* base, int threads, const WholeRecording* whole)
     : model_(model), rec_(recording), base_(base) {
   workers_.reserve(std::max(1, threads));
-  workers_.emplace_back(model, recording, estimator, max_gap, velocity_everywhere);
+  workers_.emplace_back(model, recording, estimator, max_gap, whole);
   while (static_cast<int>(workers_.size()) < threads)
     workers_.push_back(workers_.front());  // a copy: no second scan of the rows
   for (int i = 0; i < this->threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);

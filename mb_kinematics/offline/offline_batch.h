@@ -45,10 +45,10 @@ struct FloatingBaseTrack {
 class OfflineBatch {
  public:
   // `model`, `recording` and `base` (nullptr: a fixed base) must outlive this object. Starts
-  // `threads` (>= 1) workers, which wait for blocks. velocity_everywhere: see OfflineStates.
+  // `threads` (>= 1) workers, which wait for blocks. whole: see OfflineStates.
   OfflineBatch(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
                double max_gap, const FloatingBaseTrack* base, int threads,
-               const std::vector<char>* velocity_everywhere = nullptr);
+               const WholeRecording* whole = nullptr);
   ~OfflineBatch();  // ends the workers
   OfflineBatch(const OfflineBatch&) = delete;
   OfflineBatch& operator=(const OfflineBatch&) = delete;

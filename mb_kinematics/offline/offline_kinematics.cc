@@ -8,7 +8,7 @@ namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
                              const OfflineEstimator& estimator, double max_gap,
-                             const std::vector<char>* velocity_everywhere)
+                             const WholeRecording* whole)
     : model_(model),
       rec_(recording),
       estimator_(estimator),
@@ -26,7 +26,10 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       everywhere[c] = everywhere[c] && (g & Recording::kPosition);
       velocity_everywhere_[c] = velocity_everywhere_[c] && (g & Recording::kVelocity);
     }
-  if (velocity_everywhere) velocity_everywhere_ = *velocity_everywhere;
+  if (whole) {
+    velocity_everywhere_ = whole->velocity_everywhere;
+    positions_choice_ = whole->positions, velocities_choice_ = whole->velocities;
+  }
   for (const Mimic& m : model.mimics) {  // the rule places a mimic until it is recorded
     int& r = rule_until_[m.coordinate];
     while (r < rec_.rows() && !(rec_.given[r * nq + m.coordinate] & Recording::kPosition)) ++r;
@@ -64,13 +67,16 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
 // given velocities too where it has them everywhere); a partial coordinate over its own samples.
 void OfflineStates::fit_automatic() {
   const int nq = rec_.nq;
-  auto fit = [&](const std::vector<double>& x) {
+  auto fit = [&](const std::vector<double>& x, const AutoChoice* choice) {
     auto a = std::make_shared<AutoEstimate>();
-    estimate_auto(rec_.stamp, x.data(), nq, nq, max_gap_, *a);
+    if (choice)
+      estimate_chosen(*choice, rec_.stamp, x.data(), nq, max_gap_, *a);
+    else
+      estimate_auto(rec_.stamp, x.data(), nq, nq, max_gap_, *a);
     return a;
   };
-  if (!full_.empty()) positions_fit_ = fit(rec_.position);
-  if (any_velocity_everywhere_) velocities_fit_ = fit(rec_.velocity);
+  if (!full_.empty()) positions_fit_ = fit(rec_.position, positions_choice_.get());
+  if (any_velocity_everywhere_) velocities_fit_ = fit(rec_.velocity, velocities_choice_.get());
   for (size_t i = 0; i < partial_.size(); ++i) {
     Series& s = series_[i];
     const int c = partial_[i];
@@ -87,34 +93,55 @@ void OfflineStates::fit_automatic() {
 
 namespace {
 
-// The median of column c of v (v[k * m + c]).
-double column_median(const std::vector<double>& v, int m, int c) {
-  std::vector<double> column;
-  for (size_t at = c; at < v.size(); at += m) column.push_back(v[at]);
+double median(std::vector<double> column) {
   if (column.empty()) return 0;
   std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
   return column[column.size() / 2];
 }
 
+// The median of column c of v (v[k * m + c]).
+double column_median(const std::vector<double>& v, int m, int c) {
+  std::vector<double> column;
+  for (size_t at = c; at < v.size(); at += m) column.push_back(v[at]);
+  return median(std::move(column));
+}
+
 }  // namespace
 
-std::vector<CoordinateError> OfflineStates::error_summary() const {
-  std::vector<CoordinateError> out;
-  const auto add = [&](int c, const AutoEstimate& a, int column, const AutoEstimate* v) {
-    const int m = a.series;
+void OfflineStates::append_errors(int begin, int end, ErrorColumns& out) const {
+  if (!positions_fit_) return;
+  out.velocity.resize(full_.size()), out.acceleration.resize(full_.size());
+  const int nq = rec_.nq;
+  for (size_t k = 0; k < full_.size(); ++k) {
+    const int c = full_[k];
     // Accelerations from given velocities: their first derivative's error bar.
-    out.push_back({model_.coordinate_names[c], a.noise[column],
-                   column_median(a.first_se, m, column),
-                   v ? column_median(v->first_se, v->series, v == &a ? column + 1 : column)
-                     : column_median(a.second_se, m, column)});
-  };
+    const AutoEstimate* v = velocity_everywhere_[c] ? velocities_fit_.get() : nullptr;
+    for (int r = begin; r < end; ++r) {
+      const size_t at = static_cast<size_t>(r) * nq + c;
+      out.velocity[k].push_back(positions_fit_->first_se[at]);
+      out.acceleration[k].push_back(v ? v->first_se[at] : positions_fit_->second_se[at]);
+    }
+  }
+}
+
+std::vector<CoordinateError> OfflineStates::error_summary(const ErrorColumns* whole) const {
+  std::vector<CoordinateError> out;
+  ErrorColumns mine;
+  if (!whole) append_errors(0, rec_.rows(), mine);
+  const ErrorColumns& columns = whole ? *whole : mine;
   if (positions_fit_)
-    for (int c : full_)
-      add(c, *positions_fit_, c, velocity_everywhere_[c] ? velocities_fit_.get() : nullptr);
+    for (size_t k = 0; k < full_.size(); ++k)
+      out.push_back({model_.coordinate_names[full_[k]], positions_fit_->noise[full_[k]],
+                     median({columns.velocity[k].begin(), columns.velocity[k].end()}),
+                     median({columns.acceleration[k].begin(), columns.acceleration[k].end()})});
   for (size_t i = 0; i < partial_.size(); ++i)
     if (series_[i].fit) {
       const AutoEstimate& a = *series_[i].fit;
-      add(partial_[i], a, 0, velocity_everywhere_[partial_[i]] ? &a : nullptr);
+      const int m = a.series;  // accelerations from given velocities: column 1's velocity
+      out.push_back({model_.coordinate_names[partial_[i]], a.noise[0],
+                     column_median(a.first_se, m, 0),
+                     column_median(velocity_everywhere_[partial_[i]] ? a.first_se : a.second_se, m,
+                                   velocity_everywhere_[partial_[i]] ? 1 : 0)});
     }
   return out;
 }

@@ -5,6 +5,7 @@
 // ROS-free.
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,14 +26,27 @@ struct CoordinateError {
   double noise = 0, velocity_se = 0, acceleration_se = 0;
 };
 
+// Per coordinate in every row, per row: the standard errors error_summary takes the medians of
+// (a deque: grows without copying, 8 bytes a value).
+struct ErrorColumns {
+  std::vector<std::deque<double>> velocity, acceleration;
+};
+
+// What a piece of a longer recording (offline/offline_stream.h) takes from the whole one.
+struct WholeRecording {
+  std::vector<char> velocity_everywhere;  // per coordinate: velocities given in every row
+  // "auto": the whole recording's choices (AutoChooser) for the positions and, where some
+  // coordinate has them in every row, the given velocities; null: chosen over the piece.
+  std::shared_ptr<const AutoChoice> positions, velocities;
+};
+
 class OfflineStates {
  public:
   // `model` (coordinate-derivative speeds) and `recording` must outlive this object. max_gap:
   // seconds; 0 means default_max_gap of the stamps. When `recording` is a piece of a longer one
-  // (offline/offline_stream.h), `velocity_everywhere` (per coordinate: velocities given in every
-  // row) is the whole recording's.
+  // (offline/offline_stream.h), `whole` says what it takes from the whole recording.
   OfflineStates(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
-                double max_gap, const std::vector<char>* velocity_everywhere = nullptr);
+                double max_gap, const WholeRecording* whole = nullptr);
 
   // Fills `state` for row r; returns "" or why the row cannot be computed (too few samples
   // around it for the derivatives). Rows in increasing order, each at most once; rows may be
@@ -40,8 +54,12 @@ class OfflineStates {
   std::string state_at(int r, JointState<double>& state);
 
   double max_gap() const { return max_gap_; }
-  // Every estimated coordinate's error bars ("auto" only; empty for the fixed estimators).
-  std::vector<CoordinateError> error_summary() const;
+  // Every estimated coordinate's error bars ("auto" only; empty for the fixed estimators):
+  // medians over this recording's rows, or over `whole`'s (a longer recording's, gathered piece
+  // by piece with append_errors).
+  std::vector<CoordinateError> error_summary(const ErrorColumns* whole = nullptr) const;
+  // "auto": rows [begin, end)'s standard errors that error_summary takes the medians of.
+  void append_errors(int begin, int end, ErrorColumns& out) const;
   // "auto": the standard errors of each body's alpha and mass-center acceleration at row r, in
   // `state` (from state_at), propagated from the coordinates' (core/body_errors.h; given
   // derivatives and mimic rules count as exact). False, with nothing set, without them: a fixed
@@ -78,6 +96,7 @@ class OfflineStates {
   std::vector<int> full_;     // coordinates given in every row (share the weights)
   std::vector<int> partial_;  // the others (mimics aside)
   std::vector<char> velocity_everywhere_;
+  std::shared_ptr<const AutoChoice> positions_choice_, velocities_choice_;  // WholeRecording's
   std::vector<int> rule_until_;  // per coordinate: rows before it is recorded (mimics: rule)
   // Per row, over the coordinates of full_: none has a derivative given; all have both.
   std::vector<char> positions_only_, derivatives_given_;

@@ -4,6 +4,33 @@
 
 namespace mbk {
 
+namespace {
+
+// Buffer rows [next, next + chunk) of the stamps t are ready when the buffer holds, beyond the
+// first row more than reach.seconds after the last of them, reach.samples rows more (and one for
+// rounding); returns their end, or next.
+int ready_end(const std::vector<double>& t, int next, int chunk, const OfflineReach& reach) {
+  const int i = next + chunk - 1;
+  const int k =
+      static_cast<int>(std::upper_bound(t.begin() + i, t.end(), t[i] + reach.seconds) - t.begin());
+  return k + reach.samples + 1 < static_cast<int>(t.size()) ? i + 1 : next;
+}
+
+// The buffer rows before `next` that no row from next on reaches.
+int forgettable(const std::vector<double>& t, int next, const OfflineReach& reach) {
+  if (next >= static_cast<int>(t.size())) return 0;
+  const int p = static_cast<int>(
+      std::lower_bound(t.begin(), t.begin() + next, t[next] - reach.seconds) - t.begin());
+  return std::max(0, p - reach.samples - 2);
+}
+
+template <typename T>
+void drop_front(std::vector<T>& v, size_t count) {
+  v.erase(v.begin(), v.begin() + count);
+}
+
+}  // namespace
+
 RecordingSurvey::RecordingSurvey(int nq, bool keep_intervals)
     : nq(nq),
       keep_intervals(keep_intervals),
@@ -40,14 +67,13 @@ bool RecordingSurvey::streamable() const {
 }
 
 OfflineStream::OfflineStream(const Model& model, const OfflineEstimator& estimator,
-                             const OfflineReach& reach, double max_gap,
-                             std::vector<char> velocity_everywhere, int threads, int chunk_rows,
-                             RowSink sink)
+                             const OfflineReach& reach, double max_gap, WholeRecording whole,
+                             int threads, int chunk_rows, RowSink sink)
     : model_(model),
       estimator_(estimator),
       reach_(reach),
       max_gap_(max_gap),
-      velocity_everywhere_(std::move(velocity_everywhere)),
+      whole_(std::move(whole)),
       threads_(threads),
       chunk_rows_(std::max(1, chunk_rows)),
       sink_(std::move(sink)) {
@@ -69,44 +95,84 @@ void OfflineStream::add(double t, const double* position, const double* velocity
   }
 }
 
-// Row i is ready when the buffer holds, beyond the first row more than reach.seconds after it,
-// reach.samples rows more (and one for rounding).
 int OfflineStream::ready_end() const {
-  const std::vector<double>& t = buffer_.stamp;
-  const int i = next_ + chunk_rows_ - 1;
-  const int k =
-      static_cast<int>(std::upper_bound(t.begin() + i, t.end(), t[i] + reach_.seconds) - t.begin());
-  return k + reach_.samples + 1 < buffer_.rows() ? i + 1 : next_;
+  return mbk::ready_end(buffer_.stamp, next_, chunk_rows_, reach_);
 }
 
-void OfflineStream::compute(int end) {
-  OfflineBatch batch(model_, buffer_, estimator_, max_gap_, nullptr, threads_,
-                     &velocity_everywhere_);
+void OfflineStream::compute(int end, bool last) {
+  OfflineBatch batch(model_, buffer_, estimator_, max_gap_, nullptr, threads_, &whole_);
   batch.set_formatter(formatter_);
+  batch.set_body_errors(body_errors_);
   const RowSeconds s = compute_rows(batch, model_, next_, end, sink_, [](int) {});
   seconds_.compute += s.compute, seconds_.use += s.use;
+  if (hook_) hook_(batch.states(), buffer_, next_, end);
+  if (estimator_.automatic) batch.states().append_errors(next_, end, columns_);
+  if (estimator_.automatic && last) errors_ = batch.states().error_summary(&columns_);
   next_ = end;
   forget();
 }
 
 void OfflineStream::forget() {
-  if (next_ >= buffer_.rows()) return;
-  const std::vector<double>& t = buffer_.stamp;
-  const int p = static_cast<int>(
-      std::lower_bound(t.begin(), t.begin() + next_, t[next_] - reach_.seconds) - t.begin());
-  const int drop = std::max(0, p - reach_.samples - 2);
+  const int drop = forgettable(buffer_.stamp, next_, reach_);
   if (drop == 0) return;
-  const int nq = buffer_.nq;
-  buffer_.stamp.erase(buffer_.stamp.begin(), buffer_.stamp.begin() + drop);
+  const size_t nq = buffer_.nq;
+  drop_front(buffer_.stamp, drop);
   for (auto* v : {&buffer_.position, &buffer_.velocity, &buffer_.acceleration})
-    v->erase(v->begin(), v->begin() + static_cast<size_t>(drop) * nq);
-  buffer_.given.erase(buffer_.given.begin(),
-                      buffer_.given.begin() + static_cast<size_t>(drop) * nq);
+    drop_front(*v, drop * nq);
+  drop_front(buffer_.given, drop * nq);
   next_ -= drop;
 }
 
 void OfflineStream::finish() {
-  if (next_ < buffer_.rows()) compute(buffer_.rows());
+  if (next_ < buffer_.rows()) compute(buffer_.rows(), true);
+}
+
+AutoChoosePass::AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows)
+    : nq_(survey.nq),
+      max_gap_(max_gap),
+      chunk_rows_(std::max(1, chunk_rows)),
+      velocity_everywhere_(survey.velocity_everywhere),
+      positions_(survey.default_max_gap() / 5, survey.rows, survey.nq),
+      reach_(positions_.reach()) {
+  for (int c = 0; c < nq_; ++c)
+    if (survey.rows > 0 && survey.position_everywhere[c] && survey.velocity_everywhere[c])
+      velocities_ = std::make_unique<AutoChooser>(survey.default_max_gap() / 5, survey.rows, nq_);
+}
+
+void AutoChoosePass::add(double t, const double* position, const double* velocity) {
+  t_.push_back(t);
+  position_.insert(position_.end(), position, position + nq_);
+  velocity_.insert(velocity_.end(), velocity, velocity + nq_);
+  peak_rows_ = std::max(peak_rows_, static_cast<int>(t_.size()));
+  if (static_cast<int>(t_.size()) - next_ >= chunk_rows_) {
+    const int end = ready_end(t_, next_, chunk_rows_, reach_);
+    if (end - next_ >= chunk_rows_) take(end);
+  }
+}
+
+void AutoChoosePass::take(int end) {
+  const Segments segments = find_segments(t_, max_gap_);
+  positions_.add(t_, segments, position_.data(), nq_, first_, next_, end);
+  if (velocities_) velocities_->add(t_, segments, velocity_.data(), nq_, first_, next_, end);
+  next_ = end;
+  const int drop = forgettable(t_, next_, reach_);
+  drop_front(t_, drop);
+  drop_front(position_, static_cast<size_t>(drop) * nq_);
+  drop_front(velocity_, static_cast<size_t>(drop) * nq_);
+  next_ -= drop, first_ += drop;
+}
+
+WholeRecording AutoChoosePass::finish(OfflineReach& reach) {
+  if (next_ < static_cast<int>(t_.size())) take(static_cast<int>(t_.size()));
+  WholeRecording out{velocity_everywhere_, std::make_shared<const AutoChoice>(positions_.choice()),
+                     nullptr};
+  int longest = out.positions->longest();
+  if (velocities_) {
+    out.velocities = std::make_shared<const AutoChoice>(velocities_->choice());
+    longest = std::max(longest, out.velocities->longest());
+  }
+  offline_reach(out.positions->candidates[longest], reach);
+  return out;
 }
 
 }  // namespace mbk

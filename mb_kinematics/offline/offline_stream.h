@@ -11,8 +11,10 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <vector>
 
+#include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/offline/offline_batch.h"
 
 namespace mbk {
@@ -40,11 +42,11 @@ struct RecordingSurvey {
 class OfflineStream {
  public:
   using RowSink = std::function<void(const OfflineRow&)>;
-  // max_gap > 0 (the survey's default_max_gap unless the user gave one), velocity_everywhere
-  // from the survey; `model`, `estimator` outlive this object. chunk_rows: rows computed at once.
+  // max_gap > 0 (the survey's default_max_gap unless the user gave one), `whole`: the survey's
+  // velocity_everywhere ("auto": and AutoChoosePass's choices, `reach` theirs); `model`,
+  // `estimator` outlive this object. chunk_rows: rows computed at once.
   OfflineStream(const Model& model, const OfflineEstimator& estimator, const OfflineReach& reach,
-                double max_gap, std::vector<char> velocity_everywhere, int threads, int chunk_rows,
-                RowSink sink);
+                double max_gap, WholeRecording whole, int threads, int chunk_rows, RowSink sink);
 
   // A row as RecordingBuilder's sink gives it; computes a chunk when its rows are ready.
   void add(double t, const double* position, const double* velocity, const std::uint8_t* given);
@@ -52,6 +54,13 @@ class OfflineStream {
   void finish();
   // Every chunk's OfflineBatch formats its rows with `f` (OfflineBatch::set_formatter).
   void set_formatter(OfflineBatch::Formatter f) { formatter_ = std::move(f); }
+  // "auto": rows carry their bodies' error bars (OfflineBatch::set_body_errors).
+  void set_body_errors(bool on) { body_errors_ = on; }
+  // Called after each chunk with its states and rows [begin, end) of `piece`.
+  using ChunkHook = std::function<void(const OfflineStates&, const Recording& piece, int, int)>;
+  void set_chunk_hook(ChunkHook hook) { hook_ = std::move(hook); }
+  // "auto": the whole recording's error bars (OfflineStates::error_summary), after finish().
+  const std::vector<CoordinateError>& error_summary() const { return errors_; }
 
   int buffered_rows() const { return buffer_.rows(); }
   int peak_buffered_rows() const { return peak_rows_; }
@@ -60,21 +69,54 @@ class OfflineStream {
 
  private:
   int ready_end() const;  // rows [next_, ready_end()) can be computed now
-  void compute(int end);  // rows [next_, end) of the buffer, then forgets what is behind
-  void forget();          // drops rows no estimate still to compute reaches
+  // Rows [next_, end) of the buffer, then forgets what is behind; last: the recording's end.
+  void compute(int end, bool last = false);
+  void forget();  // drops rows no estimate still to compute reaches
 
   const Model& model_;
   const OfflineEstimator& estimator_;
   OfflineReach reach_;
   double max_gap_;
-  std::vector<char> velocity_everywhere_;
+  WholeRecording whole_;
   int threads_, chunk_rows_;
   RowSink sink_;
   OfflineBatch::Formatter formatter_;
+  bool body_errors_ = false;
+  ChunkHook hook_;
+  ErrorColumns columns_;  // "auto": every row's, for the medians of error_summary
+  std::vector<CoordinateError> errors_;
   Recording buffer_;  // the rows kept, oldest first
   int next_ = 0;      // buffer row of the first row not yet computed
   int peak_rows_ = 0;
   RowSeconds seconds_;
+};
+
+// "auto"'s choice pass (estimation/auto_estimator.h) over a recording given a row at a time after
+// the survey, keeping only the rows a selection sample still to add reaches: the whole
+// recording's choices for its positions and, where some coordinate has them in every row, for
+// its given velocities, the same as estimate_auto's on the whole recording.
+class AutoChoosePass {
+ public:
+  AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows);
+  void add(double t, const double* position, const double* velocity);
+  // The choices (with the survey's velocity_everywhere), and the estimating pass's reach: the
+  // longest window chosen.
+  WholeRecording finish(OfflineReach& reach);
+  int peak_buffered_rows() const { return peak_rows_; }
+
+ private:
+  void take(int end);  // the selection samples among buffer rows [next_, end), then forgets
+
+  int nq_;
+  double max_gap_;
+  int chunk_rows_;
+  std::vector<char> velocity_everywhere_;
+  AutoChooser positions_;
+  std::unique_ptr<AutoChooser> velocities_;      // when some coordinate has them in every row
+  OfflineReach reach_;                           // the longest candidate's
+  std::vector<double> t_, position_, velocity_;  // the rows kept, oldest first
+  long first_ = 0;                               // the recording's row of buffer row 0
+  int next_ = 0, peak_rows_ = 0;
 };
 
 }  // namespace mbk

@@ -40,10 +40,28 @@ struct Result {
   double stamp;
   std::string drop;
   mbk::Data<double> data;
+  std::vector<mbk::Vec3<double>> alpha_se, acceleration_se;  // "auto"
 };
 
 void keep(std::vector<Result>& out, const mbk::OfflineRow& row) {
-  out.push_back({row.stamp, row.drop_reason + row.drop_detail, row.data});
+  out.push_back(
+      {row.stamp, row.drop_reason + row.drop_detail, row.data, row.alpha_se, row.acceleration_se});
+}
+
+// "auto": every row's coordinate error bars (velocity, acceleration per coordinate) and the
+// medians over the recording.
+struct Errors {
+  std::vector<std::vector<double>> rows;
+  std::vector<mbk::CoordinateError> summary;
+};
+
+void keep_errors(const mbk::OfflineStates& states, int begin, int end, int nq, Errors& out) {
+  std::vector<double> v(nq), a(nq);
+  for (int r = begin; r < end; ++r) {
+    ASSERT_TRUE(states.coordinate_errors(r, v.data(), a.data()));
+    out.rows.push_back(v);
+    out.rows.back().insert(out.rows.back().end(), a.begin(), a.end());
+  }
 }
 
 void expect_same(const std::vector<Result>& a, const std::vector<Result>& b) {
@@ -52,6 +70,8 @@ void expect_same(const std::vector<Result>& a, const std::vector<Result>& b) {
     ASSERT_EQ(a[r].stamp, b[r].stamp) << r;
     ASSERT_EQ(a[r].drop, b[r].drop) << r;
     if (!a[r].drop.empty()) continue;
+    ASSERT_EQ(a[r].alpha_se, b[r].alpha_se) << r;
+    ASSERT_EQ(a[r].acceleration_se, b[r].acceleration_se) << r;
     for (size_t k = 1; k < a[r].data.rotation.size(); ++k) {
       ASSERT_EQ(a[r].data.rotation[k], b[r].data.rotation[k]) << r << " body " << k;
       ASSERT_EQ(a[r].data.omega[k], b[r].data.omega[k]) << r << " body " << k;
@@ -62,7 +82,8 @@ void expect_same(const std::vector<Result>& a, const std::vector<Result>& b) {
   }
 }
 
-std::vector<Result> whole(const mbk::Model& model, const mbk::OfflineEstimator& e, long rows) {
+std::vector<Result> whole(const mbk::Model& model, const mbk::OfflineEstimator& e, long rows,
+                          Errors* errors = nullptr) {
   const mbk_test::Trajectory trajectory(model, 2);
   mbk::Recording rec;
   rec.nq = model.nq;
@@ -75,14 +96,20 @@ std::vector<Result> whole(const mbk::Model& model, const mbk::OfflineEstimator& 
     rec.given.insert(rec.given.end(), s.given.begin(), s.given.end());
   }
   mbk::OfflineBatch batch(model, rec, e, 0, nullptr, 2);
+  batch.set_body_errors(e.automatic);
   std::vector<Result> out;
   mbk::compute_rows(
       batch, model, 0, rec.rows(), [&](const mbk::OfflineRow& row) { keep(out, row); }, [](int) {});
+  if (errors) {
+    keep_errors(batch.states(), 0, rec.rows(), model.nq, *errors);
+    errors->summary = batch.error_summary();
+  }
   return out;
 }
 
+// "auto" chooses in a pass of its own first (AutoChoosePass); peak: the most rows either pass kept.
 std::vector<Result> streamed(const mbk::Model& model, const mbk::OfflineEstimator& e, long rows,
-                             int chunk, int* peak = nullptr) {
+                             int chunk, int* peak = nullptr, Errors* errors = nullptr) {
   const mbk_test::Trajectory trajectory(model, 2);
   mbk::RecordingSurvey survey(model.nq);
   for (long i = 0; i < rows; ++i) {
@@ -91,16 +118,34 @@ std::vector<Result> streamed(const mbk::Model& model, const mbk::OfflineEstimato
   }
   EXPECT_TRUE(survey.streamable());
   mbk::OfflineReach reach;
-  EXPECT_TRUE(mbk::offline_reach(e, reach));
+  mbk::WholeRecording whole;
+  whole.velocity_everywhere = survey.velocity_everywhere;
+  int peak_choosing = 0;
+  if (e.automatic) {
+    mbk::AutoChoosePass pass(survey, survey.default_max_gap(), chunk);
+    for (long i = 0; i < rows; ++i) {
+      const Sample s = sample(model, trajectory, i);
+      pass.add(s.t, s.position.data(), s.velocity.data());
+    }
+    whole = pass.finish(reach);
+    peak_choosing = pass.peak_buffered_rows();
+  } else {
+    EXPECT_TRUE(mbk::offline_reach(e, reach));
+  }
   std::vector<Result> out;
-  mbk::OfflineStream stream(model, e, reach, survey.default_max_gap(), survey.velocity_everywhere,
-                            2, chunk, [&](const mbk::OfflineRow& row) { keep(out, row); });
+  mbk::OfflineStream stream(model, e, reach, survey.default_max_gap(), whole, 2, chunk,
+                            [&](const mbk::OfflineRow& row) { keep(out, row); });
+  stream.set_body_errors(e.automatic);
+  if (errors)
+    stream.set_chunk_hook([&](const mbk::OfflineStates& states, const mbk::Recording&, int begin,
+                              int end) { keep_errors(states, begin, end, model.nq, *errors); });
   for (long i = 0; i < rows; ++i) {
     const Sample s = sample(model, trajectory, i);
     stream.add(s.t, s.position.data(), s.velocity.data(), s.given.data());
   }
   stream.finish();
-  if (peak) *peak = stream.peak_buffered_rows();
+  if (peak) *peak = std::max(peak_choosing, stream.peak_buffered_rows());
+  if (errors) errors->summary = stream.error_summary();
   return out;
 }
 
@@ -114,6 +159,31 @@ TEST(OfflineStreamTest, ChunkByChunkEqualsTheWholeRecordingBitForBit) {
     for (const Result& r : all) drops += !r.drop.empty();
     EXPECT_EQ(drops, 1);  // the lone sample
     for (int chunk : {7, 300, 5000}) expect_same(all, streamed(model, e, 2600, chunk));
+  }
+}
+
+// "auto", the default: a choice pass over the pieces (AutoChoosePass), then the chosen windows a
+// chunk at a time give the whole recording's estimates, body and coordinate error bars and their
+// medians, bit for bit.
+TEST(OfflineStreamTest, AutoChunkByChunkEqualsTheWholeRecordingBitForBit) {
+  const mbk::Model model = mbk::make_random_tree(6, 3);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("auto");
+  Errors all_errors;
+  const std::vector<Result> all = whole(model, e, 2600, &all_errors);
+  ASSERT_FALSE(all_errors.summary.empty());
+  for (int chunk : {50, 700, 5000}) {
+    SCOPED_TRACE(chunk);
+    Errors errors;
+    expect_same(all, streamed(model, e, 2600, chunk, nullptr, &errors));
+    EXPECT_EQ(errors.rows, all_errors.rows);
+    ASSERT_EQ(errors.summary.size(), all_errors.summary.size());
+    for (size_t c = 0; c < errors.summary.size(); ++c) {
+      const mbk::CoordinateError &a = errors.summary[c], &b = all_errors.summary[c];
+      EXPECT_EQ(a.name, b.name);
+      EXPECT_EQ(a.noise, b.noise) << a.name;
+      EXPECT_EQ(a.velocity_se, b.velocity_se) << a.name;
+      EXPECT_EQ(a.acceleration_se, b.acceleration_se) << a.name;
+    }
   }
 }
 
@@ -131,13 +201,11 @@ TEST(OfflineStreamTest, SurveyFindsTheWholeRecordingsMaxGap) {
   EXPECT_EQ(survey.rows, 999);
 }
 
-// A recording generated on the fly, never held: the rows kept stay below a bound set by the
-// chunk and the estimator's reach (0.4 s at 1 kHz), the same for 10 s as for 50 s.
-TEST(OfflineStreamTest, RowsKeptDoNotGrowWithTheRecording) {
+// The rows `e` keeps on a recording generated on the fly, never held: below a bound set by the
+// chunk and `reach` at 1 kHz, the same for 10 s as for 50 s.
+void expect_rows_kept_bounded(const char* name, const mbk::OfflineReach& reach) {
   const mbk::Model model = mbk::make_random_tree(6, 3);
-  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_0.4s_4");
-  mbk::OfflineReach reach;
-  ASSERT_TRUE(mbk::offline_reach(e, reach));
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator(name);
   const int chunk = 1000;
   const int bound = chunk + 2 * static_cast<int>(1000 * reach.seconds * 1.01 + reach.samples + 3);
   int peak_short = 0, peak_long = 0;
@@ -145,6 +213,21 @@ TEST(OfflineStreamTest, RowsKeptDoNotGrowWithTheRecording) {
   EXPECT_EQ(streamed(model, e, 50000, chunk, &peak_long).size(), 50000u);
   EXPECT_LE(peak_long, bound);
   EXPECT_EQ(peak_long, peak_short);
+}
+
+// The estimator's reach: 0.4 s.
+TEST(OfflineStreamTest, RowsKeptDoNotGrowWithTheRecording) {
+  mbk::OfflineReach reach;
+  ASSERT_TRUE(mbk::offline_reach(mbk::make_offline_estimator("centered_0.4s_4"), reach));
+  expect_rows_kept_bounded("centered_0.4s_4", reach);
+}
+
+// "auto": its longest candidate's reach (641 intervals of 1 ms), in its choice pass as in its
+// estimating one.
+TEST(OfflineStreamTest, AutoRowsKeptDoNotGrowWithTheRecording) {
+  mbk::OfflineReach reach;
+  ASSERT_TRUE(mbk::offline_reach(mbk::auto_candidates(1e-3).back(), reach));
+  expect_rows_kept_bounded("auto", reach);
 }
 
 // RecordingBuilder::stream_to hands out the rows finish() keeps and drops the same ones, counted
