@@ -235,6 +235,15 @@ class SampleErrorsFile {
   std::ofstream f_;
 };
 
+// The error bars' side files go beside a CSV that is (or will be) a regular file only: not
+// beside /dev/null, /dev/stdout or a pipe (which would put /dev/null.errors.csv into /dev).
+bool has_side_files(const std::string& csv) {
+  if (csv.empty()) return false;
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(csv, ec);
+  return !std::filesystem::exists(st) || std::filesystem::is_regular_file(st);
+}
+
 // OUT.csv's side file of error bars: OUT.errors.csv.
 std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
   return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
@@ -267,7 +276,7 @@ mbk::WholeRecording choose_auto(const BagOptions& o, const mbk::Model& model,
   builder.stream_to(
       [&](double t, const double* p, const double* v, const std::uint8_t*) { pass.add(t, p, v); });
   BaseOdometry unused;
-  read_input(o, builder, unused, s, true);
+  read_input(o, model, builder, unused, s, true);
   builder.finish();
   return pass.finish(reach);
 }
@@ -304,7 +313,8 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   stream.set_formatter(out.formatter());
   stream.set_body_errors(out.csv && estimator.automatic);
   std::unique_ptr<SampleErrorsFile> sample_errors;
-  if (out.csv && estimator.automatic) {
+  const bool sides = estimator.automatic && has_side_files(o.out_csv);
+  if (out.csv && sides) {
     sample_errors =
         std::make_unique<SampleErrorsFile>(errors_path(o.out_csv, ".sample_errors.csv"), model);
     stream.set_chunk_hook([&](const mbk::OfflineStates& states, const mbk::Recording& piece,
@@ -325,7 +335,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   const auto t_close = Clock::now();
   out.close();
   s.errors = stream.error_summary();
-  if (!o.out_csv.empty() && !s.errors.empty()) {
+  if (sample_errors && !s.errors.empty()) {
     write_errors(errors_path(o.out_csv), s.errors);
     sample_errors->commit();
   }
@@ -438,7 +448,7 @@ BagSummary run_bag(const BagOptions& o) {
   batch.set_body_errors(out.csv && estimator.automatic && !floating);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
-  if (!o.out_csv.empty() && !s.errors.empty()) {
+  if (has_side_files(o.out_csv) && !s.errors.empty()) {
     write_errors(errors_path(o.out_csv), s.errors);
     SampleErrorsFile sample_errors(errors_path(o.out_csv, ".sample_errors.csv"), model);
     sample_errors.write(rec, batch.states(), 0, rec.rows());

@@ -9,6 +9,7 @@
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/String.h>
+#include <sys/stat.h>
 #include <tf2_msgs/TFMessage.h>
 #include <topic_tools/shape_shifter.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/core/floating_base.h"
@@ -260,6 +262,28 @@ std::string read_file(const std::string& path) {
 // must be the same, byte for byte, whatever the number of threads. 1201 samples: three blocks
 // of 512 rows; every third message names half the joints (their own sample series); the last,
 // after a long gap, is too lonely for derivatives (dropped and counted).
+// A CSV that is not a regular file (here a pipe, like /dev/null or /dev/stdout) gets no error-bar
+// side files beside it: they would land in /dev for --csv /dev/null.
+TEST(BagTest, NoSideFilesBesideACsvThatIsNotARegularFile) {
+  const std::string in = write_bag("pipe_in.bag", 50, 1.0);
+  mbk_offline::BagOptions o = options(in, "");
+  o.out_csv = temp("pipe_out.csv");
+  for (const char* name : {"pipe_out.csv", "pipe_out.errors.csv", "pipe_out.sample_errors.csv"})
+    std::remove(temp(name).c_str());
+  ASSERT_EQ(mkfifo(o.out_csv.c_str(), 0600), 0);
+  long drained = 0;
+  std::thread reader([&] {
+    std::ifstream f(o.out_csv);
+    for (std::string line; std::getline(f, line);) ++drained;
+  });
+  mbk_offline::run_bag(o);
+  reader.join();
+  EXPECT_GT(drained, 50);
+  EXPECT_FALSE(std::ifstream(temp("pipe_out.errors.csv")).good());
+  EXPECT_FALSE(std::ifstream(temp("pipe_out.sample_errors.csv")).good());
+  std::remove(o.out_csv.c_str());
+}
+
 TEST(BagTest, AnyNumberOfThreadsWritesTheSameOutput) {
   const std::string in =
       write_bag("threads.bag", 100, 12.01, [](int i, sensor_msgs::JointState& js) {
