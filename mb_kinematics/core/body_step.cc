@@ -135,10 +135,9 @@ BodySteps make_body_steps(const Model& model, KernelChoice choice) {
     }
     step.euler_order = body.joint.euler_order;
     if (is_ball_or_free(step.kernel)) {
-      const Mat3<double> m = ball_matrix(body.joint, step.kernel);
-      if (m != Mat3<double>::Identity()) {
+      if (body.joint.rotation != Mat3<double>::Identity()) {  // else M = S0J (P) by the kernel
         step.matrices = static_cast<int>(out.matrices.size());
-        out.matrices.push_back(m);
+        out.matrices.push_back(ball_matrix(body.joint, step.kernel));
       }
     } else if (step.kernel == JointKernel::kFixedRotated ||
                step.kernel == JointKernel::kPrismaticRotated) {

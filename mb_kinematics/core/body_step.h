@@ -55,11 +55,11 @@ struct BodyStep {
   int q_index = 0;
   int v_index = 0;
   // This body's first constant in BodySteps::matrices: C_k (fixed, prismatic, ball and free
-  // joints with C_k != I; C_k P for other Euler orders when not I), P0 P1 P2 (revolute), P0 P1 P2
-  // [C u1, C u2, C a] (planar); else -1.
+  // joints with C_k != I; C_k P for other Euler orders when C_k != I, else the kernel's S0J P),
+  // P0 P1 P2 (revolute), P0 P1 P2 [C u1, C u2, C a] (planar); else -1.
   int matrices = -1;
   int angle = -1;  // its first angle in BodySteps::angles (revolute, 1-2-3 and planar joints)
-  EulerOrder euler_order = EulerOrder::kXYZ;        // kBallOrdered, kFreeOrdered: C_k P in matrices
+  EulerOrder euler_order = EulerOrder::kXYZ;        // kBallOrdered, kFreeOrdered: their order
   Vec3<double> offset = Vec3<double>::Zero();       // q_k, in Bj
   Vec3<double> mass_center = Vec3<double>::Zero();  // r_k, in Bk
   Vec3<double> axis = Vec3<double>::Zero();         // C_k a, in Bj: w_k / q' or s_k' / q'

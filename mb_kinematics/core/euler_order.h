@@ -6,6 +6,7 @@
 
 #include <array>
 #include <string>
+#include <type_traits>
 
 #include "mb_kinematics/core/types.h"
 
@@ -136,6 +137,39 @@ inline constexpr std::array<EulerMap, 12> kEulerMaps{
 
 inline const EulerMap& euler_map(EulerOrder order) {
   return kEulerMaps[static_cast<size_t>(order)];
+}
+
+// f(std::integral_constant<EulerOrder, order>{}): a kernel templated on the order, so its maps
+// are constants (one instance per order, as Pinocchio instantiates per joint type).
+template <typename F>
+void with_euler_order(EulerOrder order, F&& f) {
+  using O = EulerOrder;
+  switch (order) {
+    case O::kXYZ:
+      return f(std::integral_constant<O, O::kXYZ>{});
+    case O::kXZY:
+      return f(std::integral_constant<O, O::kXZY>{});
+    case O::kYXZ:
+      return f(std::integral_constant<O, O::kYXZ>{});
+    case O::kYZX:
+      return f(std::integral_constant<O, O::kYZX>{});
+    case O::kZXY:
+      return f(std::integral_constant<O, O::kZXY>{});
+    case O::kZYX:
+      return f(std::integral_constant<O, O::kZYX>{});
+    case O::kXYX:
+      return f(std::integral_constant<O, O::kXYX>{});
+    case O::kXZX:
+      return f(std::integral_constant<O, O::kXZX>{});
+    case O::kYXY:
+      return f(std::integral_constant<O, O::kYXY>{});
+    case O::kYZY:
+      return f(std::integral_constant<O, O::kYZY>{});
+    case O::kZXZ:
+      return f(std::integral_constant<O, O::kZXZ>{});
+    case O::kZYZ:
+      return f(std::integral_constant<O, O::kZYZ>{});
+  }
 }
 
 }  // namespace mbk

@@ -91,30 +91,17 @@ void angles_123_columns(S ca, S sa, S cb, S sb, const S* qd, Vec3<S>* angular,
       qd[0] * Vec3<S>(S(0), -ca * cb, -sa * cb) + qd[1] * Vec3<S>(cb, sa * sb, -ca * sb);
 }
 
-// Ball and free joints' angles alpha, beta, gamma in any order (euler_order.h): the 1-2-3
+// Ball and free joints' angles alpha, beta, gamma in the order O (euler_order.h): the 1-2-3
 // rotation and columns at (alpha, beta + shift, sign gamma), carried by the order's P and Q:
-// SJK = P R_123 Q, columns P [e1, A e2, sign A B e3] and their rates. qd: nullptr for the
-// rotation alone.
-template <typename S>
-Mat3<S> angles_motion(EulerOrder order, const S* q, const S* qd, Vec3<S>* angular,
-                      Vec3<S>* angular_dot) {
-  S ca, sa, cb, sb, cg, sg;
-  sin_cos(q[0], sa, ca);
-  sin_cos(q[1], sb, cb);
-  sin_cos(q[2], sg, cg);
-  if (order == EulerOrder::kXYZ) {  // P = Q = I
-    if (qd) angles_123_columns(ca, sa, cb, sb, qd, angular, angular_dot);
-    return rotation_123(ca, sa, cb, sb, cg, sg);
-  }
-  const EulerMap& map = euler_map(order);
-  if (map.shifted) {  // cos, sin of beta + pi/2
-    const S c = cb;
-    cb = -sb;
-    sb = c;
-  }
-  sg *= S(map.gamma_sign);
+// SJK = P R_123 Q, columns P [e1, A e2, sign A B e3] and their rates. c, s: the angles' cosines
+// and sines; qd: nullptr for the rotation alone.
+template <EulerOrder O, typename S>
+Mat3<S> ordered_angles_motion(const S* c, const S* s, const S* qd, Vec3<S>* angular,
+                              Vec3<S>* angular_dot) {
+  constexpr EulerMap map = kEulerMaps[static_cast<size_t>(O)];
+  const S cb = map.shifted ? -s[1] : c[1], sb = map.shifted ? c[1] : s[1];  // of beta + shift
   if (qd) {
-    angles_123_columns(ca, sa, cb, sb, qd, angular, angular_dot);
+    angles_123_columns(c[0], s[0], cb, sb, qd, angular, angular_dot);
     angular[2] *= S(map.gamma_sign);  // the rate of sign * gamma is sign * gamma'
     angular_dot[2] *= S(map.gamma_sign);
     for (int i = 0; i < 3; ++i) {
@@ -122,10 +109,27 @@ Mat3<S> angles_motion(EulerOrder order, const S* q, const S* qd, Vec3<S>* angula
       angular_dot[i] = map.p.times(angular_dot[i]);
     }
   }
-  const Mat3<S> r = rotation_123(ca, sa, cb, sb, cg, sg);
+  const Mat3<S> r = rotation_123(c[0], s[0], cb, sb, c[2], S(map.gamma_sign) * s[2]);
   Mat3<S> out;  // P r Q, column j of r Q = sign_j r e_{index_j}
   for (int j = 0; j < 3; ++j)
     out.col(j) = map.p.times(Vec3<S>(S(map.q.sign[j]) * r.col(map.q.index[j])));
+  return out;
+}
+
+// The same in any order, each order's instance (with_euler_order).
+template <typename S>
+Mat3<S> angles_motion(EulerOrder order, const S* q, const S* qd, Vec3<S>* angular,
+                      Vec3<S>* angular_dot) {
+  S c[3], s[3];
+  for (int i = 0; i < 3; ++i) sin_cos(q[i], s[i], c[i]);
+  if (order == EulerOrder::kXYZ) {  // P = Q = I
+    if (qd) angles_123_columns(c[0], s[0], c[1], s[1], qd, angular, angular_dot);
+    return rotation_123(c[0], s[0], c[1], s[1], c[2], s[2]);
+  }
+  Mat3<S> out;
+  with_euler_order(order, [&](auto o) {
+    out = ordered_angles_motion<decltype(o)::value>(c, s, qd, angular, angular_dot);
+  });
   return out;
 }
 

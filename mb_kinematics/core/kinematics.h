@@ -258,19 +258,27 @@ void angles_123_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
   turn_columns<2>(f.mab, c[2], s[2], s0k);
 }
 
-// Angles in any other order (euler_order.h EulerMap): S0K = M A(alpha) B(beta + shift)
-// C(sign gamma) Q with M = S0J C_k P, Q a signed permutation of the columns.
+// out = M P for a signed permutation P (column j: sign_j times column index_j of M); no
+// arithmetic when P is a compile-time constant.
 template <typename S>
-void ordered_angles_pose(const EulerMap& map, const S* c, const S* s, BallFrame<S>& f,
-                         Mat3<S>& s0k) {
+void times_permutation(const Mat3<S>& m, const SignedPermutation& p, Mat3<S>& out) {
+  for (int j = 0; j < 3; ++j) out.col(j) = S(p.sign[j]) * m.col(p.index[j]);
+}
+
+// Angles in the order O (euler_order.h EulerMap): S0K = M A(alpha) B(beta + shift)
+// C(sign gamma) Q with M = S0J C_k P, Q a signed permutation of the columns, known at compile
+// time (shift, sign and shuffle cost nothing more than the 1-2-3 turns).
+template <EulerOrder O, typename S>
+void ordered_angles_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
+  constexpr EulerMap map = kEulerMaps[static_cast<size_t>(O)];
   const S cb = map.shifted ? -s[1] : c[1], sb = map.shifted ? c[1] : s[1];
   f.gamma_sign = S(map.gamma_sign);
   turn_columns<0>(f.m, c[0], s[0], f.ma);
   f.cos_beta = cb;
   turn_columns<1>(f.ma, cb, sb, f.mab);
   Mat3<S> mabc;
-  turn_columns<2>(f.mab, c[2], f.gamma_sign * s[2], mabc);
-  for (int j = 0; j < 3; ++j) s0k.col(j) = S(map.q.sign[j]) * mabc.col(map.q.index[j]);
+  turn_columns<2>(f.mab, c[2], S(map.gamma_sign) * s[2], mabc);
+  times_permutation(mabc, map.q, s0k);
 }
 
 template <JointKernel K>
@@ -282,33 +290,37 @@ template <JointKernel K>
 constexpr bool kAngles123 = K == JointKernel::kBall123 || K == JointKernel::kFree123 || kOrdered<K>;
 
 // A free joint's (x, y, z) along the joint frame's axes in M's: P^T (x, y, z) for another
-// Euler order (M = S0J C_k P), else (x, y, z).
-template <JointKernel K, typename S>
-Vec3<S> joint_frame_vector(const BodyStep& b, const S* x) {
+// Euler order O (M = S0J C_k P), else (x, y, z).
+template <JointKernel K, EulerOrder O, typename S>
+Vec3<S> joint_frame_vector(const S* x) {
   const Vec3<S> v(x[0], x[1], x[2]);
-  if constexpr (kOrdered<K>) return euler_map(b.euler_order).p.transpose_times(v);
+  if constexpr (kOrdered<K>) return kEulerMaps[static_cast<size_t>(O)].p.transpose_times(v);
   return v;
 }
 
 // Ball and free joints: M = S0J C_k, S0K = M R with R of the 1-2-3 angles or the Euler
 // parameters, d = S0J q_k + M s with s = (x, y, z) for free joints (along the joint frame's
-// axes).
-template <JointKernel K, typename S>
+// axes). O: the order of kBallOrdered and kFreeOrdered (with_euler_order).
+template <JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
 void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const DataView<S>& data,
                BallFrame<S>& f, Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
   const S* x = q + b.q_index;
   const S* angles = kFreeJoint<K> ? x + 3 : x;
-  f.m = b.matrices < 0 ? s0j : Mat3<S>(s0j * model.steps.matrices[b.matrices].cast<S>());
+  if (b.matrices >= 0)
+    f.m = s0j * model.steps.matrices[b.matrices].cast<S>();  // C_k, or C_k P folded at load
+  else if constexpr (kOrdered<K>)
+    times_permutation(s0j, kEulerMaps[static_cast<size_t>(O)].p, f.m);  // C_k = I: S0J P
+  else
+    f.m = s0j;
   if constexpr (kOrdered<K>)
-    ordered_angles_pose(euler_map(b.euler_order), data.cosine + b.angle, data.sine + b.angle, f,
-                        data.rotation[k]);
+    ordered_angles_pose<O>(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
   else if constexpr (kAngles123<K>)
     angles_123_pose(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
   else
     data.rotation[k] = f.m * rotation_euler(angles);
   d = times_constant(s0j, b.offset, b.offset_shape);
-  if constexpr (kFreeJoint<K>) d += f.m * joint_frame_vector<K>(b, x);
+  if constexpr (kFreeJoint<K>) d += f.m * joint_frame_vector<K, O>(x);
 }
 
 // Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
@@ -353,8 +365,8 @@ bool uses_joint_motion(JointKernel kernel) {
 // uses_joint_motion); also returns d = S0J (q_k + s_k), rho = S0K r_k and, for ball and free
 // joints, their frames f. For partial_velocity_kinematics.
 template <typename S>
-void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, Data<S>& all,
-               Vec3<S>& d, Vec3<S>& rho, BallFrame<S>& f) {
+MBK_FLATTEN void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m,
+                           Data<S>& all, Vec3<S>& d, Vec3<S>& rho, BallFrame<S>& f) {
   const DataView<S> data(all);
   const BodyStep& b = model.steps.steps[k];
   if (uses_joint_motion<S>(b.kernel)) {
@@ -398,10 +410,14 @@ void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m, D
         ball_pose<JointKernel::kFreeEuler>(model, b, k, q, data, f, d);
         break;
       case JointKernel::kBallOrdered:
-        ball_pose<JointKernel::kBallOrdered>(model, b, k, q, data, f, d);
+        with_euler_order(b.euler_order, [&](auto o) {
+          ball_pose<JointKernel::kBallOrdered, decltype(o)::value>(model, b, k, q, data, f, d);
+        });
         break;
       case JointKernel::kFreeOrdered:
-        ball_pose<JointKernel::kFreeOrdered>(model, b, k, q, data, f, d);
+        with_euler_order(b.euler_order, [&](auto o) {
+          ball_pose<JointKernel::kFreeOrdered, decltype(o)::value>(model, b, k, q, data, f, d);
+        });
         break;
       case JointKernel::kPlanar:
         planar_pose(model, b, k, q, data, d);
@@ -505,34 +521,36 @@ void motion_step(const Model& model, int k, const StateView<S>& state, const Dat
 // carried by M are a0 = M e1, a1 = (M A) e2, a2 = (M A B) e3, and their rates (eq. 4.5) are
 // a1' = alpha' (M A) e3 and a2' = -cos beta alpha' a1 + beta' (M A B) e1 (A' = A [e1]x alpha',
 // B' = B [e2]x beta'); linear in M, as C_k (angular_dot) carries them in joint_motion.
-// kSignedGamma: another order's (ordered_angles_pose), whose a2 and a2' carry the sign of gamma,
+// kGammaSign: another order's sign of gamma (ordered_angles_pose), whose a2 and a2' carry it,
 // here on gamma's rates (exact: the sign is +-1).
-template <Level L, bool kSignedGamma, typename S>
+template <Level L, int kGammaSign, typename S>
 void angles_123_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
   const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1), a2 = f.mab.col(2);
-  const S gamma_rate = kSignedGamma ? f.gamma_sign * y[2] : y[2];
+  const S gamma_rate = kGammaSign == 1 ? y[2] : -y[2];
   t.w = a0 * y[0] + a1 * y[1] + a2 * gamma_rate;
   if constexpr (L == Level::kAcceleration) {
     const Vec3<S> a1_dot = f.ma.col(2) * y[0];
     const Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
-    const S gamma_acceleration = kSignedGamma ? f.gamma_sign * yd[2] : yd[2];
+    const S gamma_acceleration = kGammaSign == 1 ? yd[2] : -yd[2];
     t.wd = a0 * yd[0] + a1 * yd[1] + a2 * gamma_acceleration + a1_dot * y[1] + a2_dot * gamma_rate;
   }
 }
 
 // Ball and free joints (ball_pose): the rates of the angles in R (1-2-3 angles from their
-// columns, Euler parameters in the joint frame and then M), and s_k' = M (x', y', z').
-template <Level L, JointKernel K, typename S>
+// columns, Euler parameters in the joint frame and then M), and s_k' = M (x', y', z'). O: as
+// for ball_pose.
+template <Level L, JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
 void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                const DataView<S>& data) {
   JointTerms<S> t;
   BallFrame<S> f;
-  ball_pose<K>(model, b, k, state.q, data, f, t.d);
+  ball_pose<K, O>(model, b, k, state.q, data, f, t.d);
   if constexpr (L != Level::kPose) {
     constexpr int kAngular = kFreeJoint<K> ? 3 : 0;  // the angles' first coordinate and speed
     const S *y = state.y + b.v_index, *yd = state.yd + b.v_index;
     if constexpr (kAngles123<K>) {
-      angles_123_rates<L, kOrdered<K>>(f, y + kAngular, yd + kAngular, t);
+      angles_123_rates<L, kEulerMaps[static_cast<size_t>(O)].gamma_sign>(f, y + kAngular,
+                                                                         yd + kAngular, t);
     } else {
       Vec3<S> w, wd = Vec3<S>::Zero();  // wd: set only at kAcceleration
       detail::euler_rates(state.q + b.q_index + kAngular, y + kAngular,
@@ -541,8 +559,8 @@ void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>&
       if constexpr (L == Level::kAcceleration) t.wd = f.m * wd;
     }
     if constexpr (kFreeJoint<K>) {
-      t.sd = f.m * joint_frame_vector<K>(b, y);
-      if constexpr (L == Level::kAcceleration) t.sdd = f.m * joint_frame_vector<K>(b, yd);
+      t.sd = f.m * joint_frame_vector<K, O>(y);
+      if constexpr (L == Level::kAcceleration) t.sdd = f.m * joint_frame_vector<K, O>(yd);
     }
   }
   body_update<L, true, kFreeJoint<K>>(b, k, t, data);
@@ -841,10 +859,14 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         ball_step<L, JointKernel::kFreeEuler>(model, b, k, state, data);
         break;
       case JointKernel::kBallOrdered:
-        ball_step<L, JointKernel::kBallOrdered>(model, b, k, state, data);
+        with_euler_order(b.euler_order, [&](auto o) {
+          ball_step<L, JointKernel::kBallOrdered, decltype(o)::value>(model, b, k, state, data);
+        });
         break;
       case JointKernel::kFreeOrdered:
-        ball_step<L, JointKernel::kFreeOrdered>(model, b, k, state, data);
+        with_euler_order(b.euler_order, [&](auto o) {
+          ball_step<L, JointKernel::kFreeOrdered, decltype(o)::value>(model, b, k, state, data);
+        });
         break;
       case JointKernel::kPlanar:
         if constexpr (kFolded<S>)

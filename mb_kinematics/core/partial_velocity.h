@@ -65,8 +65,9 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
   for (int k = 1; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     const int j = body.lower;
-    joint_motion(body.joint, model.speeds, state.position.data() + body.q_index,
-                 velocities ? y + body.v_index : nullptr, m);
+    if (velocities || detail::uses_joint_motion<S>(model.steps.steps[k].kernel))  // else unused
+      joint_motion(body.joint, model.speeds, state.position.data() + body.q_index,
+                   velocities ? y + body.v_index : nullptr, m);
     Vec3<S> d = Vec3<S>::Zero(), rho;  // d: set by pose_step (zero for GCC's warning)
     detail::BallFrame<S> f;
     detail::pose_step(model, k, state.position.data(), m, data, d, rho, f);

@@ -27,13 +27,15 @@ using mbk::EulerOrder;
 constexpr int kOrders = static_cast<int>(EulerOrder::kLast) + 1;
 
 // A random tree of n bodies on ball and free joints whose orders cycle through all 12 from
-// `first` (so every order appears, mixed in one tree).
+// `first` (so every order appears, mixed in one tree); C_k = I on every fifth body (the kernels'
+// S0J P column shuffle), random elsewhere (C_k P folded at load).
 mbk::Model ordered_tree(int n, unsigned seed, int first = 0) {
   mbk::Model model = mbk::make_random_tree(n, seed);
   for (int k = 1; k <= n; ++k) {
     mbk::Joint& joint = model.bodies[k].joint;
     joint.type = (k + seed) % 3 ? mbk::JointType::kBall123 : mbk::JointType::kFree123;
     joint.euler_order = static_cast<EulerOrder>((first + k) % kOrders);
+    if (k % 5 == 0) joint.rotation.setIdentity();
   }
   mbk::finalize_model(model);
   return model;
