@@ -131,8 +131,11 @@ void find_limbs(const Skeleton& s, int side, std::vector<Found>& found) {
   const int foot = s.find(side, {"foot", "ankle"});
   const int shank = foot > 0 ? limb_parent(s, foot) : s.find(side, {"leg", "knee"});
   const int thigh = limb_parent(s, shank);
+  // A segment ends at the next one's joint; without one (a hand or foot the tables do not name),
+  // at its own tip.
   auto add = [&](int row, int body, int next) {
-    if (body > 0) found.push_back({row, side, body, s.origin(body), s.origin(next)});
+    const Vec3<double> distal = next > 0 ? s.origin(next) : s.tip(body);
+    if (body > 0) found.push_back({row, side, body, s.origin(body), distal});
   };
   if (upper_arm > 0) add(kUpperArm, upper_arm, forearm);
   if (forearm > 0) add(kForearm, forearm, hand);

@@ -159,6 +159,13 @@ TEST(DeLeva, WhatIsNotMappedIsMasslessAndNamedInOneNote) {
             "spread over the others): left hand, right hand");
   EXPECT_EQ(body(model, "LeftPaw").mass, 0.0);
   EXPECT_NEAR(body(model, "LeftUpLeg").mass, kMass * 0.1416 / (1 - 2 * 0.0061), 1e-12);
+  // With no hand the forearm ends at its own tip, the paw's joint (25 cm along +x): its mass
+  // center 45.74 % of the way and its inertia finite (it once read past the skeleton's start).
+  const mbk::Body& forearm = body(model, "LeftForeArm");
+  EXPECT_TRUE(forearm.mass_center.isApprox(Eigen::Vector3d(0.4574 * 0.25, 0, 0), 1e-12))
+      << forearm.mass_center.transpose();
+  EXPECT_TRUE(forearm.inertia.allFinite());
+  EXPECT_GT(forearm.inertia(1, 1), 0.0);
 }
 
 }  // namespace
