@@ -2,15 +2,26 @@
 """Plots the kinematics of chosen bodies over time from a tidy CSV of `mbk bag --csv`.
 
 usage: plot_kinematics.py OUT.csv --bodies NAME[,NAME...] [--png FILE] [--walk [--up AXIS]]
+       plot_kinematics.py --bvh WALK.bvh [--scale M] [--body-mass KG] [--sex S] [--png OUT.png]
+                          [--csv OUT.csv] [--bodies ...] [--up AXIS]
 
 Rows: omega, alpha (of the bodies), velocity and acceleration of their mass centers (and of the
 system's mass center, body "system", when the CSV has it); columns: x, y, z components in R.
 With --walk (for a gait): the whole-body mass center's path seen from above and its height, its
 velocity, and the bodies' angular velocities (e.g. one leg's thigh, shank and foot); --up names
 R's vertical axis (y for most BVH files). Without --png the figure opens in a window.
+
+With --bvh, one command from a motion capture file to the CSV and the --walk figure: it runs
+`mbk bag WALK.bvh --csv OUT.csv` (the installed mbk: beside this script, else found in the
+sourced workspaces as rosrun finds it) with --scale, --body-mass (default 70) and --sex, writes
+the CSV beside the PNG (OUT.png -> OUT.csv, or --csv), then draws --walk with --up y; without
+--bodies, the left thigh, shank and foot (the body named Left...Foot or Left...Ankle and its two
+lower bodies).
 """
 import argparse
 import csv
+import os
+import subprocess
 import sys
 
 import matplotlib
@@ -98,17 +109,101 @@ def walk(plt, series, bodies, t0, up, path):
     return fig
 
 
+def fail(what):
+    sys.exit("plot_kinematics.py: error: " + what)
+
+
+def find_mbk():
+    """The mbk executable: beside this script (install space), else in the sourced workspaces'
+    lib/mb_kinematics (devel space), as rosrun finds it."""
+    beside = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mbk")
+    if os.access(beside, os.X_OK):
+        return beside
+    try:
+        from catkin.find_in_workspaces import find_in_workspaces
+        found = find_in_workspaces(search_dirs=["libexec"], project="mb_kinematics", path="mbk",
+                                   first_match_only=True)
+    except ImportError:
+        found = []
+    if not found:
+        fail("mbk not found beside this script nor in the workspaces of CMAKE_PREFIX_PATH: "
+             "source your workspace's setup.bash first")
+    return found[0]
+
+
+def run_mbk_bag(args):
+    """mbk bag on the BVH file, its CSV to args.csv; exits with mbk's error if it fails."""
+    command = [find_mbk(), "bag", args.bvh, "--csv", args.csv, "--body-mass",
+               args.body_mass or "70"]
+    for option in ("scale", "sex", "estimator"):
+        if getattr(args, option):
+            command += ["--" + option, getattr(args, option)]
+    print(" ".join(command), file=sys.stderr)
+    if subprocess.run(command).returncode != 0:
+        fail("%s: mbk bag failed (its error above)" % args.bvh)
+
+
+def default_leg(path):
+    """The left thigh, shank and foot of a tidy CSV: the first body named Left...Foot or
+    Left...Ankle (any case, as CMU, Biovision and Mixamo name them) and its two lower bodies."""
+    names, lower = {}, {}
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            if row["body"] in lower:
+                break  # the next sample: every body seen
+            names[row["index"]] = row["body"]
+            lower[row["body"]] = row["lower_body"]
+    foot = next((b for b in lower if "left" in b.lower() and
+                 ("foot" in b.lower() or "ankle" in b.lower())), None)
+    shank = names.get(lower.get(foot))
+    thigh = names.get(lower.get(shank))
+    if not thigh:
+        fail("%s: no left foot (a body named Left...Foot or Left...Ankle under a shank and a "
+             "thigh): name the bodies to plot with --bodies" % path)
+    return ",".join([thigh, shank, foot])
+
+
+def bvh_defaults(parser, args):
+    """--bvh: the CSV from mbk bag, the --walk figure (y up), the left leg by default."""
+    if args.csv:
+        parser.error("give the BVH file with --bvh or a CSV, not both (--csv names the "
+                     "CSV to write)")
+    stem = os.path.splitext(args.png if args.png else os.path.basename(args.bvh))[0]
+    args.csv = args.csv_out or stem + ".csv"
+    run_mbk_bag(args)
+    args.walk = True
+    args.up = args.up or "y"
+    args.bodies = args.bodies or default_leg(args.csv)
+    print("plot_kinematics.py %s --walk --up %s --bodies %s" % (args.csv, args.up, args.bodies),
+          file=sys.stderr)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("csv")
-    parser.add_argument("--bodies", required=True, help="comma-separated body names")
+    parser.add_argument("csv", nargs="?", help="a tidy CSV of mbk bag --csv")
+    parser.add_argument("--bodies", help="comma-separated body names (required without --bvh)")
     parser.add_argument("--png", help="write the figure here instead of showing it")
     parser.add_argument("--walk", action="store_true",
                         help="whole-body mass center path, height and velocity; the bodies' "
                         "angular velocities")
-    parser.add_argument("--up", choices=list("xyz"), default="z",
-                        help="with --walk: R's vertical axis (default z)")
+    parser.add_argument("--up", choices=list("xyz"),
+                        help="with --walk: R's vertical axis (default z; y with --bvh)")
+    bvh = parser.add_argument_group("from a BVH file (runs mbk bag first)")
+    bvh.add_argument("--bvh", help="the motion capture file: implies --walk")
+    bvh.add_argument("--csv", dest="csv_out", help="the CSV to write (default: the PNG's "
+                     "name with .csv, else the BVH file's name in the current directory)")
+    bvh.add_argument("--scale", help="metres per file unit (mbk bag --scale)")
+    bvh.add_argument("--body-mass", help="kg (default 70)")
+    bvh.add_argument("--sex", choices=["male", "female"])
+    bvh.add_argument("--estimator", help="mbk bag --estimator")
     args = parser.parse_args()
+    if args.bvh:
+        bvh_defaults(parser, args)
+    elif not args.csv or not args.bodies:
+        parser.error("give a CSV and --bodies, or --bvh FILE")
+    elif any((args.csv_out, args.scale, args.body_mass, args.sex, args.estimator)):
+        parser.error("--csv, --scale, --body-mass, --sex and --estimator go with --bvh")
+    args.up = args.up or "z"
     if args.png:
         matplotlib.use("Agg")
     import matplotlib.pyplot as plt

@@ -41,3 +41,8 @@ add_test(NAME layer_includes COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test
 # scripts/plot_kinematics.py (its overview and --walk figures, its refusals) on a CSV of its own.
 add_test(NAME plot_kinematics COMMAND /usr/bin/python3
   ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py)
+# plot_kinematics.py --bvh: from a BVH file to the CSV and the figure with the workspace's mbk.
+add_test(NAME plot_kinematics_bvh COMMAND /usr/bin/python3
+  ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py --bvh)
+set_tests_properties(plot_kinematics_bvh PROPERTIES ENVIRONMENT
+  "CMAKE_PREFIX_PATH=${CATKIN_DEVEL_PREFIX}")

@@ -1,8 +1,14 @@
 #!/usr/bin/python3
 """scripts/plot_kinematics.py on a small tidy CSV written here: the overview and --walk figures
 are written as PNG files, and --walk without system rows, or a body the CSV lacks, is refused
-with one line naming the file."""
+with one line naming the file.
+
+With --bvh (ctest plot_kinematics_bvh: CMAKE_PREFIX_PATH is the devel space, as after sourcing
+its setup.bash): the one command from a BVH file runs the workspace's mbk bag and writes the CSV
+beside the PNG, the CSV has every body and the whole-body mass center at a human height, and the
+PNG is a figure; a BVH file mbk refuses, or no mbk to be found, is one error line."""
 import csv
+import math
 import os
 import subprocess
 import sys
@@ -28,27 +34,89 @@ def write_csv(path, bodies):
                 w.writerow(row)
 
 
-def run(*args):
-    return subprocess.run([sys.executable, SCRIPT] + list(args), capture_output=True, text=True)
+WALK = os.path.join(os.path.dirname(SCRIPT), "..", "test", "io", "data", "cmu_walk.bvh")
+
+
+def run(*args, env=None):
+    return subprocess.run([sys.executable, SCRIPT] + list(args), capture_output=True, text=True,
+                          env=env)
+
+
+def is_png(path):
+    with open(path, "rb") as f:
+        return f.read(8) == b"\x89PNG\r\n\x1a\n" and os.path.getsize(path) > 20000
+
+
+def check_bvh_csv(path, failures):
+    """Every frame has the 29 bodies and the system; the mass center is about 1 m up (y)."""
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    bodies = {r["body"] for r in rows}
+    system = [r for r in rows if r["body"] == "system"]
+    if len(rows) != 40 * 30 or len(bodies) != 30 or len(system) != 40:
+        failures.append("--bvh CSV: %d rows, %d bodies, %d system rows" %
+                        (len(rows), len(bodies), len(system)))
+    heights = [float(r["mass_center_y"]) for r in system]
+    if not all(0.7 < h < 1.3 for h in heights):
+        failures.append("--bvh CSV: mass center heights %s" % heights[:3])
+    speeds = [math.hypot(float(r["velocity_x"]), float(r["velocity_z"])) for r in system]
+    if not all(math.isfinite(v) and v < 5 for v in speeds) or max(speeds) < 0.1:
+        failures.append("--bvh CSV: mass center speeds %s" % speeds[:3])
+
+
+def bvh_cases(tmp, failures):
+    """The one command from a BVH file: CSV and PNG; its errors."""
+    png = os.path.join(tmp, "out", "walk.png")
+    os.mkdir(os.path.dirname(png))
+    r = run("--bvh", WALK, "--scale", "0.01", "--body-mass", "70", "--png", png)
+    csv_path = os.path.join(tmp, "out", "walk.csv")
+    if r.returncode != 0 or not os.path.exists(csv_path) or not os.path.exists(png):
+        failures.append("--bvh: exit %d, %s" % (r.returncode, r.stderr))
+        return
+    if "--walk --up y --bodies LeftUpLeg,LeftLeg,LeftFoot" not in r.stderr:
+        failures.append("--bvh: not the left thigh, shank and foot: %s" % r.stderr)
+    check_bvh_csv(csv_path, failures)
+    if not is_png(png):
+        failures.append("--bvh: %s is no figure (%d bytes)" % (png, os.path.getsize(png)))
+    r = run("--bvh", os.path.join(tmp, "missing.bvh"), "--png", os.path.join(tmp, "m.png"))
+    last = r.stderr.strip().splitlines()[-1] if r.stderr.strip() else ""
+    if r.returncode == 0 or "missing.bvh: mbk bag failed" not in last or \
+            os.path.exists(os.path.join(tmp, "m.png")):
+        failures.append("--bvh of a missing file: exit %d, %s" % (r.returncode, r.stderr))
+    env = dict(os.environ, CMAKE_PREFIX_PATH="")
+    r = run("--bvh", WALK, "--png", os.path.join(tmp, "n.png"), env=env)
+    if r.returncode == 0 or "mbk not found" not in r.stderr:
+        failures.append("--bvh without mbk: exit %d, %s" % (r.returncode, r.stderr))
+
+
+def csv_cases(tmp, failures):
+    """The figures from a CSV; its refusals."""
+    full, no_system = os.path.join(tmp, "walk.csv"), os.path.join(tmp, "nosys.csv")
+    write_csv(full, ["LeftHip", "LeftKnee", "system"])
+    write_csv(no_system, ["LeftHip", "LeftKnee"])
+    for extra in ([], ["--walk", "--up", "y"]):
+        png = os.path.join(tmp, "out%d.png" % len(extra))
+        r = run(full, "--bodies", "LeftHip,LeftKnee", "--png", png, *extra)
+        if r.returncode != 0 or not os.path.getsize(png) > 1000:
+            failures.append("%s: exit %d, %s" % (extra, r.returncode, r.stderr))
+    r = run(no_system, "--bodies", "LeftHip", "--walk", "--png", os.path.join(tmp, "x.png"))
+    if r.returncode == 0 or "no rows for the system" not in r.stderr:
+        failures.append("--walk without system rows: exit %d, %s" % (r.returncode, r.stderr))
+    r = run(full, "--bodies", "Nobody", "--walk", "--png", os.path.join(tmp, "y.png"))
+    if r.returncode == 0 or "no rows for bodies Nobody" not in r.stderr:
+        failures.append("unknown body: exit %d, %s" % (r.returncode, r.stderr))
+    r = run(full, "--bodies", "LeftHip", "--scale", "0.01", "--png", os.path.join(tmp, "z.png"))
+    if r.returncode == 0 or "go with --bvh" not in r.stderr:
+        failures.append("--scale without --bvh: exit %d, %s" % (r.returncode, r.stderr))
 
 
 def main():
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
-        full, no_system = os.path.join(tmp, "walk.csv"), os.path.join(tmp, "nosys.csv")
-        write_csv(full, ["LeftHip", "LeftKnee", "system"])
-        write_csv(no_system, ["LeftHip", "LeftKnee"])
-        for extra in ([], ["--walk", "--up", "y"]):
-            png = os.path.join(tmp, "out%d.png" % len(extra))
-            r = run(full, "--bodies", "LeftHip,LeftKnee", "--png", png, *extra)
-            if r.returncode != 0 or not os.path.getsize(png) > 1000:
-                failures.append("%s: exit %d, %s" % (extra, r.returncode, r.stderr))
-        r = run(no_system, "--bodies", "LeftHip", "--walk", "--png", os.path.join(tmp, "x.png"))
-        if r.returncode == 0 or "no rows for the system" not in r.stderr:
-            failures.append("--walk without system rows: exit %d, %s" % (r.returncode, r.stderr))
-        r = run(full, "--bodies", "Nobody", "--walk", "--png", os.path.join(tmp, "y.png"))
-        if r.returncode == 0 or "no rows for bodies Nobody" not in r.stderr:
-            failures.append("unknown body: exit %d, %s" % (r.returncode, r.stderr))
+        if "--bvh" in sys.argv:
+            bvh_cases(tmp, failures)
+        else:
+            csv_cases(tmp, failures)
     for f in failures:
         print("FAIL:", f)
     print("PASS" if not failures else "%d failures" % len(failures))
