@@ -3,9 +3,11 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 #include "mb_kinematics/io/bvh_anthropometry.h"
 
@@ -106,14 +108,39 @@ void refuse_repeated_names(const BvhFile& bvh) {
   }
 }
 
+// The file unit that makes a skeleton `extent` file units tall most human: of the common units
+// whose height falls in the human range, the one nearest 1.7 m (by ratio); without one, the
+// scale that makes it 1.7 m. Returns the scale and a name for it ("" for a computed one).
+std::pair<double, std::string> human_scale(double extent) {
+  constexpr double kTypicalHeight = 1.7;  // metres
+  const std::pair<double, const char*> units[] = {{1.0, "metres"},
+                                                  {0.01, "centimetres"},
+                                                  {0.001, "millimetres"},
+                                                  {0.0254, "inches"},
+                                                  {0.0254 / 0.45, "CMU's 1/0.45 inch"}};
+  std::pair<double, std::string> best{kTypicalHeight / extent, ""};
+  double best_ratio = INFINITY;
+  for (const auto& [scale, name] : units) {
+    const double height = scale * extent;
+    const double ratio = std::abs(std::log(height / kTypicalHeight));
+    if (height >= kHumanHeight[0] && height <= kHumanHeight[1] && ratio < best_ratio)
+      best = {scale, name}, best_ratio = ratio;
+  }
+  return best;
+}
+
 std::string height_warning(const BvhFile& bvh, double scale) {
   const double height = rest_extent(bvh, scale);
   if (height >= kHumanHeight[0] && height <= kHumanHeight[1]) return "";
   std::ostringstream s;
   s << bvh.path << ": the skeleton's standing height is " << height
     << " m (the rest pose's largest extent, file units times the scale " << scale
-    << "), outside a human's " << kHumanHeight[0] << "-" << kHumanHeight[1]
-    << " m: give the metres per file unit with --scale (0.01 for centimetres, 0.0254 for inches)";
+    << "), outside a human's " << kHumanHeight[0] << "-" << kHumanHeight[1] << " m";
+  if (!(height > 0)) return s.str() + ": the rest pose has no extent";
+  const auto [human, unit] = human_scale(height / scale);
+  s << ": --scale " << std::setprecision(5) << human << " (bvh.launch scale:=" << human
+    << ", the node's ~scale) gives " << std::setprecision(3) << human * height / scale << " m"
+    << (unit.empty() ? "" : " (file units in " + unit + ")");
   return s.str();
 }
 

@@ -1,6 +1,9 @@
 #include "mb_kinematics/offline/bag_command.h"
 
+#include <ros/time.h>
+
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -86,6 +89,7 @@ void refuse_same_files(const BagOptions& o) {
 // OUT.bag and/or OUT.csv, each under a temporary name until both are whole (output_file.h):
 // the writers are destroyed before the files, which remove what was not committed.
 struct Outputs {
+  std::string input;  // IN, for the stamp error
   std::unique_ptr<OutputFile> bag_file, csv_file;
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
@@ -96,11 +100,24 @@ struct Outputs {
   void write(const mbk::OfflineRow& row) {
     const mbk::Data<double>* data = &row.data;
     if (floating) with_base_body(*base_model, row.data, *base_data), data = base_data.get();
-    if (bag) bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
+    if (bag) {
+      check_bag_stamp(row.stamp);
+      bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
+    }
     if (csv && formatted)
       csv->write_text(row.text);
     else if (csv)
       csv->write(row.stamp, *data);
+  }
+  // A bag holds stamps from ros::TIME_MIN (1 ns; 0 means "no stamp") to ros::TIME_MAX only.
+  void check_bag_stamp(double t) const {
+    if (t >= 0 && t <= ros::TIME_MAX.toSec() && ros::Time(t) >= ros::TIME_MIN) return;
+    char text[64];
+    std::snprintf(text, sizeof text, "%.9g", t);
+    throw std::invalid_argument(
+        input + ": time " + text +
+        " s cannot be a bag's stamp (--out holds 1 ns, ros::TIME_MIN, to ros::TIME_MAX): give "
+        "--start-time S to add S seconds to every time (e.g. --start-time 1); nothing written");
   }
   // The CSV's text formatted by the computing threads, beside the writing (without a base:
   // with one, the rows are carried into the base's layout here first).
@@ -163,6 +180,7 @@ void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int ro
 void read_input(const BagOptions& o, const mbk::Model& model, mbk::RecordingBuilder& builder,
                 BaseOdometry& base, BagSummary& s, bool checked) {
   mbk::Progress bar("reading  ", o.progress);
+  builder.offset_times(o.start_time);
   if (mbk::is_bvh_file(o.input))
     return mbk::add_bvh_frames(mbk::read_bvh(o.input), model, o.bvh.scale, builder);
   if (ends_with(o.input, ".csv")) return mbk::read_trajectory_csv(o.input, builder);
@@ -178,6 +196,7 @@ void read_input(const BagOptions& o, const mbk::Model& model, mbk::RecordingBuil
 // CSV has the error bars' columns.
 void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model& base_model,
                   const std::string& base_frame, bool errors, Outputs& out) {
+  out.input = o.input;
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
     out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
@@ -372,6 +391,12 @@ BagOptions parse_bag_options(int argc, char** argv) {
       if (*end != '\0' || !(o.max_gap >= 0))
         throw std::invalid_argument("--max-gap needs seconds >= 0, not '" + std::string(argv[i]) +
                                     "'");
+    } else if (arg == "--start-time" && i + 1 < argc) {
+      char* end = nullptr;
+      o.start_time = std::strtod(argv[++i], &end);
+      if (*end != '\0' || !std::isfinite(o.start_time))
+        throw std::invalid_argument("--start-time needs seconds, not '" + std::string(argv[i]) +
+                                    "'");
     } else if (arg == "--threads" && i + 1 < argc) {
       char* end = nullptr;
       const long n = std::strtol(argv[++i], &end, 10);
@@ -393,6 +418,8 @@ BagOptions parse_bag_options(int argc, char** argv) {
   o.bvh = mbk::bvh_model_options(scale, body_mass, sex);
   if (o.out_bag.empty() && o.out_csv.empty())
     throw std::invalid_argument("bag needs --out OUT.bag and/or --csv OUT.csv");
+  if (o.start_time != 0 && !ends_with(o.input, ".csv") && !mbk::is_bvh_file(o.input))
+    throw std::invalid_argument("--start-time applies to a .csv or .bvh input, not a bag");
   return o;
 }
 

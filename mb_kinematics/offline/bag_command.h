@@ -24,6 +24,7 @@ struct BagOptions {
   std::string estimator;      // empty: the default
   std::string frame_prefix;
   double max_gap = 0;     // seconds; 0: 5 x the median interval
+  double start_time = 0;  // seconds added to every time of a .csv or .bvh input
   bool progress = false;  // draw a progress bar on stderr
   int threads = 0;        // computing threads; 0: one per CPU (default_thread_count)
 };

@@ -87,6 +87,7 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
                            const std::vector<double>& position, const std::vector<double>& velocity,
                            const std::string& where) {
   ++read_;
+  t += time_offset_;
   if (!std::isfinite(t)) return log_.drop("stamp not finite", where);
   const std::string error = validate(names, position, velocity);
   if (!error.empty())

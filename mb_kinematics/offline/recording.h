@@ -60,6 +60,8 @@ class RecordingBuilder {
   using RowSink = std::function<void(double t, const double* position, const double* velocity,
                                      const std::uint8_t* given)>;
   void stream_to(RowSink sink) { sink_ = std::move(sink); }
+  // Every later add() at t + seconds (mbk bag --start-time); set before the first add.
+  void offset_times(double seconds) { time_offset_ = seconds; }
 
   // The table; rows before every coordinate was named are dropped here ("missing joints").
   // Streaming: checks that every coordinate was named and returns an empty table.
@@ -88,6 +90,7 @@ class RecordingBuilder {
   RowSink sink_;
   bool has_last_stamp_ = false;
   double last_stamp_ = 0;  // of the last row accepted
+  double time_offset_ = 0;
 };
 
 }  // namespace mbk

@@ -43,7 +43,7 @@ const char kUsage[] =
     "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
     "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
     "P]\n"
-    "           [--max-gap S] [--threads N]\n"
+    "           [--max-gap S] [--threads N] [--start-time S]\n"
     "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) ...\n"
     "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
     "         [--body-mass KG] [--sex male|female]\n";

@@ -1,7 +1,7 @@
 // mbk_bag: `mbk bag` (mbk runs it, so that mbk itself stays free of ROS libraries).
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
 //       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
-//       [--frame-prefix P] [--max-gap S] [--threads N]
+//       [--frame-prefix P] [--max-gap S] [--threads N] [--start-time S]
 //   mbk bag WALK.bvh [--model FILE] [--scale M] [--body-mass KG] [--sex male|female] ...
 #include <console_bridge/console.h>
 

@@ -215,6 +215,20 @@ TEST_P(RealRecording, WholeBodyMassIsTheBodyMass) {
   EXPECT_NEAR(mass, options_.body_mass, 1e-12 * options_.body_mass);
 }
 
+// The CMU skeleton read in the default unit (metres) is far from human: the one warning names the
+// CMU unit's scale, for mbk, bvh.launch and the node, and the height it gives.
+TEST_P(RealRecording, TheDefaultScaleWarnsWithTheCmuScale) {
+  const mbk::Model in_file_units = mbk::model_from_bvh(bvh_, mbk::BvhModelOptions());
+  ASSERT_EQ(in_file_units.warnings.size(), 1u);
+  EXPECT_NE(in_file_units.warnings[0].find(": --scale 0.056444 (bvh.launch scale:=0.056444, the "
+                                           "node's ~scale) gives "),
+            std::string::npos)
+      << in_file_units.warnings[0];
+  EXPECT_NE(in_file_units.warnings[0].find("(file units in CMU's 1/0.45 inch)"), std::string::npos)
+      << in_file_units.warnings[0];
+  EXPECT_TRUE(model_.warnings.empty()) << model_.warnings.front();  // at kCmuScale: no warning
+}
+
 INSTANTIATE_TEST_SUITE_P(Cmu, RealRecording, ::testing::ValuesIn(kRecordings),
                          [](const ::testing::TestParamInfo<Recording>& info) {
                            return "trial_" +

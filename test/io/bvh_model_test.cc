@@ -237,7 +237,11 @@ TEST(BvhModel, AScaleThatMakesNoHumanIsWarnedAbout) {
   ASSERT_EQ(centimetres.warnings.size(), 1u);
   EXPECT_NE(centimetres.warnings[0].find("standing height is 170 m"), std::string::npos)
       << centimetres.warnings[0];
-  EXPECT_NE(centimetres.warnings[0].find("--scale"), std::string::npos);
+  // The warning names the scale that makes the skeleton human (here: centimetres).
+  EXPECT_NE(centimetres.warnings[0].find(": --scale 0.01 (bvh.launch scale:=0.01, the node's "
+                                         "~scale) gives 1.7 m (file units in centimetres)"),
+            std::string::npos)
+      << centimetres.warnings[0];
   EXPECT_THROW(model_of(kSkeleton, {-1.0}), std::invalid_argument);
 }
 

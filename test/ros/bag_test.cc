@@ -194,6 +194,62 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   EXPECT_EQ(from_bag, from_csv);
 }
 
+// A trajectory CSV starting at time 0 (as mocap exports do): a bag cannot hold a zero stamp
+// (ros::TIME_MIN is 1 ns), so --out stops with one line naming the input, the time and
+// --start-time, leaving no bag; with --start-time 1 the bag's and the CSV's stamps start at 1 s.
+TEST(BagTest, ATrajectoryFromTimeZeroNeedsAStartTimeForABag) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  std::ofstream csv(temp("from_zero.csv"));
+  csv << "time";
+  for (const std::string& n : model.coordinate_names) csv << "," << n;
+  for (int i = 0; i < 20; ++i) {
+    csv << "\n" << i / 50.0;
+    for (int c = 0; c < model.nq; ++c) csv << "," << waves[c].at(i / 50.0, 0);
+  }
+  csv.close();
+  mbk_offline::BagOptions o = options(temp("from_zero.csv"), temp("from_zero.bag"));
+  o.out_csv = temp("from_zero_out.csv");
+  std::remove(o.out_bag.c_str());
+  EXPECT_EQ(error_of(o), temp("from_zero.csv") +
+                             ": time 0 s cannot be a bag's stamp (--out holds 1 ns, "
+                             "ros::TIME_MIN, to ros::TIME_MAX): give --start-time S to add S "
+                             "seconds to every time (e.g. --start-time 1); nothing written");
+  EXPECT_FALSE(std::ifstream(o.out_bag).good());
+  EXPECT_FALSE(std::ifstream(o.out_csv).good());
+  o.start_time = 1;
+  EXPECT_EQ(mbk_offline::run_bag(o).written, 20);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  ASSERT_EQ(view.size(), 20u);
+  EXPECT_EQ(view.begin()->getTime(), ros::Time(1.0));
+  EXPECT_EQ(view.begin()->instantiate<mb_kinematics_msgs::BodyKinematicsArray>()->header.stamp,
+            ros::Time(1.0));
+  std::ifstream out(o.out_csv);
+  std::string line;
+  std::getline(out, line);
+  std::getline(out, line);
+  EXPECT_EQ(line.rfind("1.000000000,", 0), 0u) << line;
+  // The option: seconds, for a .csv or .bvh input only.
+  std::vector<std::string> args = {"mbk",     "bag",          write_bag("keep.bag", 10, 0.5),
+                                   "--model", kModel,         "--csv",
+                                   "x.csv",   "--start-time", "1"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  EXPECT_THROW(mbk_offline::parse_bag_options(static_cast<int>(argv.size()), argv.data()),
+               std::invalid_argument);
+  args[2] = o.input, args.back() = "soon";
+  argv.clear();
+  for (std::string& a : args) argv.push_back(a.data());
+  EXPECT_THROW(mbk_offline::parse_bag_options(static_cast<int>(argv.size()), argv.data()),
+               std::invalid_argument);
+  args.back() = "2.5";
+  argv.clear();
+  for (std::string& a : args) argv.push_back(a.data());
+  EXPECT_EQ(mbk_offline::parse_bag_options(static_cast<int>(argv.size()), argv.data()).start_time,
+            2.5);
+}
+
 // With auto (the default) the tidy CSV carries each body's propagated error bars: six columns
 // more, finite and non-negative on every body row, positive on noisy data, empty on the system
 // row; OUT.sample_errors.csv each sample's coordinates'; a fixed estimator's CSV has none.
