@@ -210,7 +210,7 @@ TEST(BagTest, ATrajectoryFromTimeZeroNeedsAStartTimeForABag) {
   csv.close();
   mbk_offline::BagOptions o = options(temp("from_zero.csv"), temp("from_zero.bag"));
   o.out_csv = temp("from_zero_out.csv");
-  std::remove(o.out_bag.c_str());
+  std::remove(o.out_bag.c_str()), std::remove(o.out_csv.c_str());
   EXPECT_EQ(error_of(o), temp("from_zero.csv") +
                              ": time 0 s cannot be a bag's stamp (--out holds 1 ns, "
                              "ros::TIME_MIN, to ros::TIME_MAX): give --start-time S to add S "
