@@ -55,3 +55,8 @@ target_compile_definitions(bag_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURC
 # chain only against the whole tree's arrays (issue 24.10).
 add_executable(partial_velocities_benchmark bench/partial_velocities_benchmark.cc)
 target_link_libraries(partial_velocities_benchmark mbk_analysis mbk_core benchmark::benchmark)
+
+# bvh_load_benchmark: reading a BVH recording and building its model (doc/speed.md#reading-bvh).
+add_executable(bvh_load_benchmark bench/bvh_load_benchmark.cc)
+target_link_libraries(bvh_load_benchmark mbk_io mbk_core benchmark::benchmark)
+target_compile_definitions(bvh_load_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
