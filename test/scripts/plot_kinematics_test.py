@@ -10,6 +10,7 @@ PNG is a figure; a BVH file mbk refuses, or no mbk to be found, is one error lin
 import csv
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -64,6 +65,15 @@ def check_bvh_csv(path, failures):
         failures.append("--bvh CSV: mass center speeds %s" % speeds[:3])
 
 
+def find_in_workspace_mbk():
+    """The devel space's mbk (CMAKE_PREFIX_PATH, as the ctest sets it)."""
+    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(os.pathsep):
+        path = os.path.join(prefix, "lib", "mb_kinematics", "mbk")
+        if prefix and os.access(path, os.X_OK):
+            return path
+    sys.exit("FAIL: no mbk in CMAKE_PREFIX_PATH (run as ctest plot_kinematics_bvh)")
+
+
 def bvh_cases(tmp, failures):
     """The one command from a BVH file: CSV and PNG; its errors."""
     png = os.path.join(tmp, "out", "walk.png")
@@ -87,6 +97,16 @@ def bvh_cases(tmp, failures):
     r = run("--bvh", WALK, "--png", os.path.join(tmp, "n.png"), env=env)
     if r.returncode == 0 or "mbk not found" not in r.stderr:
         failures.append("--bvh without mbk: exit %d, %s" % (r.returncode, r.stderr))
+    # Installed: the script beside mbk (as catkin_install_python puts it), no workspace needed.
+    lib = os.path.join(tmp, "lib")
+    os.mkdir(lib)
+    shutil.copy(SCRIPT, lib)
+    os.symlink(find_in_workspace_mbk(), os.path.join(lib, "mbk"))
+    beside = os.path.join(lib, "plot_kinematics.py")
+    r = subprocess.run([sys.executable, beside, "--bvh", WALK, "--scale", "0.01", "--png",
+                        os.path.join(tmp, "i.png")], capture_output=True, text=True, env=env)
+    if r.returncode != 0 or not is_png(os.path.join(tmp, "i.png")):
+        failures.append("--bvh beside mbk: exit %d, %s" % (r.returncode, r.stderr))
 
 
 def csv_cases(tmp, failures):
