@@ -7,11 +7,14 @@
 #include <cstdlib>
 #include <cstring>
 
+// fmt header-only (CMake's fmt::fmt-header-only): Dragonbox compiled here, with its full table
+// of powers of ten (10 kB; 40 % fewer instructions than the compressed one).
 #if __has_include(<fmt/format.h>)
+#define FMT_USE_FULL_CACHE_DRAGONBOX 1
 #include <fmt/format.h>
 #endif
 #if defined(FMT_VERSION) && FMT_VERSION >= 80000
-#define MBK_HAVE_DRAGONBOX 1  // fmt's shortest decimal (Dragonbox): about 3x std::to_chars
+#define MBK_HAVE_DRAGONBOX 1  // with the layout below, less than half std::to_chars's instructions
 #endif
 
 namespace mbk {
