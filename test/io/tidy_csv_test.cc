@@ -180,15 +180,38 @@ TEST(NumberFormatTest, WriteShortestSameAsToCharsOnRandomDoubles) {
 
 // Known values in a row: the exact bytes of the line and every cell read back exactly.
 TEST(TidyCsvWriterTest, KnownValuesWrittenExactly) {
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  // origin; qx, qy, qz, qw of the identity; mass center, omega, alpha, velocity, acceleration
+  const double v[] = {-0.0,
+                      1e308,
+                      tiny,
+                      0,
+                      0,
+                      0,
+                      1,
+                      0.1 + 0.2,
+                      2.0 / 3.0,
+                      -1e-4,
+                      1.5e5,
+                      123456.789,
+                      std::numeric_limits<double>::min(),
+                      1e5,
+                      -1.7976931348623157e+308,
+                      1e-3,
+                      9007199254740992.0,
+                      123456789012345680000.0,
+                      -17,
+                      0,
+                      1,
+                      -0.00012345678901234567};
   const mbk::Model model = mbk::make_random_tree(1, 3);
   mbk::Data<double> d(model);
-  d.origin[1] = {-0.0, 1e308, std::numeric_limits<double>::denorm_min()};
+  d.origin[1] = {v[0], v[1], v[2]};
   d.rotation[1].setIdentity();
-  d.mass_center[1] = {0.1 + 0.2, 2.0 / 3.0, -1e-4};
-  d.omega[1] = {1.5e5, 123456.789, std::numeric_limits<double>::min()};
-  d.alpha[1] = {1e5, -1.7976931348623157e+308, 1e-3};
-  d.mass_center_velocity[1] = {9007199254740992.0, 123456789012345680000.0, -17};
-  d.mass_center_acceleration[1] = {0, 1, -0.00012345678901234567};
+  int i = 7;
+  for (auto* x :
+       {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
+    (*x)[1] = {v[i], v[i + 1], v[i + 2]}, i += 3;
   const std::string path = ::testing::TempDir() + "tidy_known.csv";
   mbk::TidyCsvWriter w(path, model);
   w.write(2.5, d);
@@ -203,31 +226,9 @@ TEST(TidyCsvWriterTest, KnownValuesWrittenExactly) {
                       "150000,123456.789,2.2250738585072014e-308,1e+05,-1.7976931348623157e+308,"
                       "0.001,9007199254740992,123456789012345683968,-17,0,1,"
                       "-0.00012345678901234567");
-  const double values[] = {0,
-                           1e308,
-                           std::numeric_limits<double>::denorm_min(),
-                           0,
-                           0,
-                           0,
-                           1,
-                           0.1 + 0.2,
-                           2.0 / 3.0,
-                           -1e-4,
-                           1.5e5,
-                           123456.789,
-                           std::numeric_limits<double>::min(),
-                           1e5,
-                           -1.7976931348623157e+308,
-                           1e-3,
-                           9007199254740992.0,
-                           123456789012345680000.0,
-                           -17,
-                           0,
-                           1,
-                           -0.00012345678901234567};
   std::istringstream cells(line.substr(body.size()));
   std::string c;
-  for (double x : values) {
+  for (double x : v) {
     ASSERT_TRUE(std::getline(cells, c, ','));
     EXPECT_EQ(std::strtod(c.c_str(), nullptr), x) << c;
   }
