@@ -1,5 +1,6 @@
 #include "mb_kinematics/io/number_format.h"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -39,28 +40,17 @@ constexpr char kPairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
+// 10^0 ... 10^19.
+constexpr std::array<uint64_t, 20> powers_of_ten() {
+  std::array<uint64_t, 20> p{};
+  uint64_t x = 1;
+  for (uint64_t& v : p) v = x, x *= 10;
+  return p;
+}
+
 // Decimal digits of m > 0.
 int digit_count(uint64_t m) {
-  static constexpr uint64_t kPow10[] = {1,
-                                        10,
-                                        100,
-                                        1000,
-                                        10000,
-                                        100000,
-                                        1000000,
-                                        10000000,
-                                        100000000,
-                                        1000000000,
-                                        10000000000,
-                                        100000000000,
-                                        1000000000000,
-                                        10000000000000,
-                                        100000000000000,
-                                        1000000000000000,
-                                        10000000000000000,
-                                        100000000000000000,
-                                        1000000000000000000,
-                                        10000000000000000000u};
+  static constexpr std::array<uint64_t, 20> kPow10 = powers_of_ten();
   const int t = ((64 - __builtin_clzll(m)) * 1233) >> 12;  // 1233/4096 ~ log10(2)
   return t + (m >= kPow10[t]);
 }
