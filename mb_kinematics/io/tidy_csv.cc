@@ -51,11 +51,28 @@ void TidyCsvWriter::flush() {
 
 namespace {
 
-// ",x" appended to text.
-void number(std::string& text, double x) {
-  char cell[1 + kMaxDoubleChars] = {','};
-  text.append(cell, write_shortest(cell + 1, x));
-}
+// The cells after a row's body cells, formatted into one buffer and appended at once.
+class Cells {
+ public:
+  void number(double x) {  // ",x"
+    *end_++ = ',';
+    end_ = write_shortest(end_, x);
+  }
+  void empty(int n) {  // n empty cells
+    std::memset(end_, ',', n);
+    end_ += n;
+  }
+  void end_row(std::string& text) {
+    *end_++ = '\n';
+    text.append(cells_, end_);
+    end_ = cells_;
+  }
+
+ private:
+  static constexpr int kMaxCells = 28;  // 22 values and 6 error bars
+  char cells_[kMaxCells * (1 + kMaxDoubleChars) + 1];
+  char* end_ = cells_;
+};
 
 }  // namespace
 
@@ -65,32 +82,34 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
   const bool have = errors_ && alpha_se && acceleration_se;
   char stamp_text[400];  // %.9f of the largest double fits
   const int stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
+  Cells cells;
   for (int k = 1; k <= model_.body_count(); ++k) {
     text.append(stamp_text, stamp_size).append(body_cells_[k]);
     const Eigen::Quaterniond q(d.rotation[k]);
-    for (int i = 0; i < 3; ++i) number(text, d.origin[k][i]);
-    for (double x : {q.x(), q.y(), q.z(), q.w()}) number(text, x);
+    for (int i = 0; i < 3; ++i) cells.number(d.origin[k][i]);
+    for (double x : {q.x(), q.y(), q.z(), q.w()}) cells.number(x);
     for (const auto* v :
          {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
-      for (int i = 0; i < 3; ++i) number(text, (*v)[k][i]);
+      for (int i = 0; i < 3; ++i) cells.number((*v)[k][i]);
     if (have)
       for (const auto* v : {alpha_se, acceleration_se})
-        for (int i = 0; i < 3; ++i) number(text, (*v)[k][i]);
+        for (int i = 0; i < 3; ++i) cells.number((*v)[k][i]);
     else if (errors_)
-      text.append(",,,,,,");
-    text += '\n';
+      cells.empty(6);
+    cells.end_row(text);
   }
   if (total_mass_ <= 0) return;
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);
   const Vec3<double>&p = system.mass_center, &v = system.velocity, &a = system.acceleration;
-  text.append(stamp_text, stamp_size).append(",system,0,0,,,,,,,");  // no origin, orientation
-  for (int i = 0; i < 3; ++i) number(text, p[i]);
-  text.append(",,,,,,");  // no omega, alpha
+  text.append(stamp_text, stamp_size).append(",system,0,0");
+  cells.empty(7);  // no origin, orientation
+  for (int i = 0; i < 3; ++i) cells.number(p[i]);
+  cells.empty(6);  // no omega, alpha
   for (const Vec3<double>* x : {&v, &a})
-    for (int i = 0; i < 3; ++i) number(text, (*x)[i]);
-  if (errors_) text.append(",,,,,,");
-  text += '\n';
+    for (int i = 0; i < 3; ++i) cells.number((*x)[i]);
+  if (errors_) cells.empty(6);
+  cells.end_row(text);
 }
 
 void TidyCsvWriter::write(double stamp, const Data<double>& d,

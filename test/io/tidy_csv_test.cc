@@ -1,7 +1,8 @@
 // The tidy CSV writer (io/tidy_csv.h): the same text, byte for byte, as printing each cell on its
 // own (the documented form: stamp with 9 decimals, numbers in their shortest round-trip form,
 // -0 as 0), across many buffer flushes, whether written at once or formatted apart (format,
-// write_text) and interleaved; and write_shortest (io/number_format.h).
+// write_text) and interleaved; known values byte for byte; and write_shortest
+// (io/number_format.h): the bytes of std::to_chars.
 #include "mb_kinematics/io/tidy_csv.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -99,6 +101,138 @@ TEST(NumberFormatTest, WriteShortestReadsBackExactly) {
   }
   char buf[mbk::kMaxDoubleChars];
   EXPECT_EQ(std::string(buf, mbk::write_shortest(buf, -0.0)), "0");
+}
+
+std::string shortest(double x) {
+  char buf[mbk::kMaxDoubleChars];
+  return std::string(buf, mbk::write_shortest(buf, x));
+}
+
+// The bytes of std::to_chars(first, last, x): fixed or scientific, whichever is shorter (fixed
+// on a tie); subnormals; whole numbers printed exactly; 17 digits where 16 do not read back.
+TEST(NumberFormatTest, WriteShortestKnownBytes) {
+  const std::pair<double, const char*> known[] = {
+      {0.1, "0.1"},
+      {-0.0, "0"},
+      {0.0, "0"},
+      {1.0, "1"},
+      {-17.0, "-17"},
+      {1e308, "1e+308"},
+      {-1e308, "-1e+308"},
+      {std::numeric_limits<double>::max(), "1.7976931348623157e+308"},
+      {std::numeric_limits<double>::denorm_min(), "5e-324"},
+      {3 * std::numeric_limits<double>::denorm_min(), "1.5e-323"},
+      {std::nextafter(std::numeric_limits<double>::min(), 0.0), "2.225073858507201e-308"},
+      {std::numeric_limits<double>::min(), "2.2250738585072014e-308"},
+      {0.1 + 0.2, "0.30000000000000004"},
+      {2.0 / 3.0, "0.6666666666666666"},
+      {-0.00012345678901234567, "-0.00012345678901234567"},
+      {1e-4, "1e-04"},
+      {1.5e-4, "0.00015"},
+      {1e-3, "0.001"},
+      {1e4, "10000"},
+      {1e5, "1e+05"},
+      {1.5e5, "150000"},
+      {1.5e6, "1500000"},  // a tie: fixed
+      {1.5e7, "1.5e+07"},
+      {1.5e-5, "1.5e-05"},
+      {1.2345678901234567e-3, "0.0012345678901234567"},
+      {1.2345678901234567e-5, "1.2345678901234568e-05"},
+      {123456.789, "123456.789"},
+      {1e15, "1e+15"},
+      {9007199254740992.0, "9007199254740992"},
+      {123456789012345680000.0, "123456789012345683968"},  // exact: more digits than shortest
+      {1e23, "1e+23"},
+  };
+  for (const auto& [x, text] : known) {
+    EXPECT_EQ(shortest(x), text);
+    EXPECT_EQ(std::strtod(text, nullptr), x + 0.0) << text;
+  }
+  EXPECT_EQ(shortest(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(shortest(std::nan("")), "nan");
+}
+
+// Random bit patterns (every exponent, subnormals, NaNs), random values of every size and short
+// decimals around the fixed/scientific bounds: the same bytes as std::to_chars, and every finite
+// one reads back exactly.
+TEST(NumberFormatTest, WriteShortestSameAsToCharsOnRandomDoubles) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int i = 0; i < 400000; ++i) {
+    double x;
+    if (i % 3 == 1) {
+      const uint64_t bits = rng();
+      std::memcpy(&x, &bits, sizeof x);
+    } else if (i % 3 == 2) {
+      x = std::strtod(
+          (std::to_string(rng() % 100000) + "e" + std::to_string(int(rng() % 51) - 25)).c_str(),
+          nullptr);
+    } else {
+      x = std::ldexp(u(rng), static_cast<int>(rng() % 140) - 70);
+    }
+    const std::string s = shortest(x);
+    ASSERT_EQ(s, cell(x)) << i;
+    if (std::isfinite(x)) {
+      ASSERT_EQ(std::strtod(s.c_str(), nullptr), x + 0.0) << s;
+    }
+  }
+}
+
+// Known values in a row: the exact bytes of the line and every cell read back exactly.
+TEST(TidyCsvWriterTest, KnownValuesWrittenExactly) {
+  const double tiny = std::numeric_limits<double>::denorm_min();
+  // origin; qx, qy, qz, qw of the identity; mass center, omega, alpha, velocity, acceleration
+  const double v[] = {-0.0,
+                      1e308,
+                      tiny,
+                      0,
+                      0,
+                      0,
+                      1,
+                      0.1 + 0.2,
+                      2.0 / 3.0,
+                      -1e-4,
+                      1.5e5,
+                      123456.789,
+                      std::numeric_limits<double>::min(),
+                      1e5,
+                      -1.7976931348623157e+308,
+                      1e-3,
+                      9007199254740992.0,
+                      123456789012345680000.0,
+                      -17,
+                      0,
+                      1,
+                      -0.00012345678901234567};
+  const mbk::Model model = mbk::make_random_tree(1, 3);
+  mbk::Data<double> d(model);
+  d.origin[1] = {v[0], v[1], v[2]};
+  d.rotation[1].setIdentity();
+  int i = 7;
+  for (auto* x :
+       {&d.mass_center, &d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration})
+    (*x)[1] = {v[i], v[i + 1], v[i + 2]}, i += 3;
+  const std::string path = ::testing::TempDir() + "tidy_known.csv";
+  mbk::TidyCsvWriter w(path, model);
+  w.write(2.5, d);
+  w.close();
+  std::ifstream in(path);
+  std::string header, line;
+  std::getline(in, header);
+  std::getline(in, line);
+  const std::string body = "2.500000000," + model.bodies[1].name + ",1,0,";
+  EXPECT_EQ(line, body +
+                      "0,1e+308,5e-324,0,0,0,1,0.30000000000000004,0.6666666666666666,-1e-04,"
+                      "150000,123456.789,2.2250738585072014e-308,1e+05,-1.7976931348623157e+308,"
+                      "0.001,9007199254740992,123456789012345683968,-17,0,1,"
+                      "-0.00012345678901234567");
+  std::istringstream cells(line.substr(body.size()));
+  std::string c;
+  for (double x : v) {
+    ASSERT_TRUE(std::getline(cells, c, ','));
+    EXPECT_EQ(std::strtod(c.c_str(), nullptr), x) << c;
+  }
+  EXPECT_FALSE(std::getline(cells, c, ','));
 }
 
 }  // namespace
