@@ -643,6 +643,7 @@ TEST(BagTest, AnInputOrOutputThatIsACsvSideFileIsRefused) {
   EXPECT_EQ(read_file(in), in_text);
   const std::string bag = temp("side_out.sample_errors.csv");
   std::remove(bag.c_str());
+  std::remove(temp("side_out.csv").c_str());
   mbk_offline::BagOptions out_is_side = options(write_bag("side.bag", 10, 1.0), bag);
   out_is_side.out_csv = temp("side_out.csv");
   e = error_of(out_is_side);
