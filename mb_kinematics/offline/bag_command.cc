@@ -67,23 +67,43 @@ bool same_file(const std::string& a, const std::string& b, bool both_outputs) {
   return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);
 }
 
+// The error bars' side files go beside a CSV that is (or will be) a regular file only: not
+// beside /dev/null, /dev/stdout or a pipe (which would put /dev/null.errors.csv into /dev).
+bool has_side_files(const std::string& csv) {
+  if (csv.empty()) return false;
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(csv, ec);
+  return !std::filesystem::exists(st) || std::filesystem::is_regular_file(st);
+}
+
+// OUT.csv's side file of error bars: OUT.errors.csv.
+std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
+  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
+}
+
 // Refuses, before anything is read or written, an output that is the same file as an input
-// (IN, --model) or as the other output.
-void refuse_same_files(const BagOptions& o) {
-  using Named = std::pair<const char*, const std::string*>;
-  const std::vector<Named> inputs = {{"the input", &o.input}, {"--model", &o.model}};
+// (IN, --model) or as another output; with "auto" (`side_files`) the outputs include the CSV's
+// side files OUT.errors.csv and OUT.sample_errors.csv.
+void refuse_same_files(const BagOptions& o, bool side_files) {
+  using Named = std::pair<std::string, std::string>;
+  const std::vector<Named> inputs = {{"the input", o.input}, {"--model", o.model}};
   std::vector<Named> outputs;
-  if (!o.out_bag.empty()) outputs.push_back({"--out", &o.out_bag});
-  if (!o.out_csv.empty()) outputs.push_back({"--csv", &o.out_csv});
+  if (!o.out_bag.empty()) outputs.push_back({"--out", o.out_bag});
+  if (!o.out_csv.empty()) outputs.push_back({"--csv", o.out_csv});
+  if (side_files && has_side_files(o.out_csv))
+    for (const char* suffix : {".errors.csv", ".sample_errors.csv"})
+      outputs.push_back({"--csv's side file", errors_path(o.out_csv, suffix)});
   for (const Named& out : outputs)
     for (const Named& in : inputs)
-      if (same_file(*out.second, *in.second, false))
-        throw std::invalid_argument(std::string(out.first) + " " + *out.second +
-                                    " is the same file as " + in.first + " " + *in.second +
-                                    ": refused, nothing written");
-  if (outputs.size() == 2 && same_file(o.out_bag, o.out_csv, true))
-    throw std::invalid_argument("--out " + o.out_bag + " and --csv " + o.out_csv +
-                                " are the same file: refused, nothing written");
+      if (same_file(out.second, in.second, false))
+        throw std::invalid_argument(out.first + " " + out.second + " is the same file as " +
+                                    in.first + " " + in.second + ": refused, nothing written");
+  for (size_t i = 0; i < outputs.size(); ++i)
+    for (size_t j = i + 1; j < outputs.size(); ++j)
+      if (same_file(outputs[i].second, outputs[j].second, true))
+        throw std::invalid_argument(outputs[i].first + " " + outputs[i].second + " and " +
+                                    outputs[j].first + " " + outputs[j].second +
+                                    " are the same file: refused, nothing written");
 }
 
 // OUT.bag and/or OUT.csv, each under a temporary name until both are whole (output_file.h):
@@ -254,21 +274,8 @@ class SampleErrorsFile {
   std::ofstream f_;
 };
 
-// The error bars' side files go beside a CSV that is (or will be) a regular file only: not
-// beside /dev/null, /dev/stdout or a pipe (which would put /dev/null.errors.csv into /dev).
-bool has_side_files(const std::string& csv) {
-  if (csv.empty()) return false;
-  std::error_code ec;
-  const std::filesystem::file_status st = std::filesystem::status(csv, ec);
-  return !std::filesystem::exists(st) || std::filesystem::is_regular_file(st);
-}
-
-// OUT.csv's side file of error bars: OUT.errors.csv.
-std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
-  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
-}
-
-// One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples).
+// One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples, to
+// a relative 2^-11: MedianHistogram).
 // Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
 void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
   OutputFile file(path);
@@ -425,11 +432,11 @@ BagOptions parse_bag_options(int argc, char** argv) {
 
 BagSummary run_bag(const BagOptions& o) {
   const auto wall = Clock::now();
-  refuse_same_files(o);
-  BagSummary s;
-  const mbk::Model model = load(o.model, o.bvh);
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
+  refuse_same_files(o, estimator.automatic);
+  BagSummary s;
+  const mbk::Model model = load(o.model, o.bvh);
   s.estimator = estimator.name;
   if (!o.base_odometry.empty() && (ends_with(o.input, ".csv") || mbk::is_bvh_file(o.input)))
     throw std::invalid_argument("--base-odometry needs a bag input");
@@ -502,7 +509,9 @@ std::string format_summary(const BagSummary& s) {
     out += "  note " + std::to_string(n.second) + " samples: " + n.first +
            " (first: " + s.log.example.at(n.first) + ")\n";
   if (!s.errors.empty())
-    out += "  error bars (noise level; median standard error of velocity, acceleration):\n";
+    out +=
+        "  error bars (noise level; median standard error of velocity, acceleration, medians to "
+        "5e-4 relative):\n";
   for (const mbk::CoordinateError& e : s.errors) {
     std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n", e.name.c_str(), e.noise,
                   e.velocity_se, e.acceleration_se);

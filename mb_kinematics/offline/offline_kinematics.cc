@@ -93,20 +93,21 @@ void OfflineStates::fit_automatic() {
 
 namespace {
 
-double median(std::vector<double> column) {
-  if (column.empty()) return 0;
-  std::nth_element(column.begin(), column.begin() + column.size() / 2, column.end());
-  return column[column.size() / 2];
-}
-
-// The median of column c of v (v[k * m + c]).
+// The median of column c of v (v[k * m + c]), as MedianHistogram's.
 double column_median(const std::vector<double>& v, int m, int c) {
-  std::vector<double> column;
-  for (size_t at = c; at < v.size(); at += m) column.push_back(v[at]);
-  return median(std::move(column));
+  MedianHistogram column;
+  for (size_t at = c; at < v.size(); at += m) column.add(v[at]);
+  return column.median();
 }
 
 }  // namespace
+
+std::size_t ErrorColumns::bytes() const {
+  std::size_t sum = 0;
+  for (const auto* columns : {&velocity, &acceleration})
+    for (const MedianHistogram& h : *columns) sum += h.bytes();
+  return sum;
+}
 
 void OfflineStates::append_errors(int begin, int end, ErrorColumns& out) const {
   if (!positions_fit_) return;
@@ -118,8 +119,8 @@ void OfflineStates::append_errors(int begin, int end, ErrorColumns& out) const {
     const AutoEstimate* v = velocity_everywhere_[c] ? velocities_fit_.get() : nullptr;
     for (int r = begin; r < end; ++r) {
       const size_t at = static_cast<size_t>(r) * nq + c;
-      out.velocity[k].push_back(positions_fit_->first_se[at]);
-      out.acceleration[k].push_back(v ? v->first_se[at] : positions_fit_->second_se[at]);
+      out.velocity[k].add(positions_fit_->first_se[at]);
+      out.acceleration[k].add(v ? v->first_se[at] : positions_fit_->second_se[at]);
     }
   }
 }
@@ -132,8 +133,7 @@ std::vector<CoordinateError> OfflineStates::error_summary(const ErrorColumns* wh
   if (positions_fit_)
     for (size_t k = 0; k < full_.size(); ++k)
       out.push_back({model_.coordinate_names[full_[k]], positions_fit_->noise[full_[k]],
-                     median({columns.velocity[k].begin(), columns.velocity[k].end()}),
-                     median({columns.acceleration[k].begin(), columns.acceleration[k].end()})});
+                     columns.velocity[k].median(), columns.acceleration[k].median()});
   for (size_t i = 0; i < partial_.size(); ++i)
     if (series_[i].fit) {
       const AutoEstimate& a = *series_[i].fit;

@@ -5,7 +5,6 @@
 // ROS-free.
 #pragma once
 
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,22 +13,25 @@
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
+#include "mb_kinematics/estimation/median_histogram.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/offline/recording.h"
 
 namespace mbk {
 
 // One coordinate's error bars from the "auto" estimator: its noise level and the median over
-// its samples of the standard errors of its velocity and acceleration (rad, rad/s, rad/s^2 or m).
+// its samples of the standard errors of its velocity and acceleration (rad, rad/s, rad/s^2 or m;
+// the medians to a relative 2^-11, MedianHistogram).
 struct CoordinateError {
   std::string name;
   double noise = 0, velocity_se = 0, acceleration_se = 0;
 };
 
-// Per coordinate in every row, per row: the standard errors error_summary takes the medians of
-// (a deque: grows without copying, 8 bytes a value).
+// Per coordinate in every row: the histograms of the standard errors error_summary takes the
+// medians of (estimation/median_histogram.h: bounded however long the recording).
 struct ErrorColumns {
-  std::vector<std::deque<double>> velocity, acceleration;
+  std::vector<MedianHistogram> velocity, acceleration;
+  std::size_t bytes() const;  // what the histograms' bins take
 };
 
 // What a piece of a longer recording (offline/offline_stream.h) takes from the whole one.

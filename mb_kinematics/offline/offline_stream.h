@@ -62,6 +62,8 @@ class OfflineStream {
   // "auto": the whole recording's error bars (OfflineStates::error_summary), after finish().
   const std::vector<CoordinateError>& error_summary() const { return errors_; }
 
+  // "auto": the bytes kept for error_summary's medians (bounded: ErrorColumns).
+  std::size_t error_bytes() const { return columns_.bytes(); }
   int buffered_rows() const { return buffer_.rows(); }
   int peak_buffered_rows() const { return peak_rows_; }
   RowSeconds seconds() const { return seconds_; }

@@ -108,8 +108,10 @@ std::vector<Result> whole(const mbk::Model& model, const mbk::OfflineEstimator& 
 }
 
 // "auto" chooses in a pass of its own first (AutoChoosePass); peak: the most rows either pass kept.
+// error_bytes: what "auto" kept for the medians of its error bars.
 std::vector<Result> streamed(const mbk::Model& model, const mbk::OfflineEstimator& e, long rows,
-                             int chunk, int* peak = nullptr, Errors* errors = nullptr) {
+                             int chunk, int* peak = nullptr, Errors* errors = nullptr,
+                             std::size_t* error_bytes = nullptr) {
   const mbk_test::Trajectory trajectory(model, 2);
   mbk::RecordingSurvey survey(model.nq);
   for (long i = 0; i < rows; ++i) {
@@ -146,6 +148,7 @@ std::vector<Result> streamed(const mbk::Model& model, const mbk::OfflineEstimato
   stream.finish();
   if (peak) *peak = std::max(peak_choosing, stream.peak_buffered_rows());
   if (errors) errors->summary = stream.error_summary();
+  if (error_bytes) *error_bytes = stream.error_bytes();
   return out;
 }
 
@@ -228,6 +231,20 @@ TEST(OfflineStreamTest, AutoRowsKeptDoNotGrowWithTheRecording) {
   mbk::OfflineReach reach;
   ASSERT_TRUE(mbk::offline_reach(mbk::auto_candidates(1e-3).back(), reach));
   expect_rows_kept_bounded("auto", reach);
+}
+
+// "auto": the error bars' medians (ErrorColumns) take memory by the octaves the standard errors
+// span, not by the samples: 50 s take at most a few octaves more than 10 s (a rarer tail value),
+// far from the 5x of every value kept, and at most 12 octaves of bins per column.
+TEST(OfflineStreamTest, AutoErrorMediansDoNotGrowWithTheRecording) {
+  const mbk::Model model = mbk::make_random_tree(6, 3);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("auto");
+  std::size_t short_bytes = 0, long_bytes = 0;
+  streamed(model, e, 10000, 1000, nullptr, nullptr, &short_bytes);
+  streamed(model, e, 50000, 1000, nullptr, nullptr, &long_bytes);
+  EXPECT_GT(short_bytes, 0u);
+  EXPECT_LE(long_bytes, short_bytes * 5 / 4);
+  EXPECT_LE(long_bytes, static_cast<std::size_t>(2 * model.nq * 12 * 32768));
 }
 
 // RecordingBuilder::stream_to hands out the rows finish() keeps and drops the same ones, counted

@@ -685,6 +685,31 @@ TEST(BagTest, AnOutputThatIsAnInputIsRefusedBeforeWriting) {
   EXPECT_FALSE(absent.good());
 }
 
+// Issue 24.5: with "auto", --csv OUT.csv also writes OUT.errors.csv and OUT.sample_errors.csv;
+// an input or another output that is one of them is refused before anything is written.
+TEST(BagTest, AnInputOrOutputThatIsACsvSideFileIsRefused) {
+  const std::string in = temp("side.errors.csv");  // a trajectory CSV with a side file's name
+  std::ofstream(in) << "time,j1\n0,0.5\n";
+  const std::string in_text = read_file(in);
+  mbk_offline::BagOptions input_is_side = options(in, "");
+  input_is_side.out_csv = temp("side.csv");
+  std::string e = error_of(input_is_side);
+  EXPECT_NE(e.find("side file " + in + " is the same file as the input"), std::string::npos) << e;
+  EXPECT_NE(e.find("nothing written"), std::string::npos) << e;
+  EXPECT_EQ(read_file(in), in_text);
+  const std::string bag = temp("side_out.sample_errors.csv");
+  std::remove(bag.c_str());
+  std::remove(temp("side_out.csv").c_str());
+  mbk_offline::BagOptions out_is_side = options(write_bag("side.bag", 10, 1.0), bag);
+  out_is_side.out_csv = temp("side_out.csv");
+  e = error_of(out_is_side);
+  EXPECT_NE(e.find("--out " + bag + " and --csv's side file " + bag + " are the same file"),
+            std::string::npos)
+      << e;
+  EXPECT_FALSE(std::ifstream(bag).good());
+  EXPECT_FALSE(std::ifstream(temp("side_out.csv")).good());
+}
+
 // `mbk bag IN --model kModel ARGS`: its exit status, stderr into `err`.
 int run_mbk_bag(const std::string& in, const std::string& args, std::string& err) {
   const std::string command = std::string(MBK_MBK_PATH) + " bag " + in + " --model " + kModel +
