@@ -28,7 +28,7 @@ endforeach()
 # build): any invalid read or write, use of uninitialised memory or definite leak (but urdfdom's
 # own, test/valgrind.supp) fails them. About 40 s in all.
 find_program(MBK_VALGRIND valgrind)
-if(MBK_VALGRIND AND NOT CMAKE_CXX_FLAGS MATCHES "sanitize")
+if(MBK_VALGRIND AND NOT CMAKE_CXX_FLAGS MATCHES "sanitize" AND TARGET bvh_test)
   foreach(name bvh_test bvh_model_test bvh_anthropometry_test loader_errors_test)
     add_test(NAME memcheck_${name} COMMAND ${MBK_VALGRIND} --error-exitcode=3 -q
       --leak-check=full --errors-for-leak-kinds=definite
