@@ -26,7 +26,7 @@ endforeach()
 # A memcheck of the loaders (doc/reliability.md): the BVH reader, model and anthropometry tests and
 # the URDF/YAML/STATE.json error tests under valgrind, when it is installed (not in a sanitizer
 # build): any invalid read or write, use of uninitialised memory or definite leak (but urdfdom's
-# own, test/valgrind.supp) fails them. About 40 s in all.
+# own, test/valgrind.supp) fails them. 9-46 s in all (doc/reliability.md).
 find_program(MBK_VALGRIND valgrind)
 if(MBK_VALGRIND AND NOT CMAKE_CXX_FLAGS MATCHES "sanitize" AND TARGET bvh_test)
   foreach(name bvh_test bvh_model_test bvh_anthropometry_test loader_errors_test)
