@@ -24,6 +24,7 @@ MBK_PACKAGES=(
   python3-matplotlib catkin-lint
   libnodelet-dev libnodeletlib-dev libnodeletlib-tools libtopic-tools-dev  # the nodelet; load_monitor
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
+  valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
 )
 

@@ -23,6 +23,21 @@ foreach(source ${MBK_PEER_TESTS})
   target_link_libraries(${name} ${orocos_kdl_LIBRARIES} ${kdl_parser_LIBRARIES})
 endforeach()
 
+# A memcheck of the loaders (doc/reliability.md): the BVH reader, model and anthropometry tests and
+# the URDF/YAML/STATE.json error tests under valgrind, when it is installed (not in a sanitizer
+# build): any invalid read or write, use of uninitialised memory or definite leak (but urdfdom's
+# own, test/valgrind.supp) fails them. 9-46 s in all (doc/reliability.md).
+find_program(MBK_VALGRIND valgrind)
+if(MBK_VALGRIND AND NOT CMAKE_CXX_FLAGS MATCHES "sanitize" AND TARGET bvh_test)
+  foreach(name bvh_test bvh_model_test bvh_anthropometry_test loader_errors_test)
+    add_test(NAME memcheck_${name} COMMAND ${MBK_VALGRIND} --error-exitcode=3 -q
+      --leak-check=full --errors-for-leak-kinds=definite
+      --suppressions=${PROJECT_SOURCE_DIR}/test/valgrind.supp $<TARGET_FILE:${name}>
+      WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set_tests_properties(memcheck_${name} PROPERTIES TIMEOUT 120)
+  endforeach()
+endif()
+
 # The fuzz smoke (doc/reliability.md): each libFuzzer harness of test/fuzz/ from its seeds with
 # a fixed seed and number of runs (about 5 s each, the same inputs every time); fails on any
 # crash, hang, leak or sanitizer report. scripts/test.sh builds them first.

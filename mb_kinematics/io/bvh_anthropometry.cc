@@ -177,6 +177,7 @@ void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) 
   const Vec3<double> line = cerv - midh;
   std::vector<int> spine;  // the root up to the neck's parent
   for (int b = s.parent(neck); b >= 0; b = s.parent(b)) spine.insert(spine.begin(), b);
+  if (spine.empty()) return;  // the neck is the root: no trunk below it
   const double* part = kTrunkPartLength[static_cast<int>(sex)];
   const double total = part[0] + part[1] + part[2];
   const Vec3<double> xyph = cerv - line * (part[0] / total);

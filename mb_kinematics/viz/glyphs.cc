@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 namespace mbk {
 namespace {
@@ -57,13 +58,13 @@ void add_vectors(const GlyphBody& b, const GlyphStyle& style, Glyphs& out) {
 // Lines from each drawn body's joint point O_k to that of its nearest drawn lower body.
 void add_skeleton(const std::vector<GlyphBody>& bodies, const std::vector<char>& selected,
                   const std::vector<char>& ok, Glyphs& out) {
-  std::vector<int> at;  // body index k -> position in bodies
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    const uint32_t k = bodies[i].index;
-    if (k >= at.size()) at.resize(k + 1, -1);
-    at[k] = static_cast<int>(i);
-  }
-  auto position = [&](uint32_t k) { return k < at.size() ? at[k] : -1; };
+  // Body index k -> position in bodies; a map, as k comes from the message (any uint32).
+  std::unordered_map<uint32_t, int> at;
+  for (size_t i = 0; i < bodies.size(); ++i) at[bodies[i].index] = static_cast<int>(i);
+  auto position = [&](uint32_t k) {
+    const auto it = at.find(k);
+    return it == at.end() ? -1 : it->second;
+  };
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!ok[i]) continue;
     int j = position(bodies[i].lower);

@@ -168,4 +168,26 @@ TEST(DeLeva, WhatIsNotMappedIsMasslessAndNamedInOneNote) {
   EXPECT_GT(forearm.inertia(1, 1), 0.0);
 }
 
+// A skeleton whose root is the neck has no spine below it for the trunk: the trunk is not found
+// (its mass spread over the head) rather than put on the first body of an empty spine (it once
+// read past the end of an empty list).
+TEST(DeLeva, ANeckAtTheRootLeavesTheTrunkOut) {
+  const std::string text =
+      "HIERARCHY\nROOT Neck\n{\n  OFFSET 0 0 0\n"
+      "  CHANNELS 6 Xposition Yposition Zposition Xrotation Yrotation Zrotation\n"
+      "  JOINT Head\n  {\n    OFFSET 0 100 0\n    CHANNELS 3 Xrotation Yrotation Zrotation\n"
+      "    End Site\n    {\n      OFFSET 0 50 0\n    }\n  }\n}\n"
+      "MOTION\nFrames: 1\nFrame Time: 0.01\n0 0 0 0 0 0 0 0 0\n";
+  const mbk::Model model =
+      mbk::model_from_bvh(mbk::parse_bvh(text, "neck.bvh"), {0.01, kMass, "male"});
+  EXPECT_NEAR(total_mass(model), kMass, 1e-12 * kMass);
+  EXPECT_EQ(body(model, "Head").mass, kMass);
+  EXPECT_EQ(body(model, "Neck").mass, 0.0);
+  ASSERT_EQ(model.warnings.size(), 1u);
+  EXPECT_NE(model.warnings[0].find("not found (their mass spread over the others): upper trunk, "
+                                   "middle trunk, lower trunk, left upper arm"),
+            std::string::npos)
+      << model.warnings[0];
+}
+
 }  // namespace

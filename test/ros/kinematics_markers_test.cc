@@ -111,6 +111,22 @@ TEST(KinematicsMarkers, FilterAndSkeletonSkipIntermediateLinks) {
   EXPECT_EQ(mbk_ros::make_glyphs(message(), style).arrows.size(), 3u);
 }
 
+// Indices are the message's, any uint32: the largest ones are looked up as any other (they
+// once sized a table by index + 1, which wrapped to 0 and wrote past its end).
+TEST(KinematicsMarkers, SkeletonOfIndicesUpToTheLargestUint32) {
+  constexpr uint32_t kMax = std::numeric_limits<uint32_t>::max();
+  auto msg = message();
+  msg.bodies.push_back(body("big", kMax, 1, 1.0));
+  msg.bodies.push_back(body("c", 4, kMax, 2.0));
+  GlyphStyle style;
+  style.skeleton = true;
+  const Glyphs g = mbk_ros::make_glyphs(msg, style);
+  ASSERT_EQ(g.skeleton.size(), 3u);  // a-b (across a__alpha), a-big, big-c
+  EXPECT_LT((g.skeleton[1].second - Vec3<double>(0, 0, 1.0)).norm(), 1e-12);
+  EXPECT_LT((g.skeleton[2].first - Vec3<double>(0, 0, 1.0)).norm(), 1e-12);
+  EXPECT_LT((g.skeleton[2].second - Vec3<double>(0, 0, 2.0)).norm(), 1e-12);
+}
+
 TEST(KinematicsMarkers, InvalidFloatsSkippedAndNamed) {
   auto msg = message();
   msg.bodies[0].accel.angular.y = std::numeric_limits<double>::quiet_NaN();
