@@ -4,6 +4,11 @@
 #   Pinocchio 3.x is not in Debian: build it yourself and point CMake at it, e.g.
 #   `source scripts/common.sh; mbk_build -DCMAKE_PREFIX_PATH=<its install prefix>`.
 #   DART: Debian's libdart-dev and libdart-utils-urdf-dev (scripts/common.sh installs them).
+# euler_instructions: the driver of bench/euler_instructions.sh (callgrind; no Google Benchmark).
+add_executable(euler_instructions bench/euler_instructions.cc)
+target_link_libraries(euler_instructions mbk_analysis mbk_io mbk_core)
+target_compile_definitions(euler_instructions PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
 find_package(benchmark QUIET)  # orocos_kdl and kdl_parser: found in CMakeLists.txt
 if(NOT benchmark_FOUND)
   message(STATUS "kinematics_benchmark: not built (needs Google Benchmark)")

@@ -104,13 +104,6 @@ bool is_ball_or_free(JointKernel kernel) {
          kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered;
 }
 
-// A ball or free joint's constant M = C_k, times P for angles in another order (euler_order.h).
-Mat3<double> ball_matrix(const Joint& joint, JointKernel kernel) {
-  if (kernel != JointKernel::kBallOrdered && kernel != JointKernel::kFreeOrdered)
-    return joint.rotation;
-  return joint.rotation * euler_map(joint.euler_order).p.matrix();
-}
-
 }  // namespace
 
 BodySteps make_body_steps(const Model& model, KernelChoice choice) {
@@ -135,9 +128,9 @@ BodySteps make_body_steps(const Model& model, KernelChoice choice) {
     }
     step.euler_order = body.joint.euler_order;
     if (is_ball_or_free(step.kernel)) {
-      if (body.joint.rotation != Mat3<double>::Identity()) {  // else M = S0J (P) by the kernel
+      if (body.joint.rotation != Mat3<double>::Identity()) {  // else M = S0J by the kernel
         step.matrices = static_cast<int>(out.matrices.size());
-        out.matrices.push_back(ball_matrix(body.joint, step.kernel));
+        out.matrices.push_back(body.joint.rotation);
       }
     } else if (step.kernel == JointKernel::kFixedRotated ||
                step.kernel == JointKernel::kPrismaticRotated) {

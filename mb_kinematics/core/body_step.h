@@ -32,8 +32,8 @@ enum class JointKernel : std::uint8_t {
   kBallEuler,         // SJK = C_k R(e), Euler parameters
   kFree123,           // s_k = C_k (x, y, z), then kBall123
   kFreeEuler,         // s_k = C_k (x, y, z), then kBallEuler
-  kBallOrdered,       // angles in another order: SJK = (C_k P) A B(beta + shift) C(sign gamma) Q
-  kFreeOrdered,       // s_k = C_k (x, y, z), then kBallOrdered (euler_order.h EulerMap)
+  kBallOrdered,       // angles in another order: kBall123's turns about the order's axes
+  kFreeOrdered,       // kFree123's, likewise (euler_order.h EulerTurns)
   kPlanar,            // SJK = P0 + cos q P1 + sin q P2 about the normal, s_k = x C u1 + y C u2
   kGeneric,           // any joint type through joint_motion (a type without a kernel of its own)
 };
@@ -55,8 +55,7 @@ struct BodyStep {
   int q_index = 0;
   int v_index = 0;
   // This body's first constant in BodySteps::matrices: C_k (fixed, prismatic, ball and free
-  // joints with C_k != I; C_k P for other Euler orders when C_k != I, else the kernel's S0J P),
-  // P0 P1 P2 (revolute), P0 P1 P2 [C u1, C u2, C a] (planar); else -1.
+  // joints with C_k != I), P0 P1 P2 (revolute), P0 P1 P2 [C u1, C u2, C a] (planar); else -1.
   int matrices = -1;
   int angle = -1;  // its first angle in BodySteps::angles (revolute, 1-2-3 and planar joints)
   EulerOrder euler_order = EulerOrder::kXYZ;        // kBallOrdered, kFreeOrdered: their order

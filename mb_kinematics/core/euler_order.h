@@ -139,6 +139,20 @@ inline const EulerMap& euler_map(EulerOrder order) {
   return kEulerMaps[static_cast<size_t>(order)];
 }
 
+// An order as the recursion's kernels take it (kinematics.h): S0K = M R_a1(alpha) R_a2(beta)
+// R_a3(gamma) is one column turn per angle about the order's own axes, the 1-2-3 turns (eq.
+// 4.4.9-4.4.12) being XYZ's; `third` is the axis neither a1 nor a2, e_a1 x e_a2 = sigma e_third.
+struct EulerTurns {
+  int a1, a2, a3, third, sigma;
+  bool proper;  // a3 == a1
+};
+
+constexpr EulerTurns euler_turns(EulerOrder order) {
+  const std::array<int, 3> a = kEulerAxes[static_cast<size_t>(order)];
+  return EulerTurns{a[0],        a[1], a[2], 3 - a[0] - a[1], (a[1] - a[0] + 3) % 3 == 1 ? 1 : -1,
+                    a[2] == a[0]};
+}
+
 // f(std::integral_constant<EulerOrder, order>{}): a kernel templated on the order, so its maps
 // are constants (one instance per order, as Pinocchio instantiates per joint type).
 template <typename F>
@@ -170,6 +184,7 @@ void with_euler_order(EulerOrder order, F&& f) {
     case O::kZYZ:
       return f(std::integral_constant<O, O::kZYZ>{});
   }
+  __builtin_unreachable();  // every EulerOrder is a case: no range check per body
 }
 
 }  // namespace mbk

@@ -239,68 +239,37 @@ void planar_pose(const Model& model, const BodyStep& b, int k, const S* q, const
   d = s0j * (b.offset.cast<S>() + p[3].col(0).cast<S>() * x[0] + p[3].col(1).cast<S>() * x[1]);
 }
 
-// A ball or free joint's frames in R components: M = S0J C_k (S0J C_k P for another Euler
-// order), and for angles the turns M A (after alpha) and M A B (after beta); cos beta (of
-// beta + shift); the order's sign of gamma (set for kBallOrdered and kFreeOrdered only).
+// A ball or free joint's frames in R components: M = S0J C_k, and for angles in the order
+// (a1, a2, a3) the turns M R_a1 (after alpha) and M R_a1 R_a2 (after beta); kappa, the factor of
+// alpha' a1 in a2' (angles_rates).
 template <typename S>
 struct BallFrame {
   Mat3<S> m, ma, mab;
-  S cos_beta, gamma_sign;
+  S kappa;
 };
 
-// 1-2-3 angles (eq. 4.4.9-4.4.12): S0K = M A(alpha) B(beta) C(gamma), one column turn per angle.
-// c, s: the angles' cosines and sines.
-template <typename S>
-void angles_123_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
-  turn_columns<0>(f.m, c[0], s[0], f.ma);
-  f.cos_beta = c[1];
-  turn_columns<1>(f.ma, c[1], s[1], f.mab);
-  turn_columns<2>(f.mab, c[2], s[2], s0k);
-}
-
-// out = M P for a signed permutation P (column j: sign_j times column index_j of M); no
-// arithmetic when P is a compile-time constant.
-template <typename S>
-void times_permutation(const Mat3<S>& m, const SignedPermutation& p, Mat3<S>& out) {
-  for (int j = 0; j < 3; ++j) out.col(j) = S(p.sign[j]) * m.col(p.index[j]);
-}
-
-// Angles in the order O (euler_order.h EulerMap): S0K = M A(alpha) B(beta + shift)
-// C(sign gamma) Q with M = S0J C_k P, Q a signed permutation of the columns, known at compile
-// time (shift, sign and shuffle cost nothing more than the 1-2-3 turns).
+// Angles in the order O (euler_order.h EulerTurns): S0K = M R_a1(alpha) R_a2(beta) R_a3(gamma),
+// one column turn per angle about the order's axes (eq. 4.4.9-4.4.12 for 1-2-3 = XYZ: every
+// order is the same code at other axes). c, s: the angles' cosines and sines.
 template <EulerOrder O, typename S>
-void ordered_angles_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
-  constexpr EulerMap map = kEulerMaps[static_cast<size_t>(O)];
-  const S cb = map.shifted ? -s[1] : c[1], sb = map.shifted ? c[1] : s[1];
-  f.gamma_sign = S(map.gamma_sign);
-  turn_columns<0>(f.m, c[0], s[0], f.ma);
-  f.cos_beta = cb;
-  turn_columns<1>(f.ma, cb, sb, f.mab);
-  Mat3<S> mabc;
-  turn_columns<2>(f.mab, c[2], S(map.gamma_sign) * s[2], mabc);
-  times_permutation(mabc, map.q, s0k);
+void angles_pose(const S* c, const S* s, BallFrame<S>& f, Mat3<S>& s0k) {
+  constexpr EulerTurns o = euler_turns(O);
+  turn_columns<o.a1>(f.m, c[0], s[0], f.ma);
+  turn_columns<o.a2>(f.ma, c[1], s[1], f.mab);
+  turn_columns<o.a3>(f.mab, c[2], s[2], s0k);
+  f.kappa = o.proper ? s[1] : o.sigma == 1 ? -c[1] : c[1];  // -sigma cos beta, or sin beta
 }
 
 template <JointKernel K>
 constexpr bool kFreeJoint =
     K == JointKernel::kFree123 || K == JointKernel::kFreeEuler || K == JointKernel::kFreeOrdered;
 template <JointKernel K>
-constexpr bool kOrdered = K == JointKernel::kBallOrdered || K == JointKernel::kFreeOrdered;
-template <JointKernel K>
-constexpr bool kAngles123 = K == JointKernel::kBall123 || K == JointKernel::kFree123 || kOrdered<K>;
+constexpr bool kAngles = K == JointKernel::kBall123 || K == JointKernel::kFree123 ||
+                         K == JointKernel::kBallOrdered || K == JointKernel::kFreeOrdered;
 
-// A free joint's (x, y, z) along the joint frame's axes in M's: P^T (x, y, z) for another
-// Euler order O (M = S0J C_k P), else (x, y, z).
-template <JointKernel K, EulerOrder O, typename S>
-Vec3<S> joint_frame_vector(const S* x) {
-  const Vec3<S> v(x[0], x[1], x[2]);
-  if constexpr (kOrdered<K>) return kEulerMaps[static_cast<size_t>(O)].p.transpose_times(v);
-  return v;
-}
-
-// Ball and free joints: M = S0J C_k, S0K = M R with R of the 1-2-3 angles or the Euler
-// parameters, d = S0J q_k + M s with s = (x, y, z) for free joints (along the joint frame's
-// axes). O: the order of kBallOrdered and kFreeOrdered (with_euler_order).
+// Ball and free joints: M = S0J C_k, S0K = M R with R of the angles in the order O or of the
+// Euler parameters, d = S0J q_k + M s with s = (x, y, z) for free joints (along the joint frame's
+// axes).
 template <JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
 void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const DataView<S>& data,
                BallFrame<S>& f, Vec3<S>& d) {
@@ -308,19 +277,15 @@ void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const D
   const S* x = q + b.q_index;
   const S* angles = kFreeJoint<K> ? x + 3 : x;
   if (b.matrices >= 0)
-    f.m = s0j * model.steps.matrices[b.matrices].cast<S>();  // C_k, or C_k P folded at load
-  else if constexpr (kOrdered<K>)
-    times_permutation(s0j, kEulerMaps[static_cast<size_t>(O)].p, f.m);  // C_k = I: S0J P
+    f.m = s0j * model.steps.matrices[b.matrices].cast<S>();  // C_k
   else
     f.m = s0j;
-  if constexpr (kOrdered<K>)
-    ordered_angles_pose<O>(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
-  else if constexpr (kAngles123<K>)
-    angles_123_pose(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
+  if constexpr (kAngles<K>)
+    angles_pose<O>(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
   else
     data.rotation[k] = f.m * rotation_euler(angles);
   d = times_constant(s0j, b.offset, b.offset_shape);
-  if constexpr (kFreeJoint<K>) d += f.m * joint_frame_vector<K, O>(x);
+  if constexpr (kFreeJoint<K>) d += f.m * Vec3<S>(x[0], x[1], x[2]);
 }
 
 // Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
@@ -411,12 +376,12 @@ MBK_FLATTEN void pose_step(const Model& model, int k, const S* q, const JointMot
         break;
       case JointKernel::kBallOrdered:
         with_euler_order(b.euler_order, [&](auto o) {
-          ball_pose<JointKernel::kBallOrdered, decltype(o)::value>(model, b, k, q, data, f, d);
+          ball_pose<JointKernel::kBall123, decltype(o)::value>(model, b, k, q, data, f, d);
         });
         break;
       case JointKernel::kFreeOrdered:
         with_euler_order(b.euler_order, [&](auto o) {
-          ball_pose<JointKernel::kFreeOrdered, decltype(o)::value>(model, b, k, q, data, f, d);
+          ball_pose<JointKernel::kFree123, decltype(o)::value>(model, b, k, q, data, f, d);
         });
         break;
       case JointKernel::kPlanar:
@@ -517,28 +482,33 @@ void motion_step(const Model& model, int k, const StateView<S>& state, const Dat
     body_update<L, true, false>(b, k, t, data);
 }
 
-// w_k and the w_k' part of 1-2-3 angles in R (eq. 4.4.13-4.4.16): the columns e1, A e2, A B e3
-// carried by M are a0 = M e1, a1 = (M A) e2, a2 = (M A B) e3, and their rates (eq. 4.5) are
-// a1' = alpha' (M A) e3 and a2' = -cos beta alpha' a1 + beta' (M A B) e1 (A' = A [e1]x alpha',
-// B' = B [e2]x beta'); linear in M, as C_k (angular_dot) carries them in joint_motion.
-// kGammaSign: another order's sign of gamma (ordered_angles_pose), whose a2 and a2' carry it,
-// here on gamma's rates (exact: the sign is +-1).
-template <Level L, int kGammaSign, typename S>
-void angles_123_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
-  const Vec3<S> a0 = f.m.col(0), a1 = f.ma.col(1), a2 = f.mab.col(2);
-  const S gamma_rate = kGammaSign == 1 ? y[2] : -y[2];
-  t.w = a0 * y[0] + a1 * y[1] + a2 * gamma_rate;
+// w_k and the w_k' part of angles in the order O in R (eq. 4.4.13-4.4.16 for 1-2-3): the
+// columns e_a1, R_a1 e_a2, R_a1 R_a2 e_a3 carried by M are u0 = M e_a1, u1 = (M R_a1) e_a2,
+// u2 = (M R_a1 R_a2) e_a3, and their rates (eq. 4.5; R_a' = R_a [e_a]x angle') are
+// u1' = alpha' (M R_a1) (e_a1 x e_a2) = sigma alpha' (M R_a1) e_third and u2' = kappa alpha' u1 +
+// beta' (M R_a1 R_a2) (e_a2 x e_a3), e_a2 x e_a3 = sigma e_a1 (Tait-Bryan) or -sigma e_third
+// (proper Euler); linear in M, as C_k (angular_dot) carries them in joint_motion. Each sign is a
+// constant: a sum or a difference.
+template <Level L, EulerOrder O, typename S>
+void angles_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
+  constexpr EulerTurns o = euler_turns(O);
+  const Vec3<S> u0 = f.m.col(o.a1), u1 = f.ma.col(o.a2), u2 = f.mab.col(o.a3);
+  t.w = u0 * y[0] + u1 * y[1] + u2 * y[2];
   if constexpr (L == Level::kAcceleration) {
-    const Vec3<S> a1_dot = f.ma.col(2) * y[0];
-    const Vec3<S> a2_dot = a1 * (-f.cos_beta * y[0]) + f.mab.col(0) * y[1];
-    const S gamma_acceleration = kGammaSign == 1 ? yd[2] : -yd[2];
-    t.wd = a0 * yd[0] + a1 * yd[1] + a2 * gamma_acceleration + a1_dot * y[1] + a2_dot * gamma_rate;
+    const Vec3<S> u1_dot = f.ma.col(o.third) * y[0];  // times sigma
+    const Vec3<S> turned = f.mab.col(o.proper ? o.third : o.a1) * y[1];
+    constexpr bool u2_plus = o.proper ? o.sigma == -1 : o.sigma == 1;  // e_a2 x e_a3 sign
+    const Vec3<S> u2_dot =
+        u2_plus ? Vec3<S>(u1 * (f.kappa * y[0]) + turned) : Vec3<S>(u1 * (f.kappa * y[0]) - turned);
+    const Vec3<S> sum = u0 * yd[0] + u1 * yd[1] + u2 * yd[2];
+    t.wd = o.sigma == 1 ? Vec3<S>(sum + u1_dot * y[1] + u2_dot * y[2])
+                        : Vec3<S>(sum - u1_dot * y[1] + u2_dot * y[2]);
   }
 }
 
-// Ball and free joints (ball_pose): the rates of the angles in R (1-2-3 angles from their
-// columns, Euler parameters in the joint frame and then M), and s_k' = M (x', y', z'). O: as
-// for ball_pose.
+// Ball and free joints (ball_pose): the rates of the angles in R (from their columns, any order;
+// Euler parameters in the joint frame and then M), and s_k' = M (x', y', z'). O: as for
+// ball_pose.
 template <Level L, JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
 void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                const DataView<S>& data) {
@@ -548,9 +518,8 @@ void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>&
   if constexpr (L != Level::kPose) {
     constexpr int kAngular = kFreeJoint<K> ? 3 : 0;  // the angles' first coordinate and speed
     const S *y = state.y + b.v_index, *yd = state.yd + b.v_index;
-    if constexpr (kAngles123<K>) {
-      angles_123_rates<L, kEulerMaps[static_cast<size_t>(O)].gamma_sign>(f, y + kAngular,
-                                                                         yd + kAngular, t);
+    if constexpr (kAngles<K>) {
+      angles_rates<L, O>(f, y + kAngular, yd + kAngular, t);
     } else {
       Vec3<S> w, wd = Vec3<S>::Zero();  // wd: set only at kAcceleration
       detail::euler_rates(state.q + b.q_index + kAngular, y + kAngular,
@@ -559,32 +528,28 @@ void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>&
       if constexpr (L == Level::kAcceleration) t.wd = f.m * wd;
     }
     if constexpr (kFreeJoint<K>) {
-      t.sd = f.m * joint_frame_vector<K, O>(y);
-      if constexpr (L == Level::kAcceleration) t.sdd = f.m * joint_frame_vector<K, O>(yd);
+      t.sd = f.m * Vec3<S>(y[0], y[1], y[2]);
+      if constexpr (L == Level::kAcceleration) t.sdd = f.m * Vec3<S>(yd[0], yd[1], yd[2]);
     }
   }
   body_update<L, true, kFreeJoint<K>>(b, k, t, data);
 }
 
 // Column c of a ball or free joint's speeds in R, as ball_step sums them for a unit speed y_c
-// (bit for bit): M e_c for a translation (M P^T e_c for another Euler order), else a_c (angles,
-// any order) or M times the Euler parameters' column. For partial_velocity_kinematics; f from
-// pose_step, e: the Euler parameters.
+// (bit for bit): M e_c for a translation, else u_c (angles, any order: angles_rates) or M times
+// the Euler parameters' column. For partial_velocity_kinematics; f from pose_step, e: the Euler
+// parameters.
 template <typename S>
 Vec3<S> ball_column(const BodyStep& b, SpeedKind speeds, const BallFrame<S>& f, const S* e, int c) {
   const JointKernel kernel = b.kernel;
   const bool free = kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
                     kernel == JointKernel::kFreeOrdered;
   const int angle = free ? c - 3 : c;
-  if (angle < 0 && kernel == JointKernel::kFreeOrdered)
-    return f.m * euler_map(b.euler_order).p.transpose_times(Vec3<S>(Vec3<S>::Unit(c)));
   if (angle < 0) return f.m * Vec3<S>::Unit(c);
-  if (kernel == JointKernel::kBall123 || kernel == JointKernel::kFree123)
-    return angle == 0 ? Vec3<S>(f.m.col(0)) : angle == 1 ? f.ma.col(1) : f.mab.col(2);
-  if (kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered)
-    return angle == 0   ? Vec3<S>(f.m.col(0))
-           : angle == 1 ? Vec3<S>(f.ma.col(1))
-                        : Vec3<S>(f.mab.col(2) * f.gamma_sign);
+  if (kernel != JointKernel::kBallEuler && kernel != JointKernel::kFreeEuler) {
+    const std::array<int, 3> a = euler_axes(b.euler_order);
+    return angle == 0 ? f.m.col(a[0]) : angle == 1 ? f.ma.col(a[1]) : f.mab.col(a[2]);
+  }
   Vec3<S> angular[4];
   detail::euler_columns<S>(e, nullptr, speeds, angular, nullptr);
   return f.m * angular[angle];
@@ -860,12 +825,12 @@ MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& 
         break;
       case JointKernel::kBallOrdered:
         with_euler_order(b.euler_order, [&](auto o) {
-          ball_step<L, JointKernel::kBallOrdered, decltype(o)::value>(model, b, k, state, data);
+          ball_step<L, JointKernel::kBall123, decltype(o)::value>(model, b, k, state, data);
         });
         break;
       case JointKernel::kFreeOrdered:
         with_euler_order(b.euler_order, [&](auto o) {
-          ball_step<L, JointKernel::kFreeOrdered, decltype(o)::value>(model, b, k, state, data);
+          ball_step<L, JointKernel::kFree123, decltype(o)::value>(model, b, k, state, data);
         });
         break;
       case JointKernel::kPlanar:

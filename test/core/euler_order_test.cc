@@ -78,6 +78,24 @@ TEST(EulerOrderTest, EveryOrderIsThe123RotationBetweenTwoPermutations) {
               xyz.gamma_sign == 1);
 }
 
+// The kernels' view of each order (EulerTurns): its axes, the third axis and the sign sigma of
+// e_a1 x e_a2 = sigma e_third, which the recursion's angle rates fold into sums and differences.
+TEST(EulerOrderTest, TurnsNameEachOrdersAxesAndCrossProductSign) {
+  for (int i = 0; i <= static_cast<int>(EulerOrder::kLast); ++i) {
+    const auto order = static_cast<EulerOrder>(i);
+    const EulerTurns o = euler_turns(order);
+    const std::array<int, 3> a = euler_axes(order);
+    EXPECT_EQ((std::array<int, 3>{o.a1, o.a2, o.a3}), a) << to_string(order);
+    EXPECT_EQ(o.proper, !is_tait_bryan(order)) << to_string(order);
+    EXPECT_NE(o.third, o.a1);
+    EXPECT_NE(o.third, o.a2);
+    const Vec3<double> cross = Vec3<double>::Unit(o.a1).cross(Vec3<double>::Unit(o.a2));
+    EXPECT_EQ(cross, o.sigma * Vec3<double>::Unit(o.third)) << to_string(order);
+  }
+  const EulerTurns xyz = euler_turns(EulerOrder::kXYZ);
+  EXPECT_TRUE(xyz.a1 == 0 && xyz.a2 == 1 && xyz.a3 == 2 && xyz.third == 2 && xyz.sigma == 1);
+}
+
 // joint_motion's rotation and joint_quaternion of a ball joint in each order are the three turns
 // (C_k times them).
 TEST(EulerOrderTest, JointMotionTurnsAboutTheOrdersAxes) {
