@@ -292,6 +292,17 @@ void write_errors(const std::string& path, const std::vector<mbk::CoordinateErro
 // Rows computed per OfflineStream chunk: a few blocks, small beside a long recording.
 constexpr int kStreamChunkRows = 8192;
 
+// A pass over the input's stamps alone, for the survey's exact median interval (jittered stamps).
+void survey_stamps(const BagOptions& o, const mbk::Model& model, mbk::RecordingSurvey& survey,
+                   BagSummary& s) {
+  mbk::RecordingBuilder builder(model);
+  builder.stream_to(
+      [&](double t, const double*, const double*, const std::uint8_t*) { survey.add_stamp(t); });
+  BaseOdometry unused;
+  read_input(o, model, builder, unused, s, false);
+  builder.finish();
+}
+
 // "auto"'s choice pass (offline/offline_stream.h) over the input: the whole recording's choices
 // and the estimating pass's reach.
 mbk::WholeRecording choose_auto(const BagOptions& o, const mbk::Model& model,
@@ -325,6 +336,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
     first.finish();  // every coordinate named, or the error
   }
   if (!survey.streamable()) return false;
+  while (!survey.finish_pass()) survey_stamps(o, model, survey, s);
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;

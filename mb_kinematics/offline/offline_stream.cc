@@ -31,16 +31,16 @@ void drop_front(std::vector<T>& v, size_t count) {
 
 }  // namespace
 
-RecordingSurvey::RecordingSurvey(int nq, bool keep_intervals)
+RecordingSurvey::RecordingSurvey(int nq, bool keep_intervals, std::size_t interval_bins)
     : nq(nq),
       keep_intervals(keep_intervals),
       position_everywhere(nq, 1),
       position_somewhere(nq, 0),
-      velocity_everywhere(nq, 1) {}
+      velocity_everywhere(nq, 1),
+      intervals(interval_bins) {}
 
 void RecordingSurvey::add(double t, const std::uint8_t* given) {
-  if (rows > 0 && keep_intervals) ++intervals[t - last_stamp];
-  last_stamp = t;
+  add_stamp(t);
   ++rows;
   for (int c = 0; c < nq; ++c) {
     position_everywhere[c] = position_everywhere[c] && (given[c] & Recording::kPosition);
@@ -49,15 +49,19 @@ void RecordingSurvey::add(double t, const std::uint8_t* given) {
   }
 }
 
+void RecordingSurvey::add_stamp(double t) {
+  if (stamps_in_pass++ > 0 && keep_intervals) intervals.add(t - last_stamp);
+  last_stamp = t;
+}
+
+bool RecordingSurvey::finish_pass() {
+  stamps_in_pass = 0;
+  return !keep_intervals || intervals.finish_pass();
+}
+
 // As default_max_gap: the interval at index n / 2 of the n intervals in increasing order.
 double RecordingSurvey::default_max_gap() const {
-  if (rows < 2) return 0;
-  long at = (rows - 1) / 2;
-  for (const auto& [interval, count] : intervals) {
-    if (at < count) return 5 * interval;
-    at -= count;
-  }
-  return 0;  // not reached
+  return rows < 2 || !keep_intervals ? 0 : 5 * intervals.median();
 }
 
 bool RecordingSurvey::streamable() const {

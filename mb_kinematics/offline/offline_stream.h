@@ -10,22 +10,29 @@
 
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
 #include <vector>
 
 #include "mb_kinematics/estimation/auto_estimator.h"
+#include "mb_kinematics/estimation/exact_median.h"
 #include "mb_kinematics/offline/offline_batch.h"
 
 namespace mbk {
 
 // What the computation of a whole recording depends on beyond one estimate's reach, gathered
-// row by row (a first pass over the input): in bounded memory but for the intervals, one entry
-// per distinct interval between stamps (a few at a steady rate).
+// row by row in passes over the input, in memory bounded independently of its length: the first
+// pass sees every row (add); the median interval between stamps (which sets max_gap) is exact
+// after one pass at a steady rate, and after one more of the stamps alone (add_stamp) for
+// jittered stamps of every distinct interval (estimation/exact_median.h).
 struct RecordingSurvey {
-  // keep_intervals false: the user gave max_gap; the intervals are not counted.
-  explicit RecordingSurvey(int nq, bool keep_intervals = true);
+  // keep_intervals false: the user gave max_gap; the intervals are not counted. interval_bins:
+  // ExactMedian's bound (about 48 bytes each).
+  explicit RecordingSurvey(int nq, bool keep_intervals = true, std::size_t interval_bins = 1 << 14);
   void add(double t, const std::uint8_t* given);  // a row as RecordingBuilder's sink gives it
+  // Ends a pass: true when default_max_gap() is known; false when every stamp is needed once more
+  // (add_stamp each, then finish_pass()).
+  bool finish_pass();
+  void add_stamp(double t);  // a pass after the first
   // 5 x the median interval: default_max_gap of the stamps, without holding them.
   double default_max_gap() const;
   // Every coordinate's positions in every row or in none: OfflineStream computes it.
@@ -35,7 +42,8 @@ struct RecordingSurvey {
   bool keep_intervals;
   long rows = 0;
   std::vector<char> position_everywhere, position_somewhere, velocity_everywhere;
-  std::map<double, long> intervals;  // t[i] - t[i - 1], counted
+  ExactMedian intervals;  // t[i] - t[i - 1]
+  long stamps_in_pass = 0;
   double last_stamp = 0;
 };
 

@@ -113,11 +113,14 @@ std::vector<Result> streamed(const mbk::Model& model, const mbk::OfflineEstimato
                              int chunk, int* peak = nullptr, Errors* errors = nullptr,
                              std::size_t* error_bytes = nullptr) {
   const mbk_test::Trajectory trajectory(model, 2);
-  mbk::RecordingSurvey survey(model.nq);
+  mbk::RecordingSurvey survey(model.nq, true, 64);  // few bins: the stamps surveyed again
   for (long i = 0; i < rows; ++i) {
     const Sample s = sample(model, trajectory, i);
     survey.add(s.t, s.given.data());
   }
+  while (!survey.finish_pass())
+    for (long i = 0; i < rows; ++i) survey.add_stamp(sample(model, trajectory, i).t);
+  EXPECT_GT(survey.intervals.passes(), 1);
   EXPECT_TRUE(survey.streamable());
   mbk::OfflineReach reach;
   mbk::WholeRecording whole;
@@ -200,8 +203,29 @@ TEST(OfflineStreamTest, SurveyFindsTheWholeRecordingsMaxGap) {
     survey.add(s.t, s.given.data());
     t.push_back(s.t);
   }
+  EXPECT_TRUE(survey.finish_pass());
   EXPECT_EQ(survey.default_max_gap(), mbk::default_max_gap(t));
   EXPECT_EQ(survey.rows, 999);
+}
+
+// Stamps with every interval distinct (jitter): the survey's memory stays within its bins' bound
+// for 10^5 rows as for 10^6, at the cost of a second pass over the stamps, and the median is the
+// whole recording's, bit for bit.
+TEST(OfflineStreamTest, SurveyOfJitteredStampsTakesBoundedMemory) {
+  const std::vector<std::uint8_t> given(1, mbk::Recording::kPosition);
+  for (long rows : {100000L, 1000000L}) {
+    std::vector<double> t;
+    for (long i = 0; i < rows; ++i) t.push_back(1 + 1e-3 * i + 3e-4 * std::sin(0.7 * i));
+    mbk::RecordingSurvey survey(1);
+    for (double x : t) survey.add(x, given.data());
+    int passes = 1;
+    for (; !survey.finish_pass(); ++passes)
+      for (double x : t) survey.add_stamp(x);
+    EXPECT_EQ(passes, 2) << rows;
+    EXPECT_EQ(survey.default_max_gap(), mbk::default_max_gap(t)) << rows;
+    EXPECT_LE(survey.intervals.peak_bytes(), ((1u << 14) + 1) * 48) << rows;
+    EXPECT_EQ(survey.rows, rows);
+  }
 }
 
 // The rows `e` keeps on a recording generated on the fly, never held: below a bound set by the

@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -27,6 +28,7 @@
 #include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
@@ -898,6 +900,36 @@ TEST(BagTest, APartialRunExitsTwoWithTheCounts) {
   const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("100 samples read, 100 written"), std::string::npos) << text;
   EXPECT_NE(text.find("unreadable 1 messages"), std::string::npos) << text;
+}
+
+// Issue 24.11: stamps jittered so that every interval differs, more of them than the survey's
+// 16,384 bins: the bounded-memory path surveys the stamps a second time and takes the whole
+// recording's max_gap (5 x the median interval) bit for bit, and writes every sample.
+TEST(BagTest, JitteredStampsGiveTheWholeRecordingsMaxGap) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  const int rows = 20000;
+  std::vector<double> t;
+  std::ofstream csv(temp("jittered.csv"));
+  csv.precision(17);
+  csv << "time";
+  for (const std::string& n : model.coordinate_names) csv << "," << n;
+  for (int i = 0; i < rows; ++i) {
+    t.push_back(1 + 1e-3 * i + 3e-4 * std::sin(0.7 * i));
+    csv << "\n" << t.back();
+    for (int c = 0; c < model.nq; ++c) csv << "," << waves[c].at(t.back(), 0);
+  }
+  csv.close();
+  std::set<double> intervals;
+  for (int i = 1; i < rows; ++i) intervals.insert(t[i] - t[i - 1]);
+  ASSERT_GT(intervals.size(), 1u << 14);
+  mbk_offline::BagOptions o = options(temp("jittered.csv"), "");
+  o.out_csv = "/dev/null";
+  o.estimator = "centered_0.4s_4";
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.max_gap, mbk::default_max_gap(t));
+  EXPECT_EQ(s.read, rows);
+  EXPECT_EQ(s.written, rows);
 }
 
 }  // namespace
