@@ -2,36 +2,19 @@
 
 #include <Eigen/Geometry>
 #include <cstring>
-#include <stdexcept>
 
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 
-namespace {
-constexpr size_t kBufferBytes = 1 << 16;  // written out when full
-}  // namespace
-
 TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model, bool errors)
-    : model_(model),
-      path_(path),
-      file_(std::fopen(path.c_str(), "w")),
-      body_cells_(model.bodies.size()) {
-  if (!file_) throw std::invalid_argument(path + ": cannot write (" + std::strerror(errno) + ")");
+    : model_(model), file_(path), errors_(errors), body_cells_(model.bodies.size()) {
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
   for (int k = 1; k <= model.body_count(); ++k)
     body_cells_[k] = "," + model.bodies[k].name + "," + std::to_string(k) + "," +
                      std::to_string(model.bodies[k].lower);
-  std::fputs(header(), file_);
-  if (errors) std::fputs(errors_header(), file_);
-  std::fputc('\n', file_);
-  errors_ = errors;
-  buffer_.reserve(kBufferBytes + (1 << 14));
-}
-
-TidyCsvWriter::~TidyCsvWriter() {
-  if (file_) std::fclose(file_);
+  file_.write(std::string(header()) + (errors ? errors_header() : "") + "\n");
 }
 
 const char* TidyCsvWriter::header() {
@@ -42,11 +25,6 @@ const char* TidyCsvWriter::header() {
 
 const char* TidyCsvWriter::errors_header() {
   return ",alpha_se_x,alpha_se_y,alpha_se_z,acceleration_se_x,acceleration_se_y,acceleration_se_z";
-}
-
-void TidyCsvWriter::flush() {
-  std::fwrite(buffer_.data(), 1, buffer_.size(), file_);  // an error is seen by close()
-  buffer_.clear();
 }
 
 namespace {
@@ -115,22 +93,11 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
 void TidyCsvWriter::write(double stamp, const Data<double>& d,
                           const std::vector<Vec3<double>>* alpha_se,
                           const std::vector<Vec3<double>>* acceleration_se) {
+  buffer_.clear();
   format(stamp, d, buffer_, alpha_se, acceleration_se);
-  if (buffer_.size() >= kBufferBytes) flush();
+  file_.write(buffer_);
 }
 
-void TidyCsvWriter::write_text(const std::string& text) {
-  if (!buffer_.empty()) flush();
-  std::fwrite(text.data(), 1, text.size(), file_);
-}
-
-void TidyCsvWriter::close() {
-  if (!file_) return;
-  flush();
-  const bool ok = std::ferror(file_) == 0;
-  const bool closed = std::fclose(file_) == 0;
-  file_ = nullptr;
-  if (!ok || !closed) throw std::runtime_error(path_ + ": write failed (disk full?)");
-}
+void TidyCsvWriter::write_text(const std::string& text) { file_.write(text); }
 
 }  // namespace mbk

@@ -4,18 +4,19 @@
 // omega_x/y/z, alpha_x/y/z, velocity_x/y/z, acceleration_x/y/z (of the mass center); all in R.
 // The system row leaves origin, orientation, omega and alpha empty. Numbers in their shortest
 // round-trip form (io/number_format.h), the stamp with 9 decimals. Rows are formatted into a
-// buffer written out a block at a time: no allocation per row. A column more: its header name
+// reused buffer and written a block at a time (io/block_file.h: a large file past the page
+// cache): no allocation per row. A column more: its header name
 // and one call in format(). With error bars (mbk bag's auto estimator), six columns more:
 // alpha_se_x/y/z and acceleration_se_x/y/z, each R component's standard error (core/body_errors.h),
 // empty where there are none (the system row; a row without them). ROS-free.
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/io/block_file.h"
 
 namespace mbk {
 
@@ -23,7 +24,6 @@ class TidyCsvWriter {
  public:
   // Throws std::invalid_argument if `path` cannot be written.
   TidyCsvWriter(const std::string& path, const Model& model, bool errors = false);
-  ~TidyCsvWriter();
   TidyCsvWriter(const TidyCsvWriter&) = delete;
   TidyCsvWriter& operator=(const TidyCsvWriter&) = delete;
 
@@ -39,19 +39,16 @@ class TidyCsvWriter {
               const std::vector<Vec3<double>>* alpha_se = nullptr,
               const std::vector<Vec3<double>>* acceleration_se = nullptr) const;
   void write_text(const std::string& text);
-  // Flushes and closes; throws if the disk refused the data.
-  void close();
+  // Writes what is left and closes; throws std::runtime_error if the disk refused the data.
+  void close() { file_.close(); }
 
  private:
-  void flush();
-
   const Model& model_;
-  std::string path_;
-  std::FILE* file_ = nullptr;
+  BlockFile file_;
   double total_mass_ = 0;
   bool errors_ = false;
   std::vector<std::string> body_cells_;  // per body k: ",name,k,L(k)"
-  std::string buffer_;                   // rows not yet written
+  std::string buffer_;                   // one sample's rows (write)
 };
 
 }  // namespace mbk

@@ -65,7 +65,7 @@ TEST(TidyCsvWriterTest, SameTextAsEachCellPrintedAloneAcrossManyFlushes) {
   {
     mbk::TidyCsvWriter w(path, model);
     std::string text;
-    for (int r = 0; r < 600; ++r) {  // about 1.5 MB: many 64 kB buffers
+    for (int r = 0; r < 600; ++r) {  // about 1.5 MB: more than one block (io/block_file.h)
       for (int i = 0; i < model.nq; ++i)
         state.position[i] = u(rng), state.velocity[i] = u(rng), state.acceleration[i] = u(rng);
       mbk::forward_kinematics(model, state, data, mbk::Level::kAcceleration);
