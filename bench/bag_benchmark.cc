@@ -20,12 +20,23 @@
 //                                     counter rows/s
 //   csv_rows/human/dev_null           the same to /dev/null: the formatting without the kernel's
 //                                     copy of the 7.6 MB into the page cache
+//   large_csv/human/<fwrite_64k|block_file>   3 GB of the tidy CSV's text (1000 samples' rows,
+//                                     formatted once, written 400 times) to a file in /tmp until
+//                                     it is on the disk (fsync): as the writer did before
+//                                     (std::fwrite of 64 kB pieces, through the page cache) and
+//                                     as it does now (io/block_file.h: direct I/O past the first
+//                                     GiB where the filesystem takes it); real time, counter
+//                                     MB_per_s
 // Models: human = config/human_body.yaml; tree100 = mbk::make_random_tree(100, 1) (joints of
 // every type, 349 coordinates); revolute100 = the same tree with every joint revolute (100).
 #include <benchmark/benchmark.h>
+#include <fcntl.h>
 #include <rosbag/bag.h>
 #include <sensor_msgs/JointState.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -33,6 +44,7 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
+#include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
@@ -174,8 +186,8 @@ void estimates(benchmark::State& state, const mbk::Model& model, const std::stri
 }
 
 // The tidy CSV writer alone, on computed kinematics (the demo trajectories at 1 kHz).
-void csv_rows(benchmark::State& state, const mbk::Model& model, const char* path) {
-  const mbk::Recording rec = recording(model, 1000, 1, true);
+// Every row's kinematics, from the recording's given derivatives.
+std::vector<mbk::Data<double>> kinematics_of(const mbk::Model& model, const mbk::Recording& rec) {
   std::vector<mbk::Data<double>> data(rec.rows(), mbk::Data<double>(model));
   mbk::JointState<double> s(model);
   for (int r = 0; r < rec.rows(); ++r) {
@@ -185,6 +197,12 @@ void csv_rows(benchmark::State& state, const mbk::Model& model, const char* path
         Eigen::Map<const Eigen::VectorXd>(rec.acceleration.data() + r * model.nq, model.nq);
     mbk::forward_kinematics(model, s, data[r], mbk::Level::kAcceleration);
   }
+  return data;
+}
+
+void csv_rows(benchmark::State& state, const mbk::Model& model, const char* path) {
+  const mbk::Recording rec = recording(model, 1000, 1, true);
+  const std::vector<mbk::Data<double>> data = kinematics_of(model, rec);
   long rows = 0;
   for (auto _ : state) {
     mbk::TidyCsvWriter w(path, model);
@@ -193,6 +211,43 @@ void csv_rows(benchmark::State& state, const mbk::Model& model, const char* path
     rows += rec.rows() * (model.body_count() + 1);
   }
   state.counters["rows_per_s"] = benchmark::Counter(rows, benchmark::Counter::kIsRate);
+}
+
+// The text of csv_rows's 1000 samples.
+std::string csv_text(const mbk::Model& model) {
+  const mbk::Recording rec = recording(model, 1000, 1, true);
+  const std::vector<mbk::Data<double>> data = kinematics_of(model, rec);
+  mbk::TidyCsvWriter w("/dev/null", model);
+  std::string all;
+  for (int r = 0; r < rec.rows(); ++r) w.format(rec.stamp[r], data[r], all);
+  return all;
+}
+
+void large_csv(benchmark::State& state, const mbk::Model& model, bool block_file) {
+  const std::string text = csv_text(model);
+  const std::string path = "/tmp/mbk_bag_benchmark_large.csv";
+  constexpr int kCopies = 400;
+  constexpr std::size_t kPiece = 1 << 16;
+  for (auto _ : state) {
+    if (block_file) {
+      mbk::BlockFile f(path);
+      for (int i = 0; i < kCopies; ++i) f.write(text);
+      f.close();
+    } else {
+      std::FILE* f = std::fopen(path.c_str(), "w");
+      for (int i = 0; i < kCopies; ++i)
+        for (std::size_t at = 0; at < text.size(); at += kPiece)
+          std::fwrite(text.data() + at, 1, std::min(kPiece, text.size() - at), f);
+      std::fclose(f);
+    }
+    const int fd = ::open(path.c_str(), O_WRONLY);  // what the page cache still holds, to the disk
+    ::fsync(fd);
+    ::close(fd);
+    std::remove(path.c_str());
+  }
+  state.counters["MB_per_s"] = benchmark::Counter(
+      1e-6 * static_cast<double>(text.size()) * kCopies * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
 }
 
 const mbk::Model& human() {
@@ -242,6 +297,12 @@ BENCHMARK_CAPTURE(estimates, human / old_default, human(), "centered_0.4s_4")
 BENCHMARK_CAPTURE(csv_rows, human, human(), "/tmp/mbk_bag_benchmark_rows.csv")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(csv_rows, human / dev_null, human(), "/dev/null")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(large_csv, human / fwrite_64k, human(), false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(large_csv, human / block_file, human(), true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -17,7 +17,8 @@ namespace {
 constexpr std::size_t kAlignment = 4096;  // of memory, offsets and sizes for direct I/O
 }  // namespace
 
-BlockFile::BlockFile(const std::string& path) : path_(path) {
+BlockFile::BlockFile(const std::string& path, std::uint64_t direct_after)
+    : path_(path), direct_after_(direct_after) {
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd_ < 0) throw std::invalid_argument(path + ": cannot write (" + std::strerror(errno) + ")");
   struct stat st;
@@ -44,7 +45,7 @@ void BlockFile::write(const char* data, std::size_t size) {
 }
 
 void BlockFile::write_block() {
-  if (!tried_direct_ && regular_ && written_ >= kDirectAfter) try_direct();
+  if (!tried_direct_ && regular_ && written_ >= direct_after_) try_direct();
   write_all(buffer_, used_);
   used_ = 0;
 }
