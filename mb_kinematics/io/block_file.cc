@@ -57,13 +57,17 @@ void BlockFile::try_direct() {
   direct_ = flags >= 0 && ::fcntl(fd_, F_SETFL, flags | O_DIRECT) == 0;
 }
 
+void BlockFile::page_cache() {
+  ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_DIRECT);
+  direct_ = false;
+}
+
 void BlockFile::write_all(const char* data, std::size_t size) {
   while (size > 0 && error_ == 0) {
     const ssize_t n = ::write(fd_, data, size);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0 && errno == EINVAL && direct_) {  // direct I/O refused after all: the page cache
-      ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_DIRECT);
-      direct_ = false;
+    if (n < 0 && errno == EINVAL && direct_) {  // direct I/O refused after all
+      page_cache();
       continue;
     }
     if (n <= 0) {
@@ -77,10 +81,7 @@ void BlockFile::write_all(const char* data, std::size_t size) {
 
 void BlockFile::close() {
   if (fd_ < 0) return;
-  if (used_ > 0 && direct_) {  // the tail is not a whole block
-    ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_DIRECT);
-    direct_ = false;
-  }
+  if (used_ > 0 && direct_) page_cache();  // the tail is not a whole block
   write_all(buffer_, used_);
   used_ = 0;
   if (::close(fd_) != 0 && error_ == 0) error_ = errno;

@@ -28,7 +28,7 @@ class BlockFile {
   void write(const char* data, std::size_t size);  // an error is kept for close()
   void write(const std::string& text) { write(text.data(), text.size()); }
   // Writes what is left and closes; throws std::runtime_error naming the file and the error if
-  // any write failed (a full disk).
+  // any write failed (a full disk). Destroyed without close(), what is buffered is not written.
   void close();
   bool direct() const { return used_direct_; }  // some blocks went past the page cache
 
@@ -36,6 +36,7 @@ class BlockFile {
   void write_block();  // the buffer's whole block
   void write_all(const char* data, std::size_t size);
   void try_direct();  // from here on, where the file and filesystem allow it
+  void page_cache();  // from here on, through the page cache
 
   std::string path_;
   int fd_ = -1;

@@ -40,6 +40,7 @@ class TidyCsvWriter {
               const std::vector<Vec3<double>>* acceleration_se = nullptr) const;
   void write_text(const std::string& text);
   // Writes what is left and closes; throws std::runtime_error if the disk refused the data.
+  // Destroyed without close(), the rows still buffered are not written.
   void close() { file_.close(); }
 
  private:
