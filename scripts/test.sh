@@ -6,8 +6,9 @@
 # --sanitize: the same build with -fsanitize=address,undefined (UB aborts, leaks fail, urdfdom's
 # own leaks suppressed by test/lsan.supp) in a workspace of its own, <workspace>-sanitize; the
 # rviz plugin and its screenshot test (rviz itself is not instrumented), the benchmarks (not
-# tests) and the fuzz smoke (its harnesses always are) are left out, and it is built with -O1
-# -g (doc/reliability.md).
+# tests), the fuzz smoke (its harnesses always are) and heap_trim_test (it measures glibc's
+# malloc_trim, and ASan brings its own allocator) are left out, and it is built with -O1 -g
+# (doc/reliability.md).
 sanitize=${1:-}
 [ -z "$sanitize" ] || [ "$sanitize" = --sanitize ] || { echo "usage: scripts/test.sh [--sanitize]" >&2; exit 2; }
 source "$(dirname "$0")/common.sh"
@@ -19,7 +20,7 @@ if [ -n "$sanitize" ]; then
   build_args=(-DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags"
     -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g -DNDEBUG"
     -DMBK_BENCHMARKS=OFF -DCMAKE_DISABLE_FIND_PACKAGE_rviz=ON)
-  skip=(-E 'screenshot|fuzz_smoke')
+  skip=(-E 'screenshot|fuzz_smoke|heap_trim')
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
   export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

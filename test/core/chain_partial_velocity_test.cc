@@ -24,13 +24,20 @@
 namespace {
 std::atomic<long> g_bytes{0};
 }  // namespace
+// The nothrow form too (std::stable_sort's buffer): memory it gives is freed by the plain delete,
+// so every form that pairs with these deletes must come from malloc (AddressSanitizer checks).
 void* operator new(std::size_t size) {
   g_bytes += static_cast<long>(size);
   if (void* p = std::malloc(size ? size : 1)) return p;
   throw std::bad_alloc();
 }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  g_bytes += static_cast<long>(size);
+  return std::malloc(size ? size : 1);
+}
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 namespace {
 

@@ -71,6 +71,8 @@ class DeepPartialsTest : public ::testing::Test {
   void TearDown() override {
     running_ = false;
     if (publisher_.joinable()) publisher_.join();
+    spinner_.stop();  // no /tf callback runs on once arrivals_ is destroyed
+    tf_sub_.shutdown();
   }
   size_t tf_count() {
     std::lock_guard<std::mutex> lock(mutex_);
