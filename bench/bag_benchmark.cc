@@ -20,9 +20,11 @@
 //                                     counter rows/s
 //   csv_rows/human/dev_null           the same to /dev/null: the formatting without the kernel's
 //                                     copy of the 7.6 MB into the page cache
-//   large_csv/human/<fwrite_64k|block_file>   3 GB of the tidy CSV's text (1000 samples' rows,
-//                                     formatted once, written 400 times) to a file in /tmp until
-//                                     it is on the disk (fsync): as the writer did before
+//   large_csv/human/<fwrite_64k|block_file>/GB:<3|16>   3 or 16 GB of the tidy CSV's text
+//                                     (1000 samples' rows, formatted once, written again and
+//                                     again) to a file in /tmp until it is on the disk (fsync;
+//                                     16 GB: about 1e6 samples, 17 GB free needed): as the writer
+//                                     did before
 //                                     (std::fwrite of 64 kB pieces, through the page cache) and
 //                                     as it does now (io/block_file.h: direct I/O past the first
 //                                     GiB where the filesystem takes it); real time, counter
@@ -226,16 +228,16 @@ std::string csv_text(const mbk::Model& model) {
 void large_csv(benchmark::State& state, const mbk::Model& model, bool block_file) {
   const std::string text = csv_text(model);
   const std::string path = "/tmp/mbk_bag_benchmark_large.csv";
-  constexpr int kCopies = 400;
+  const long copies = static_cast<long>(state.range(0) * 1e9 / static_cast<double>(text.size()));
   constexpr std::size_t kPiece = 1 << 16;
   for (auto _ : state) {
     if (block_file) {
       mbk::BlockFile f(path);
-      for (int i = 0; i < kCopies; ++i) f.write(text);
+      for (long i = 0; i < copies; ++i) f.write(text);
       f.close();
     } else {
       std::FILE* f = std::fopen(path.c_str(), "w");
-      for (int i = 0; i < kCopies; ++i)
+      for (long i = 0; i < copies; ++i)
         for (std::size_t at = 0; at < text.size(); at += kPiece)
           std::fwrite(text.data() + at, 1, std::min(kPiece, text.size() - at), f);
       std::fclose(f);
@@ -246,7 +248,7 @@ void large_csv(benchmark::State& state, const mbk::Model& model, bool block_file
     std::remove(path.c_str());
   }
   state.counters["MB_per_s"] = benchmark::Counter(
-      1e-6 * static_cast<double>(text.size()) * kCopies * static_cast<double>(state.iterations()),
+      1e-6 * static_cast<double>(text.size()) * copies * static_cast<double>(state.iterations()),
       benchmark::Counter::kIsRate);
 }
 
@@ -298,9 +300,17 @@ BENCHMARK_CAPTURE(csv_rows, human, human(), "/tmp/mbk_bag_benchmark_rows.csv")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(csv_rows, human / dev_null, human(), "/dev/null")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(large_csv, human / fwrite_64k, human(), false)
+    ->ArgName("GB")
+    ->Arg(3)
+    ->Arg(16)
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(large_csv, human / block_file, human(), true)
+    ->ArgName("GB")
+    ->Arg(3)
+    ->Arg(16)
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
