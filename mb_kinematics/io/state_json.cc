@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <iostream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -93,7 +94,9 @@ JointState<double> read_state_string(const Model& model, const std::string& text
   }
 }
 
+// "-" is standard input, as for other command-line tools.
 JointState<double> read_state_file(const Model& model, const std::string& path) {
+  if (path == "-") return read_state_string(model, read_text_stream(std::cin), "standard input");
   return read_state_string(model, read_text_file(path, "state file"), path);
 }
 

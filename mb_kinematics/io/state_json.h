@@ -13,6 +13,7 @@ namespace mbk {
 // Throws std::invalid_argument naming the file and the bad key or value.
 JointState<double> read_state_string(const Model& model, const std::string& text,
                                      const std::string& source = "<state>");
+// PATH "-" reads standard input.
 JointState<double> read_state_file(const Model& model, const std::string& path);
 
 }  // namespace mbk

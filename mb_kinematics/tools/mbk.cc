@@ -1,7 +1,7 @@
 // mbk: the command-line tool (doc/method.md 8).
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
-//   mbk eval --model FILE [--state STATE.json | --frame N] [--method recursive|partial_velocity]
-//       [--partial-velocities]
+//   mbk eval --model FILE [--state STATE.json|- | --frame N]
+//       [--method recursive|partial_velocity] [--partial-velocities]   (-: standard input)
 //   FILE: .urdf, .yaml or .bvh (with [--scale M] [--body-mass KG] [--sex male|female])
 //   mbk urdf --model SCENE.yaml [--name ROBOT] [--display]   (a scene as URDF: the equivalent
 //       kinematics for KDL and robot_state_publisher, or with --display a link per body for
@@ -37,7 +37,7 @@ namespace {
 
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
-    "       mbk eval --model FILE [--state STATE.json | --frame N]\n"
+    "       mbk eval --model FILE [--state STATE.json|- | --frame N]\n"
     "                [--method recursive|partial_velocity] [--partial-velocities]\n"
     "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n"
     "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
@@ -135,6 +135,12 @@ int tables(const std::map<std::string, std::string>& options) {
   return 0;
 }
 
+// What the state came from, for an error: the STATE.json path, "standard input" for "-".
+std::string state_source(const std::map<std::string, std::string>& options) {
+  const std::string path = option(options, "--state");
+  return path.empty() ? "state" : path == "-" ? "standard input" : path;
+}
+
 int eval(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("eval needs --model FILE");
   if (options.count("--state") && options.count("--frame"))
@@ -145,9 +151,7 @@ int eval(const std::map<std::string, std::string>& options) {
                                         : options.count("--frame") ? frame_state(options, model)
                                                                    : mbk::JointState<double>(model);
   const std::string problem = mbk::check_state(model, state);  // NaN/Inf, |e| ~ 0, overflow
-  if (!problem.empty())
-    throw std::invalid_argument((options.count("--state") ? options.at("--state") : "state") +
-                                ": " + problem);
+  if (!problem.empty()) throw std::invalid_argument(state_source(options) + ": " + problem);
   mbk::Data<double> data(model);
   const std::string method = options.count("--method") ? options.at("--method") : "recursive";
   if (method != "recursive" && method != "partial_velocity")

@@ -376,6 +376,25 @@ TEST_F(MbkEval, JsonHasTheContractFieldsAndTheKinematics) {
   EXPECT_EQ(bodies.array[15].at("lower").number, 15);
 }
 
+// "--state -" is standard input: the same JSON as from the file, and errors name the input.
+TEST_F(MbkEval, StateDashReadsStandardInput) {
+  const Output from_file = mbk(args);
+  const Output from_stdin =
+      mbk("eval --model config/human_body.yaml --state - < config/human_body_state.json");
+  parse(from_stdin);
+  EXPECT_EQ(from_stdin.out, from_file.out);
+
+  const Output bad = mbk(
+      "eval --model config/human_body.yaml --state - < test/io/data/unknown_coordinate_state.json");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_EQ(bad.err.rfind("mbk: error: standard input", 0), 0u) << bad.err;
+  EXPECT_NE(bad.err.find("unknown coordinate 'ghost'"), std::string::npos) << bad.err;
+  const Output zero = mbk(
+      "eval --model test/io/data/ball_euler.yaml --state - < test/io/data/zero_euler_state.json");
+  EXPECT_NE(zero.status, 0);
+  EXPECT_EQ(zero.err.rfind("mbk: error: standard input: body 2 'arm'", 0), 0u) << zero.err;
+}
+
 TEST_F(MbkEval, PartialVelocityMethodGivesTheSameNumbers) {
   const Json a = parse(mbk(args));
   const Json b = parse(mbk(args + " --method partial_velocity"));
