@@ -22,6 +22,7 @@ MBK_PACKAGES=(
   pluginlib-dev libogre-1.12-dev librosbag-dev libtf2-msgs-dev libnav-msgs-dev python3-rosbag
   libstd-srvs-dev python3-std-srvs tf2-tools  # tf2-tools: static_transform_publisher
   python3-matplotlib catkin-lint
+  joint-state-publisher-gui  # mb_kinematics.launch gui:=true
   libnodelet-dev libnodeletlib-dev libnodeletlib-tools libtopic-tools-dev  # the nodelet; load_monitor
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
   valgrind  # the loaders' memcheck (test/tests.cmake)

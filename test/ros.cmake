@@ -87,3 +87,8 @@ target_compile_definitions(bag_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR
 # (MBK_WORKSPACE: test/tests.cmake).
 add_test(NAME node_load_smoke COMMAND ${PROJECT_SOURCE_DIR}/test/ros/node_load_smoke.sh)
 set_tests_properties(node_load_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 120)
+
+# mb_kinematics.launch gui:=true on Xvfb: joint_state_publisher_gui starts and drives the node.
+add_test(NAME gui_launch
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/ros/gui_launch_test.sh)
+set_tests_properties(gui_launch PROPERTIES TIMEOUT 90)
