@@ -55,33 +55,60 @@ class BackwardDifference : public DerivativeEstimator {
   int count_ = 0;
 };
 
-}  // namespace
-
-const std::vector<std::string>& derivative_estimator_names() {
-  static const std::vector<std::string> names = {
-      "backward_difference",    "central_difference",      "savitzky_golay_5_2",
-      "savitzky_golay_9_2",     "savitzky_golay_9_4",      "savitzky_golay_15_3",
-      "savitzky_golay_end_7_2", "savitzky_golay_end_15_3", "kalman",
-      "kalman_smooth"};
-  return names;
-}
-
-std::unique_ptr<DerivativeEstimator> make_derivative_estimator(const std::string& name) {
-  if (name == "backward_difference") return std::make_unique<BackwardDifference>();
-  if (name == "central_difference") return std::make_unique<PolynomialFitEstimator>(3, 2, 1);
-  if (name == "kalman") return std::make_unique<KalmanEstimator>(1e3, 1e-5);
-  if (name == "kalman_smooth") return std::make_unique<KalmanEstimator>(10.0, 1e-4);
-  // savitzky_golay_<window>_<order>: evaluated at the window's center (latency (window-1)/2);
-  // savitzky_golay_end_<window>_<order>: at its newest sample (no latency).
+// savitzky_golay_<window>_<order>: evaluated at the window's center (latency (window-1)/2);
+// savitzky_golay_end_<window>_<order>: at its newest sample (no latency). nullptr for another
+// name.
+std::unique_ptr<DerivativeEstimator> savitzky_golay(const std::string& name) {
   int window = 0, order = 0, used = 0;
   const bool end =
       std::sscanf(name.c_str(), "savitzky_golay_end_%d_%d%n", &window, &order, &used) == 2;
   if ((end || std::sscanf(name.c_str(), "savitzky_golay_%d_%d%n", &window, &order, &used) == 2) &&
       used == static_cast<int>(name.size()))
     return std::make_unique<PolynomialFitEstimator>(window, order, end ? 0 : (window - 1) / 2);
+  return nullptr;
+}
+
+template <typename E, typename... Args>
+std::unique_ptr<DerivativeEstimator> make(Args... args) {
+  return std::make_unique<E>(args...);
+}
+
+// The studied estimators, in the order of derivative_estimator_names(): each name with its
+// estimator's maker (nullptr: a Savitzky-Golay fit made from the name itself).
+struct Named {
+  const char* name;
+  std::unique_ptr<DerivativeEstimator> (*make)();
+};
+const Named kEstimators[] = {
+    {"backward_difference", [] { return make<BackwardDifference>(); }},
+    {"central_difference", [] { return make<PolynomialFitEstimator>(3, 2, 1); }},
+    {"savitzky_golay_5_2", nullptr},
+    {"savitzky_golay_9_2", nullptr},
+    {"savitzky_golay_9_4", nullptr},
+    {"savitzky_golay_15_3", nullptr},
+    {"savitzky_golay_end_7_2", nullptr},
+    {"savitzky_golay_end_15_3", nullptr},
+    {"kalman", [] { return make<KalmanEstimator>(1e3, 1e-5); }},
+    {"kalman_smooth", [] { return make<KalmanEstimator>(10.0, 1e-4); }},
+};
+
+}  // namespace
+
+const std::vector<std::string>& derivative_estimator_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const Named& e : kEstimators) out.push_back(e.name);
+    return out;
+  }();
+  return names;
+}
+
+std::unique_ptr<DerivativeEstimator> make_derivative_estimator(const std::string& name) {
+  for (const Named& e : kEstimators)
+    if (e.make && name == e.name) return e.make();
+  if (std::unique_ptr<DerivativeEstimator> fit = savitzky_golay(name)) return fit;
   std::string known;
-  for (const std::string& n : derivative_estimator_names())
-    known += (known.empty() ? "" : ", ") + n;
+  for (const Named& e : kEstimators) known += (known.empty() ? "" : ", ") + std::string(e.name);
   throw std::invalid_argument("unknown derivative estimator '" + name + "' (known: " + known +
                               "; savitzky_golay[_end]_<window>_<order> for other windows)");
 }

@@ -23,15 +23,6 @@
 
 namespace mbk {
 
-std::string format_double(double x) {
-  char buf[32];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, x + 0.0);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
-}
-
 namespace {
 
 #ifdef MBK_HAVE_DRAGONBOX
@@ -139,9 +130,19 @@ char* write_shortest(char* out, double x) {
 #endif
 #if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
   return std::to_chars(out, out + kMaxDoubleChars, x).ptr;
-#else  // e.g. GCC 9 (ROS Noetic): no std::to_chars for double; always 17 digits
-  return out + std::snprintf(out, kMaxDoubleChars, "%.17g", x);
+#else  // e.g. GCC 9 (ROS Noetic): no std::to_chars for double
+  int n = 0;
+  for (int digits = 15; digits <= 17; ++digits) {
+    n = std::snprintf(out, kMaxDoubleChars, "%.*g", digits, x);
+    if (std::strtod(out, nullptr) == x) break;
+  }
+  return out + n;
 #endif
+}
+
+std::string format_double(double x) {
+  char text[kMaxDoubleChars];
+  return std::string(text, write_shortest(text, x));
 }
 
 }  // namespace mbk

@@ -19,19 +19,24 @@ std::vector<int> moving_bodies(const mbk::Model& model, int first) {
 
 void init_transforms(const mbk::Model& model, const FrameNames& names,
                      const std::vector<int>& bodies, std::vector<TfJoint>& moving,
-                     std::vector<geometry_msgs::TransformStamped>& transforms) {
+                     std::vector<geometry_msgs::TransformStamped>& transforms,
+                     const std::string& base_frame) {
   moving.clear();
-  transforms.resize(bodies.size());
+  transforms.resize(bodies.size() + (base_frame.empty() ? 0 : 1));
   for (size_t i = 0; i < bodies.size(); ++i) {
     moving.push_back(tf_joint(model, bodies[i]));
     transforms[i].header.frame_id = names.lower(bodies[i]);
     transforms[i].child_frame_id = names.body(bodies[i]);
   }
+  if (base_frame.empty()) return;
+  transforms.back().header.frame_id = base_frame;
+  transforms.back().child_frame_id = names.root();
 }
 
 void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
                      const std::vector<TfJoint>& moving, const ros::Time& stamp,
-                     std::vector<geometry_msgs::TransformStamped>& transforms) {
+                     std::vector<geometry_msgs::TransformStamped>& transforms,
+                     const mbk::BaseMotion* base) {
   mbk::JointMotion<double> m;
   for (size_t i = 0; i < moving.size(); ++i) {
     const mbk::Body& body = model.bodies[moving[i].body];
@@ -46,6 +51,12 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
     mbk::joint_motion<double>(body.joint, model.speeds, q, nullptr, m);
     set_vector(body.joint.offset + m.translation, out.translation);  // q_k + s_k in Bj
   }
+  if (transforms.size() == moving.size()) return;
+  geometry_msgs::TransformStamped& root = transforms.back();  // the floating base
+  root.header.stamp = stamp;
+  if (!base) return;
+  set_vector(base->position, root.transform.translation);
+  set_quaternion(base->rotation, root.transform.rotation);
 }
 
 std::vector<geometry_msgs::TransformStamped> fixed_transforms(const mbk::Model& model,

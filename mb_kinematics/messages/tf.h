@@ -1,6 +1,7 @@
 // tf from the joint state (doc/method.md 8), for the node's /tf and /tf_static and mbk bag's:
 // a frame per body, parent = its lower body's frame, the relative transform q_k + s_k and SJK
-// of its joint alone. Moving joints every sample (nothing allocated), fixed joints once.
+// of its joint alone; for mbk bag --base-odometry also the floating base's pose in the
+// odometry's frame. Moving joints every sample (nothing allocated), fixed joints once.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
@@ -9,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/messages/frames.h"
@@ -27,16 +29,21 @@ TfJoint tf_joint(const mbk::Model& model, int body);
 // The bodies on joints with coordinates, from body `first` on.
 std::vector<int> moving_bodies(const mbk::Model& model, int first = 1);
 
-// `bodies`' joints into `moving` and a transform each into `transforms`, frames set.
+// `bodies`' joints into `moving` and a transform each into `transforms`, frames set. With a
+// `base_frame` (the odometry's frame of a floating base), one transform more, last:
+// base_frame -> names.root(), the model's root frame.
 void init_transforms(const mbk::Model& model, const FrameNames& names,
                      const std::vector<int>& bodies, std::vector<TfJoint>& moving,
-                     std::vector<geometry_msgs::TransformStamped>& transforms);
+                     std::vector<geometry_msgs::TransformStamped>& transforms,
+                     const std::string& base_frame = "");
 
-// The relative transforms of the `moving` bodies at `stamp` into `transforms` (one per moving
-// body, frames already set): nothing allocated.
+// The relative transforms of the `moving` bodies at `stamp` into `transforms` (frames already
+// set by init_transforms): nothing allocated. The base's transform, if init_transforms made one,
+// gets the stamp and, with `base`, the root frame's pose in the odometry's frame.
 void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
                      const std::vector<TfJoint>& moving, const ros::Time& stamp,
-                     std::vector<geometry_msgs::TransformStamped>& transforms);
+                     std::vector<geometry_msgs::TransformStamped>& transforms,
+                     const mbk::BaseMotion* base = nullptr);
 
 // The transforms of the bodies on fixed joints, at `stamp` (/tf_static).
 std::vector<geometry_msgs::TransformStamped> fixed_transforms(const mbk::Model& model,

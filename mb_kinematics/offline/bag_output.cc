@@ -6,27 +6,15 @@
 #include <vector>
 
 #include "mb_kinematics/messages/body_kinematics.h"
-#include "mb_kinematics/messages/fields.h"
 
 namespace mbk_offline {
-namespace {
-
-// The floating base's pose in R as R -> the model's root frame.
-void set_base(const mbk::BaseMotion& base, geometry_msgs::TransformStamped& out) {
-  mbk_messages::set_vector(base.position, out.transform.translation);
-  mbk_messages::set_quaternion(base.rotation, out.transform.rotation);
-}
-
-}  // namespace
-
 BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
                      const std::string& base_frame, const mbk::Model& kinematics_model)
     : model_(model),
       kinematics_model_(kinematics_model),
       path_(path),
       bag_(std::make_unique<rosbag::Bag>()),
-      names_(model, prefix, mbk_messages::model_frame(model, prefix)),
-      base_frame_(base_frame) {
+      names_(model, prefix, mbk_messages::model_frame(model, prefix)) {
   try {
     bag_->open(path, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& e) {
@@ -36,11 +24,7 @@ BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std
   mbk_messages::init_body_kinematics(kinematics_model,
                                      base_frame.empty() ? names_.root() : base_frame, kinematics_);
   mbk_messages::init_transforms(model, names_, mbk_messages::moving_bodies(model), moving_,
-                                tf_.transforms);
-  if (base_frame.empty()) return;
-  tf_.transforms.emplace_back();  // R -> the model's root frame, last
-  tf_.transforms.back().header.frame_id = base_frame;
-  tf_.transforms.back().child_frame_id = names_.root();
+                                tf_.transforms, base_frame);
 }
 
 BagOutput::~BagOutput() = default;
@@ -80,11 +64,7 @@ void BagOutput::write_sample(double stamp, const mbk::JointState<double>& state,
   mbk_messages::fill_kinematics(time, kinematics_model_, data, true,
                                 kinematics_);  // every body: complete
   bag_->write("/body_kinematics", time, kinematics_);
-  mbk_messages::fill_transforms(model_, state, moving_, time, tf_.transforms);
-  if (moving_.size() < tf_.transforms.size()) {
-    tf_.transforms.back().header.stamp = time;
-    if (base) set_base(*base, tf_.transforms.back());
-  }
+  mbk_messages::fill_transforms(model_, state, moving_, time, tf_.transforms, base);
   if (!tf_.transforms.empty()) bag_->write("/tf", time, tf_);
 }
 

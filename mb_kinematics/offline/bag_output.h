@@ -47,7 +47,6 @@ class BagOutput {
   std::vector<mbk_messages::TfJoint> moving_;  // the bodies on joints with coordinates
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;
   tf2_msgs::TFMessage tf_;  // moving_'s transforms, then R -> the root frame with a base
-  std::string base_frame_;
   bool static_written_ = false;
 };
 

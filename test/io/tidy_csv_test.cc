@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -101,6 +102,27 @@ TEST(NumberFormatTest, WriteShortestReadsBackExactly) {
   }
   char buf[mbk::kMaxDoubleChars];
   EXPECT_EQ(std::string(buf, mbk::write_shortest(buf, -0.0)), "0");
+}
+
+// Awkward doubles read back bit for bit from write_shortest's and format_double's text: the
+// smallest and largest subnormals, the smallest normal, 1e-300, 0.1 + 0.2, the largest finite
+// (both signs), a value needing 17 digits; -0 reads back as +0 (written "0").
+TEST(NumberFormatTest, AwkwardDoublesReadBackBitForBit) {
+  using limits = std::numeric_limits<double>;
+  const auto bits = [](double x) {
+    uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  for (double x : {limits::denorm_min(), -limits::denorm_min(), 3 * limits::denorm_min(),
+                   std::nextafter(limits::min(), 0.0), limits::min(), 1e-300, -1e-300, 0.1 + 0.2,
+                   limits::max(), limits::lowest(), std::nextafter(1.0, 2.0), 2.0 / 3.0, -0.0}) {
+    char buf[mbk::kMaxDoubleChars];
+    const std::string written(buf, mbk::write_shortest(buf, x)), formatted = mbk::format_double(x);
+    EXPECT_EQ(formatted, written);
+    EXPECT_EQ(bits(std::strtod(written.c_str(), nullptr)), bits(x + 0.0)) << written;
+  }
+  EXPECT_EQ(mbk::format_double(-0.0), "0");
 }
 
 std::string shortest(double x) {
