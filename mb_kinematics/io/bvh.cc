@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/io/number_format.h"
+
 namespace mbk {
 namespace {
 
@@ -209,6 +211,15 @@ void read_hierarchy(Scanner& in, BvhFile& bvh) {
   }
 }
 
+// A frame time a ROS stamp and duration hold: at least a nanosecond, at most kMaxBvhFrameTime.
+void check_frame_time(Scanner& in, double frame_time) {
+  if (frame_time <= 0) in.fail(in.token_line(), "Frame Time: must be positive");
+  if (frame_time < kMinBvhFrameTime || frame_time > kMaxBvhFrameTime)
+    in.fail(in.token_line(), "Frame Time: " + format_double(frame_time) +
+                                 " s is not between 1e-9 s (a stamp's nanosecond) and " +
+                                 format_double(kMaxBvhFrameTime) + " s (the longest ROS duration)");
+}
+
 void read_motion(Scanner& in, BvhFile& bvh) {
   in.expect("Frames:", "MOTION");
   const int declared_line = in.token_line();
@@ -216,7 +227,7 @@ void read_motion(Scanner& in, BvhFile& bvh) {
   in.expect("Frame", "Frames: " + std::to_string(bvh.frame_count));
   in.expect("Time:", "Frame");
   bvh.frame_time = in.number("Frame Time");
-  if (bvh.frame_time <= 0) in.fail(in.token_line(), "Frame Time: must be positive");
+  check_frame_time(in, bvh.frame_time);
   if (bvh.channel_count == 0) in.fail(in.token_line(), "the hierarchy has no CHANNELS");
   const size_t wanted = static_cast<size_t>(bvh.frame_count) * bvh.channel_count;
   // n values take at least 2n - 1 characters: a Frames: count larger than the file allocates

@@ -27,6 +27,10 @@ struct BvhSegment {
   Eigen::Vector3d end_site = Eigen::Vector3d::Zero();  // the End Site's OFFSET, if any
 };
 
+// The frame times read (s): a ROS stamp counts nanoseconds, a ROS duration at most 2^31 - 1 s.
+constexpr double kMinBvhFrameTime = 1e-9;
+constexpr double kMaxBvhFrameTime = 2147483647.0;
+
 struct BvhFile {
   std::string path;  // as given to parse_bvh, for errors found later
   std::vector<BvhSegment> segments;

@@ -4,8 +4,10 @@
 // pause between the last frame and the first.
 #pragma once
 
+#include <ros/time.h>
 #include <sensor_msgs/JointState.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,7 +33,9 @@ struct PlayerOptions {
 PlayerFrames bvh_player_frames(const std::string& path, double scale);
 
 // Throws std::invalid_argument naming the parameter if `options` cannot play `frames` (rate
-// not positive and finite, a negative pause, no frames, a frame time not positive).
+// not positive and finite, a negative pause or one longer than a ROS duration holds, no frames,
+// a frame time not positive, a period frame_time / rate shorter than a nanosecond or longer
+// than a ROS duration holds).
 void check_player(const PlayerFrames& frames, const PlayerOptions& options);
 
 // The schedule: tick i (i = 0, 1, ...) is at start + i * period(); each tick either publishes
@@ -40,6 +44,9 @@ class FramePlayer {
  public:
   FramePlayer(PlayerFrames frames, const PlayerOptions& options);  // check_player first
   double period() const { return period_; }  // wall seconds per frame: frame_time / rate
+  // The stamp of tick `tick`, start + tick * period(); nullopt once the schedule has passed
+  // what a ros::Time holds (the year 2106).
+  std::optional<ros::Time> stamp_at(const ros::Time& start, long tick) const;
   // The frame tick `tick` publishes, or -1 during a loop's pause; -2 when the playback is over
   // (no loop, past the last frame).
   long frame_at(long tick) const;

@@ -8,6 +8,7 @@
 
 #include <exception>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -49,7 +50,12 @@ int main(int argc, char** argv) {
   sensor_msgs::JointState msg;
   const ros::Time start = ros::Time::now();
   for (long tick = 0; ros::ok(); ++tick) {
-    const ros::Time at = start + ros::Duration(tick * player->period());
+    const std::optional<ros::Time> stamp = player->stamp_at(start, tick);
+    if (!stamp) {
+      ROS_ERROR("bvh_player: the next frame's stamp is past what a ROS time holds; stopping");
+      return 1;
+    }
+    const ros::Time at = *stamp;
     ros::Time::sleepUntil(at);
     const long frame = player->frame_at(tick);
     if (frame == -2) break;   // the end, without ~loop

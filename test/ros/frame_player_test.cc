@@ -80,4 +80,36 @@ TEST(FramePlayer, RefusesWhatCannotPlay) {
   EXPECT_NE(refusal(frames, options).find("frame time"), std::string::npos);
 }
 
+// A period frame_time / rate no ROS stamp or duration holds (a ros::Duration of more than 2^31
+// s threw out of bvh_player's loop, exit 134): refused, naming ~rate.
+TEST(FramePlayer, RefusesAPeriodNoStampHolds) {
+  mbk_ros::PlayerOptions options;
+  mbk_ros::PlayerFrames frames = three_frames();
+  for (double rate : {1e-12, 1e12}) {
+    options.rate = rate;
+    const std::string message = refusal(frames, options);
+    EXPECT_NE(message.find("~rate"), std::string::npos) << rate << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+  }
+  options = mbk_ros::PlayerOptions();
+  frames.frame_time = 1e300;
+  EXPECT_NE(refusal(frames, options).find("longest ROS duration"), std::string::npos);
+  frames = three_frames();
+  options.loop_pause = 1e300;
+  EXPECT_NE(refusal(frames, options).find("~loop_pause"), std::string::npos);
+}
+
+// Stamps on the ideal schedule to the nanosecond, and none past what a ros::Time holds.
+TEST(FramePlayer, StampsUntilTheLastRosTime) {
+  mbk_ros::PlayerOptions options;
+  options.rate = 1e-9;  // a frame every 1e7 s
+  const mbk_ros::FramePlayer player(three_frames(), options);
+  const ros::Time start(1.8e9);
+  EXPECT_EQ(player.stamp_at(start, 0), start);
+  EXPECT_EQ(player.stamp_at(start, 249), ros::Time(1.8e9 + 249e7));
+  EXPECT_FALSE(player.stamp_at(start, 250).has_value());  // 4.3e9 s: past 2^32 - 1
+  const mbk_ros::FramePlayer fast(three_frames(), mbk_ros::PlayerOptions());
+  EXPECT_EQ(fast.stamp_at(ros::Time(100, 5), 3), ros::Time(100, 30000005));
+}
+
 }  // namespace
