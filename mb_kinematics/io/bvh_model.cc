@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "mb_kinematics/io/bvh_anthropometry.h"
+#include "mb_kinematics/io/bvh_bones.h"
 
 namespace mbk {
 namespace {
@@ -29,11 +30,12 @@ int axis_of(BvhChannel channel) { return static_cast<int>(channel) % 3; }  // X,
 struct Channels {
   std::vector<int> rotations;
   bool positions = false;
+  std::array<bool, 3> position_axes{};  // X, Y, Z: whether a position channel gives it
 };
 
 Channels channels_of(const BvhFile& bvh, const BvhSegment& segment) {
   Channels c;
-  std::array<bool, 3> seen{};
+  std::array<bool, 3>& seen = c.position_axes;
   for (BvhChannel channel : segment.channels) {
     const int axis = axis_of(channel);
     if (is_rotation(channel)) {
@@ -63,6 +65,11 @@ Joint joint_of(const BvhFile& bvh, const BvhSegment& segment, double scale) {
   Joint joint;
   joint.name = segment.name;
   joint.offset = scale * segment.offset;
+  // A JOINT's position channels are its whole local translation (doc/conventions.md#bvh-files):
+  // they replace the OFFSET along their axes. The ROOT's are added to its OFFSET.
+  if (segment.parent >= 0)
+    for (int axis = 0; axis < 3; ++axis)
+      if (c.position_axes[axis]) joint.offset[axis] = 0;
   const size_t n = c.rotations.size();
   if (c.positions) {
     joint.type = JointType::kFree123;
@@ -184,7 +191,7 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
     body.joint = joint_of(bvh, segment, options.scale);
   }
   for (const std::string& warning :
-       {height_warning(bvh, options.scale),
+       {height_warning(bvh, options.scale), changing_bones_warning(bvh, options.scale),
         options.body_mass > 0
             ? set_segment_parameters(bvh, options.scale, options.body_mass, sex, model)
             : std::string()})

@@ -5,7 +5,9 @@
 // first), its OFFSET (times `scale`) the joint origin q_k in the parent's axes, C_k = I, so that
 // each body's axes are the BVH joint's axes. The joint follows the segment's CHANNELS:
 //   position channels (ROOT or JOINT)  free_123: x, y, z = the position channels (missing ones
-//                                      0), added to the OFFSET; the angles as below (0 if none)
+//                                      0); the ROOT's are added to its OFFSET, a JOINT's are its
+//                                      local translation, in place of the OFFSET along their
+//                                      axes (as exporters mean them); the angles as below
 //   three rotations                    ball_123 in the channels' order (Zrotation Xrotation
 //                                      Yrotation: ZXY, alpha = the Zrotation value, ...)
 //   two rotations                      universal for Xrotation Yrotation; any other pair
@@ -39,7 +41,8 @@ BvhModelOptions bvh_model_options(const std::string& scale, const std::string& b
                                   const std::string& sex);
 
 // The model of the file's skeleton. Its warnings (Model::warnings) name what the user should
-// know: a standing height outside 0.5-2.5 m (a wrong --scale), and with a body mass the segments
+// know: a standing height outside 0.5-2.5 m (a wrong --scale), bones whose length changes
+// during the motion (bvh_bones.h), and with a body mass the segments
 // the anthropometric table does not cover. Throws std::invalid_argument "<path>:<line>: ..." for
 // channels no joint can take (a repeated rotation axis, more than three rotations) and for a bad
 // option.
