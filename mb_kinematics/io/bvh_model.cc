@@ -163,13 +163,16 @@ double number(const std::string& option, const std::string& text, double fallbac
 }  // namespace
 
 BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
-                                  const std::string& sex) {
+                                  const std::string& sex, const std::string& segments) {
   BvhModelOptions o;
+  o.segments = segments;
   o.scale = number("--scale", scale, o.scale);
   o.body_mass = number("--body-mass", body_mass, o.body_mass);
   if (!sex.empty()) o.sex = sex;
   if (!(o.scale > 0)) throw std::invalid_argument("--scale needs metres per file unit > 0");
   if (!(o.body_mass >= 0)) throw std::invalid_argument("--body-mass needs kg >= 0");
+  if (!segments.empty() && o.body_mass == 0)
+    throw std::invalid_argument("--segments maps joints to masses: it needs --body-mass KG");
   sex_from_string(o.sex);
   return o;
 }
@@ -193,7 +196,9 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
   for (const std::string& warning :
        {height_warning(bvh, options.scale), changing_bones_warning(bvh, options.scale),
         options.body_mass > 0
-            ? set_segment_parameters(bvh, options.scale, options.body_mass, sex, model)
+            ? set_segment_parameters(
+                  bvh, options.scale, options.body_mass, sex, model,
+                  options.segments.empty() ? SegmentMap{} : read_segment_map(options.segments))
             : std::string()})
     if (!warning.empty()) model.warnings.push_back(warning);
   finalize_model(model);
