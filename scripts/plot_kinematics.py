@@ -3,7 +3,7 @@
 
 usage: plot_kinematics.py OUT.csv --bodies NAME[,NAME...] [--png FILE] [--walk [--up AXIS]]
        plot_kinematics.py --bvh WALK.bvh [--scale M] [--body-mass KG] [--sex S] [--png OUT.png]
-                          [--csv OUT.csv] [--bodies ...] [--up AXIS]
+                          [--csv OUT.csv] [--bodies ...] [--up AXIS] [--segments MAP.yaml]
 
 Rows: omega, alpha (of the bodies), velocity and acceleration of their mass centers (and of the
 system's mass center, body "system", when the CSV has it); columns: x, y, z components in R.
@@ -135,7 +135,7 @@ def run_mbk_bag(args):
     """mbk bag on the BVH file, its CSV to args.csv; exits with mbk's error if it fails."""
     command = [find_mbk(), "bag", args.bvh, "--csv", args.csv, "--body-mass",
                args.body_mass or "70"]
-    for option in ("scale", "sex", "estimator"):
+    for option in ("scale", "sex", "estimator", "segments"):
         if getattr(args, option):
             command += ["--" + option, getattr(args, option)]
     print(" ".join(command), file=sys.stderr)
@@ -153,7 +153,10 @@ def default_leg(path):
                 break  # the next sample: every body seen
             names[row["index"]] = row["body"]
             lower[row["body"]] = row["lower_body"]
-    foot = next((b for b in lower if "left" in b.lower() and
+    def left(name):
+        n = name.lower()
+        return "left" in n or n.startswith(("l_", "l.")) or n.endswith(("_l", ".l"))
+    foot = next((b for b in lower if left(b) and
                  ("foot" in b.lower() or "ankle" in b.lower())), None)
     shank = names.get(lower.get(foot))
     thigh = names.get(lower.get(shank))
@@ -196,13 +199,15 @@ def main():
     bvh.add_argument("--body-mass", help="kg (default 70)")
     bvh.add_argument("--sex", choices=["male", "female"])
     bvh.add_argument("--estimator", help="mbk bag --estimator")
+    bvh.add_argument("--segments", help="a YAML map joint name: segment (mbk bag --segments)")
     args = parser.parse_args()
     if args.bvh:
         bvh_defaults(parser, args)
     elif not args.csv or not args.bodies:
         parser.error("give a CSV and --bodies, or --bvh FILE")
-    elif any((args.csv_out, args.scale, args.body_mass, args.sex, args.estimator)):
-        parser.error("--csv, --scale, --body-mass, --sex and --estimator go with --bvh")
+    elif any((args.csv_out, args.scale, args.body_mass, args.sex, args.estimator, args.segments)):
+        parser.error("--csv, --scale, --body-mass, --sex, --estimator and --segments go with "
+                     "--bvh")
     args.up = args.up or "z"
     if args.png:
         matplotlib.use("Agg")

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace mbk {
 namespace {
@@ -25,6 +26,7 @@ constexpr double kPercent = 0.01;
 // The three trunk parts' lengths in mm (Table 4; upper, middle, lower; male, female): they place
 // XYPH and OMPH on the line from SUPR to MIDH.
 constexpr double kTrunkPartLength[2][3] = {{170.7, 215.5, 145.7}, {142.5, 205.3, 181.5}};
+const char* const kTrunkKeys[3] = {"upper_trunk", "middle_trunk", "lower_trunk"};
 
 // A segment on one side of the body: 0 none (head, trunk), 1 left, 2 right.
 struct Found {
@@ -34,32 +36,45 @@ struct Found {
   Vec3<double> proximal, distal;  // rest pose, in R (mass center measured from `proximal`)
 };
 
-// "mixamorig:LeftUpLeg" -> side 1, "upleg"; "LThumb" -> 1, "thumb"; "Head" -> 0, "head".
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+// The side a joint's name gives (0 none, 1 left, 2 right) and its part: lowercase, without a
+// namespace (Mixamo's "mixamorig:"), the side and separators (_ . - and spaces). Sides: a
+// prefix Left/Right, L_/R_, L./R. (any case), a suffix _L/_R, .L/.R, Left/Right (any case), or
+// L/R before a capital (CMU's LThumb). "mixamorig:LeftUpLeg" -> 1, "upleg"; "UpperArm_L" -> 1,
+// "upperarm"; "forearm.R" -> 2, "forearm"; "LThumb" -> 1, "thumb"; "Head" -> 0, "head".
 std::pair<int, std::string> side_and_part(std::string name) {
   name = name.substr(name.rfind(':') + 1);
-  std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string lower = lowercase(name);
+  static const std::pair<std::string, int> kPrefixes[] = {{"left", 1}, {"right", 2}, {"l_", 1},
+                                                          {"r_", 2},   {"l.", 1},    {"r.", 2}};
+  static const std::pair<std::string, int> kSuffixes[] = {{"_l", 1}, {"_r", 2},   {".l", 1},
+                                                          {".r", 2}, {"left", 1}, {"right", 2}};
   int side = 0;
-  size_t skip = 0;
-  if (lower.rfind("left", 0) == 0)
-    side = 1, skip = 4;
-  else if (lower.rfind("right", 0) == 0)
-    side = 2, skip = 5;
-  else if (name.size() > 1 && (name[0] == 'L' || name[0] == 'R') && std::isupper(name[1]))
-    side = name[0] == 'L' ? 1 : 2, skip = 1;
-  else if (lower.rfind("l_", 0) == 0 || lower.rfind("r_", 0) == 0)
-    side = lower[0] == 'l' ? 1 : 2, skip = 2;
+  std::string rest = lower;
+  for (const auto& [prefix, s] : kPrefixes)
+    if (!side && lower.size() > prefix.size() && lower.compare(0, prefix.size(), prefix) == 0)
+      side = s, rest = lower.substr(prefix.size());
+  for (const auto& [suffix, s] : kSuffixes)
+    if (!side && lower.size() > suffix.size() &&
+        lower.compare(lower.size() - suffix.size(), suffix.size(), suffix) == 0)
+      side = s, rest = lower.substr(0, lower.size() - suffix.size());
+  if (!side && name.size() > 1 && (name[0] == 'L' || name[0] == 'R') && std::isupper(name[1]))
+    side = name[0] == 'L' ? 1 : 2, rest = lower.substr(1);
   std::string part;
-  for (char c : lower.substr(skip))
-    if (c != '_') part += c;
+  for (char c : rest)
+    if (c != '_' && c != '.' && c != '-' && c != ' ') part += c;
   return {side, part};
 }
 
 // The skeleton in its rest pose (every angle 0: every body's axes are R's).
 class Skeleton {
  public:
-  Skeleton(const BvhFile& bvh, double scale) : bvh_(bvh), scale_(scale) {
+  Skeleton(const BvhFile& bvh, double scale, const SegmentMap& map) : bvh_(bvh), scale_(scale) {
     const size_t n = bvh.segments.size();
     origin_.resize(n);
     children_.resize(n);
@@ -68,7 +83,19 @@ class Skeleton {
       origin_[i] =
           scale * bvh.segments[i].offset + (parent < 0 ? Vec3<double>::Zero() : origin_[parent]);
       if (parent >= 0) children_[parent].push_back(static_cast<int>(i));
+      index_[bvh.segments[i].name] = static_cast<int>(i);
     }
+    for (const auto& [joint, segment] : map.segment_of) {
+      const auto it = index_.find(joint);
+      if (it == index_.end())
+        throw std::invalid_argument(map.path + ": joint " + joint + " is not in " + bvh.path);
+      mapped_[segment] = it->second;
+    }
+  }
+  // The segment the user's map gives `key` (bvh_segment_map.h), or -1.
+  int mapped(const std::string& key) const {
+    const auto it = mapped_.find(key);
+    return it == mapped_.end() ? -1 : it->second;
   }
   int size() const { return static_cast<int>(origin_.size()); }
   int parent(int i) const { return bvh_.segments[i].parent; }
@@ -116,21 +143,31 @@ class Skeleton {
   double scale_;
   std::vector<Vec3<double>> origin_;
   std::vector<std::vector<int>> children_;
+  std::unordered_map<std::string, int> index_;   // name -> segment
+  std::unordered_map<std::string, int> mapped_;  // segment key -> segment
 };
 
 // The parent of `child` in a limb; -1 if `child` is missing or the root.
 int limb_parent(const Skeleton& s, int child) { return child > 0 ? s.parent(child) : -1; }
 
-// Upper arm, forearm, hand and thigh, shank, foot of one side, found from the hand (Hand or
-// Wrist; without one, from the forearm: ForeArm or Elbow) and the foot (Foot or Ankle; else the
-// shank: Leg or Knee) upwards.
+// Upper arm, forearm, hand and thigh, shank, foot of one side, each the user's map's if it
+// names it, else found from the hand (Hand or Wrist; without one, from the forearm: ForeArm,
+// LowerArm or Elbow) and the foot (Foot or Ankle; else the shank: Leg, LowerLeg, Shin or Knee)
+// upwards.
 void find_limbs(const Skeleton& s, int side, std::vector<Found>& found) {
-  const int hand = s.find(side, {"hand", "wrist"});
-  const int forearm = hand > 0 ? limb_parent(s, hand) : s.find(side, {"forearm", "elbow"});
-  const int upper_arm = limb_parent(s, forearm);
-  const int foot = s.find(side, {"foot", "ankle"});
-  const int shank = foot > 0 ? limb_parent(s, foot) : s.find(side, {"leg", "knee"});
-  const int thigh = limb_parent(s, shank);
+  const std::string prefix = side == 1 ? "left_" : "right_";
+  auto pick = [&](const char* part, int rule) {
+    const int m = s.mapped(prefix + part);
+    return m > 0 ? m : rule;
+  };
+  const int hand = pick("hand", s.find(side, {"hand", "wrist"}));
+  const int forearm = pick(
+      "forearm", hand > 0 ? limb_parent(s, hand) : s.find(side, {"forearm", "lowerarm", "elbow"}));
+  const int upper_arm = pick("upper_arm", limb_parent(s, forearm));
+  const int foot = pick("foot", s.find(side, {"foot", "ankle"}));
+  const int shank = pick(
+      "shank", foot > 0 ? limb_parent(s, foot) : s.find(side, {"leg", "lowerleg", "shin", "knee"}));
+  const int thigh = pick("thigh", limb_parent(s, shank));
   // A segment ends at the next one's joint; without one (a hand or foot the tables do not name),
   // at its own tip.
   auto add = [&](int row, int body, int next) {
@@ -165,7 +202,7 @@ int cervical(const Skeleton& s, int head) {
 // line from MIDH (mid-hip: between the thighs, else the root) to CERV, each on the spine body
 // whose span along that line holds its mass center (doc/anthropometry.md).
 void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) {
-  const int head = s.find(0, {"head"});
+  const int head = s.mapped("head") > 0 ? s.mapped("head") : s.find(0, {"head"});
   if (head <= 0) return;
   const int neck = cervical(s, head);
   const Vec3<double> cerv = s.origin(neck);
@@ -191,7 +228,8 @@ void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) 
     int body = spine.front();
     for (int b : spine)
       if ((s.origin(b) - midh).dot(line) / line.squaredNorm() <= t) body = b;
-    found.push_back({kUpperTrunk + i, 0, body, ends[i][0], ends[i][1]});
+    const int m = s.mapped(kTrunkKeys[i]);
+    found.push_back({kUpperTrunk + i, 0, m >= 0 ? m : body, ends[i][0], ends[i][1]});
   }
 }
 
@@ -394,10 +432,10 @@ double de_leva_mass_sum(Sex sex) {
 }
 
 std::string set_segment_parameters(const BvhFile& bvh, double scale, double body_mass, Sex sex,
-                                   Model& model) {
+                                   Model& model, const SegmentMap& map) {
   if (!(body_mass > 0) || !std::isfinite(body_mass))
     throw std::invalid_argument("body mass: must be a positive number of kg");
-  const Skeleton s(bvh, scale);
+  const Skeleton s(bvh, scale, map);
   std::vector<Found> found;
   for (int side : {1, 2}) find_limbs(s, side, found);
   find_head_and_trunk(s, sex, found);

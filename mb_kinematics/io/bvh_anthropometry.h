@@ -9,6 +9,7 @@
 
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/io/bvh.h"
+#include "mb_kinematics/io/bvh_segment_map.h"
 
 namespace mbk {
 
@@ -40,11 +41,12 @@ double de_leva_mass_sum(Sex sex);
 
 // Sets mass, mass_center and inertia of the bodies of `model` (model_from_bvh of `bvh` with
 // the same `scale`) for a body of `body_mass` kg: each table segment found in the skeleton on
-// the body named in doc/anthropometry.md, the fractions of segments not found spread over the
-// found ones in proportion, so that the masses sum to body_mass. Bodies covered by no segment
-// stay massless. Returns "" or one note naming the bodies without mass that no segment covers
-// and the segments not found.
+// the body `map` names for it, else the one the naming rules of doc/anthropometry.md find, the
+// fractions of segments not found spread over the found ones in proportion, so that the masses sum
+// to body_mass. Bodies covered by no segment stay massless. Returns "" or one note naming the
+// bodies without mass that no segment covers and the segments not found. Throws
+// std::invalid_argument "<map>: joint X is not in <bvh>".
 std::string set_segment_parameters(const BvhFile& bvh, double scale, double body_mass, Sex sex,
-                                   Model& model);
+                                   Model& model, const SegmentMap& map = {});
 
 }  // namespace mbk

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "mb_kinematics/io/bvh_anthropometry.h"
+#include "mb_kinematics/io/bvh_bones.h"
 
 namespace mbk {
 namespace {
@@ -29,11 +30,12 @@ int axis_of(BvhChannel channel) { return static_cast<int>(channel) % 3; }  // X,
 struct Channels {
   std::vector<int> rotations;
   bool positions = false;
+  std::array<bool, 3> position_axes{};  // X, Y, Z: whether a position channel gives it
 };
 
 Channels channels_of(const BvhFile& bvh, const BvhSegment& segment) {
   Channels c;
-  std::array<bool, 3> seen{};
+  std::array<bool, 3>& seen = c.position_axes;
   for (BvhChannel channel : segment.channels) {
     const int axis = axis_of(channel);
     if (is_rotation(channel)) {
@@ -63,6 +65,11 @@ Joint joint_of(const BvhFile& bvh, const BvhSegment& segment, double scale) {
   Joint joint;
   joint.name = segment.name;
   joint.offset = scale * segment.offset;
+  // A JOINT's position channels are its whole local translation (doc/conventions.md#bvh-files):
+  // they replace the OFFSET along their axes. The ROOT's are added to its OFFSET.
+  if (segment.parent >= 0)
+    for (int axis = 0; axis < 3; ++axis)
+      if (c.position_axes[axis]) joint.offset[axis] = 0;
   const size_t n = c.rotations.size();
   if (c.positions) {
     joint.type = JointType::kFree123;
@@ -156,13 +163,16 @@ double number(const std::string& option, const std::string& text, double fallbac
 }  // namespace
 
 BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
-                                  const std::string& sex) {
+                                  const std::string& sex, const std::string& segments) {
   BvhModelOptions o;
+  o.segments = segments;
   o.scale = number("--scale", scale, o.scale);
   o.body_mass = number("--body-mass", body_mass, o.body_mass);
   if (!sex.empty()) o.sex = sex;
   if (!(o.scale > 0)) throw std::invalid_argument("--scale needs metres per file unit > 0");
   if (!(o.body_mass >= 0)) throw std::invalid_argument("--body-mass needs kg >= 0");
+  if (!segments.empty() && o.body_mass == 0)
+    throw std::invalid_argument("--segments maps joints to masses: it needs --body-mass KG");
   sex_from_string(o.sex);
   return o;
 }
@@ -184,9 +194,11 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
     body.joint = joint_of(bvh, segment, options.scale);
   }
   for (const std::string& warning :
-       {height_warning(bvh, options.scale),
+       {height_warning(bvh, options.scale), changing_bones_warning(bvh, options.scale),
         options.body_mass > 0
-            ? set_segment_parameters(bvh, options.scale, options.body_mass, sex, model)
+            ? set_segment_parameters(
+                  bvh, options.scale, options.body_mass, sex, model,
+                  options.segments.empty() ? SegmentMap{} : read_segment_map(options.segments))
             : std::string()})
     if (!warning.empty()) model.warnings.push_back(warning);
   finalize_model(model);

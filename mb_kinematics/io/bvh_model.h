@@ -5,7 +5,9 @@
 // first), its OFFSET (times `scale`) the joint origin q_k in the parent's axes, C_k = I, so that
 // each body's axes are the BVH joint's axes. The joint follows the segment's CHANNELS:
 //   position channels (ROOT or JOINT)  free_123: x, y, z = the position channels (missing ones
-//                                      0), added to the OFFSET; the angles as below (0 if none)
+//                                      0); the ROOT's are added to its OFFSET, a JOINT's are its
+//                                      local translation, in place of the OFFSET along their
+//                                      axes (as exporters mean them); the angles as below
 //   three rotations                    ball_123 in the channels' order (Zrotation Xrotation
 //                                      Yrotation: ZXY, alpha = the Zrotation value, ...)
 //   two rotations                      universal for Xrotation Yrotation; any other pair
@@ -31,15 +33,18 @@ struct BvhModelOptions {
   double scale = 1.0;        // metres per file unit (0.01 for centimetres, 0.0254 for inches)
   double body_mass = 0.0;    // kg; 0 = massless segments
   std::string sex = "male";  // "male" or "female": the anthropometric table's column
+  std::string segments;      // a YAML map joint name -> segment (bvh_segment_map.h); "" none
 };
 
-// The options from their command-line texts (--scale, --body-mass, --sex; "" keeps the default).
-// Throws std::invalid_argument naming the option and the text.
+// The options from their command-line texts (--scale, --body-mass, --sex, --segments; "" keeps
+// the default). Throws std::invalid_argument naming the option and the text (--segments without
+// --body-mass too).
 BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
-                                  const std::string& sex);
+                                  const std::string& sex, const std::string& segments = "");
 
 // The model of the file's skeleton. Its warnings (Model::warnings) name what the user should
-// know: a standing height outside 0.5-2.5 m (a wrong --scale), and with a body mass the segments
+// know: a standing height outside 0.5-2.5 m (a wrong --scale), bones whose length changes
+// during the motion (bvh_bones.h), and with a body mass the segments
 // the anthropometric table does not cover. Throws std::invalid_argument "<path>:<line>: ..." for
 // channels no joint can take (a repeated rotation axis, more than three rotations) and for a bad
 // option.

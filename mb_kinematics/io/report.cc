@@ -170,6 +170,10 @@ std::string format_eval_json(const Model& model, const Data<double>& data,
         << ", \"origin\": " << json_array(data.origin[k].transpose())
         << ", \"rotation\": " << json_array(data.rotation[k])
         << ", \"mass_center\": " << json_array(data.mass_center[k].transpose())
+        << ", \"mass\": " << number(model.bodies[k].mass)
+        << ", \"local_mass_center\": " << json_array(model.bodies[k].mass_center.transpose())
+        << ", \"inertia\": "
+        << (model.bodies[k].has_inertia ? json_array(model.bodies[k].inertia) : "null")
         << ", \"omega\": " << json_array(data.omega[k].transpose())
         << ", \"alpha\": " << json_array(data.alpha[k].transpose())
         << ", \"velocity\": " << json_array(data.mass_center_velocity[k].transpose())

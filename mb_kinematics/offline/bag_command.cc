@@ -386,7 +386,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
 
 BagOptions parse_bag_options(int argc, char** argv) {
   BagOptions o;
-  std::string scale, body_mass, sex;
+  std::string scale, body_mass, sex, segments;
   const std::map<std::string, std::string*> values = {
       {"--model", &o.model},
       {"--out", &o.out_bag},
@@ -398,7 +398,8 @@ BagOptions parse_bag_options(int argc, char** argv) {
       {"--frame-prefix", &o.frame_prefix},
       {"--scale", &scale},
       {"--body-mass", &body_mass},
-      {"--sex", &sex}};
+      {"--sex", &sex},
+      {"--segments", &segments}};
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     auto it = values.find(arg);
@@ -432,9 +433,10 @@ BagOptions parse_bag_options(int argc, char** argv) {
   if (o.input.empty()) throw std::invalid_argument("bag needs an input IN.bag, IN.csv or IN.bvh");
   if (o.model.empty() && mbk::is_bvh_file(o.input)) o.model = o.input;
   if (o.model.empty()) throw std::invalid_argument("bag needs --model FILE");
-  if (!(scale + body_mass + sex).empty() && !mbk::is_bvh_file(o.model))
-    throw std::invalid_argument("--scale, --body-mass and --sex apply to a .bvh model only");
-  o.bvh = mbk::bvh_model_options(scale, body_mass, sex);
+  if (!(scale + body_mass + sex + segments).empty() && !mbk::is_bvh_file(o.model))
+    throw std::invalid_argument(
+        "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
+  o.bvh = mbk::bvh_model_options(scale, body_mass, sex, segments);
   if (o.out_bag.empty() && o.out_csv.empty())
     throw std::invalid_argument("bag needs --out OUT.bag and/or --csv OUT.csv");
   if (o.start_time != 0 && !ends_with(o.input, ".csv") && !mbk::is_bvh_file(o.input))

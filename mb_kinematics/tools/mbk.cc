@@ -46,7 +46,7 @@ const char kUsage[] =
     "           [--max-gap S] [--threads N] [--start-time S]\n"
     "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) ...\n"
     "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
-    "         [--body-mass KG] [--sex male|female]\n";
+    "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n";
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {
@@ -62,7 +62,7 @@ std::map<std::string, std::string> parse_options(int argc, char** argv) {
       options[arg] = "1";
     } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method" ||
                 arg == "--name" || arg == "--frame" || arg == "--scale" || arg == "--body-mass" ||
-                arg == "--sex") &&
+                arg == "--sex" || arg == "--segments") &&
                i + 1 < argc) {
       options[arg] = argv[++i];
     } else {
@@ -77,15 +77,17 @@ std::string option(const std::map<std::string, std::string>& options, const std:
   return it == options.end() ? "" : it->second;
 }
 
-// --scale, --body-mass and --sex, for a .bvh model only.
+// --scale, --body-mass, --sex and --segments, for a .bvh model only.
 mbk::BvhModelOptions bvh_options(const std::map<std::string, std::string>& options,
                                  const std::string& path) {
   const bool given = options.count("--scale") || options.count("--body-mass") ||
-                     options.count("--sex") || options.count("--frame");
+                     options.count("--sex") || options.count("--frame") ||
+                     options.count("--segments");
   if (given && !mbk::is_bvh_file(path))
-    throw UsageError("--scale, --body-mass, --sex and --frame apply to a .bvh model only");
+    throw UsageError(
+        "--scale, --body-mass, --sex, --segments and --frame apply to a .bvh model only");
   return mbk::bvh_model_options(option(options, "--scale"), option(options, "--body-mass"),
-                                option(options, "--sex"));
+                                option(options, "--sex"), option(options, "--segments"));
 }
 
 void print_warnings(const mbk::Model& model) {

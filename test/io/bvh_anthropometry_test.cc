@@ -134,6 +134,89 @@ TEST(DeLeva, BiovisionAndMixamoNamesMapAsCmus) {
   EXPECT_GT(body(cmu, "LeftForeArm").mass, 0);
 }
 
+// Every body's mass and mass center in `other` as in `cmu` (the same skeleton renamed).
+void expect_the_same_masses(const mbk::Model& cmu, const mbk::Model& other) {
+  ASSERT_EQ(other.body_count(), cmu.body_count());
+  for (int k = 1; k <= cmu.body_count(); ++k) {
+    EXPECT_EQ(other.bodies[k].mass, cmu.bodies[k].mass) << other.bodies[k].name;
+    EXPECT_EQ(other.bodies[k].mass_center, cmu.bodies[k].mass_center) << other.bodies[k].name;
+  }
+  EXPECT_TRUE(other.warnings.empty()) << other.warnings.front();
+}
+
+// Sides as suffixes and other prefixes: Bandai Namco's UpperArm_L, Blender's upper_arm.L, SMPL's
+// L_Shoulder; each finds every segment on the bodies CMU's names give.
+TEST(DeLeva, SideSuffixesAndPrefixesOfOtherFamiliesMapAsCmus) {
+  const std::string path = mbk_test::source_path("test/io/data/cmu_walk.bvh");
+  const mbk::Model cmu = mbk::model_from_bvh(cmu_walk(), {0.01, kMass, "male"});
+  using Name = std::string (*)(const std::string& side, const std::string& part);
+  struct Family {
+    const char* name;
+    Name name_of;
+    std::vector<std::string> parts;  // for CMU's UpLeg Leg Foot ToeBase Shoulder Arm ForeArm Hand
+  };
+  const std::vector<Family> families = {
+      {"bandai",
+       [](const std::string& side, const std::string& part) { return part + "_" + side; },
+       {"UpperLeg", "LowerLeg", "Foot", "Toes", "Shoulder", "UpperArm", "LowerArm", "Hand"}},
+      {"blender",
+       [](const std::string& side, const std::string& part) { return part + "." + side; },
+       {"thigh", "shin", "foot", "toe", "shoulder", "upper_arm", "forearm", "hand"}},
+      {"smpl",
+       [](const std::string& side, const std::string& part) { return side + "_" + part; },
+       {"Hip", "Knee", "Ankle", "Foot", "Collar", "Shoulder", "Elbow", "Wrist"}}};
+  const std::vector<std::string> cmu_parts = {"UpLeg",    "Leg", "Foot",    "ToeBase",
+                                              "Shoulder", "Arm", "ForeArm", "Hand"};
+  for (const Family& family : families) {
+    std::vector<std::pair<std::string, std::string>> names;
+    for (const std::string side : {"Left", "Right"})
+      for (size_t i = 0; i < cmu_parts.size(); ++i)
+        names.push_back({side + cmu_parts[i], family.name_of(side.substr(0, 1), family.parts[i])});
+    SCOPED_TRACE(family.name);
+    const mbk::Model other =
+        mbk::model_from_bvh(mbk::parse_bvh(renamed(path, names), std::string(family.name) + ".bvh"),
+                            {0.01, kMass, "male"});
+    EXPECT_GT(body(other, names[1].second).mass, 0);  // the left shank
+    expect_the_same_masses(cmu, other);
+  }
+}
+
+// A skeleton whose names no rule knows: a map of its own (--segments) gives every segment.
+TEST(DeLeva, AMapOfJointsToSegmentsGivesWhatTheNamesDoNot) {
+  const std::string path = mbk_test::source_path("test/io/data/cmu_walk.bvh");
+  const mbk::Model cmu = mbk::model_from_bvh(cmu_walk(), {0.01, kMass, "male"});
+  std::vector<std::pair<std::string, std::string>> names;
+  std::string yaml;
+  const std::vector<std::pair<std::string, std::string>> parts = {
+      {"UpLeg", "thigh"},   {"Leg", "shank"},       {"Foot", "foot"},
+      {"Arm", "upper_arm"}, {"ForeArm", "forearm"}, {"Hand", "hand"}};
+  int n = 0;
+  for (const std::string side : {"Left", "Right"})
+    for (const auto& [cmu_part, segment] : parts) {
+      const std::string bone = "Bone" + std::to_string(++n);
+      names.push_back({side + cmu_part, bone});
+      yaml += bone + ": " + (side == "Left" ? "left_" : "right_") + segment + "\n";
+    }
+  names.push_back({"Head", "Skull"});
+  yaml += "Skull: head\n";
+  const mbk::BvhFile bvh = mbk::parse_bvh(renamed(path, names), "bones.bvh");
+  const mbk::Model unmapped = mbk::model_from_bvh(bvh, {0.01, kMass, "male"});
+  EXPECT_EQ(body(unmapped, "Bone2").mass, 0.0);  // the rules find no shank
+  const std::string map = testing::TempDir() + "bones_segments.yaml";
+  std::ofstream(map) << yaml;
+  mbk::BvhModelOptions options{0.01, kMass, "male"};
+  options.segments = map;
+  expect_the_same_masses(cmu, mbk::model_from_bvh(bvh, options));
+  // A joint the skeleton does not have is an error naming the map.
+  std::ofstream(map) << "Tail: head\n";
+  try {
+    mbk::model_from_bvh(bvh, options);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), map + ": joint Tail is not in bones.bvh");
+  }
+}
+
 // CMU's cgspeed conversions name the neck lowerneck, Neck: CERV is the lowest *neck* joint.
 TEST(DeLeva, TheHeadReachesDownToTheLowestNeckJoint) {
   const std::string text = renamed(mbk_test::source_path("test/io/data/cmu_walk.bvh"),

@@ -7,12 +7,14 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/io/bvh_bones.h"
 
 namespace {
 
@@ -78,6 +80,14 @@ std::string mixed() {
   return text;
 }
 
+// kSkeleton with Neck's position channels (z, x) in frame 1 as in frame 0: its bone keeps its
+// length.
+std::string rigid() {
+  std::string text = kSkeleton;
+  text.replace(text.find("3 -4 35 -45"), 11, "0 0 35 -45");
+  return text;
+}
+
 constexpr double kScale = 0.01;  // centimetres
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
@@ -118,7 +128,12 @@ TEST(BvhModel, EachSegmentIsABodyOnTheJointItsChannelsMake) {
       "Chest/alpha", "Chest/beta",      "Neck/x",         "Neck/y",          "Neck/z",
       "Neck/alpha",  "Neck/beta",       "Neck/gamma"};
   EXPECT_EQ(model.coordinate_names, coordinates);
-  EXPECT_TRUE(model.warnings.empty()) << model.warnings.front();
+  // Neck's position channels (z and x) replace its OFFSET's: (0, 25, 0) cm, then (-4, 25, 3).
+  EXPECT_TRUE(model.bodies[5].joint.offset.isApprox(Eigen::Vector3d(0, 0.25, 0), 1e-15));
+  ASSERT_EQ(model.warnings.size(), 1u);
+  EXPECT_NE(model.warnings[0].find("bone lengths change during the motion"), std::string::npos)
+      << model.warnings[0];
+  EXPECT_NE(model.warnings[0].find(": Neck 0.25-0.255 m"), std::string::npos) << model.warnings[0];
 }
 
 TEST(BvhModel, FrameValuesBecomeCoordinatesInRadiansAndMetres) {
@@ -135,8 +150,10 @@ TEST(BvhModel, FrameValuesBecomeCoordinatesInRadiansAndMetres) {
   EXPECT_THROW(mbk::bvh_frame_coordinates(bvh, model, 2, kScale), std::invalid_argument);
 }
 
-// The BVH format's own forward kinematics: a segment's origin is its parent's origin plus the
-// parent's rotation times (OFFSET + position channels); its rotation is the parent's times the
+// The BVH format's own forward kinematics as exporters mean it: a segment's origin is its
+// parent's origin plus the parent's rotation times its translation (the ROOT's: OFFSET + position
+// channels; a JOINT's: the OFFSET with its position channels' axes replaced by their values); its
+// rotation is the parent's times the
 // rotation channels' elementary rotations in channel order.
 struct Poses {
   std::vector<Eigen::Vector3d> origin;
@@ -155,8 +172,10 @@ Poses bvh_poses(const mbk::BvhFile& bvh, int frame) {
       const double value = bvh.value(frame, s.first_column + static_cast<int>(c));
       if (mbk::is_rotation(s.channels[c]))
         turn = turn * Eigen::AngleAxisd(value * kDeg, Eigen::Vector3d::Unit(axis)).matrix();
-      else
+      else if (s.parent < 0)
         translation[axis] += value;
+      else
+        translation[axis] = value;
     }
     const bool root = s.parent < 0;
     origin[i] =
@@ -187,6 +206,63 @@ void expect_the_formats_forward_kinematics(const std::string& text) {
 
 TEST(BvhModel, JointPositionsAgreeWithTheFormatsForwardKinematics) {
   expect_the_formats_forward_kinematics(kSkeleton);
+}
+
+// Every joint with 6 channels whose positions repeat the OFFSET (Bandai Namco's and LAFAN1's
+// layout): the channels are the translation, so the skeleton keeps its OFFSET lengths; added to
+// the OFFSET they would double every bone (the head at 2 x 60 cm above the hips).
+TEST(BvhModel, PositionChannelsOfAJointAreItsTranslationNotAnIncrement) {
+  const char text[] =
+      "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n"
+      " CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
+      " JOINT Spine\n {\n  OFFSET 0 20 0\n"
+      "  CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
+      "  JOINT Head\n  {\n   OFFSET 0 40 0\n"
+      "   CHANNELS 6 Xposition Yposition Zposition Zrotation Yrotation Xrotation\n"
+      "   End Site\n   {\n    OFFSET 0 10 0\n   }\n  }\n }\n}\n"
+      "MOTION\nFrames: 2\nFrame Time: 0.01\n"
+      "5 90 1 0 0 0 0 20 0 0 0 0 0 40 0 0 0 0\n"
+      "7 91 2 0 0 0 0 20 0 0 0 0 0 40 0 0 0 0\n";
+  const mbk::BvhFile bvh = mbk::parse_bvh(text, "walk.bvh");
+  const mbk::Model model = mbk::model_from_bvh(bvh, {kScale});
+  EXPECT_TRUE(model.warnings.empty()) << model.warnings.front();
+  mbk::JointState<double> state(model);
+  mbk::Data<double> data(model);
+  const std::vector<double> q = mbk::bvh_frame_coordinates(bvh, model, 1, kScale);
+  state.position = Eigen::Map<const Eigen::VectorXd>(q.data(), q.size());
+  mbk::forward_kinematics(model, state, data);
+  EXPECT_LT((data.origin[3] - Eigen::Vector3d(0.07, 0.91 + 0.60, 0.02)).norm(), 1e-12)
+      << data.origin[3].transpose();
+  expect_the_formats_forward_kinematics(text);
+}
+
+// A bone whose position channels change its length is named with its range, in metres.
+TEST(BvhModel, BonesThatChangeLengthAreNamedWithTheirRange) {
+  const mbk::BvhFile bvh = mbk::parse_bvh(kSkeleton, "walk.bvh");
+  const std::vector<mbk::BoneLength> bones = mbk::changing_bones(bvh, kScale);
+  ASSERT_EQ(bones.size(), 1u);
+  EXPECT_EQ(bones[0].name, "Neck");
+  EXPECT_NEAR(bones[0].min, 0.25, 1e-15);
+  EXPECT_NEAR(bones[0].max, std::sqrt(0.04 * 0.04 + 0.25 * 0.25 + 0.03 * 0.03), 1e-15);
+  // The same values in both frames: no change, no warning.
+  EXPECT_TRUE(mbk::changing_bones(mbk::parse_bvh(rigid(), "walk.bvh"), kScale).empty());
+}
+
+// Under a ROOT that stays at 0 (Bandai Namco's joint_Root), the first JOINT's position channels
+// are the skeleton's motion, not a bone: they change, and nothing is warned.
+TEST(BvhModel, AJointUnderARootFixedInSpaceCarriesTheMotionNotABone) {
+  const char text[] =
+      "HIERARCHY\nROOT joint_Root\n{\n OFFSET 0 0 0\n"
+      " CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+      " JOINT Hips\n {\n  OFFSET 1 90 -450\n"
+      "  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+      "  End Site\n  {\n   OFFSET 0 -90 0\n  }\n }\n}\n"
+      "MOTION\nFrames: 2\nFrame Time: 0.01\n"
+      "0 0 0 0 0 0 -0.5 93 -9 0 0 0\n"
+      "0 0 0 0 0 0 -0.7 93 -8 0 0 0\n";
+  const mbk::BvhFile bvh = mbk::parse_bvh(text, "walk.bvh");
+  EXPECT_EQ(mbk::fixed_in_space(bvh), (std::vector<bool>{true, false}));
+  EXPECT_TRUE(mbk::changing_bones(bvh, kScale).empty());
 }
 
 TEST(BvhModel, MixedOrdersAgreeWithTheFormatsForwardKinematics) {
@@ -231,9 +307,9 @@ TEST(BvhModel, ASegmentNameUsedTwiceNamesBothLines) {
 }
 
 TEST(BvhModel, AScaleThatMakesNoHumanIsWarnedAbout) {
-  const mbk::Model metres = model_of(kSkeleton, {kScale});
-  EXPECT_TRUE(metres.warnings.empty());
-  const mbk::Model centimetres = model_of(kSkeleton, {1.0});
+  const mbk::Model metres = model_of(rigid(), {kScale});
+  EXPECT_TRUE(metres.warnings.empty()) << metres.warnings.front();
+  const mbk::Model centimetres = model_of(rigid(), {1.0});
   ASSERT_EQ(centimetres.warnings.size(), 1u);
   EXPECT_NE(centimetres.warnings[0].find("standing height is 170 m"), std::string::npos)
       << centimetres.warnings[0];

@@ -276,6 +276,13 @@ class JsonReader {
 const std::vector<std::string> kBodyFields = {"index",    "name",        "lower", "origin",
                                               "rotation", "mass_center", "omega", "alpha",
                                               "velocity", "acceleration"};
+// A body's keys in order: kBodyFields with the body's mass, local mass center and inertia
+// after its mass center.
+const std::vector<std::string> kBodyKeys = {
+    "index",       "name",        "lower", "origin",
+    "rotation",    "mass_center", "mass",  "local_mass_center",
+    "inertia",     "omega",       "alpha", "velocity",
+    "acceleration"};
 
 // Numbers of one array field, checked to be `size` numbers.
 std::vector<double> numbers(const Json& body, const std::string& field, size_t size) {
@@ -354,7 +361,7 @@ TEST_F(MbkEval, JsonHasTheContractFieldsAndTheKinematics) {
     const Json& body = bodies.array[k - 1];
     SCOPED_TRACE("body " + std::to_string(k));
     ASSERT_EQ(body.type, Json::kObject);
-    EXPECT_EQ(body.keys(), kBodyFields);
+    EXPECT_EQ(body.keys(), kBodyKeys);
     EXPECT_EQ(body.at("index").number, k);
     EXPECT_EQ(body.at("name").string, model.bodies[k].name);
     EXPECT_EQ(body.at("lower").number, model.bodies[k].lower);
@@ -499,7 +506,7 @@ TEST_F(MbkEval, PartialVelocitiesAreTheColumnsOfTheChain) {
   for (int k = 1; k <= 16; ++k) {
     const Json& body = bodies.array[k - 1];
     SCOPED_TRACE(model.bodies[k].name);
-    std::vector<std::string> keys = kBodyFields;
+    std::vector<std::string> keys = kBodyKeys;
     for (const char* f :
          {"partial_omega", "partial_velocity", "partial_omega_dot", "partial_velocity_dot"})
       keys.push_back(f);
@@ -754,6 +761,22 @@ TEST(MbkCli, ABvhFileIsAModel) {
   for (int k = 1; k <= model.body_count(); ++k)
     for (int i = 0; i < 3; ++i)
       EXPECT_NEAR(bodies.array[k - 1].at("origin").array[i].number, data.origin[k][i], 1e-12);
+  // Each body's mass, local mass center r_k and inertia, to inspect the segments' mapping.
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Json& b = bodies.array[k - 1];
+    const mbk::Body& body = model.bodies[k];
+    EXPECT_EQ(b.at("mass").number, body.mass) << body.name;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_EQ(b.at("local_mass_center").array[i].number, body.mass_center[i]) << body.name;
+    if (!body.has_inertia) {
+      EXPECT_EQ(b.at("inertia").type, Json::kNull) << body.name;
+      continue;
+    }
+    ASSERT_EQ(b.at("inertia").array.size(), 9u) << body.name;
+    for (int i = 0; i < 9; ++i)
+      EXPECT_EQ(b.at("inertia").array[i].number, body.inertia(i / 3, i % 3)) << body.name;
+  }
+  EXPECT_GT(bodies.array[model.body_index("LeftUpLeg") - 1].at("mass").number, 5.0);
   // mbk urdf of the skeleton: the same bodies at the same places, the same masses.
   const Output urdf_run = mbk("urdf " + walk + " --scale 0.01 --body-mass 61.5 --sex female");
   ASSERT_EQ(urdf_run.status, 0) << urdf_run.err;
@@ -787,8 +810,8 @@ TEST(MbkCli, ABvhFileIsAModel) {
       << late.err;
   const Output yaml = mbk("eval --model config/human_body.yaml --body-mass 70");
   EXPECT_EQ(yaml.status, 1);
-  EXPECT_EQ(yaml.err.rfind("mbk: error: --scale, --body-mass, --sex and --frame apply to a .bvh "
-                           "model only\nusage:",
+  EXPECT_EQ(yaml.err.rfind("mbk: error: --scale, --body-mass, --sex, --segments and --frame apply "
+                           "to a .bvh model only\nusage:",
                            0),
             0u)
       << yaml.err;
