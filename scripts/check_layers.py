@@ -11,7 +11,7 @@ import sys
 
 # Lowest first; folders in one tuple share a rank and do not include each other.
 LAYERS = [("core",), ("estimation",), ("io",), ("analysis", "viz"), ("messages",),
-          ("offline", "ros"), ("rviz", "tools")]
+          ("offline", "ros"), ("rviz", "tools", "python")]
 RANK = {folder: rank for rank, folders in enumerate(LAYERS) for folder in folders}
 ROS_FREE = ("core", "estimation")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')

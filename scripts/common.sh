@@ -27,6 +27,8 @@ MBK_PACKAGES=(
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
   valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
+  pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (doc/python.md)
+  python3-pytest python3-pykdl python3-dartpy  # its tests and their peers
 )
 
 mbk_install_deps() {

@@ -61,3 +61,10 @@ add_test(NAME plot_kinematics_bvh COMMAND /usr/bin/python3
   ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py --bvh)
 set_tests_properties(plot_kinematics_bvh PROPERTIES ENVIRONMENT
   "CMAKE_PREFIX_PATH=${CATKIN_DEVEL_PREFIX}")
+# The Python module (doc/python.md): test/python/ under pytest, run from the build folder (from
+# the repository root the C++ folder mb_kinematics/ would shadow the package) on the devel
+# space's package, its numbers against the workspace's mbk and the peers PyKDL and dartpy.
+add_test(NAME python_module COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
+  ${PROJECT_SOURCE_DIR}/test/python WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(python_module PROPERTIES TIMEOUT 300 ENVIRONMENT
+  "PYTHONPATH=${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION};MBK_DEVEL=${CATKIN_DEVEL_PREFIX};PYTHONNOUSERSITE=1")

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/io/bvh.h"
+#include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/yaml_scene.h"
 
@@ -34,6 +35,23 @@ Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
                                 "load robot_description yourself and give no model");
   throw std::invalid_argument(path +
                               ": unknown model file type (expected .urdf, .xml, .yaml, .bvh)");
+}
+
+bool is_model_text(const std::string& path_or_text) {
+  const std::size_t first = path_or_text.find_first_not_of(" \t\r\n");
+  return (first != std::string::npos && path_or_text[first] == '<') ||
+         path_or_text.find('\n') != std::string::npos;
+}
+
+Model load_model(const std::string& path_or_text, const BvhModelOptions* bvh,
+                 const std::string& source) {
+  const bool text = is_model_text(path_or_text);
+  if (bvh && (text || !is_bvh_file(path_or_text)))
+    throw std::invalid_argument("scale, body mass and sex apply to a .bvh model file only");
+  if (!text) return load_model_file(path_or_text, bvh ? *bvh : BvhModelOptions());
+  if (path_or_text[path_or_text.find_first_not_of(" \t\r\n")] == '<')
+    return load_urdf_string(path_or_text, source);
+  return load_yaml_scene_string(path_or_text, source);
 }
 
 }  // namespace mbk

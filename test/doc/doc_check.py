@@ -3,8 +3,8 @@
 
 (a) Every relative link in README.md and doc/*.md (doc/pending/ left out) resolves to an
     existing file, and every #anchor to a heading of its target (GitHub's slug rule).
-(b) The fenced ```bash blocks of the README's "Quick start" section run, in order, as one
-    bash script (set -e) in a temporary directory, against the workspace MBK_WS, on a ROS
+(b) The fenced ```bash blocks of the README's "Quick start" section (and its ```python blocks,
+    through /usr/bin/python3) run, in order, as one bash script (set -e) in a temporary directory, against the workspace MBK_WS, on a ROS
     master of the test's own (a free port); after each block the commands it left running
     (ending in `&`) are stopped with SIGTERM (a background job of a non-interactive shell ignores SIGINT). The whole script must end within --timeout s.
 
@@ -89,19 +89,23 @@ def check_links(root):
 
 
 def quick_start_blocks(readme):
-    """The ```bash blocks of the README section whose heading starts with 'Quick start'."""
-    blocks, section, block = [], None, None
+    """The ```bash blocks of the README section whose heading starts with 'Quick start', and its
+    ```python blocks as bash running them with /usr/bin/python3."""
+    blocks, section, block, language = [], None, None, None
     for line in open(readme, encoding="utf-8").read().split("\n"):
         if block is not None:
             if line.strip().startswith("```"):
-                blocks.append("\n".join(block))
+                text = "\n".join(block)
+                blocks.append(text if language == "bash" else
+                              "/usr/bin/python3 - <<'MBK_PYTHON_BLOCK'\n%s\nMBK_PYTHON_BLOCK" % text)
                 block = None
             else:
                 block.append(line)
         elif re.match(r"^#{1,6} ", line):
             section = line.lstrip("#").strip()
-        elif section and section.lower().startswith("quick start") and line.strip() == "```bash":
-            block = []
+        elif (section and section.lower().startswith("quick start") and
+              line.strip() in ("```bash", "```python")):
+            block, language = [], line.strip()[3:]
     return blocks
 
 

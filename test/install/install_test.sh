@@ -2,7 +2,7 @@
 # Packaging, checked the way a ROS packager would (doc/building.md): catkin_lint finds no
 # error in either package; `catkin_make install` of the workspace; then, from install/setup.bash
 # alone (a clean environment), `rosrun mb_kinematics mbk`, `rosmsg show mb_kinematics_msgs/...`,
-# and test/downstream (a package using the core's headers and library and the messages), built
+# the Python module (`import mb_kinematics`, a model's kinematics) and test/downstream (a package using the core's headers and library and the messages), built
 # and installed in the same workspace and run from its install space; then built again in a
 # workspace of its own on top of the install space alone, and run. Output in WS/install_test.log.
 #   test/install/install_test.sh SRC WS
@@ -24,6 +24,10 @@ env -i HOME="$HOME" PATH=/usr/bin:/bin bash -euo pipefail -c '
   msg=$(rosmsg show mb_kinematics_msgs/BodyKinematics)
   [[ $msg == *"geometry_msgs/Twist twist"* ]]
   rosrun mbk_downstream mbk_downstream
+  cd "$1"  # not the source tree, whose C++ folder mb_kinematics/ would shadow the package
+  /usr/bin/python3 -c "import sys, mb_kinematics; m = mb_kinematics.load(sys.argv[1]); \
+    assert m.kinematics(m.neutral_position)[\"rotation\"].shape == (10, 3, 3)" \
+    "$(rospack find mb_kinematics)/config/ten_body.yaml"
   down=$1/downstream_ws
   rm -rf "$down"
   mkdir -p "$down/src"
@@ -31,5 +35,6 @@ env -i HOME="$HOME" PATH=/usr/bin:/bin bash -euo pipefail -c '
   cd "$down" && catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3
   "$down/devel/lib/mbk_downstream/mbk_downstream"
 ' _ "$ws" "$src" >>"$log" 2>&1 || fail "from install/setup.bash"
-echo "install test: catkin_lint clean, install space runs mbk, rosmsg and a downstream package" \
+echo "install test: catkin_lint clean, install space runs mbk, rosmsg, the Python module and a" \
+  "downstream package" \
   "(built in the same workspace, and on top of the install space)"

@@ -1,0 +1,273 @@
+#include "mb_kinematics/offline/batch_kinematics.h"
+
+#include <algorithm>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <thread>
+
+#include "mb_kinematics/core/independent_speeds.h"
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/state.h"
+#include "mb_kinematics/core/state_check.h"
+#include "mb_kinematics/core/system_kinematics.h"
+
+namespace mbk {
+namespace {
+
+constexpr Level kP = Level::kPose, kV = Level::kVelocity, kA = Level::kAcceleration;
+
+// In BatchField order.
+const BatchFieldTraits kTraits[kBatchFieldCount] = {
+    {"rotation", kP, false, false, true, 9},
+    {"origin", kP, false, false, true, 3},
+    {"mass_center", kP, false, false, true, 3},
+    {"omega", kV, true, false, true, 3},
+    {"alpha", kA, true, true, true, 3},
+    {"velocity", kV, true, false, true, 3},
+    {"acceleration", kA, true, true, true, 3},
+    {"system_mass", kP, false, false, false, 1},
+    {"system_mass_center", kP, false, false, false, 3},
+    {"system_velocity", kV, true, false, false, 3},
+    {"system_acceleration", kA, true, true, false, 3},
+    {"linear_momentum", kV, true, false, false, 3},
+    {"angular_momentum", kV, true, false, false, 3},
+    {"partial_omega", kV, false, false, true, 0},
+    {"partial_velocity", kV, false, false, true, 0},
+    {"partial_omega_dot", kA, true, false, true, 0},
+    {"partial_velocity_dot", kA, true, false, true, 0},
+};
+
+template <typename T>
+bool any_partials(const BatchOutput<T>& out) {
+  return out[BatchField::kPartialOmega] || out[BatchField::kPartialVelocity] ||
+         out[BatchField::kPartialOmegaDot] || out[BatchField::kPartialVelocityDot];
+}
+
+// One thread's workspace, made once for its run of samples.
+struct Workspace {
+  explicit Workspace(const Model& model) : state(model), data(model) {}
+  JointState<double> state;
+  Data<double> data;
+  std::unique_ptr<PartialVelocities<double>> pv;  // O(N * depth): only for partials
+  std::unique_ptr<Data<double>> scratch;          // partial_velocity_kinematics' own Data
+  SystemKinematics<double> system;
+};
+
+// Row s of the inputs into `state`, mimic coordinates from their sources (as `mbk eval`).
+void load_sample(const Model& model, const BatchInput& in, std::size_t s,
+                 JointState<double>& state) {
+  state.position = Eigen::Map<const VecX<double>>(in.position + s * model.nq, model.nq);
+  if (in.velocity)
+    state.velocity = Eigen::Map<const VecX<double>>(in.velocity + s * model.nv, model.nv);
+  if (in.acceleration)
+    state.acceleration = Eigen::Map<const VecX<double>>(in.acceleration + s * model.nv, model.nv);
+  apply_mimics(model, state);
+}
+
+template <typename T>
+void put(T* out, const Vec3<double>& v) {
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<T>(v[i]);
+}
+
+template <typename T>
+void put_or_nan(T* out, const Vec3<double>& v, bool known) {
+  for (int i = 0; i < 3; ++i)
+    out[i] = known ? static_cast<T>(v[i]) : std::numeric_limits<T>::quiet_NaN();
+}
+
+template <typename T>
+void write_bodies(const Data<double>& data, std::size_t s, const BatchOutput<T>& out) {
+  const std::size_t nb = out.bodies.size();
+  for (std::size_t i = 0; i < nb; ++i) {
+    const int k = out.bodies[i];
+    const std::size_t row = s * nb + i;
+    if (T* r = out[BatchField::kRotation])
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) r[row * 9 + a * 3 + b] = static_cast<T>(data.rotation[k](a, b));
+    const std::pair<BatchField, const std::vector<Vec3<double>>*> vectors[] = {
+        {BatchField::kOrigin, &data.origin},
+        {BatchField::kMassCenter, &data.mass_center},
+        {BatchField::kOmega, &data.omega},
+        {BatchField::kAlpha, &data.alpha},
+        {BatchField::kVelocity, &data.mass_center_velocity},
+        {BatchField::kAcceleration, &data.mass_center_acceleration}};
+    for (const auto& [field, values] : vectors)
+      if (T* v = out[field]) put(v + row * 3, (*values)[k]);
+  }
+}
+
+// As `mbk eval`'s JSON: the vectors are NaN where it writes null (no mass: no mass center; a body
+// with mass but no inertia: no angular momentum).
+template <typename T>
+void write_system(const SystemKinematics<double>& sys, std::size_t s, const BatchOutput<T>& out) {
+  const bool g = sys.mass > 0;
+  if (T* m = out[BatchField::kSystemMass]) m[s] = static_cast<T>(sys.mass);
+  const std::pair<BatchField, const Vec3<double>*> vectors[] = {
+      {BatchField::kSystemMassCenter, &sys.mass_center},
+      {BatchField::kSystemVelocity, &sys.velocity},
+      {BatchField::kSystemAcceleration, &sys.acceleration},
+      {BatchField::kLinearMomentum, &sys.linear_momentum}};
+  for (const auto& [field, value] : vectors)
+    if (T* v = out[field]) put_or_nan(v + s * 3, *value, g);
+  if (T* h = out[BatchField::kAngularMomentum])
+    put_or_nan(h + s * 3, sys.angular_momentum, g && sys.angular_momentum_known);
+}
+
+template <typename T>
+void write_partials(const Model& model, const PartialVelocities<double>& pv, std::size_t s,
+                    const BatchOutput<T>& out) {
+  const std::size_t nb = out.bodies.size(), width = static_cast<std::size_t>(model.nv) * 3;
+  const BatchField fields[] = {BatchField::kPartialOmega, BatchField::kPartialVelocity,
+                               BatchField::kPartialOmegaDot, BatchField::kPartialVelocityDot};
+  const Vec3<double> SpeedColumn::*members[] = {&SpeedColumn::omega, &SpeedColumn::velocity,
+                                                &SpeedColumn::omega_dot,
+                                                &SpeedColumn::velocity_dot};
+  for (std::size_t i = 0; i < nb; ++i) {
+    const std::vector<SpeedColumn> columns = independent_columns(model, pv, out.bodies[i]);
+    for (int f = 0; f < 4; ++f) {
+      T* block = out[fields[f]];
+      if (!block) continue;
+      block += (s * nb + i) * width;
+      std::fill(block, block + width, T(0));
+      for (const SpeedColumn& c : columns) put(block + c.speed * 3, c.*members[f]);
+    }
+  }
+}
+
+template <typename T>
+void compute_sample(const Model& model, const BatchInput& in, std::size_t s, Level level,
+                    const BatchOutput<T>& out, Workspace& w) {
+  load_sample(model, in, s, w.state);
+  if (w.pv) partial_velocity_kinematics(model, w.state, *w.pv, *w.scratch, level);
+  forward_kinematics(model, w.state, w.data, level);
+  write_bodies(w.data, s, out);
+  const bool system = out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
+                      out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
+                      out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum];
+  if (system) {
+    system_kinematics(model, w.data, w.system, level);
+    write_system(w.system, s, out);
+  }
+  if (w.pv) write_partials(model, *w.pv, s, out);
+}
+
+template <typename T>
+void compute_range(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
+                   Level level, const BatchOutput<T>& out) {
+  Workspace w(model);
+  if (any_partials(out)) {
+    w.pv = std::make_unique<PartialVelocities<double>>(model);
+    w.scratch = std::make_unique<Data<double>>(model);
+  }
+  for (std::size_t s = begin; s < end; ++s) compute_sample(model, in, s, level, out, w);
+}
+
+// The first sample in [begin, end) that check_state rejects, with its message; `end` if none.
+std::size_t first_bad_sample(const Model& model, const BatchInput& in, std::size_t begin,
+                             std::size_t end, std::string& problem) {
+  JointState<double> state(model);
+  for (std::size_t s = begin; s < end; ++s) {
+    load_sample(model, in, s, state);
+    problem = check_state(model, state);
+    if (!problem.empty()) return s;
+  }
+  return end;
+}
+
+// Runs job(t, begin, end) on `threads` contiguous runs of [0, samples), the last on this
+// thread; an exception of a run (std::bad_alloc) is rethrown here after every run has ended.
+template <typename Job>
+void split(std::size_t samples, int threads, const Job& job) {
+  const std::size_t n = static_cast<std::size_t>(threads);
+  std::vector<std::exception_ptr> errors(n);
+  const auto run = [&](std::size_t t) {
+    try {
+      job(t, samples * t / n, samples * (t + 1) / n);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t + 1 < n; ++t) pool.emplace_back(run, t);
+  run(n - 1);
+  for (std::thread& thread : pool) thread.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+template <typename T>
+void check_request(const Model& model, const BatchInput& in, const BatchOutput<T>& out) {
+  for (int k : out.bodies)
+    if (k < 1 || k > model.body_count())
+      throw std::invalid_argument("body index " + std::to_string(k) + " out of range 1.." +
+                                  std::to_string(model.body_count()));
+  for (int f = 0; f < kBatchFieldCount; ++f) {
+    if (!out.field[f]) continue;
+    const BatchFieldTraits& t = kTraits[f];
+    if (t.needs_velocity && !in.velocity)
+      throw std::invalid_argument(std::string("output '") + t.name + "' needs velocities");
+    if (t.needs_acceleration && !in.acceleration)
+      throw std::invalid_argument(std::string("output '") + t.name + "' needs accelerations");
+  }
+  if (!in.position && in.samples > 0) throw std::invalid_argument("no positions given");
+}
+
+}  // namespace
+
+const BatchFieldTraits& batch_field_traits(BatchField field) {
+  return kTraits[static_cast<int>(field)];
+}
+
+BatchField batch_field_from_name(const std::string& name) {
+  std::string known;
+  for (int f = 0; f < kBatchFieldCount; ++f) {
+    if (name == kTraits[f].name) return static_cast<BatchField>(f);
+    known += (f ? ", " : "") + std::string(kTraits[f].name);
+  }
+  throw std::invalid_argument("unknown output '" + name + "' (known: " + known + ")");
+}
+
+std::size_t batch_field_size(const Model& model, BatchField field, std::size_t bodies) {
+  const BatchFieldTraits& t = batch_field_traits(field);
+  const std::size_t width = t.width ? t.width : static_cast<std::size_t>(model.nv) * 3;
+  return t.per_body ? width * bodies : width;
+}
+
+template <typename T>
+Level batch_level(const BatchOutput<T>& out) {
+  Level level = Level::kPose;
+  for (int f = 0; f < kBatchFieldCount; ++f)
+    if (out.field[f]) level = std::max(level, kTraits[f].level);
+  return level;
+}
+
+template <typename T>
+void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutput<T>& out,
+                      int threads) {
+  check_request(model, in, out);
+  if (in.samples == 0) return;
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  threads = static_cast<int>(std::min<std::size_t>(threads, in.samples));
+  std::vector<std::size_t> bad(threads);
+  std::vector<std::string> problems(threads);
+  split(in.samples, threads, [&](std::size_t t, std::size_t begin, std::size_t end) {
+    bad[t] = first_bad_sample(model, in, begin, end, problems[t]);
+  });
+  for (int t = 0; t < threads; ++t)  // runs in sample order: the first bad sample overall
+    if (bad[t] < in.samples * (t + 1) / threads)
+      throw std::invalid_argument("sample " + std::to_string(bad[t]) + ": " + problems[t]);
+  const Level level = batch_level(out);
+  split(in.samples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+    compute_range(model, in, begin, end, level, out);
+  });
+}
+
+template Level batch_level(const BatchOutput<double>&);
+template Level batch_level(const BatchOutput<float>&);
+template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<double>&, int);
+template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<float>&, int);
+
+}  // namespace mbk

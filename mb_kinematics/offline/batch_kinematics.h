@@ -1,0 +1,90 @@
+// The kinematics of N joint states at once, into arrays the caller owns (the Python module's
+// `Model.kinematics`, doc/python.md): row-major C arrays, one row per sample, only the fields
+// asked for written, the level (pose, velocity, acceleration) the highest a field needs, the
+// samples split over threads. Each sample is what `mbk eval` computes for that state, bit for
+// bit, whatever the number of threads. ROS-free.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/model.h"
+
+namespace mbk {
+
+// The arrays a batch can write, under the names of `mbk eval`'s JSON (the system's with a
+// `system_` prefix where a body's field has the same name). Shapes, with N samples and B bodies
+// chosen: rotation (N, B, 3, 3) S0K row by row; the other per-body fields (N, B, 3);
+// system_mass (N); the other system fields (N, 3); the partial velocities and their time
+// derivatives (N, B, nv, 3), zero in the columns of speeds outside a body's chain and of mimic
+// coordinates (whose columns count, times the multiplier, in their sources', as in `mbk eval`).
+enum class BatchField {
+  kRotation,
+  kOrigin,
+  kMassCenter,
+  kOmega,
+  kAlpha,
+  kVelocity,      // of the mass center G_k
+  kAcceleration,  // of the mass center G_k
+  kSystemMass,
+  kSystemMassCenter,
+  kSystemVelocity,
+  kSystemAcceleration,
+  kLinearMomentum,
+  kAngularMomentum,  // NaN where `mbk eval` writes null (a body with mass but no inertia)
+  kPartialOmega,
+  kPartialVelocity,
+  kPartialOmegaDot,
+  kPartialVelocityDot,
+  kCount,
+};
+constexpr int kBatchFieldCount = static_cast<int>(BatchField::kCount);
+
+struct BatchFieldTraits {
+  const char* name;
+  Level level;              // the least level that computes it
+  bool needs_velocity;      // depends on the joint speeds
+  bool needs_acceleration;  // depends on their derivatives
+  bool per_body;            // one block per chosen body
+  int width;                // numbers per block (per sample for system fields); 0: nv * 3
+};
+const BatchFieldTraits& batch_field_traits(BatchField field);
+// The field of that name; throws std::invalid_argument naming it and the known names.
+BatchField batch_field_from_name(const std::string& name);
+// Numbers per sample of `field` for `bodies` chosen bodies of `model`.
+std::size_t batch_field_size(const Model& model, BatchField field, std::size_t bodies);
+
+// Row-major inputs: position (N, nq); velocity and acceleration (N, nv) or null (zero). Mimic
+// coordinates are set from their sources (apply_mimics), whatever the rows hold there.
+struct BatchInput {
+  std::size_t samples = 0;
+  const double* position = nullptr;
+  const double* velocity = nullptr;
+  const double* acceleration = nullptr;
+};
+
+// Where each field goes (null: not asked for), and the bodies (1..N, any order, repeats allowed).
+template <typename T>
+struct BatchOutput {
+  std::array<T*, kBatchFieldCount> field{};
+  std::vector<int> bodies;
+  T*& operator[](BatchField f) { return field[static_cast<int>(f)]; }
+  T* operator[](BatchField f) const { return field[static_cast<int>(f)]; }
+};
+
+// The level the fields asked for need.
+template <typename T>
+Level batch_level(const BatchOutput<T>& out);
+
+// Computes every sample into `out` (T = double or float) on `threads` threads (0: the machine's
+// cores; never more than the samples). First checks everything and throws std::invalid_argument
+// with a one-line message, writing nothing: a body index out of range, a field that needs
+// velocities or accelerations the input lacks, or a sample check_state rejects ("sample 12: body 3
+// 'arm', coordinate 'elbow': not finite (nan)").
+template <typename T>
+void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutput<T>& out,
+                      int threads = 0);
+
+}  // namespace mbk

@@ -1,0 +1,187 @@
+// mb_kinematics._core: the compiled part of the Python module (doc/python.md). It converts
+// arrays and exceptions and releases the GIL around the C++; the loaders are io/load_model.h,
+// the batch is offline/batch_kinematics.h. The Python package (python/mb_kinematics/) checks
+// the caller's arguments and names them; the checks here only keep a wrong call from writing
+// out of bounds.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/report.h"
+#include "mb_kinematics/offline/batch_kinematics.h"
+
+namespace py = pybind11;
+
+namespace {
+
+using ModelPtr = std::shared_ptr<mbk::Model>;  // never changed after load
+using InputArray = py::array_t<double, py::array::c_style>;
+
+ModelPtr load(const std::string& path_or_text, py::object scale, py::object body_mass,
+              py::object sex, const std::string& source) {
+  const bool bvh = !scale.is_none() || !body_mass.is_none() || !sex.is_none();
+  mbk::BvhModelOptions options;
+  if (!scale.is_none()) options.scale = scale.cast<double>();
+  if (!body_mass.is_none()) options.body_mass = body_mass.cast<double>();
+  if (!sex.is_none()) options.sex = sex.cast<std::string>();
+  py::gil_scoped_release release;
+  return std::make_shared<mbk::Model>(
+      mbk::load_model(path_or_text, bvh ? &options : nullptr, source));
+}
+
+py::dict joint(const mbk::Body& body) {
+  py::dict d;
+  d["name"] = body.joint.name;
+  d["type"] = mbk::to_string(body.joint.type);
+  d["axis"] = std::vector<double>(body.joint.axis.data(), body.joint.axis.data() + 3);
+  d["offset"] = std::vector<double>(body.joint.offset.data(), body.joint.offset.data() + 3);
+  return d;
+}
+
+py::list mimics(const mbk::Model& model) {
+  py::list out;
+  for (const mbk::Mimic& m : model.mimics) {
+    py::dict d;
+    d["coordinate"] = model.coordinate_names[m.coordinate];
+    d["source"] = model.coordinate_names[m.source];
+    d["multiplier"] = m.multiplier;
+    d["offset"] = m.offset;
+    out.append(d);
+  }
+  return out;
+}
+
+// The state JointState(model) starts from: zeros, Euler parameters the identity (e4 = 1).
+std::vector<double> neutral_position(const mbk::Model& model) {
+  const mbk::JointState<double> state(model);
+  return std::vector<double>(state.position.data(), state.position.data() + model.nq);
+}
+
+const double* input(const py::object& array, std::size_t samples, int width, const char* name) {
+  if (array.is_none()) return nullptr;
+  const InputArray a = array.cast<InputArray>();
+  if (a.ndim() != 2 || static_cast<std::size_t>(a.shape(0)) != samples || a.shape(1) != width)
+    throw std::invalid_argument(std::string(name) + ": wrong shape");
+  return a.data();
+}
+
+template <typename T>
+void fill_output(const mbk::Model& model, const py::dict& arrays, std::size_t samples,
+                 mbk::BatchOutput<T>& out) {
+  for (const auto& item : arrays) {
+    const std::string name = item.first.cast<std::string>();
+    const mbk::BatchField field = mbk::batch_field_from_name(name);
+    auto a = item.second.cast<py::array>();
+    if (!py::isinstance<py::array_t<T>>(a) || !(a.flags() & py::array::c_style) || !a.writeable() ||
+        static_cast<std::size_t>(a.size()) !=
+            samples * mbk::batch_field_size(model, field, out.bodies.size()))
+      throw std::invalid_argument("out['" + name + "']: not a writeable C-contiguous array of " +
+                                  "the right dtype and size");
+    out[field] = static_cast<T*>(a.mutable_data());
+  }
+}
+
+template <typename T>
+void run(const mbk::Model& model, const InputArray& position, const py::object& velocity,
+         const py::object& acceleration, const py::dict& outputs, const std::vector<int>& bodies,
+         int threads) {
+  if (position.ndim() != 2 || position.shape(1) != model.nq)
+    throw std::invalid_argument("position: wrong shape");
+  mbk::BatchInput in;
+  in.samples = static_cast<std::size_t>(position.shape(0));
+  in.position = position.data();
+  in.velocity = input(velocity, in.samples, model.nv, "velocity");
+  in.acceleration = input(acceleration, in.samples, model.nv, "acceleration");
+  mbk::BatchOutput<T> out;
+  out.bodies = bodies;
+  fill_output(model, outputs, in.samples, out);
+  py::gil_scoped_release release;
+  mbk::batch_kinematics(model, in, out, threads);
+}
+
+// Writes the fields named by `outputs` (name -> array, all float64 or all float32) for every row
+// of `position` (N, nq) and the optional velocity and acceleration (N, nv).
+void batch_kinematics(const ModelPtr& model, const InputArray& position, py::object velocity,
+                      py::object acceleration, const py::dict& outputs,
+                      const std::vector<int>& bodies, int threads, bool single) {
+  if (single)
+    run<float>(*model, position, velocity, acceleration, outputs, bodies, threads);
+  else
+    run<double>(*model, position, velocity, acceleration, outputs, bodies, threads);
+}
+
+py::dict field_traits() {
+  py::dict out;
+  for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
+    const mbk::BatchFieldTraits& t = mbk::batch_field_traits(static_cast<mbk::BatchField>(f));
+    py::dict d;
+    d["level"] = static_cast<int>(t.level);
+    d["needs_velocity"] = t.needs_velocity;
+    d["needs_acceleration"] = t.needs_acceleration;
+    d["per_body"] = t.per_body;
+    d["width"] = t.width;
+    out[t.name] = d;
+  }
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "mb_kinematics' compiled part; use the package mb_kinematics (doc/python.md)";
+  py::class_<mbk::Model, ModelPtr>(m, "Model")
+      .def_readonly("frame", &mbk::Model::frame)
+      .def_readonly("nq", &mbk::Model::nq)
+      .def_readonly("nv", &mbk::Model::nv)
+      .def_readonly("coordinate_names", &mbk::Model::coordinate_names)
+      .def_readonly("speed_names", &mbk::Model::speed_names)
+      .def_readonly("warnings", &mbk::Model::warnings)
+      .def_property_readonly("body_count", &mbk::Model::body_count)
+      .def_property_readonly("lower", &mbk::Model::lower_body_array)
+      .def_property_readonly(
+          "lower_table",
+          [](const mbk::Model& m) { return mbk::lower_body_table(m.lower_body_array()); })
+      .def_property_readonly("tables_text",
+                             [](const mbk::Model& m) {
+                               std::vector<std::string> names;
+                               for (int k = 1; k <= m.body_count(); ++k)
+                                 names.push_back(m.bodies[k].name);
+                               return mbk::format_lower_body_table(m.lower_body_array(), names);
+                             })
+      .def_property_readonly("bodies",
+                             [](const mbk::Model& m) {
+                               py::list out;
+                               for (int k = 0; k <= m.body_count(); ++k) {
+                                 const mbk::Body& b = m.bodies[k];
+                                 py::dict d;
+                                 d["name"] = b.name;
+                                 d["lower"] = b.lower;
+                                 d["mass"] = b.mass;
+                                 d["mass_center"] = std::vector<double>(b.mass_center.data(),
+                                                                        b.mass_center.data() + 3);
+                                 d["joint"] = joint(b);
+                                 d["q_index"] = b.q_index;
+                                 d["v_index"] = b.v_index;
+                                 out.append(d);
+                               }
+                               return out;
+                             })
+      .def_property_readonly("mimics", &mimics)
+      .def_property_readonly("neutral_position", &neutral_position);
+  m.def("load", &load, py::arg("path_or_text"), py::arg("scale") = py::none(),
+        py::arg("body_mass") = py::none(), py::arg("sex") = py::none(),
+        py::arg("source") = "<text>");
+  m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
+        py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
+        py::arg("threads"), py::arg("single"));
+  m.def("field_traits", &field_traits);
+}

@@ -1,0 +1,280 @@
+"""mb_kinematics from Python (doc/python.md): load a model, then the kinematics of N joint states
+in one call into numpy arrays named as `mbk eval`'s JSON.
+
+    import mb_kinematics
+    model = mb_kinematics.load("config/human_body.urdf")
+    out = model.kinematics(q, velocity=qd, acceleration=qdd)   # q: (N, nq) or (nq,)
+    out["rotation"]        # (N, bodies, 3, 3), S0K of every body in R
+
+The computation is C++ (offline/batch_kinematics.h, the loaders of io/); this package checks the
+arguments, names what is wrong (ValueError, TypeError) and makes the arrays.
+"""
+import operator
+import os
+
+import numpy as np
+
+from mb_kinematics import _core
+
+__all__ = ["load", "Model", "OUTPUTS"]
+
+_TRAITS = _core.field_traits()
+_POSE, _VELOCITY, _ACCELERATION = 0, 1, 2
+#: Every output `Model.kinematics` can write, in its order.
+OUTPUTS = tuple(_TRAITS)
+_PARTIALS = tuple(name for name in OUTPUTS if name.startswith("partial_"))
+
+
+def load(path_or_text, scale=None, body_mass=None, sex=None):
+    """The model of a file (.urdf, .xml, .yaml, .bvh) or of a text (URDF XML, e.g.
+    rospy.get_param("robot_description"), or a YAML scene). scale (metres per file unit),
+    body_mass (kg) and sex ("male"/"female") apply to a .bvh file only. Raises ValueError with
+    the loader's one-line message."""
+    if isinstance(path_or_text, os.PathLike):
+        path_or_text = os.fspath(path_or_text)
+    if not isinstance(path_or_text, str):
+        raise TypeError("path_or_text: a file name or a model text (str), not %s"
+                        % type(path_or_text).__name__)
+    for name, value in (("scale", scale), ("body_mass", body_mass)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            raise TypeError("%s: a number, not %s" % (name, type(value).__name__))
+    if sex is not None and not isinstance(sex, str):
+        raise TypeError("sex: 'male' or 'female', not %s" % type(sex).__name__)
+    return Model(_core.load(path_or_text, scale, body_mass, sex))
+
+
+class Model:
+    """A loaded model: its bodies k = 1..N (body_names[k - 1]), coordinates and speeds.
+    Immutable; safe to share between threads."""
+
+    def __init__(self, core):
+        self._core = core
+        bodies = core.bodies
+        self._root = bodies[0]
+        self._bodies = bodies[1:]
+        self.frame = core.frame
+        self.nq, self.nv = core.nq, core.nv
+        self.coordinate_names = tuple(core.coordinate_names)
+        self.speed_names = tuple(core.speed_names)
+        self.body_names = tuple(b["name"] for b in self._bodies)
+        self.joint_names = tuple(b["joint"]["name"] for b in self._bodies)
+        self.joint_types = tuple(b["joint"]["type"] for b in self._bodies)
+        self.masses = np.array([b["mass"] for b in self._bodies], dtype=np.float64)
+        self.mass_centers = np.array([b["mass_center"] for b in self._bodies],
+                                     dtype=np.float64).reshape(-1, 3)
+        self.lower = np.array(core.lower, dtype=np.int64)
+        self.lower_table = np.array(core.lower_table, dtype=np.int64).reshape(-1, len(self.lower))
+        self.mimics = tuple(core.mimics)
+        self.warnings = tuple(core.warnings)
+        self.neutral_position = np.array(core.neutral_position, dtype=np.float64)
+        self._body_index = {name: k for k, name in enumerate(self.body_names, 1)}
+        self._coordinate_index = {n: i for i, n in enumerate(self.coordinate_names)}
+        self._speed_index = {n: i for i, n in enumerate(self.speed_names)}
+        for array in (self.masses, self.mass_centers, self.lower, self.lower_table,
+                      self.neutral_position):
+            array.setflags(write=False)
+
+    @property
+    def body_count(self):
+        """N, the number of bodies (R, the inertial frame, is not one)."""
+        return len(self.body_names)
+
+    @property
+    def root(self):
+        """bodies[0], R: a URDF's root link (its mass counts in the system quantities)."""
+        return dict(self._root)
+
+    def tables(self):
+        """The lower body arrays table (Table 4.2.1) as `mbk tables` prints it."""
+        return self._core.tables_text
+
+    def body_index(self, name):
+        """k (1..N) of the body of that name; ValueError if there is none."""
+        try:
+            return self._body_index[name]
+        except KeyError:
+            raise ValueError("unknown body %r" % (name,)) from None
+
+    def __repr__(self):
+        return "<mb_kinematics.Model: %d bodies, nq=%d, nv=%d, frame %r>" % (
+            self.body_count, self.nq, self.nv, self.frame)
+
+    def kinematics(self, q, velocity=None, acceleration=None, outputs=None, bodies=None,
+                   threads=None, out=None, dtype=np.float64):
+        """Every body's kinematics for every sample, as a dict name -> numpy array.
+
+        q: (nq,) or (N, nq) coordinates, or a dict coordinate name -> value or (N,) array
+        (missing coordinates 0, Euler parameters the identity). velocity, acceleration: (nv,)
+        or (N, nv), or a dict speed name -> values (missing speeds 0). Mimic coordinates are set
+        from their sources. outputs: names from OUTPUTS (default: what the inputs allow, the
+        partial velocities left out); bodies: names or indices 1..N (default all, in order);
+        threads: default the machine's cores; out: dict name -> array to write into
+        (C-contiguous, writeable, of `dtype` and the output's shape); dtype: float64 or float32.
+        A (nq,) q gives arrays without the leading N axis."""
+        single, q = _positions(self, q)
+        if acceleration is not None and velocity is None:
+            raise ValueError("acceleration: given without velocity (give zeros for a body at rest)")
+        samples = q.shape[0]
+        velocity = _speeds(self, velocity, "velocity", samples, single)
+        acceleration = _speeds(self, acceleration, "acceleration", samples, single)
+        dtype = _dtype(dtype)
+        chosen = _bodies(self, bodies)
+        names = _outputs(outputs, out, velocity is not None, acceleration is not None)
+        arrays = {}
+        for name in names:
+            shape = _shape(self, name, samples, len(chosen))
+            given = None if out is None else out.get(name)
+            arrays[name] = (np.empty(shape, dtype=dtype) if given is None
+                            else _out_array(given, name, shape[1:] if single else shape, dtype,
+                                            shape))
+        _core.batch_kinematics(self._core, q, velocity, acceleration, arrays, list(chosen),
+                               _threads(threads), dtype == np.float32)
+        if single:
+            return {name: (out[name] if out is not None and name in out else a[0])
+                    for name, a in arrays.items()}
+        return arrays
+
+
+def _real(value, name):
+    a = np.asarray(value)
+    if a.dtype.kind not in "iuf":
+        raise TypeError("%s: dtype %s, expected real numbers" % (name, a.dtype))
+    return a
+
+
+def _positions(model, q):
+    if isinstance(q, dict):
+        return _from_dict(model, q, "q", model._coordinate_index, model.neutral_position)
+    a = _real(q, "q")
+    if a.ndim not in (1, 2) or a.shape[-1] != model.nq:
+        raise ValueError("q: shape %s, expected (%d,) or (N, %d)" % (a.shape, model.nq, model.nq))
+    return a.ndim == 1, np.ascontiguousarray(a.reshape(-1, model.nq), dtype=np.float64)
+
+
+def _from_dict(model, values, name, index, neutral):
+    columns, samples = {}, None
+    for key, value in values.items():
+        if key not in index:
+            raise ValueError("%s: unknown name %r" % (name, key))
+        a = _real(value, "%s[%r]" % (name, key))
+        if a.ndim > 1 or (samples is not None and a.ndim == 1 and len(a) != samples) or (
+                samples is not None and (a.ndim == 0) != (samples < 0)):
+            raise ValueError("%s[%r]: shape %s, expected that of the other names'" %
+                             (name, key, a.shape))
+        samples = -1 if a.ndim == 0 else len(a)
+        columns[index[key]] = a
+    single = samples is None or samples < 0
+    rows = np.tile(neutral, (1 if single else samples, 1))
+    for i, a in columns.items():
+        rows[:, i] = a
+    return single, rows
+
+
+def _speeds(model, value, name, samples, single):
+    if value is None:
+        return None
+    if isinstance(value, dict):
+        is_single, rows = _from_dict(model, value, name, model._speed_index, np.zeros(model.nv))
+        if not value:
+            return np.zeros((samples, model.nv))
+        if is_single != single or rows.shape[0] != samples:
+            raise ValueError("%s: %s, q has %s" % (name, "one sample" if is_single else
+                             "%d samples" % rows.shape[0], "one" if single else samples))
+        return rows
+    a = _real(value, name)
+    expected = (model.nv,) if single else (samples, model.nv)
+    if a.shape != expected:
+        raise ValueError("%s: shape %s, expected %s (as q)" % (name, a.shape, expected))
+    return np.ascontiguousarray(a.reshape(samples, model.nv), dtype=np.float64)
+
+
+def _dtype(dtype):
+    try:
+        d = np.dtype(dtype)
+    except TypeError:
+        raise TypeError("dtype: float64 or float32, not %r" % (dtype,)) from None
+    if d not in (np.float64, np.float32):
+        raise TypeError("dtype: float64 or float32, not %s" % d)
+    return d
+
+
+def _bodies(model, bodies):
+    if bodies is None:
+        return range(1, model.body_count + 1)
+    if isinstance(bodies, (str, int, np.integer)):
+        bodies = [bodies]
+    chosen = []
+    for b in bodies:
+        if isinstance(b, str):
+            if b not in model._body_index:
+                raise ValueError("bodies: unknown body %r" % b)
+            chosen.append(model._body_index[b])
+            continue
+        try:
+            k = operator.index(b)
+        except TypeError:
+            raise TypeError("bodies: a body name or index, not %s" % type(b).__name__) from None
+        if not 1 <= k <= model.body_count:
+            raise ValueError("bodies: index %d out of range 1..%d" % (k, model.body_count))
+        chosen.append(k)
+    return chosen
+
+
+def _outputs(outputs, out, has_velocity, has_acceleration):
+    if out is not None and not isinstance(out, dict):
+        raise TypeError("out: a dict name -> array, not %s" % type(out).__name__)
+    if outputs is None and out is not None:
+        outputs = list(out)
+    if outputs is None:
+        level = _ACCELERATION if has_acceleration else _VELOCITY if has_velocity else _POSE
+        return [n for n in OUTPUTS if n not in _PARTIALS and _TRAITS[n]["level"] <= level]
+    if isinstance(outputs, str):
+        outputs = [outputs]
+    names = []
+    for name in outputs:
+        if name not in _TRAITS:
+            raise ValueError("outputs: unknown output %r (known: %s)" % (name, ", ".join(OUTPUTS)))
+        if _TRAITS[name]["needs_velocity"] and not has_velocity:
+            raise ValueError("outputs: %r needs velocity" % name)
+        if _TRAITS[name]["needs_acceleration"] and not has_acceleration:
+            raise ValueError("outputs: %r needs acceleration" % name)
+        if name not in names:
+            names.append(name)
+    for name in out or {}:
+        if name not in names:
+            raise ValueError("out: %r is not among the outputs asked for" % (name,))
+    return names
+
+
+def _shape(model, name, samples, bodies):
+    t = _TRAITS[name]
+    block = (3, 3) if name == "rotation" else (model.nv, 3) if t["width"] == 0 else (
+        () if t["width"] == 1 else (3,))
+    return (samples,) + ((bodies,) if t["per_body"] else ()) + block
+
+
+def _out_array(a, name, shape, dtype, full):
+    where = "out[%r]" % name
+    if not isinstance(a, np.ndarray):
+        raise TypeError("%s: a numpy array, not %s" % (where, type(a).__name__))
+    if a.dtype != dtype:
+        raise TypeError("%s: dtype %s, expected %s" % (where, a.dtype, dtype))
+    if a.shape != shape:
+        raise ValueError("%s: shape %s, expected %s" % (where, a.shape, shape))
+    if not a.flags.c_contiguous:
+        raise ValueError("%s: not C-contiguous" % where)
+    if not a.flags.writeable:
+        raise ValueError("%s: read-only" % where)
+    return a.reshape(full)
+
+
+def _threads(threads):
+    if threads is None:
+        return 0
+    try:
+        n = operator.index(threads)
+    except TypeError:
+        raise TypeError("threads: an integer, not %s" % type(threads).__name__) from None
+    if n < 1:
+        raise ValueError("threads: %d, expected at least 1" % n)
+    return n

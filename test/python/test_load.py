@@ -1,0 +1,92 @@
+"""mb_kinematics.load and the model's introspection: URDF files and texts, YAML scenes, BVH
+(scale, body mass), warnings, the loaders' errors as ValueError; names, masses, mass centers,
+lower body arrays and their table as `mbk tables` prints it, mimics, joint types."""
+import numpy as np
+import pytest
+
+from conftest import mbk, source
+
+
+def test_urdf_file_and_text_give_the_same_model(mbk_kinematics):
+    path = source("test/robots/panda.urdf")
+    from_file = mbk_kinematics.load(path)
+    with open(path) as f:
+        from_text = mbk_kinematics.load(f.read())  # as rospy.get_param("robot_description")
+    assert from_file.body_names == from_text.body_names
+    assert from_file.coordinate_names == from_text.coordinate_names
+    q = np.linspace(-1, 1, from_file.nq)
+    assert np.array_equal(from_file.kinematics(q)["rotation"], from_text.kinematics(q)["rotation"])
+    assert from_file.joint_types.count("revolute") == 7  # the arm; fingers prismatic
+    assert "prismatic" in from_file.joint_types
+
+
+def test_introspection_against_mbk_tables(mbk_kinematics):
+    path = source("config/ten_body.yaml")
+    model = mbk_kinematics.load(path)
+    assert list(model.lower) == [0, 1, 2, 1, 1, 5, 2, 7, 8, 9]  # the chapter's Fig. 4.2.1
+    assert model.tables() == mbk("tables", "--model", path)
+    csv = [[int(x) for x in line.split(",")] for line in
+           mbk("tables", "--model", path, "--csv").split()]
+    assert np.array_equal(model.lower_table, np.array(csv))
+    assert model.body_names[0] == "B1" and model.joint_names[9] == "J10"
+    assert model.masses[1] == 3.0 and list(model.mass_centers[3]) == [0.15, 0, 0]
+    assert model.coordinate_names[:3] == ("J1/alpha", "J1/beta", "J1/gamma")
+    assert model.speed_names == model.coordinate_names and model.nq == model.nv == 30
+    assert set(model.joint_types) == {"ball_123"}
+    assert model.body_index("B7") == 7
+    with pytest.raises(ValueError, match="'B11'"):
+        model.body_index("B11")
+    with pytest.raises(ValueError):
+        model.masses[0] = 1  # read-only: the model is immutable
+
+
+def test_yaml_text_and_euler_speeds(mbk_kinematics):
+    with open(source("config/human_body.yaml")) as f:
+        model = mbk_kinematics.load(f.read())
+    assert model.body_count == mbk_kinematics.load(source("config/human_body.yaml")).body_count
+
+
+def test_mimics(mbk_kinematics):
+    model = mbk_kinematics.load(source("test/robots/pr2.urdf"))
+    m = {x["coordinate"]: x for x in model.mimics}
+    assert m["r_gripper_r_finger_joint"]["source"] == "r_gripper_l_finger_joint"
+    assert m["r_gripper_r_finger_joint"]["multiplier"] == 1.0
+
+
+def test_bvh_options_and_warnings(mbk_kinematics):
+    path = source("test/mocap/131_01.bvh")
+    plain = mbk_kinematics.load(path)
+    assert plain.masses.sum() == 0  # no body mass: massless segments
+    assert any("scale" in w for w in plain.warnings)  # inches read as metres: a giant
+    scaled = mbk_kinematics.load(path, scale=0.056444, body_mass=68.5, sex="male")
+    assert scaled.masses.sum() == pytest.approx(68.5)
+    assert not any("scale" in w for w in scaled.warnings)
+    assert scaled.coordinate_names == plain.coordinate_names
+
+
+def test_errors_are_the_loaders_messages(mbk_kinematics, tmp_path):
+    missing = str(tmp_path / "none.urdf")
+    with pytest.raises(ValueError, match="none.urdf"):
+        mbk_kinematics.load(missing)
+    with pytest.raises(ValueError, match="unknown model file type"):
+        mbk_kinematics.load(str(tmp_path / "robot.stl"))
+    with pytest.raises(ValueError, match="bvh"):
+        mbk_kinematics.load(source("test/robots/panda.urdf"), scale=0.01)
+    with pytest.raises(ValueError, match="^<text>:1: URDF does not parse"):
+        mbk_kinematics.load("<robot name='r'><link name='a'/>")
+    with pytest.raises(ValueError, match="<text>:2"):
+        mbk_kinematics.load("bodies:\n  - {name: a, lower: 3}\n")
+    with pytest.raises(ValueError, match="sex"):
+        mbk_kinematics.load(source("test/mocap/131_01.bvh"), sex="other")
+    with pytest.raises(TypeError, match="path_or_text"):
+        mbk_kinematics.load(42)
+    with pytest.raises(TypeError, match="scale"):
+        mbk_kinematics.load(source("test/mocap/131_01.bvh"), scale="0.05")
+    with pytest.raises(TypeError):
+        mbk_kinematics.load(source("test/mocap/131_01.bvh"), scael=0.05)
+    one_line = None
+    try:
+        mbk_kinematics.load("<robot name='r'><link name='a'/>")
+    except ValueError as e:
+        one_line = str(e)
+    assert one_line and "\n" not in one_line
