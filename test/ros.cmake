@@ -55,6 +55,10 @@ add_rostest(test/ros/hz.test DEPENDENCIES mb_kinematics_node demo_publisher)
 add_rostest(test/ros/nodelet.test DEPENDENCIES mbk_nodelet demo_publisher)
 add_rostest(test/ros/deep_partials_nodelet.test DEPENDENCIES mbk_nodelet deep_partials_test)
 add_rostest(test/ros/launch_description.test DEPENDENCIES mb_kinematics_node rsp_compare_test)
+# Beside robot_state_publisher: the duplicate-/tf warning, and publish_tf:=false.
+add_rostest(test/ros/tf_duplicate.test DEPENDENCIES mb_kinematics_node demo_publisher)
+add_rostest(test/ros/tf_duplicate.test ARGS publish_tf:=false
+  DEPENDENCIES mb_kinematics_node demo_publisher)
 
 # The real-robot conformance set (test/robots/): the node against robot_state_publisher.
 add_executable(real_robots_test EXCLUDE_FROM_ALL test/ros/real_robots_test.cc)

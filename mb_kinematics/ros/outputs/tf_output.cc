@@ -11,6 +11,10 @@ TfOutput::TfOutput(const OutputSetup& setup)
   const bool base_tf = setup.params.base_odometry.empty() || setup.params.publish_base_tf;
   moving_all_ = mbk_messages::moving_bodies(setup.model, base_tf ? 1 : 2);
   select(setup.model, std::vector<char>(shown_.size(), 1), msg_.next());
+  const mbk_messages::FrameNames names(setup.model, prefix_, frame_);
+  std::vector<std::string> frames;
+  for (const int k : moving_all_) frames.push_back(names.body(k));
+  watch_ = std::make_unique<TfDuplicateWatch>(setup.nh, frames);
 }
 
 // The transforms of the published bodies, their frames set (~missing_coordinates skip).
