@@ -13,7 +13,7 @@ export PYTHONNOUSERSITE=1
 MBK_PACKAGES=(
   build-essential cmake catkin libroscpp-dev libtf2-ros-dev ros-sensor-msgs ros-geometry-msgs
   ros-std-msgs ros-visualization-msgs ros-message-generation ros-message-runtime liburdf-dev
-  liburdfdom-dev libtinyxml2-dev libeigen3-dev libyaml-cpp-dev libfmt-dev python3-rostest
+  liburdfdom-dev libtinyxml2-dev libeigen3-dev libyaml-cpp-dev python3-rostest
   python3-roslaunch python3-rostopic python3-rosmsg rosbash ros-robot-state-publisher
   libkdl-parser-dev liborocos-kdl-dev libbenchmark-dev googletest libboost-dev
   libdiagnostic-updater-dev libsensor-msgs-dev python3-sensor-msgs python3-geometry-msgs

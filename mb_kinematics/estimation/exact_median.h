@@ -6,7 +6,11 @@
 // max_entries of them: a few distinct values (a steady rate) take one pass; n distinct values in
 // general about log(n) / log(max_entries) + 1. The median is the value of rank n / 2 in increasing
 // order, as std::nth_element's (offline_estimator.h's default_max_gap). Finite values; -0 is 0.
-// ROS-free.
+// Beside MedianHistogram (one pass, to 2^-11) because mbk bag's streamed path needs the median
+// interval exactly: its default --max-gap must be the whole-recording path's bit for bit, or
+// the two paths split a recording into other segments (ExactMedianTest.
+// JitteredStampsGiveTheWholeRecordingsMaxGapWhereAHistogramDoesNot; for mbk bag itself,
+// BagTest.JitteredStampsGiveTheWholeRecordingsMaxGap). ROS-free.
 #pragma once
 
 #include <cstdint>

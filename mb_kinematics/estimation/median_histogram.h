@@ -5,7 +5,11 @@
 // (the value of rank n / 2 in increasing order, as nth_element's) is the bin's least value where
 // that rank falls on it (a repeated floor: exact), else the middle of the bin's least and greatest
 // values: within 2^-(kMantissaBits + 1) of the exact median, relative (about 5e-4). Values of any
-// sign; NaN sorts last. ROS-free.
+// sign; NaN sorts last. Beside ExactMedian (exact, but a pass over the same values each time it
+// narrows) for values made once, as the rows are computed (mbk bag's error bars): ExactMedian
+// would need them computed again per pass. Not for the median interval between stamps, which
+// must be exact (ExactMedianTest.JitteredStampsGiveTheWholeRecordingsMaxGapWhereAHistogramDoesNot).
+// ROS-free.
 #pragma once
 
 #include <cstdint>

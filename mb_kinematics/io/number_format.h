@@ -6,9 +6,8 @@
 
 namespace mbk {
 
-// The room write_shortest needs at `out`: it writes at most 24 characters and may use the
-// bytes after the end it returns as scratch.
-constexpr int kMaxDoubleChars = 40;
+// The room write_shortest needs at `out` (it writes at most 24 characters).
+constexpr int kMaxDoubleChars = 32;
 
 // Writes at `out` the shortest text that reads back as the same double, as std::to_chars(first,
 // last, x) writes it (fixed or scientific, whichever is shorter), "0" for -0; no allocation.

@@ -1,6 +1,7 @@
 // ExactMedian (estimation/exact_median.h): over as many passes as it asks for, its median is
 // nth_element's, bit for bit, for values of every sign and magnitude, and its bins stay within
-// the stated bound whatever the number of values.
+// the stated bound whatever the number of values; on jittered stamps the one-pass MedianHistogram
+// is not (why mbk bag's streamed path keeps both).
 #include "mb_kinematics/estimation/exact_median.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,9 @@
 #include <random>
 #include <stdexcept>
 #include <vector>
+
+#include "mb_kinematics/estimation/median_histogram.h"
+#include "mb_kinematics/estimation/offline_estimator.h"
 
 namespace {
 
@@ -99,6 +103,23 @@ TEST(ExactMedianTest, ValuesThatChangeBetweenPassesAreAnError) {
   ASSERT_FALSE(shifted.finish_pass());
   for (double x : {10.0, 20.0, 30.0, 40.0, 50.0}) shifted.add(x);
   EXPECT_THROW(shifted.finish_pass(), std::runtime_error);
+}
+
+// Jittered stamps, as mbk bag reads them (BagTest.JitteredStampsGiveTheWholeRecordingsMaxGap):
+// 5 x ExactMedian's median of their intervals is default_max_gap (the whole-recording path's)
+// bit for bit; MedianHistogram's, within its 2^-11, is another max gap: the streamed and the
+// whole-recording paths would split the recording into other segments.
+TEST(ExactMedianTest, JitteredStampsGiveTheWholeRecordingsMaxGapWhereAHistogramDoesNot) {
+  std::vector<double> t, intervals;
+  for (int i = 0; i < 20000; ++i) t.push_back(1 + 1e-3 * i + 3e-4 * std::sin(0.7 * i));
+  for (std::size_t i = 1; i < t.size(); ++i) intervals.push_back(t[i] - t[i - 1]);
+  int passes = 0;
+  EXPECT_EQ(5 * passes_median(intervals, 1 << 14, &passes), mbk::default_max_gap(t));
+  EXPECT_GT(passes, 1);
+  mbk::MedianHistogram histogram;
+  for (double x : intervals) histogram.add(x);
+  EXPECT_NE(5 * histogram.median(), mbk::default_max_gap(t));
+  EXPECT_NEAR(histogram.median(), nth_element_median(intervals), 1e-3 / 2048);
 }
 
 }  // namespace
