@@ -20,7 +20,7 @@ case "${1:-}" in
   "") ;;
   *) echo "usage: scripts/fuzz.sh [seconds | --smoke | --build]" >&2; exit 2 ;;
 esac
-harnesses=(urdf yaml_scene state_json lower joint_state_input bag)
+harnesses=(urdf yaml_scene state_json lower joint_state_input bag glyphs)
 dir=${MBK_FUZZ_DIR:-$MBK_WS/fuzz}
 mkdir -p "$dir/build" "$dir/findings"
 
@@ -44,6 +44,7 @@ smoke_runs() {  # about 5 s each on this project's 2-core CI machines
     joint_state_input) echo 3000 ;;
     lower) echo 100000 ;;
     bag) echo 1500 ;;  # each input is read twice (bag_input.cc: once in a child process)
+    glyphs) echo 5000 ;;
   esac
 }
 
@@ -54,6 +55,7 @@ seeds() {  # the shipped files each harness starts from
     state_json | joint_state_input) ls "$MBK_SRC"/config/*.json "$MBK_SRC"/test/io/data/*.json ;;
     lower) ls "$MBK_SRC"/test/fuzz/seeds/lower/* ;;
     bag) ls "$MBK_SRC"/test/fuzz/seeds/bag/* ;;
+    glyphs) ls "$MBK_SRC"/test/fuzz/seeds/glyphs/* ;;
   esac
 }
 

@@ -37,6 +37,9 @@ target_link_libraries(heap_trim_test gtest_main)
 catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers mbk_io gtest_main)
 target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+# Its limits: far bodies, long names, many bodies (ROS-free).
+catkin_add_gtest(glyph_limits_test test/ros/glyph_limits_test.cc)
+target_link_libraries(glyph_limits_test mbk_viz gtest_main)
 
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
     two_robots missing deep_partials)

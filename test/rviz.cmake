@@ -28,3 +28,20 @@ add_test(NAME rviz_screenshot_bvh
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/bvh)
 set_tests_properties(rviz_screenshot_bvh PROPERTIES RUN_SERIAL TRUE TIMEOUT 150 ENVIRONMENT
   "LAUNCH=bvh.launch;RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz;DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")
+
+# Hostile input (test/rviz/hostile_bodies.launch, no node): a robot at UTM coordinates (x 500000,
+# y 5000000) with a body name of 30,000 characters: rviz must draw it and still run 5 s later
+# (it aborted in Ogre on arrows whose ends a float could not tell apart, and overflowed the
+# stack in the body filter's regex). Then 10,000 bodies at 5 Hz: at most Max Bodies drawn, rviz
+# under 700 MB and out within 10 s of SIGINT (rviz's own teardown
+# under software rendering takes about 5 s on the 2-core machine).
+add_test(NAME rviz_hostile_far
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+    ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
+set_tests_properties(rviz_hostile_far PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+  "LAUNCH=hostile_bodies.launch;READY=hostile bodies: publishing;SHOT_NAME=rviz_hostile_far;TIMEOUT=30;HOLD=5")
+add_test(NAME rviz_hostile_many
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+    ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
+set_tests_properties(rviz_hostile_many PROPERTIES RUN_SERIAL TRUE TIMEOUT 120 ENVIRONMENT
+  "LAUNCH=hostile_bodies.launch;DEMO_ARGS=bodies:=10000 rate:=5 name_length:=10;READY=hostile bodies: publishing;SHOT_NAME=rviz_hostile_many;TIMEOUT=40;HOLD=10;MAX_RSS_MB=700;SIGINT_WITHIN=10")

@@ -31,14 +31,17 @@ geometry_msgs::Point point(const Vec3<double>& v) {
   return p;
 }
 
+// Placed at `from` (the marker's pose), its points 0 and `vector`: rviz turns points into floats,
+// which far from R's origin cannot tell the two ends of a short arrow apart.
 visualization_msgs::Marker arrow_marker(const std_msgs::Header& header, const std::string& ns,
                                         int id, const Rgba& c, const Vec3<double>& from,
-                                        const Vec3<double>& to, double width) {
+                                        const Vec3<double>& vector, double width) {
   visualization_msgs::Marker m = marker(header, ns, id, visualization_msgs::Marker::ARROW, c);
-  m.points = {point(from), point(to)};
+  m.pose.position = point(from);
+  m.points = {point(Vec3<double>::Zero()), point(vector)};
   m.scale.x = width;
   m.scale.y = 2 * width;
-  m.scale.z = std::min(3 * width, 0.5 * (to - from).norm());
+  m.scale.z = std::min(3 * width, 0.5 * vector.norm());
   return m;
 }
 
@@ -64,7 +67,7 @@ visualization_msgs::MarkerArray make_marker_array(const Glyphs& glyphs, const Gl
   int id = 0;
   for (const GlyphArrow& a : glyphs.arrows)
     out.markers.push_back(arrow_marker(header, mbk::glyph_quantity_name(a.quantity), id++,
-                                       style.color[a.quantity], a.start, a.end, style.width));
+                                       style.color[a.quantity], a.start, a.vector, style.width));
   for (const GlyphArc& arc : glyphs.arcs) {
     const std::string ns = std::string(mbk::glyph_quantity_name(arc.quantity)) + "_arc";
     const Rgba& c = style.color[arc.quantity];
@@ -72,8 +75,8 @@ visualization_msgs::MarkerArray make_marker_array(const Glyphs& glyphs, const Gl
     for (const Vec3<double>& p : arc.points) line.points.push_back(point(p));
     line.scale.x = 0.5 * style.width;
     out.markers.push_back(line);
-    out.markers.push_back(arrow_marker(header, ns, id++, c, arc.head_start,
-                                       arc.head_start + arc.head_dir, 0.5 * style.width));
+    out.markers.push_back(
+        arrow_marker(header, ns, id++, c, arc.head_start, arc.head_dir, 0.5 * style.width));
   }
   if (!glyphs.mass_centers.empty()) {
     Marker spheres =

@@ -27,8 +27,8 @@ double max_norm(const mb_kinematics_msgs::BodyKinematicsArray& msg, const GlyphS
 Glyphs make_glyphs(const mb_kinematics_msgs::BodyKinematicsArray& msg, const GlyphStyle& style);
 
 // The picture as markers in msg.header.frame_id: a DELETEALL first, then arrows (ns per
-// quantity), arcs (LINE_STRIP + ARROW heads, ns "<quantity>_arc"), SPHERE_LIST "mass_centers",
-// LINE_LIST "skeleton".
+// quantity; pose at the arrow's start, points 0 and the arrow's vector), arcs (LINE_STRIP + ARROW
+// heads, ns "<quantity>_arc"), SPHERE_LIST "mass_centers", LINE_LIST "skeleton".
 visualization_msgs::MarkerArray make_marker_array(const Glyphs& glyphs, const GlyphStyle& style,
                                                   const std_msgs::Header& header);
 

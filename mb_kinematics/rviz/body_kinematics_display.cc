@@ -23,6 +23,7 @@
 #include "mb_kinematics/rviz/body_kinematics_visual.h"
 #include "mb_kinematics/rviz/system_kinematics_visual.h"
 #include "mb_kinematics/viz/glyph_bodies.h"
+#include "mb_kinematics/viz/local_glyphs.h"
 
 namespace mbk_rviz {
 namespace {
@@ -42,6 +43,17 @@ const char* const kWhat[mbk::GlyphQuantity::kCount] = {
     "angular acceleration alpha_k of each body (arrow and arc)"};
 
 constexpr double kMinCameraDistance = 1.0;  // m, for a robot of a single point
+
+// A pose at `p` (in R), R's orientation: what FrameManager::transform composes with R's pose in
+// the Fixed Frame in double, as rviz's own displays place their scene nodes.
+geometry_msgs::Pose pose(const mbk::Vec3<double>& p) {
+  geometry_msgs::Pose out;
+  out.position.x = p.x();
+  out.position.y = p.y();
+  out.position.z = p.z();
+  out.orientation.w = 1;
+  return out;
+}
 
 }  // namespace
 
@@ -91,6 +103,13 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
                                           SLOT(updateHistoryLength()));
   history_length_->setMin(1);
   history_length_->setMax(100);
+  max_bodies_ = new rviz::IntProperty(
+      "Max Bodies", static_cast<int>(mbk::kDefaultMaxBodies),
+      "At most this many bodies are drawn per message (the first ones of the message that pass "
+      "the filters); the others are counted in a status warning. The display holds some ten "
+      "objects per body drawn, times History Length.",
+      this, SLOT(updateStyle()));
+  max_bodies_->setMin(0);
   makeSystemProperties();
 }
 
@@ -164,9 +183,7 @@ void BodyKinematicsDisplay::makeSystemProperties() {
                                               system_, SLOT(updateStyle()), this);
 }
 
-void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg,
-                                       const Ogre::Vector3& position,
-                                       const Ogre::Quaternion& orientation) {
+void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg) {
   if (!system_visual_)
     system_visual_ =
         std::make_unique<SystemKinematicsVisual>(context_->getSceneManager(), scene_node_);
@@ -186,7 +203,13 @@ void BodyKinematicsDisplay::drawSystem(const mb_kinematics_msgs::BodyKinematicsA
   s.acceleration_scale = style_.scale[mbk::GlyphQuantity::kAcceleration];
   s.radius = system_radius_->getFloat();
   s.width = 2 * style_.width;
-  system_visual_->setFramePose(position, orientation);
+  const mbk::Vec3<double> g(msg.system.mass_center.x, msg.system.mass_center.y,
+                            msg.system.mass_center.z);
+  Ogre::Vector3 at;
+  Ogre::Quaternion turn;
+  if (g.allFinite() && g.lpNorm<Eigen::Infinity>() <= mbk::kMaxGlyphDistance &&
+      context_->getFrameManager()->transform(msg.header, pose(g), at, turn))
+    system_visual_->setCenterPose(at, turn);
   if (system_visual_->set(msg.system, s))
     deleteStatus("System");
   else
@@ -233,21 +256,23 @@ void BodyKinematicsDisplay::adoptFrame(
   manager->setFixedFrame(frame);
 }
 
-// The camera looks at the centre of the box around every O_k and G_k from where the box's
-// bounding sphere fills the view's height.
+// The camera looks at the centre of the box around every O_k and G_k drawn (within
+// mbk::kMaxGlyphDistance) from where the box's bounding sphere fills the view's height.
 void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& bodies,
-                                        const Ogre::Vector3& position,
-                                        const Ogre::Quaternion& orientation) {
+                                        const std_msgs::Header& header) {
   rviz::ViewController* view = context_->getViewManager()->getCurrent();
+  const std::vector<char> drawn = mbk::drawn_bodies(bodies, style_, nullptr);
   Eigen::AlignedBox3d box;
-  for (const mbk::GlyphBody& b : bodies)
-    if (b.origin.allFinite() && b.mass_center.allFinite())
-      box.extend(b.origin).extend(b.mass_center);
-  if (!view || box.isEmpty()) return;
-  const Eigen::Vector3d c = box.center();
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (drawn[i]) box.extend(bodies[i].origin).extend(bodies[i].mass_center);
+  Ogre::Vector3 center;
+  Ogre::Quaternion orientation;
+  if (!view || box.isEmpty() ||
+      !context_->getFrameManager()->transform(header, pose(box.center()), center, orientation))
+    return;
   const double radius = 0.5 * box.diagonal().norm() + auto_length_->getFloat();
   const double half_fov = 0.5 * view->getCamera()->getFOVy().valueRadians();
-  view->lookAt(position + orientation * Ogre::Vector3(c.x(), c.y(), c.z()));
+  view->lookAt(center);
   view->subProp("Distance")->setValue(std::max(kMinCameraDistance, radius / std::sin(half_fov)));
 }
 
@@ -293,16 +318,15 @@ void BodyKinematicsDisplay::updateStyle() {
   style_.width = width_->getFloat();
   style_.arc_radius = arc_radius_->getFloat();
   style_.min_mass_fraction = min_mass_fraction_->getFloat();
+  style_.max_bodies = static_cast<size_t>(std::max(0, max_bodies_->getInt()));
 }
 
 void BodyKinematicsDisplay::updateFilter() {
   const char* property = "Body Filter";
   try {
-    style_.filter = std::regex(filter_->getStdString());
+    style_.filter = mbk::BodyFilter(filter_->getStdString());
     property = "Exclude Bodies";
-    const std::string exclude = exclude_->getStdString();
-    style_.exclude.reset();
-    if (!exclude.empty()) style_.exclude = std::regex(exclude);
+    style_.filter = mbk::BodyFilter(filter_->getStdString(), exclude_->getStdString());
     filter_ok_ = true;
     deleteStatus("Body Filter");
   } catch (const std::regex_error& e) {
@@ -323,18 +347,41 @@ void BodyKinematicsDisplay::autoScale(const std::vector<mbk::GlyphBody>& bodies)
         auto_scales_[q].update(mbk::max_norm(bodies, style_, q), auto_length_->getFloat());
 }
 
-void BodyKinematicsDisplay::reportSkipped(const mbk::Glyphs& glyphs) {
-  if (glyphs.skipped.empty()) {
-    deleteStatus("Invalid values");
-    return;
+namespace {
+
+// The first five names, each cut to 60 characters.
+QString someNames(const std::vector<std::string>& names) {
+  QString out;
+  for (size_t i = 0; i < names.size() && i < 5; ++i) {
+    out += (i ? ", " : "") + QString::fromStdString(names[i].substr(0, 60));
+    if (names[i].size() > 60) out += "...";
   }
-  QString names;
-  for (size_t i = 0; i < glyphs.skipped.size() && i < 5; ++i)
-    names += (i ? ", " : "") + QString::fromStdString(glyphs.skipped[i]);
-  if (glyphs.skipped.size() > 5) names += ", ...";
-  setStatus(rviz::StatusProperty::Warn, "Invalid values",
-            QString::number(glyphs.skipped.size()) +
-                " bodies with NaN or infinite values skipped: " + names);
+  if (names.size() > 5) out += ", ...";
+  return out;
+}
+
+}  // namespace
+
+void BodyKinematicsDisplay::reportLeftOut(const char* status, size_t count, const QString& what) {
+  if (count == 0)
+    deleteStatus(status);
+  else
+    setStatus(rviz::StatusProperty::Warn, status, QString::number(count) + " bodies " + what);
+}
+
+void BodyKinematicsDisplay::reportSkipped(const mbk::Glyphs& glyphs) {
+  reportLeftOut("Invalid values", glyphs.skipped.size(),
+                "with NaN or infinite values skipped: " + someNames(glyphs.skipped));
+  reportLeftOut(
+      "Far bodies", glyphs.far.size(),
+      QString("farther than %1 m from the frame's origin not drawn: ").arg(mbk::kMaxGlyphDistance) +
+          someNames(glyphs.far));
+  reportLeftOut("Long names", glyphs.long_names,
+                QString("not drawn: names longer than %1 characters are not matched against "
+                        "Body Filter or Exclude Bodies")
+                    .arg(mbk::kMaxFilteredName));
+  reportLeftOut("Max Bodies", glyphs.over_max_bodies,
+                QString("not drawn: at most Max Bodies (%1) per message").arg(style_.max_bodies));
 }
 
 std::shared_ptr<BodyKinematicsVisual> BodyKinematicsDisplay::nextVisual() {
@@ -370,17 +417,21 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
   std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
   mbk::set_masses(masses_, bodies);
   if (auto_frame_->getBool() && !framed_) {
-    frameCamera(bodies, position, orientation);
+    frameCamera(bodies, msg.header);
     framed_ = true;
   }
   autoScale(bodies);
   const mbk::Glyphs glyphs = mbk::make_glyphs(bodies, style_);
   reportSkipped(glyphs);
+  const mbk::Vec3<double> anchor = mbk::glyph_anchor(glyphs);
+  Ogre::Vector3 at;
+  Ogre::Quaternion turn;
+  if (!context_->getFrameManager()->transform(msg.header, pose(anchor), at, turn)) return;
   std::shared_ptr<BodyKinematicsVisual> visual = nextVisual();
-  visual->setFramePose(position, orientation);
-  visual->set(glyphs, style_, alpha_->getFloat());
+  visual->setAnchorPose(at, turn);
+  visual->set(glyphs, anchor, style_, alpha_->getFloat());
   visuals_.push_back(visual);
-  drawSystem(msg, position, orientation);
+  drawSystem(msg);
 }
 
 }  // namespace mbk_rviz

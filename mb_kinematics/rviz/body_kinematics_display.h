@@ -72,17 +72,17 @@ class BodyKinematicsDisplay
   void draw(const mb_kinematics_msgs::BodyKinematicsArray& msg);
   void makeQuantityProperties(int q, const QColor& color, double scale, const QString& unit);
   void autoScale(const std::vector<mbk::GlyphBody>& bodies);
-  void reportSkipped(const mbk::Glyphs& glyphs);
+  void reportSkipped(const mbk::Glyphs& glyphs);  // bodies left out, a status per reason
+  void reportLeftOut(const char* status, size_t count, const QString& what);
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
   void makeSystemProperties();
   void makeSelectionProperties();
   // Auto Frame: the Fixed Frame becomes the message's frame when tf does not know it. Every
   // message, before the tf filter (which holds back those it cannot transform to the Fixed Frame).
   void adoptFrame(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg);
-  void frameCamera(const std::vector<mbk::GlyphBody>& bodies, const Ogre::Vector3& position,
-                   const Ogre::Quaternion& orientation);
-  void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg, const Ogre::Vector3& position,
-                  const Ogre::Quaternion& orientation);
+  void frameCamera(const std::vector<mbk::GlyphBody>& bodies, const std_msgs::Header& header);
+  // The whole system's visual, placed at G (in double, as the bodies' anchor).
+  void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg);
 
   std::array<QuantityProperties, mbk::GlyphQuantity::kCount> quantity_;
   rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
@@ -91,7 +91,7 @@ class BodyKinematicsDisplay
   rviz::StringProperty *filter_, *exclude_, *robot_description_;
   rviz::FloatProperty* min_mass_fraction_;
   rviz::BoolProperty* auto_frame_;
-  rviz::IntProperty* history_length_;
+  rviz::IntProperty *history_length_, *max_bodies_;
 
   std::map<std::string, double> masses_;  // link name -> kg, from Robot Description
   ros::WallTime masses_tried_;

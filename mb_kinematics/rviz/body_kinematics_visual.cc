@@ -7,6 +7,9 @@
 #include <rviz/ogre_helpers/shape.h>
 
 #include <algorithm>
+#include <optional>
+
+#include "mb_kinematics/viz/local_glyphs.h"
 
 namespace mbk_rviz {
 namespace {
@@ -14,21 +17,23 @@ namespace {
 using mbk::Glyphs;
 using mbk::GlyphStyle;
 
-Ogre::Vector3 ogre(const mbk::Vec3<double>& v) { return Ogre::Vector3(v.x(), v.y(), v.z()); }
+Ogre::Vector3 ogre(const Eigen::Vector3f& v) { return Ogre::Vector3(v.x(), v.y(), v.z()); }
 
 Ogre::ColourValue colour(const mbk::Rgba& c, float alpha) {
   return Ogre::ColourValue(c.r, c.g, c.b, c.a * alpha);
 }
 
-// An arrow from `from` to `to`: the head 3 shaft widths long (at most half the arrow).
-void placeArrow(rviz::Arrow& arrow, const Ogre::Vector3& from, const Ogre::Vector3& to, float width,
-                const Ogre::ColourValue& c) {
-  const Ogre::Vector3 d = to - from;
-  const float length = d.length();
-  const float head = std::min(3 * width, 0.5f * length);
-  arrow.set(std::max(length - head, 1e-4f), width, head, 2 * width);
-  arrow.setPosition(from);
-  arrow.setDirection(d / length);
+// An arrow from `start` along `vector` (relative to `anchor`): the head 3 shaft widths long (at
+// most half the arrow); hidden when it has no length a float holds.
+void placeArrow(rviz::Arrow& arrow, const mbk::Vec3<double>& start, const mbk::Vec3<double>& vector,
+                const mbk::Vec3<double>& anchor, float width, const Ogre::ColourValue& c) {
+  const std::optional<mbk::LocalArrow> a = mbk::local_arrow(start, vector, anchor);
+  arrow.getSceneNode()->setVisible(a.has_value());
+  if (!a) return;
+  const float head = std::min(3 * width, 0.5f * a->length);
+  arrow.set(std::max(a->length - head, 1e-4f), width, head, 2 * width);
+  arrow.setPosition(ogre(a->start));
+  arrow.setDirection(ogre(a->direction));
   arrow.setColor(c);
 }
 
@@ -50,17 +55,23 @@ BodyKinematicsVisual::~BodyKinematicsVisual() {
   scene_manager_->destroySceneNode(node_);
 }
 
-void BodyKinematicsVisual::setFramePose(const Ogre::Vector3& position,
-                                        const Ogre::Quaternion& orientation) {
+void BodyKinematicsVisual::setAnchorPose(const Ogre::Vector3& position,
+                                         const Ogre::Quaternion& orientation) {
   node_->setPosition(position);
   node_->setOrientation(orientation);
 }
 
-void BodyKinematicsVisual::set(const Glyphs& glyphs, const GlyphStyle& style, float alpha) {
+void BodyKinematicsVisual::set(const Glyphs& glyphs, const mbk::Vec3<double>& anchor,
+                               const GlyphStyle& style, float alpha) {
+  anchor_ = anchor;
   setArrows(glyphs, style, alpha);
   setArcs(glyphs, style, alpha);
   setSpheres(glyphs, style, alpha);
   setSkeleton(glyphs, style, alpha);
+}
+
+Ogre::Vector3 BodyKinematicsVisual::local(const mbk::Vec3<double>& p) const {
+  return ogre(mbk::local_point(p, anchor_));
 }
 
 void BodyKinematicsVisual::resizeArrows(std::vector<std::unique_ptr<rviz::Arrow>>& arrows,
@@ -73,7 +84,7 @@ void BodyKinematicsVisual::setArrows(const Glyphs& glyphs, const GlyphStyle& sty
   resizeArrows(arrows_, glyphs.arrows.size());
   for (size_t i = 0; i < glyphs.arrows.size(); ++i) {
     const mbk::GlyphArrow& a = glyphs.arrows[i];
-    placeArrow(*arrows_[i], ogre(a.start), ogre(a.end), style.width,
+    placeArrow(*arrows_[i], a.start, a.vector, anchor_, style.width,
                colour(style.color[a.quantity], alpha));
   }
 }
@@ -89,9 +100,8 @@ void BodyKinematicsVisual::setArcs(const Glyphs& glyphs, const GlyphStyle& style
     const mbk::GlyphArc& arc = glyphs.arcs[i];
     const Ogre::ColourValue c = colour(style.color[arc.quantity], alpha);
     if (i > 0) arcs_->newLine();
-    for (const mbk::Vec3<double>& p : arc.points) arcs_->addPoint(ogre(p), c);
-    placeArrow(*arc_heads_[i], ogre(arc.head_start), ogre(arc.head_start + arc.head_dir),
-               0.5 * style.width, c);
+    for (const mbk::Vec3<double>& p : arc.points) arcs_->addPoint(local(p), c);
+    placeArrow(*arc_heads_[i], arc.head_start, arc.head_dir, anchor_, 0.5 * style.width, c);
   }
 }
 
@@ -102,7 +112,7 @@ void BodyKinematicsVisual::setSpheres(const Glyphs& glyphs, const GlyphStyle& st
     spheres_.emplace_back(new rviz::Shape(rviz::Shape::Sphere, scene_manager_, node_));
   const float d = 2 * style.sphere_radius;
   for (size_t i = 0; i < n; ++i) {
-    spheres_[i]->setPosition(ogre(glyphs.mass_centers[i]));
+    spheres_[i]->setPosition(local(glyphs.mass_centers[i]));
     spheres_[i]->setScale(Ogre::Vector3(d, d, d));
     spheres_[i]->setColor(colour(style.mass_center_color, alpha));
   }
@@ -117,8 +127,8 @@ void BodyKinematicsVisual::setSkeleton(const Glyphs& glyphs, const GlyphStyle& s
   const Ogre::ColourValue c = colour(style.skeleton_color, alpha);
   for (size_t i = 0; i < glyphs.skeleton.size(); ++i) {
     if (i > 0) skeleton_->newLine();
-    skeleton_->addPoint(ogre(glyphs.skeleton[i].first), c);
-    skeleton_->addPoint(ogre(glyphs.skeleton[i].second), c);
+    skeleton_->addPoint(local(glyphs.skeleton[i].first), c);
+    skeleton_->addPoint(local(glyphs.skeleton[i].second), c);
   }
 }
 

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mb_kinematics/viz/glyphs.h"
+
 namespace mbk_rviz {
 namespace {
 
@@ -18,17 +20,19 @@ bool finite(const Ogre::Vector3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-// An arrow `vector * scale` from `from`; hidden when shorter than 1 mm.
-void placeArrow(rviz::Arrow& arrow, const Ogre::Vector3& from, const Ogre::Vector3& vector,
-                float scale, float width, const Ogre::ColourValue& color, bool show) {
-  const Ogre::Vector3 d = vector * scale;
-  const float length = d.length();
-  arrow.getSceneNode()->setVisible(show && length > 1e-3f);
-  if (!(show && length > 1e-3f)) return;
-  const float head = std::min(3 * width, 0.5f * length);
-  arrow.set(std::max(length - head, 1e-4f), width, head, 2 * width);
+// An arrow `vector * scale` from `from`, its length and direction computed in double; hidden
+// when shorter than 1 mm or longer than mbk::kMaxGlyphDistance.
+void placeArrow(rviz::Arrow& arrow, const Ogre::Vector3& from, const geometry_msgs::Vector3& vector,
+                double scale, float width, const Ogre::ColourValue& color, bool show) {
+  const double d[3] = {vector.x * scale, vector.y * scale, vector.z * scale};
+  const double length = std::hypot(d[0], d[1], d[2]);
+  const bool visible = show && length > 1e-3 && length <= mbk::kMaxGlyphDistance;
+  arrow.getSceneNode()->setVisible(visible);
+  if (!visible) return;
+  const float head = std::min(3 * width, 0.5f * static_cast<float>(length));
+  arrow.set(std::max(static_cast<float>(length) - head, 1e-4f), width, head, 2 * width);
   arrow.setPosition(from);
-  arrow.setDirection(d / length);
+  arrow.setDirection(Ogre::Vector3(d[0] / length, d[1] / length, d[2] / length));
   arrow.setColor(color);
 }
 
@@ -54,8 +58,8 @@ SystemKinematicsVisual::~SystemKinematicsVisual() {
   scene_manager_->destroySceneNode(node_);
 }
 
-void SystemKinematicsVisual::setFramePose(const Ogre::Vector3& position,
-                                          const Ogre::Quaternion& orientation) {
+void SystemKinematicsVisual::setCenterPose(const Ogre::Vector3& position,
+                                           const Ogre::Quaternion& orientation) {
   node_->setPosition(position);
   node_->setOrientation(orientation);
 }
@@ -67,23 +71,26 @@ bool SystemKinematicsVisual::set(const mb_kinematics_msgs::SystemKinematics& sys
   const Ogre::Vector3 g(system.mass_center.x, system.mass_center.y, system.mass_center.z);
   const Ogre::Vector3 v = ogre(system.velocity), a = ogre(system.acceleration);
   const bool valid = finite(g) && finite(v) && finite(a);
-  if (!style.show || !system.filled || !(system.mass > 0) || !valid) {
+  const bool near = std::max({std::abs(g.x), std::abs(g.y), std::abs(g.z)}) <=
+                    static_cast<float>(mbk::kMaxGlyphDistance);
+  if (!style.show || !system.filled || !(system.mass > 0) || !valid || !near) {
     hide();
     return valid || !system.filled;
   }
   node_->setVisible(true);
   const float d = 2 * style.radius;
+  const Ogre::Vector3 here = Ogre::Vector3::ZERO;  // G: the node is there
   sphere_->getRootNode()->setVisible(style.sphere);
-  sphere_->setPosition(g);
+  sphere_->setPosition(here);
   sphere_->setScale(Ogre::Vector3(d, d, d));
   sphere_->setColor(style.color);
-  placeArrow(*velocity_, g, v, style.velocity_scale, style.width, style.velocity_color,
-             style.velocity);
-  placeArrow(*acceleration_, g, a, style.acceleration_scale, style.width, style.acceleration_color,
-             style.acceleration);
+  placeArrow(*velocity_, here, system.velocity, style.velocity_scale, style.width,
+             style.velocity_color, style.velocity);
+  placeArrow(*acceleration_, here, system.acceleration, style.acceleration_scale, style.width,
+             style.acceleration_color, style.acceleration);
   // The projection on R's x-y plane: a flat disc (rviz's cylinder shape stands along its z)
   // and a line from G down to it.
-  const Ogre::Vector3 foot(g.x, g.y, 0);
+  const Ogre::Vector3 foot(0, 0, -g.z);
   disc_->getRootNode()->setVisible(style.projection);
   disc_->setPosition(foot);
   disc_->setScale(Ogre::Vector3(2 * d, 2 * d, 0.1f * d));
@@ -91,7 +98,7 @@ bool SystemKinematicsVisual::set(const mb_kinematics_msgs::SystemKinematics& sys
   drop_->clear();
   drop_->setLineWidth(0.25f * style.width);
   if (style.projection) {
-    drop_->addPoint(g, style.color);
+    drop_->addPoint(here, style.color);
     drop_->addPoint(foot, style.color);
   }
   return true;

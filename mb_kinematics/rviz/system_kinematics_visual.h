@@ -37,7 +37,8 @@ class SystemKinematicsVisual {
   // Draws `system` if filled with a positive mass; false (nothing drawn) if it has a value that
   // is not finite.
   bool set(const mb_kinematics_msgs::SystemKinematics& system, const SystemStyle& style);
-  void setFramePose(const Ogre::Vector3& position, const Ogre::Quaternion& orientation);
+  // The pose of G in the Fixed Frame (R's orientation): the picture is drawn relative to G.
+  void setCenterPose(const Ogre::Vector3& position, const Ogre::Quaternion& orientation);
 
  private:
   void hide();

@@ -16,6 +16,11 @@ bool finite(const GlyphBody& b) {
   return ok;
 }
 
+bool near(const GlyphBody& b) {
+  return b.origin.lpNorm<Eigen::Infinity>() <= kMaxGlyphDistance &&
+         b.mass_center.lpNorm<Eigen::Infinity>() <= kMaxGlyphDistance;
+}
+
 double heaviest(const std::vector<GlyphBody>& bodies) {
   double m = 0;
   for (const GlyphBody& b : bodies)
@@ -48,8 +53,8 @@ void add_vectors(const GlyphBody& b, const GlyphStyle& style, Glyphs& out) {
     if (!style.show[q]) continue;
     const Vec3<double>& v = b.vectors[q];
     const double length = style.scale[q] * v.norm();
-    if (!std::isfinite(length) || length < style.min_length) continue;
-    out.arrows.push_back({q, g, g + length * v.normalized()});
+    if (!(length >= style.min_length && length <= kMaxGlyphDistance)) continue;
+    out.arrows.push_back({q, g, length * v.normalized()});
     if (q == GlyphQuantity::kOmega || q == GlyphQuantity::kAlpha)
       out.arcs.push_back(make_arc(q, g, v, length, style));
   }
@@ -100,18 +105,41 @@ std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const Gl
   std::vector<char> selected(bodies.size(), 0);
   for (size_t i = 0; i < bodies.size(); ++i) {
     const GlyphBody& b = bodies[i];
-    selected[i] = std::regex_search(b.name, style.filter) &&
-                  !(style.exclude && std::regex_search(b.name, *style.exclude)) &&
-                  !(b.mass < min_mass);  // NaN (unknown) is kept
+    selected[i] = !(b.mass < min_mass) && style.filter.drawn(b.name);  // NaN (unknown) is kept
   }
   return selected;
 }
 
-double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q) {
+std::vector<char> drawn_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
+                               Glyphs* report) {
   const std::vector<char> selected = selected_bodies(bodies, style);
+  std::vector<char> drawn(bodies.size(), 0);
+  Glyphs ignored;
+  Glyphs& out = report ? *report : ignored;
+  size_t count = 0;
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const GlyphBody& b = bodies[i];
+    if (!finite(b)) {
+      out.skipped.push_back(b.name);
+    } else if (!selected[i]) {
+      if (style.filter.too_long(b.name)) ++out.long_names;
+    } else if (!near(b)) {
+      out.far.push_back(b.name);
+    } else if (count == style.max_bodies) {
+      ++out.over_max_bodies;
+    } else {
+      drawn[i] = 1;
+      ++count;
+    }
+  }
+  return drawn;
+}
+
+double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q) {
+  const std::vector<char> drawn = drawn_bodies(bodies, style, nullptr);
   double m = 0;
   for (size_t i = 0; i < bodies.size(); ++i)
-    if (selected[i] && finite(bodies[i])) m = std::max(m, bodies[i].vectors[q].norm());
+    if (drawn[i]) m = std::max(m, bodies[i].vectors[q].norm());
   return m;
 }
 
@@ -122,20 +150,13 @@ double AutoScale::update(double max, double length, double decay) {
 
 Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
   Glyphs out;
-  const std::vector<char> selected = selected_bodies(bodies, style);
-  std::vector<char> ok(bodies.size(), 0);
+  const std::vector<char> drawn = drawn_bodies(bodies, style, &out);
   for (size_t i = 0; i < bodies.size(); ++i) {
-    const GlyphBody& b = bodies[i];
-    if (!finite(b)) {
-      out.skipped.push_back(b.name);
-      continue;
-    }
-    if (!selected[i]) continue;
-    ok[i] = 1;
-    add_vectors(b, style, out);
-    if (style.mass_centers) out.mass_centers.push_back(b.mass_center);
+    if (!drawn[i]) continue;
+    add_vectors(bodies[i], style, out);
+    if (style.mass_centers) out.mass_centers.push_back(bodies[i].mass_center);
   }
-  if (style.skeleton) add_skeleton(bodies, selected, ok, out);
+  if (style.skeleton) add_skeleton(bodies, selected_bodies(bodies, style), drawn, out);
   return out;
 }
 

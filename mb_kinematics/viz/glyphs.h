@@ -10,13 +10,12 @@
 #include <array>
 #include <cstdint>
 #include <limits>
-#include <optional>
-#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "mb_kinematics/core/types.h"
+#include "mb_kinematics/viz/body_filter.h"
 
 namespace mbk {
 
@@ -27,11 +26,14 @@ struct GlyphQuantity {
 };
 const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega", "alpha"
 
-// The default body filter: leaves out the massless links `<body>__<coord>` of ball and free
-// joints in URDFs written by `mbk urdf`.
-constexpr const char* kDefaultBodyFilter = "^(?!.*__)";
 // The default of GlyphStyle::min_mass_fraction (doc/rviz.md: what it leaves out on real robots).
 constexpr double kDefaultMinMassFraction = 0.005;
+// The default of GlyphStyle::max_bodies (doc/rviz.md): a renderer holds some ten objects per body
+// drawn, so a message of 100,000 bodies must not become a million of them.
+constexpr size_t kDefaultMaxBodies = 1000;
+// Bodies farther than this (m) from R's origin in some coordinate, and arrows longer than it,
+// are not drawn: their squares near the largest float, where a renderer's bounds overflow.
+constexpr double kMaxGlyphDistance = 1e15;
 
 struct Rgba {
   float r, g, b, a;
@@ -53,12 +55,14 @@ struct GlyphStyle {
   double arc_radius = 0.05;      // m
   double sphere_radius = 0.035;  // m
   double min_length = 1e-3;      // arrows shorter than this (m) are left out
-  std::regex filter{kDefaultBodyFilter};  // bodies drawn: names it matches (regex_search)
-  std::optional<std::regex> exclude;      // bodies left out: names it matches
+  BodyFilter filter;             // bodies drawn by name (the default: names without "__")
   // Bodies lighter than this fraction of the heaviest body (of those with a
   // known mass) are left out (sensor frames,
   // fingers, dummy links: their glyphs crowd the heavy bodies' without telling more).
   double min_mass_fraction = kDefaultMinMassFraction;
+  // At most this many bodies drawn (the first ones of the message that pass the rest); the
+  // others are counted in Glyphs::over_max_bodies.
+  size_t max_bodies = kDefaultMaxBodies;
 };
 
 // One body's kinematics as drawn, everything in R.
@@ -72,9 +76,11 @@ struct GlyphBody {
   std::array<Vec3<double>, GlyphQuantity::kCount> vectors;  // by GlyphQuantity
 };
 
+// `vector` goes from `start` to the tip: the scaled quantity itself, never the difference of
+// two far points (which rounds to zero far from R's origin).
 struct GlyphArrow {
   int quantity;
-  Vec3<double> start, end;
+  Vec3<double> start, vector;
 };
 struct GlyphArc {  // a polyline, and the head at its end (from head_start along head_dir)
   int quantity;
@@ -88,13 +94,23 @@ struct Glyphs {
   std::vector<Vec3<double>> mass_centers;
   std::vector<std::pair<Vec3<double>, Vec3<double>>> skeleton;
   std::vector<std::string> skipped;  // bodies with a non-finite value: left out
+  std::vector<std::string> far;      // bodies beyond kMaxGlyphDistance: left out
+  size_t long_names = 0;             // bodies left out as too long for the filter's patterns
+  size_t over_max_bodies = 0;        // bodies left out by GlyphStyle::max_bodies
 };
 
-// The largest |vector| of quantity q over the bodies drawn (finite ones).
+// Whether make_glyphs draws each body: selected, finite, within kMaxGlyphDistance and among the
+// first max_bodies of those; what it leaves out goes to `report`'s skipped, far, long_names and
+// over_max_bodies when given.
+std::vector<char> drawn_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
+                               Glyphs* report);
+
+// The largest |vector| of quantity q over the bodies drawn (as make_glyphs draws them).
 double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q);
 
-// Whether each body is drawn: its name matches the filter and not the exclusion, and it is not
-// lighter than min_mass_fraction of the heaviest body. Says nothing of non-finite values.
+// Whether each body is selected: the filter draws its name, and it is not lighter than
+// min_mass_fraction of the heaviest body. Says nothing of non-finite values, distance or
+// max_bodies.
 std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style);
 
 // Auto-scale: the largest vector of a quantity drawn `length` m long; the maximum follows rises

@@ -456,6 +456,34 @@ TEST_F(HostileTest, DiagnosticsCountEachClass) {
   EXPECT_NE(after.at("last problem"), "none");
 }
 
+// A link name of 30,000 characters (hostile.test's /long_name node, ~publish_markers): the
+// markers' body filter once ran std::regex on it and overflowed the stack. The node stays up
+// and its markers draw the link's mass center.
+TEST_F(HostileTest, LinkNameOf30000CharactersInTheMarkers) {
+  std::atomic<long> spheres{0};
+  ros::Subscriber sub = nh_.subscribe<visualization_msgs::MarkerArray>(
+      "/long_name/body_kinematics/markers", 10,
+      [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        for (const auto& marker : m->markers)
+          if (marker.ns == "mass_centers") spheres = static_cast<long>(marker.points.size());
+      });
+  ros::Publisher states = nh_.advertise<sensor_msgs::JointState>("/long_name/joint_states", 10);
+  ASSERT_TRUE(
+      wait_until([&] { return sub.getNumPublishers() > 0 && states.getNumSubscribers() > 0; }, 10));
+  const ros::Time start(8000.0);
+  for (int i = 0; i < 20 && spheres == 0; ++i) {
+    sensor_msgs::JointState m;
+    m.header.stamp = start + ros::Duration(i * kDt);
+    m.name = {"turn"};
+    m.position = {0.5 * i * kDt};
+    m.velocity = {0.5};
+    states.publish(m);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_TRUE(wait_until([&] { return spheres == 1; }, 5)) << "no marker of the long link";
+  EXPECT_TRUE(alive("/long_name/mb_kinematics")) << "the node with the long link name died";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {

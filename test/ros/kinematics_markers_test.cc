@@ -63,7 +63,7 @@ TEST(KinematicsMarkers, ArrowsAtMassCentersScaledPerQuantity) {
     const auto& a = g.arrows[i];
     const Vec3<double> g_k(0.1, 0, i < 4 ? 0.0 : 0.5);
     EXPECT_LT((a.start - g_k).norm(), 1e-12) << i;
-    EXPECT_LT((a.end - a.start - expected[a.quantity]).norm(), 1e-12) << i;
+    EXPECT_LT((a.vector - expected[a.quantity]).norm(), 1e-12) << i;
   }
   EXPECT_EQ(g.arcs.size(), 4u);  // omega and alpha of both
   EXPECT_EQ(g.mass_centers.size(), 2u);
@@ -76,14 +76,14 @@ TEST(KinematicsMarkers, ArcsTurnTheRightHandWay) {
   for (const auto& arc : g.arcs) {
     const mbk_ros::GlyphArrow* arrow = nullptr;  // the arrow the arc is centred on
     for (const auto& a : g.arrows) {
-      const Vec3<double> d = arc.points[0] - 0.5 * (a.start + a.end);
+      const Vec3<double> d = arc.points[0] - (a.start + 0.5 * a.vector);
       if (a.quantity == arc.quantity && std::abs(d.norm() - style.arc_radius) < 1e-12 &&
-          std::abs(d.dot((a.end - a.start).normalized())) < 1e-12)
+          std::abs(d.dot(a.vector.normalized())) < 1e-12)
         arrow = &a;
     }
     ASSERT_NE(arrow, nullptr);
-    const Vec3<double> n = (arrow->end - arrow->start).normalized();
-    const Vec3<double> c = 0.5 * (arrow->start + arrow->end);
+    const Vec3<double> n = arrow->vector.normalized();
+    const Vec3<double> c = arrow->start + 0.5 * arrow->vector;
     ASSERT_GT(arc.points.size(), 10u);
     for (size_t i = 0; i + 1 < arc.points.size(); ++i) {
       const Vec3<double> p = arc.points[i] - c, q = arc.points[i + 1] - c;
@@ -103,7 +103,7 @@ TEST(KinematicsMarkers, FilterAndSkeletonSkipIntermediateLinks) {
   ASSERT_EQ(g.skeleton.size(), 1u);  // O_a to O_b, across a__alpha
   EXPECT_LT((g.skeleton[0].first - Vec3<double>(0, 0, 0)).norm(), 1e-12);
   EXPECT_LT((g.skeleton[0].second - Vec3<double>(0, 0, 0.5)).norm(), 1e-12);
-  style.filter = std::regex("^b$");
+  style.filter = mbk::BodyFilter("^b$");
   g = mbk_ros::make_glyphs(message(), style);
   EXPECT_EQ(g.arrows.size(), 4u);
   EXPECT_TRUE(g.skeleton.empty());
@@ -198,11 +198,10 @@ TEST(KinematicsMarkers, ExcludedNamesLeftOut) {
   const std::vector<mbk::GlyphBody> bodies = weighed_bodies();
   GlyphStyle style;
   style.min_mass_fraction = 0;
-  style.exclude = std::regex("^(finger|unknown)$");
+  style.filter = mbk::BodyFilter(mbk::kDefaultBodyFilter, "^(finger|unknown)$");
   EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({1, 0, 1, 0}));
   EXPECT_EQ(mass_centers(mbk::make_glyphs(bodies, style)).size(), 2u);
-  style.exclude = std::regex("heavy|mount");  // a name list
-  style.filter = std::regex("^(?!unknown)");  // and the inclusion filter still applies
+  style.filter = mbk::BodyFilter("^(?!unknown)", "heavy|mount");  // the inclusion still applies
   EXPECT_EQ(mbk::selected_bodies(bodies, style), std::vector<char>({0, 1, 0, 0}));
 }
 

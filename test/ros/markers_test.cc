@@ -56,7 +56,7 @@ TEST(MarkersTest, ArrowsPerBodyWithFinitePoints) {
   EXPECT_EQ(arrows["alpha"], n - 2);
   for (const auto& m : last.markers) {
     if (m.ns != "velocity") continue;
-    const mbk::Vec3<double> start = vec(m.points[0]);
+    const mbk::Vec3<double> start = vec(m.pose.position) + vec(m.points[0]);
     const bool at_mass_center =
         std::any_of(mass_centers.begin(), mass_centers.end(),
                     [&](const auto& g) { return (g - start).norm() < 1e-9; });

@@ -11,6 +11,10 @@
 # only pixels there count (the middle of the 3D view, where the framed robot is); CENTER=X,Y,TOL:
 # the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
 # camera frames the robot); SHOT_NAME: the name of the kept files.
+# Hostile runs (LAUNCH=hostile_bodies.launch, test/rviz.cmake): READY: the launch's line that says
+# it is up (default: the node's "coordinates, max depth"); MAX_RSS_MB: rviz may hold at most this
+# resident memory at the end; SIGINT_WITHIN=S: rviz must exit within S s of a SIGINT; HOLD=S:
+# rviz must still be running S s after the arrows showed.
 set -uo pipefail
 out_dir=${1:?usage: screenshot_test.sh OUT_DIR}
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -20,6 +24,10 @@ SHOT_NAME=${SHOT_NAME:-rviz_screenshot}
 EXPECT_FRAME=${EXPECT_FRAME:-}
 REGION=${REGION:-}
 CENTER=${CENTER:-}
+READY=${READY:-coordinates, max depth}
+MAX_RSS_MB=${MAX_RSS_MB:-}
+SIGINT_WITHIN=${SIGINT_WITHIN:-}
+HOLD=${HOLD:-0}
 mkdir -p "$out_dir"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
 export ROS_HOME=$tmp/ros HOME=$tmp/home
@@ -53,8 +61,8 @@ port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.
 export ROS_MASTER_URI=http://localhost:$port
 stdbuf -oL roslaunch -p "$port" mb_kinematics ${LAUNCH:-demo.launch} ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
 pids+=($!)
-for _ in $(seq 300); do grep -q "coordinates, max depth" "$tmp/launch.log" && break; sleep 0.1; done
-grep -q "coordinates, max depth" "$tmp/launch.log" || fail "demo.launch did not start: $(tail "$tmp/launch.log")"
+for _ in $(seq 300); do grep -q "$READY" "$tmp/launch.log" && break; sleep 0.1; done
+grep -q "$READY" "$tmp/launch.log" || fail "${LAUNCH:-demo.launch} did not start: $(tail "$tmp/launch.log")"
 
 stdbuf -oL rviz -d "${RVIZ_CONFIG:-$src/config/mb_kinematics.rviz}" >"$tmp/rviz.log" 2>&1 &
 rviz_pid=$!
@@ -95,4 +103,22 @@ elif grep -q "is not in tf; set to" "$tmp/rviz.log"; then
   fail "the display changed the config's Fixed Frame, which tf knows"
 fi
 $passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s"
+if [ "$HOLD" -gt 0 ]; then
+  sleep "$HOLD"
+  kill -0 "$rviz_pid" 2>/dev/null || fail "rviz exited after drawing: $(tail -n 20 "$tmp/rviz.log")"
+  echo "rviz still running $HOLD s later"
+fi
+if [ -n "$MAX_RSS_MB" ]; then
+  rss_mb=$(awk '/^VmRSS:/ { print int($2 / 1024) }' "/proc/$rviz_pid/status")
+  echo "rviz holds $rss_mb MB (at most $MAX_RSS_MB allowed)"
+  [ "$rss_mb" -le "$MAX_RSS_MB" ] || fail "rviz holds $rss_mb MB, more than $MAX_RSS_MB MB"
+fi
+if [ -n "$SIGINT_WITHIN" ]; then
+  cpu=$(ps -o %cpu= -p "$rviz_pid")
+  kill -INT "$rviz_pid"
+  sent=$(date +%s.%N)
+  for _ in $(seq $((SIGINT_WITHIN * 10))); do kill -0 "$rviz_pid" 2>/dev/null || break; sleep 0.1; done
+  kill -0 "$rviz_pid" 2>/dev/null && fail "rviz did not exit within $SIGINT_WITHIN s of SIGINT"
+  echo "rviz (${cpu}% CPU over its run) exited $(echo "$(date +%s.%N) - $sent" | bc) s after SIGINT"
+fi
 echo "PASS"

@@ -1,5 +1,7 @@
 #include "mb_kinematics/ros/outputs/markers_output.h"
 
+#include <ros/console.h>
+
 #include "mb_kinematics/messages/body_kinematics.h"
 
 namespace mbk_ros {
@@ -19,8 +21,12 @@ void MarkersOutput::publish(const ros::Time& stamp, const Sample& sample) {
   mbk_messages::fill_body_kinematics(stamp, sample.data, kinematics_);
   for (int q = 0; q < GlyphQuantity::kCount; ++q)
     style_.scale[q] = scales_[q].update(max_norm(kinematics_, style_, q), 0.3);
-  publisher_.publish(
-      make_marker_array(make_glyphs(kinematics_, style_), style_, kinematics_.header));
+  const Glyphs glyphs = make_glyphs(kinematics_, style_);
+  if (glyphs.over_max_bodies > 0)
+    ROS_WARN_STREAM_ONCE("body_kinematics/markers: " << glyphs.over_max_bodies
+                                                     << " bodies not drawn: at most "
+                                                     << style_.max_bodies << " per message");
+  publisher_.publish(make_marker_array(glyphs, style_, kinematics_.header));
 }
 
 }  // namespace mbk_ros
