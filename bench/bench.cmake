@@ -65,3 +65,9 @@ target_link_libraries(partial_velocities_benchmark mbk_analysis mbk_core benchma
 add_executable(bvh_load_benchmark bench/bvh_load_benchmark.cc)
 target_link_libraries(bvh_load_benchmark mbk_io mbk_core benchmark::benchmark)
 target_compile_definitions(bvh_load_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
+# batch_benchmark: mbk::batch_kinematics (the Python module's C++) into preallocated arrays, and a
+# copy of the same bytes (doc/speed.md#python; bench/python_batch.py runs it beside the module).
+add_executable(batch_benchmark bench/batch_benchmark.cc)
+target_link_libraries(batch_benchmark mbk_engine mbk_io mbk_core benchmark::benchmark)
+target_compile_definitions(batch_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
