@@ -7,6 +7,9 @@
 // a Fixed Frame that tf does not know becomes the message's frame, and the camera frames the
 // bodies. The whole system (the message's `system`, when filled): a larger sphere
 // at its mass center G, G's velocity and acceleration, G's projection on R's x-y plane.
+// Bounded whatever the messages hold (doc/rviz.md#limits): at most Max Bodies bodies drawn per
+// message; bodies beyond mbk::kMaxGlyphDistance, and names too long for a user's pattern, left
+// out; each with a status warning.
 #pragma once
 
 #ifndef Q_MOC_RUN

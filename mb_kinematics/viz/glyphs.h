@@ -29,8 +29,9 @@ const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega",
 // The default of GlyphStyle::min_mass_fraction (doc/rviz.md: what it leaves out on real robots).
 constexpr double kDefaultMinMassFraction = 0.005;
 // The default of GlyphStyle::max_bodies (doc/rviz.md): a renderer holds some ten objects per body
-// drawn, so a message of 100,000 bodies must not become a million of them.
-constexpr size_t kDefaultMaxBodies = 1000;
+// drawn, and rviz takes about 1 s per 100 bodies drawn to close (software rendering, a loaded
+// 2-core machine): a message of 100,000 bodies must not become a million objects.
+constexpr size_t kDefaultMaxBodies = 500;
 // Bodies farther than this (m) from R's origin in some coordinate, and arrows longer than it,
 // are not drawn: their squares near the largest float, where a renderer's bounds overflow.
 constexpr double kMaxGlyphDistance = 1e15;

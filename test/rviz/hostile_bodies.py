@@ -3,7 +3,7 @@
 hostile runs (test/rviz.cmake): ~bodies bodies (default 40) in a 1 m ring around (~x, ~y, 0)
 of frame `odom` (default: UTM coordinates, x 500000, y 5000000, as a GPS-localised robot's
 odometry gives), every quantity non-zero; the first body's name ~name_length characters long
-(default 30,000); ~rate messages per second. A static transform world -> odom of (-x, -y, 0)
+(default 30,000); ~rate messages per second, ~count of them (default 0: no end). A static transform world -> odom of (-x, -y, 0)
 puts config/mb_kinematics.rviz's Fixed Frame `world` at the robot, as a user's map frame near the
 robot does (rviz draws in float: near the camera, as its own displays do). Prints "hostile
 bodies: publishing" once the first message is out."""
@@ -51,7 +51,13 @@ def main():
     long_name = ("long" + "n" * name_length)[:name_length]
     msg.bodies = [body(k, n, x0, y0, long_name if k == 0 else "body%d" % k) for k in range(n)]
     announced = False
+    count = rospy.get_param("~count", 0)
+    sent = 0
     while not rospy.is_shutdown():
+        if count and sent == count:
+            rate.sleep()
+            continue
+        sent += 1
         msg.header.stamp = rospy.Time.now()
         pub.publish(msg)
         if not announced:
