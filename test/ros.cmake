@@ -38,6 +38,10 @@ catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers mbk_io gtest_main)
 target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+# The rviz display's legend: its colors named (no master needed).
+catkin_add_gtest(legend_test test/ros/legend_test.cc)
+target_link_libraries(legend_test mbk_viz gtest_main)
+
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
     two_robots missing deep_partials)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)

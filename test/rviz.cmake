@@ -28,3 +28,23 @@ add_test(NAME rviz_screenshot_bvh
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/bvh)
 set_tests_properties(rviz_screenshot_bvh PROPERTIES RUN_SERIAL TRUE TIMEOUT 150 ENVIRONMENT
   "LAUNCH=bvh.launch;RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz;DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")
+
+# After 20 s of motion (SETTLE), the moving robot still inside the 3D view, not at its edge:
+# every arrow color in REGION (the view less 80 px on each side) and centred within 150 px. An
+# arm (panda), a humanoid (romeo_small) and the BVH walker (config/bvh.rviz's camera follows
+# its root segment).
+foreach(robot_frame panda:panda_link0 romeo_small:base_link)
+  string(REPLACE ":" ";" robot_frame ${robot_frame})
+  list(GET robot_frame 0 robot)
+  list(GET robot_frame 1 frame)
+  add_test(NAME rviz_moving_${robot}
+    COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+      ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
+  set_tests_properties(rviz_moving_${robot} PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+    "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=rviz_moving_${robot};SETTLE=20;TIMEOUT=40")
+endforeach()
+add_test(NAME rviz_moving_walk
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+    ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
+set_tests_properties(rviz_moving_walk PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+  "LAUNCH=bvh.launch;RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz;DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444;REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=rviz_moving_walk;SETTLE=20;TIMEOUT=40")

@@ -23,6 +23,7 @@
 #include "mb_kinematics/rviz/body_kinematics_visual.h"
 #include "mb_kinematics/rviz/system_kinematics_visual.h"
 #include "mb_kinematics/viz/glyph_bodies.h"
+#include "mb_kinematics/viz/legend.h"
 
 namespace mbk_rviz {
 namespace {
@@ -293,6 +294,15 @@ void BodyKinematicsDisplay::updateStyle() {
   style_.width = width_->getFloat();
   style_.arc_radius = arc_radius_->getFloat();
   style_.min_mass_fraction = min_mass_fraction_->getFloat();
+  showLegend();
+}
+
+// The status panel's "Legend": which color is which quantity, as the properties set them.
+void BodyKinematicsDisplay::showLegend() {
+  QString legend;
+  for (const std::string& entry : mbk::glyph_legend(style_))
+    legend += (legend.isEmpty() ? "" : "; ") + QString::fromStdString(entry);
+  setStatus(rviz::StatusProperty::Ok, "Legend", legend.isEmpty() ? "nothing shown" : legend);
 }
 
 void BodyKinematicsDisplay::updateFilter() {

@@ -73,6 +73,7 @@ class BodyKinematicsDisplay
   void makeQuantityProperties(int q, const QColor& color, double scale, const QString& unit);
   void autoScale(const std::vector<mbk::GlyphBody>& bodies);
   void reportSkipped(const mbk::Glyphs& glyphs);
+  void showLegend();
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
   void makeSystemProperties();
   void makeSelectionProperties();

@@ -10,7 +10,8 @@
 # must have set the Fixed Frame (config/mb_kinematics.rviz says `world`) to LINK; REGION=X0,Y0,X1,Y1:
 # only pixels there count (the middle of the 3D view, where the framed robot is); CENTER=X,Y,TOL:
 # the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
-# camera frames the robot); SHOT_NAME: the name of the kept files.
+# camera frames the robot); SHOT_NAME: the name of the kept files; SETTLE=S: screenshots count
+# only after S s of motion (the camera must keep the moving robot in view; TIMEOUT counts on).
 set -uo pipefail
 out_dir=${1:?usage: screenshot_test.sh OUT_DIR}
 src=$(cd "$(dirname "$0")/../.." && pwd)
@@ -20,6 +21,7 @@ SHOT_NAME=${SHOT_NAME:-rviz_screenshot}
 EXPECT_FRAME=${EXPECT_FRAME:-}
 REGION=${REGION:-}
 CENTER=${CENTER:-}
+SETTLE=${SETTLE:-0}
 mkdir -p "$out_dir"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
 export ROS_HOME=$tmp/ros HOME=$tmp/home
@@ -65,6 +67,7 @@ start=$SECONDS
 while [ $((SECONDS - start)) -lt "$TIMEOUT" ]; do
   sleep 1
   kill -0 "$rviz_pid" 2>/dev/null || fail "rviz exited: $(tail -n 20 "$tmp/rviz.log")"
+  [ $((SECONDS - start)) -lt "$SETTLE" ] && continue
   import -window root "$tmp/shot.png" 2>/dev/null || continue
   python3 "$src/test/rviz/count_colors.py" "$tmp/shot.png" ${REGION:+--region "$REGION"} \
     >"$tmp/counts" || continue
@@ -94,5 +97,5 @@ if [ -n "$EXPECT_FRAME" ]; then
 elif grep -q "is not in tf; set to" "$tmp/rviz.log"; then
   fail "the display changed the config's Fixed Frame, which tf knows"
 fi
-$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s"
+$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s${SETTLE:+ (from $SETTLE s on)}"
 echo "PASS"
