@@ -32,19 +32,18 @@ set_tests_properties(rviz_screenshot_bvh PROPERTIES RUN_SERIAL TRUE TIMEOUT 150 
 # After 20 s of motion (SETTLE), the moving robot still inside the 3D view, not at its edge:
 # every arrow color in REGION (the view less 80 px on each side) and centred within 150 px. An
 # arm (panda), a humanoid (romeo_small) and the BVH walker (config/bvh.rviz's camera follows
-# its root segment).
-foreach(robot_frame panda:panda_link0 romeo_small:base_link)
-  string(REPLACE ":" ";" robot_frame ${robot_frame})
-  list(GET robot_frame 0 robot)
-  list(GET robot_frame 1 frame)
-  add_test(NAME rviz_moving_${robot}
+# its root segment). ARGN: the test's environment, one VAR=VALUE each.
+function(mbk_rviz_moving_test name)
+  add_test(NAME ${name}
     COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
       ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-  set_tests_properties(rviz_moving_${robot} PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
-    "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=rviz_moving_${robot};SETTLE=20;TIMEOUT=40")
-endforeach()
-add_test(NAME rviz_moving_walk
-  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
-    ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-set_tests_properties(rviz_moving_walk PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
-  "LAUNCH=bvh.launch;RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz;DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444;REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=rviz_moving_walk;SETTLE=20;TIMEOUT=40")
+  set_tests_properties(${name} PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+    "${ARGN};REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=${name};SETTLE=20;TIMEOUT=40")
+endfunction()
+mbk_rviz_moving_test(rviz_moving_panda
+  "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/panda.urdf" EXPECT_FRAME=panda_link0)
+mbk_rviz_moving_test(rviz_moving_romeo_small
+  "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/romeo_small.urdf" EXPECT_FRAME=base_link)
+mbk_rviz_moving_test(rviz_moving_walk LAUNCH=bvh.launch
+  RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz
+  "DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")

@@ -23,35 +23,13 @@ REGION=${REGION:-}
 CENTER=${CENTER:-}
 SETTLE=${SETTLE:-0}
 mkdir -p "$out_dir"
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
-export ROS_HOME=$tmp/ros HOME=$tmp/home
-mkdir -p "$HOME"
-pids=()
-
-stop() {  # the processes started here, newest first: SIGINT, then SIGKILL after 5 s
-  local i p
-  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
-    p=${pids[i]}
-    kill -INT "$p" 2>/dev/null || continue
-    for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$p" 2>/dev/null
-    wait "$p" 2>/dev/null
-  done
-  cp "$tmp/rviz.log" "$out_dir/${SHOT_NAME}_rviz.log" 2>/dev/null
-  rm -rf "$tmp"
-}
-trap stop EXIT
-trap 'exit 130' INT TERM
 fail() { echo "FAIL: $*" >&2; exit 1; }
+keep_logs() { cp "$tmp/rviz.log" "$out_dir/${SHOT_NAME}_rviz.log" 2>/dev/null; }
+# shellcheck source=../support/headless.sh
+source "$src/test/support/headless.sh"
+start_xvfb
 
-# A screen of its own: Xvfb picks a free display number and writes it to fd 3.
-Xvfb -displayfd 3 -screen 0 1280x900x24 -nolisten tcp 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
-pids+=($!)
-for _ in $(seq 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
-[ -s "$tmp/display" ] || fail "Xvfb did not start: $(cat "$tmp/xvfb.log")"
-export DISPLAY=:$(head -n1 "$tmp/display")
-
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
+port=$(free_port)
 export ROS_MASTER_URI=http://localhost:$port
 stdbuf -oL roslaunch -p "$port" mb_kinematics ${LAUNCH:-demo.launch} ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
 pids+=($!)
