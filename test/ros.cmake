@@ -41,6 +41,10 @@ target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PRO
 catkin_add_gtest(glyph_limits_test test/ros/glyph_limits_test.cc)
 target_link_libraries(glyph_limits_test mbk_viz gtest_main)
 
+# The rviz display's legend: its colors named (no master needed).
+catkin_add_gtest(legend_test test/ros/legend_test.cc)
+target_link_libraries(legend_test mbk_viz gtest_main)
+
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
     two_robots missing deep_partials)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)

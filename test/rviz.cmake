@@ -45,3 +45,21 @@ add_test(NAME rviz_hostile_many
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
 set_tests_properties(rviz_hostile_many PROPERTIES RUN_SERIAL TRUE TIMEOUT 120 ENVIRONMENT
   "LAUNCH=hostile_bodies.launch;DEMO_ARGS=bodies:=10000 rate:=5 name_length:=10;READY=hostile bodies: publishing;SHOT_NAME=rviz_hostile_many;TIMEOUT=40;HOLD=10;MAX_RSS_MB=700;SIGINT_WITHIN=10")
+# After 20 s of motion (SETTLE), the moving robot still inside the 3D view, not at its edge:
+# every arrow color in REGION (the view less 80 px on each side) and centred within 150 px. An
+# arm (panda), a humanoid (romeo_small) and the BVH walker (config/bvh.rviz's camera follows
+# its root segment). ARGN: the test's environment, one VAR=VALUE each.
+function(mbk_rviz_moving_test name)
+  add_test(NAME ${name}
+    COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+      ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
+  set_tests_properties(${name} PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+    "${ARGN};REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=${name};SETTLE=20;TIMEOUT=40")
+endfunction()
+mbk_rviz_moving_test(rviz_moving_panda
+  "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/panda.urdf" EXPECT_FRAME=panda_link0)
+mbk_rviz_moving_test(rviz_moving_romeo_small
+  "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/romeo_small.urdf" EXPECT_FRAME=base_link)
+mbk_rviz_moving_test(rviz_moving_walk LAUNCH=bvh.launch
+  RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz
+  "DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")

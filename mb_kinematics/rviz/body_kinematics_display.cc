@@ -24,6 +24,7 @@
 #include "mb_kinematics/rviz/system_kinematics_visual.h"
 #include "mb_kinematics/viz/glyph_bodies.h"
 #include "mb_kinematics/viz/local_glyphs.h"
+#include "mb_kinematics/viz/legend.h"
 
 namespace mbk_rviz {
 namespace {
@@ -319,6 +320,15 @@ void BodyKinematicsDisplay::updateStyle() {
   style_.arc_radius = arc_radius_->getFloat();
   style_.min_mass_fraction = min_mass_fraction_->getFloat();
   style_.max_bodies = static_cast<size_t>(std::max(0, max_bodies_->getInt()));
+  showLegend();
+}
+
+// The status panel's "Legend": which color is which quantity, as the properties set them.
+void BodyKinematicsDisplay::showLegend() {
+  QString legend;
+  for (const std::string& entry : mbk::glyph_legend(style_))
+    legend += (legend.isEmpty() ? "" : "; ") + QString::fromStdString(entry);
+  setStatus(rviz::StatusProperty::Ok, "Legend", legend.isEmpty() ? "nothing shown" : legend);
 }
 
 void BodyKinematicsDisplay::updateFilter() {

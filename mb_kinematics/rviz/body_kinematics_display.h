@@ -77,6 +77,7 @@ class BodyKinematicsDisplay
   void autoScale(const std::vector<mbk::GlyphBody>& bodies);
   void reportSkipped(const mbk::Glyphs& glyphs);  // bodies left out, a status per reason
   void reportLeftOut(const char* status, size_t count, const QString& what);
+  void showLegend();
   std::shared_ptr<BodyKinematicsVisual> nextVisual();
   void makeSystemProperties();
   void makeSelectionProperties();

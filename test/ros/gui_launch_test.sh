@@ -6,32 +6,12 @@
 #   test/ros/gui_launch_test.sh    (in a sourced catkin workspace: devel/env.sh ...)
 set -uo pipefail
 src=$(cd "$(dirname "$0")/../.." && pwd)
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_gui_test.XXXXXX")
-export ROS_HOME=$tmp/ros HOME=$tmp/home
-mkdir -p "$HOME"
-pids=()
-stop() {  # the processes started here, newest first: SIGINT, then SIGKILL after 5 s
-  local i p
-  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
-    p=${pids[i]}
-    kill -INT "$p" 2>/dev/null || continue
-    for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$p" 2>/dev/null
-    wait "$p" 2>/dev/null
-  done
-  rm -rf "$tmp"
-}
-trap stop EXIT
-trap 'exit 130' INT TERM
 fail() { echo "FAIL: $*" >&2; echo "--- roslaunch:" >&2; tail -n 30 "$tmp/launch.log" >&2; exit 1; }
+# shellcheck source=../support/headless.sh
+source "$src/test/support/headless.sh"
+start_xvfb
 
-Xvfb -displayfd 3 -screen 0 1280x900x24 -nolisten tcp 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
-pids+=($!)
-for _ in $(seq 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
-[ -s "$tmp/display" ] || fail "Xvfb did not start: $(cat "$tmp/xvfb.log")"
-export DISPLAY=:$(head -n1 "$tmp/display")
-
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
+port=$(free_port)
 export ROS_MASTER_URI=http://localhost:$port
 stdbuf -oL roslaunch -p "$port" mb_kinematics mb_kinematics.launch \
   model:="$src/test/robots/panda.urdf" gui:=true >"$tmp/launch.log" 2>&1 &

@@ -10,7 +10,8 @@
 # must have set the Fixed Frame (config/mb_kinematics.rviz says `world`) to LINK; REGION=X0,Y0,X1,Y1:
 # only pixels there count (the middle of the 3D view, where the framed robot is); CENTER=X,Y,TOL:
 # the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
-# camera frames the robot); SHOT_NAME: the name of the kept files.
+# camera frames the robot); SHOT_NAME: the name of the kept files; SETTLE=S: screenshots count
+# only after S s of motion (the camera must keep the moving robot in view; TIMEOUT counts on).
 # Hostile runs (LAUNCH=hostile_bodies.launch, test/rviz.cmake): READY: the launch's line that says
 # it is up (default: the node's "coordinates, max depth"); MAX_RSS_MB: rviz may hold at most this
 # resident memory at the end; SIGINT_WITHIN=S: rviz must exit within S s of a SIGINT; HOLD=S:
@@ -28,36 +29,15 @@ READY=${READY:-coordinates, max depth}
 MAX_RSS_MB=${MAX_RSS_MB:-}
 SIGINT_WITHIN=${SIGINT_WITHIN:-}
 HOLD=${HOLD:-0}
+SETTLE=${SETTLE:-0}
 mkdir -p "$out_dir"
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mbk_rviz_test.XXXXXX")
-export ROS_HOME=$tmp/ros HOME=$tmp/home
-mkdir -p "$HOME"
-pids=()
-
-stop() {  # the processes started here, newest first: SIGINT, then SIGKILL after 5 s
-  local i p
-  for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
-    p=${pids[i]}
-    kill -INT "$p" 2>/dev/null || continue
-    for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$p" 2>/dev/null
-    wait "$p" 2>/dev/null
-  done
-  cp "$tmp/rviz.log" "$out_dir/${SHOT_NAME}_rviz.log" 2>/dev/null
-  rm -rf "$tmp"
-}
-trap stop EXIT
-trap 'exit 130' INT TERM
 fail() { echo "FAIL: $*" >&2; exit 1; }
+keep_logs() { cp "$tmp/rviz.log" "$out_dir/${SHOT_NAME}_rviz.log" 2>/dev/null; }
+# shellcheck source=../support/headless.sh
+source "$src/test/support/headless.sh"
+start_xvfb
 
-# A screen of its own: Xvfb picks a free display number and writes it to fd 3.
-Xvfb -displayfd 3 -screen 0 1280x900x24 -nolisten tcp 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
-pids+=($!)
-for _ in $(seq 100); do [ -s "$tmp/display" ] && break; sleep 0.1; done
-[ -s "$tmp/display" ] || fail "Xvfb did not start: $(cat "$tmp/xvfb.log")"
-export DISPLAY=:$(head -n1 "$tmp/display")
-
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
+port=$(free_port)
 export ROS_MASTER_URI=http://localhost:$port
 stdbuf -oL roslaunch -p "$port" mb_kinematics ${LAUNCH:-demo.launch} ${DEMO_ARGS:-} >"$tmp/launch.log" 2>&1 &
 pids+=($!)
@@ -73,6 +53,7 @@ start=$SECONDS
 while [ $((SECONDS - start)) -lt "$TIMEOUT" ]; do
   sleep 1
   kill -0 "$rviz_pid" 2>/dev/null || fail "rviz exited: $(tail -n 20 "$tmp/rviz.log")"
+  [ $((SECONDS - start)) -lt "$SETTLE" ] && continue
   import -window root "$tmp/shot.png" 2>/dev/null || continue
   python3 "$src/test/rviz/count_colors.py" "$tmp/shot.png" ${REGION:+--region "$REGION"} \
     >"$tmp/counts" || continue
@@ -102,7 +83,7 @@ if [ -n "$EXPECT_FRAME" ]; then
 elif grep -q "is not in tf; set to" "$tmp/rviz.log"; then
   fail "the display changed the config's Fixed Frame, which tf knows"
 fi
-$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s"
+$passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s${SETTLE:+ (from $SETTLE s on)}"
 if [ "$HOLD" -gt 0 ]; then
   sleep "$HOLD"
   kill -0 "$rviz_pid" 2>/dev/null || fail "rviz exited after drawing: $(tail -n 20 "$tmp/rviz.log")"
@@ -119,6 +100,6 @@ if [ -n "$SIGINT_WITHIN" ]; then
   sent=$(date +%s.%N)
   for _ in $(seq $((SIGINT_WITHIN * 10))); do kill -0 "$rviz_pid" 2>/dev/null || break; sleep 0.1; done
   kill -0 "$rviz_pid" 2>/dev/null && fail "rviz did not exit within $SIGINT_WITHIN s of SIGINT"
-  echo "rviz (${cpu}% CPU over its run) exited $(echo "$(date +%s.%N) - $sent" | bc) s after SIGINT"
+  echo "rviz (${cpu}% CPU over its run) exited $(awk -v a="$sent" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }') s after SIGINT"
 fi
 echo "PASS"
