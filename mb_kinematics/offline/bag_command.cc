@@ -224,7 +224,8 @@ void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
+                                                   mbk::system_row_name(o.model, o.bvh));
   }
   out.base_model = &base_model;
 }

@@ -164,7 +164,9 @@ int eval(const std::map<std::string, std::string>& options) {
   if (method == "recursive") mbk::forward_kinematics(model, state, data);
   mbk::SystemKinematics<double> system;
   mbk::system_kinematics(model, data, system);
-  std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr);
+  const std::string path = options.at("--model");
+  std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr,
+                                     mbk::missing_segments_of(path, bvh_options(options, path)));
   return 0;
 }
 
