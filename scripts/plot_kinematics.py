@@ -6,7 +6,8 @@ usage: plot_kinematics.py OUT.csv --bodies NAME[,NAME...] [--png FILE] [--walk [
                           [--csv OUT.csv] [--bodies ...] [--up AXIS] [--segments MAP.yaml]
 
 Rows: omega, alpha (of the bodies), velocity and acceleration of their mass centers (and of the
-system's mass center, body "system", when the CSV has it); columns: x, y, z components in R.
+system's mass center, body "system", when the CSV has it; "system_incomplete" when segments of
+the body were not found: the figure's title then says INCOMPLETE); columns: x, y, z in R.
 With --walk (for a gait): the whole-body mass center's path seen from above and its height, its
 velocity, and the bodies' angular velocities (e.g. one leg's thigh, shank and foot); --up names
 R's vertical axis (y for most BVH files). Without --png the figure opens in a window.
@@ -33,6 +34,10 @@ QUANTITIES = [("omega", "omega (rad/s)"), ("alpha", "alpha (rad/s^2)"),
 
 def read(path, bodies):
     series = {b: {"stamp": []} for b in bodies}
+    # mbk bag names the system's rows system_incomplete when segments of the body are missing
+    aliased = "system" in series and "system_incomplete" not in series
+    if aliased:
+        series["system_incomplete"] = series["system"]
     with open(path) as f:
         reader = csv.DictReader(f)
         if not reader.fieldnames or reader.fieldnames[:2] != ["stamp", "body"]:
@@ -43,11 +48,18 @@ def read(path, bodies):
             if s is None:
                 continue
             s["stamp"].append(float(row["stamp"]))
+            s["incomplete"] = row["body"] == "system_incomplete"
             for q in [q for q, _ in QUANTITIES] + ["mass_center"]:
                 for c in "xyz":
                     cell = row[q + "_" + c]
                     s.setdefault(q + c, []).append(float(cell) if cell else float("nan"))
+    if aliased:
+        del series["system_incomplete"]
     return series
+
+
+INCOMPLETE = ("INCOMPLETE whole body: segments of the table were not found in the skeleton "
+              "(mbk's warning names them; --segments FILE maps them)")
 
 
 def overview(plt, series, bodies, t0):
@@ -69,6 +81,8 @@ def overview(plt, series, bodies, t0):
                 ax.set_xlabel("time (s) from %.3f" % t0)
     axes[0][0].legend(fontsize=8)
     axes[2][0].legend(fontsize=8)
+    if series["system"].get("incomplete"):
+        fig.suptitle(INCOMPLETE, color="red")
     return fig
 
 
@@ -82,6 +96,8 @@ def walk(plt, series, bodies, t0, up, path):
     across = [c for c in "xyz" if c != up]
     t = [s - t0 for s in system["stamp"]]
     fig = plt.figure(figsize=(14, 10))
+    if system.get("incomplete"):
+        fig.suptitle(INCOMPLETE, color="red")
     grid = fig.add_gridspec(3, 3)
     top = fig.add_subplot(grid[0, 0])
     top.plot(system["mass_center" + across[0]], system["mass_center" + across[1]], linewidth=1.2)

@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "mb_kinematics/io/bvh_bones.h"
+#include "mb_kinematics/io/name_list.h"
+
 namespace mbk {
 namespace {
 
@@ -27,6 +30,10 @@ constexpr double kPercent = 0.01;
 // XYPH and OMPH on the line from SUPR to MIDH.
 constexpr double kTrunkPartLength[2][3] = {{170.7, 215.5, 145.7}, {142.5, 205.3, 181.5}};
 const char* const kTrunkKeys[3] = {"upper_trunk", "middle_trunk", "lower_trunk"};
+const char kIncomplete[] =
+    "whole-body outputs incomplete (system_incomplete in the CSV, \"incomplete\" in mbk eval's "
+    "JSON; --segments FILE maps joints to segments): segments not found, their mass spread over "
+    "the others: ";
 
 // A segment on one side of the body: 0 none (head, trunk), 1 left, 2 right.
 struct Found {
@@ -74,7 +81,8 @@ std::pair<int, std::string> side_and_part(std::string name) {
 // The skeleton in its rest pose (every angle 0: every body's axes are R's).
 class Skeleton {
  public:
-  Skeleton(const BvhFile& bvh, double scale, const SegmentMap& map) : bvh_(bvh), scale_(scale) {
+  Skeleton(const BvhFile& bvh, double scale, const SegmentMap& map)
+      : bvh_(bvh), scale_(scale), fixed_(fixed_in_space(bvh)) {
     const size_t n = bvh.segments.size();
     origin_.resize(n);
     children_.resize(n);
@@ -102,6 +110,8 @@ class Skeleton {
   const Vec3<double>& origin(int i) const { return origin_[i]; }
   const std::vector<int>& children(int i) const { return children_[i]; }
   const std::string& name(int i) const { return bvh_.segments[i].name; }
+  // Stays where it is in R through the motion (bvh_bones.h): it carries no moving segment.
+  bool fixed(int i) const { return fixed_[i]; }
 
   // The first segment named `side` + one of `parts` (side_and_part), or -1.
   int find(int side, std::initializer_list<const char*> parts) const {
@@ -141,6 +151,7 @@ class Skeleton {
  private:
   const BvhFile& bvh_;
   double scale_;
+  std::vector<bool> fixed_;
   std::vector<Vec3<double>> origin_;
   std::vector<std::vector<int>> children_;
   std::unordered_map<std::string, int> index_;   // name -> segment
@@ -207,14 +218,19 @@ void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) 
   const int neck = cervical(s, head);
   const Vec3<double> cerv = s.origin(neck);
   found.push_back({kHead, 0, head, s.farthest(head, cerv), cerv});
+  // The root up to the neck's parent, without the bodies fixed in space while others move (a
+  // static ROOT under the pelvis): a static body never carries a moving segment.
+  std::vector<int> spine, moving;
+  for (int b = s.parent(neck); b >= 0; b = s.parent(b)) spine.insert(spine.begin(), b);
+  for (int b : spine)
+    if (!s.fixed(b)) moving.push_back(b);
+  if (!moving.empty()) spine = moving;
+  if (spine.empty()) return;  // the neck is the root: no trunk below it
   const Found* left = find_row(found, kThigh, 1);
   const Found* right = find_row(found, kThigh, 2);
   const Vec3<double> midh =
-      left && right ? Vec3<double>((left->proximal + right->proximal) / 2) : s.origin(0);
+      left && right ? Vec3<double>((left->proximal + right->proximal) / 2) : s.origin(spine[0]);
   const Vec3<double> line = cerv - midh;
-  std::vector<int> spine;  // the root up to the neck's parent
-  for (int b = s.parent(neck); b >= 0; b = s.parent(b)) spine.insert(spine.begin(), b);
-  if (spine.empty()) return;  // the neck is the root: no trunk below it
   const double* part = kTrunkPartLength[static_cast<int>(sex)];
   const double total = part[0] + part[1] + part[2];
   const Vec3<double> xyph = cerv - line * (part[0] / total);
@@ -303,10 +319,11 @@ std::vector<std::string> uncovered(const Skeleton& s, const std::vector<Found>& 
   return names;
 }
 
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
+std::vector<Found> find_segments(const Skeleton& s, Sex sex) {
+  std::vector<Found> found;
+  for (int side : {1, 2}) find_limbs(s, side, found);
+  find_head_and_trunk(s, sex, found);
+  return found;
 }
 
 std::vector<std::string> missing_rows(const std::vector<Found>& found) {
@@ -431,14 +448,12 @@ double de_leva_mass_sum(Sex sex) {
   return sum * kPercent;
 }
 
-std::string set_segment_parameters(const BvhFile& bvh, double scale, double body_mass, Sex sex,
-                                   Model& model, const SegmentMap& map) {
+std::vector<std::string> set_segment_parameters(const BvhFile& bvh, double scale, double body_mass,
+                                                Sex sex, Model& model, const SegmentMap& map) {
   if (!(body_mass > 0) || !std::isfinite(body_mass))
     throw std::invalid_argument("body mass: must be a positive number of kg");
   const Skeleton s(bvh, scale, map);
-  std::vector<Found> found;
-  for (int side : {1, 2}) find_limbs(s, side, found);
-  find_head_and_trunk(s, sex, found);
+  const std::vector<Found> found = find_segments(s, sex);
   const int x = static_cast<int>(sex);
   double fraction_found = 0;
   for (const Found& f : found) fraction_found += de_leva_table()[f.row].mass[x];
@@ -468,15 +483,18 @@ std::string set_segment_parameters(const BvhFile& bvh, double scale, double body
     body.inertia = l.inertia;
     body.has_inertia = true;
   }
+  std::vector<std::string> notes;
   const std::vector<std::string> massless = uncovered(s, found);
+  if (!massless.empty())
+    notes.push_back(bvh.path + ": segment parameters (de Leva 1996): massless, in no table " +
+                    "segment: " + name_list(massless));
   const std::vector<std::string> missing = missing_rows(found);
-  if (massless.empty() && missing.empty()) return "";
-  std::string note = bvh.path + ": segment parameters (de Leva 1996):";
-  if (!massless.empty()) note += " massless, in no table segment: " + join(massless) + ";";
-  if (!missing.empty())
-    note += " not found (their mass spread over the others): " + join(missing) + ";";
-  note.pop_back();
-  return note;
+  if (!missing.empty()) notes.push_back(bvh.path + ": " + kIncomplete + name_list(missing));
+  return notes;
+}
+
+std::vector<std::string> missing_segments(const BvhFile& bvh, double scale, const SegmentMap& map) {
+  return missing_rows(find_segments(Skeleton(bvh, scale, map), Sex::kMale));
 }
 
 }  // namespace mbk

@@ -42,11 +42,17 @@ double de_leva_mass_sum(Sex sex);
 // Sets mass, mass_center and inertia of the bodies of `model` (model_from_bvh of `bvh` with
 // the same `scale`) for a body of `body_mass` kg: each table segment found in the skeleton on
 // the body `map` names for it, else the one the naming rules of doc/anthropometry.md find, the
-// fractions of segments not found spread over the found ones in proportion, so that the masses sum
-// to body_mass. Bodies covered by no segment stay massless. Returns "" or one note naming the
-// bodies without mass that no segment covers and the segments not found. Throws
-// std::invalid_argument "<map>: joint X is not in <bvh>".
-std::string set_segment_parameters(const BvhFile& bvh, double scale, double body_mass, Sex sex,
-                                   Model& model, const SegmentMap& map = {});
+// fractions of segments not found spread over the found ones in proportion, so that the masses
+// sum to body_mass. Bodies covered by no segment stay massless; a body fixed in space while
+// others move (a static ROOT) carries no trunk part. Returns the notes, one line each: the
+// bodies without mass that no segment covers; the segments not found (the whole-body outputs
+// are then incomplete). Throws std::invalid_argument "<map>: joint X is not in <bvh>".
+std::vector<std::string> set_segment_parameters(const BvhFile& bvh, double scale, double body_mass,
+                                                Sex sex, Model& model, const SegmentMap& map = {});
+
+// The table's segments (e.g. "left hand", "lower trunk") that set_segment_parameters finds no
+// body for in `bvh`'s skeleton; empty when every mass-carrying segment is there.
+std::vector<std::string> missing_segments(const BvhFile& bvh, double scale,
+                                          const SegmentMap& map = {});
 
 }  // namespace mbk

@@ -1,5 +1,6 @@
 #include "mb_kinematics/io/bvh_model.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -11,6 +12,8 @@
 
 #include "mb_kinematics/io/bvh_anthropometry.h"
 #include "mb_kinematics/io/bvh_bones.h"
+#include "mb_kinematics/io/bvh_motion_check.h"
+#include "mb_kinematics/io/name_list.h"
 
 namespace mbk {
 namespace {
@@ -89,11 +92,16 @@ Joint joint_of(const BvhFile& bvh, const BvhSegment& segment, double scale) {
 // The largest side of the box around the rest pose's joints and End Sites (all angles 0), in
 // metres: the standing height of a skeleton standing or in a T-pose.
 double rest_extent(const BvhFile& bvh, double scale) {
+  // A ROOT fixed in space while the body moves (Bandai Namco's joint_Root, 4.5 m from the pelvis
+  // at rest) is no part of the body's height.
+  const std::vector<bool> fixed = fixed_in_space(bvh);
+  const bool moves = std::find(fixed.begin(), fixed.end(), false) != fixed.end();
   std::vector<Vec3<double>> origin(bvh.segments.size());
   Vec3<double> low = Vec3<double>::Constant(INFINITY), high = -low;
   for (size_t i = 0; i < bvh.segments.size(); ++i) {
     const BvhSegment& s = bvh.segments[i];
     origin[i] = scale * s.offset + (s.parent < 0 ? Vec3<double>::Zero() : origin[s.parent]);
+    if (moves && fixed[i]) continue;
     low = low.cwiseMin(origin[i]);
     high = high.cwiseMax(origin[i]);
     if (!s.has_end_site) continue;
@@ -151,6 +159,10 @@ std::string height_warning(const BvhFile& bvh, double scale) {
   return s.str();
 }
 
+SegmentMap segment_map(const BvhModelOptions& options) {
+  return options.segments.empty() ? SegmentMap{} : read_segment_map(options.segments);
+}
+
 double number(const std::string& option, const std::string& text, double fallback) {
   if (text.empty()) return fallback;
   char* end = nullptr;
@@ -193,16 +205,23 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
     body.lower = segment.parent + 1;
     body.joint = joint_of(bvh, segment, options.scale);
   }
-  for (const std::string& warning :
-       {height_warning(bvh, options.scale), changing_bones_warning(bvh, options.scale),
-        options.body_mass > 0
-            ? set_segment_parameters(
-                  bvh, options.scale, options.body_mass, sex, model,
-                  options.segments.empty() ? SegmentMap{} : read_segment_map(options.segments))
-            : std::string()})
-    if (!warning.empty()) model.warnings.push_back(warning);
+  std::vector<std::string> warnings = {height_warning(bvh, options.scale),
+                                       changing_bones_warning(bvh, options.scale)};
+  if (options.body_mass > 0)
+    for (const std::string& note : set_segment_parameters(bvh, options.scale, options.body_mass,
+                                                          sex, model, segment_map(options)))
+      warnings.push_back(note);
   finalize_model(model);
+  warnings.push_back(
+      motion_warning(bvh, model, options.scale, name_list(bvh_missing_segments(bvh, options))));
+  for (const std::string& warning : warnings)
+    if (!warning.empty()) model.warnings.push_back(warning);
   return model;
+}
+
+std::vector<std::string> bvh_missing_segments(const BvhFile& bvh, const BvhModelOptions& options) {
+  if (!(options.body_mass > 0)) return {};
+  return missing_segments(bvh, options.scale, segment_map(options));
 }
 
 std::vector<double> bvh_frame_coordinates(const BvhFile& bvh, const Model& model, int frame,

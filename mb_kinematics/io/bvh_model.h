@@ -50,6 +50,11 @@ BvhModelOptions bvh_model_options(const std::string& scale, const std::string& b
 // option.
 Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options);
 
+// The anthropometric table's segments the skeleton lacks with `options` (bvh_anthropometry.h's
+// missing_segments; its --segments map read), e.g. "left hand"; empty without a body mass (no
+// whole-body outputs) or when every segment is found.
+std::vector<std::string> bvh_missing_segments(const BvhFile& bvh, const BvhModelOptions& options);
+
 // Frame `frame`'s values (from 0) as the coordinates of `model` (made by model_from_bvh from the
 // same file), in model.coordinate_names order: radians and metres (positions times `scale`).
 std::vector<double> bvh_frame_coordinates(const BvhFile& bvh, const Model& model, int frame,

@@ -6,14 +6,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/io/name_list.h"
+
 namespace mbk {
 namespace {
-
-std::string joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
 
 bool is_key(const std::string& segment) {
   for (const std::string& key : segment_keys())
@@ -53,7 +49,7 @@ SegmentMap parse_segment_map(const std::string& text, const std::string& path) {
     const std::string segment = entry.second.as<std::string>();
     if (!is_key(segment))
       throw std::invalid_argument(path + ": joint " + joint + ": '" + segment +
-                                  "' is not a segment (" + joined(segment_keys()) + ")");
+                                  "' is not a segment (" + name_list(segment_keys()) + ")");
     const auto [it, fresh] = joint_of.emplace(segment, joint);
     if (!fresh)
       throw std::invalid_argument(path + ": " + segment + " given to two joints, " + it->second +

@@ -25,6 +25,15 @@ bool is_bvh_file(const std::string& path) {
   return tail == ".bvh";
 }
 
+std::vector<std::string> missing_segments_of(const std::string& path, const BvhModelOptions& bvh) {
+  if (!is_bvh_file(path) || !(bvh.body_mass > 0)) return {};
+  return bvh_missing_segments(read_bvh(path), bvh);
+}
+
+std::string system_row_name(const std::string& path, const BvhModelOptions& bvh) {
+  return missing_segments_of(path, bvh).empty() ? "system" : "system_incomplete";
+}
+
 Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
   if (is_bvh_file(path)) return model_from_bvh(read_bvh(path), bvh);
   if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);

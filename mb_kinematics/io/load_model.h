@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/io/bvh_model.h"
@@ -11,6 +12,16 @@ namespace mbk {
 
 // Throws std::invalid_argument naming the file and what is wrong. `bvh` applies to BVH files.
 Model load_model_file(const std::string& path, const BvhModelOptions& bvh = {});
+
+// The name of the whole-body rows of `mbk bag`'s CSV for the model file at `path`: "system", or
+// "system_incomplete" for a BVH skeleton lacking segments of the anthropometric table
+// (bvh_missing_segments).
+std::string system_row_name(const std::string& path, const BvhModelOptions& bvh = {});
+
+// The segments missing from the model file at `path` (bvh_missing_segments; empty for any file
+// but a BVH skeleton with a body mass).
+std::vector<std::string> missing_segments_of(const std::string& path,
+                                             const BvhModelOptions& bvh = {});
 
 // True for a file name load_model_file reads as BVH (`.bvh`, any case).
 bool is_bvh_file(const std::string& path);

@@ -105,7 +105,8 @@ std::string json_vector(const Vec3<double>& v, bool known) {
   return known ? json_array(v.transpose()) : "null";
 }
 
-std::string system_json(const Model& model, const SystemKinematics<double>& s) {
+std::string system_json(const Model& model, const SystemKinematics<double>& s,
+                        const std::vector<std::string>& incomplete) {
   if (!(s.mass_center.allFinite() && s.velocity.allFinite() && s.acceleration.allFinite() &&
         s.angular_momentum.allFinite()))
     throw std::runtime_error("system quantities not finite (check the state and the masses)");
@@ -120,6 +121,12 @@ std::string system_json(const Model& model, const SystemKinematics<double>& s) {
     out += ", \"missing_inertia\": [";
     const std::vector<std::string> names = bodies_without_inertia(model);
     for (size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + json_string(names[i]);
+    out += "]";
+  }
+  if (!incomplete.empty()) {
+    out += ", \"incomplete\": [";
+    for (size_t i = 0; i < incomplete.size(); ++i)
+      out += (i ? ", " : "") + json_string(incomplete[i]);
     out += "]";
   }
   return out + "}";
@@ -152,7 +159,8 @@ std::string partials_json(const Model& model, const PartialVelocities<double>& p
 
 std::string format_eval_json(const Model& model, const Data<double>& data,
                              const SystemKinematics<double>* system,
-                             const PartialVelocities<double>* pv) {
+                             const PartialVelocities<double>* pv,
+                             const std::vector<std::string>& incomplete) {
   std::ostringstream out;
   out << "{\"frame\": " << json_string(model.frame) << ", \"bodies\": [";
   for (int k = 1; k <= model.body_count(); ++k) {
@@ -181,7 +189,7 @@ std::string format_eval_json(const Model& model, const Data<double>& data,
         << (pv ? partials_json(model, *pv, k) : "") << "}";
   }
   out << "\n]";
-  if (system) out << ", \"system\": " << system_json(model, *system);
+  if (system) out << ", \"system\": " << system_json(model, *system, incomplete);
   out << "}\n";
   return out.str();
 }

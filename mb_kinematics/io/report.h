@@ -33,9 +33,12 @@ std::string json_string(const std::string& text);
 // value is not finite (nothing is printed then). `system` adds "system" (doc/method.md 9: null
 // vectors when M = 0, a null angular momentum and "missing_inertia" when bodies lack inertias);
 // `pv` adds per body "partial_omega", "partial_velocity", "partial_omega_dot",
-// "partial_velocity_dot", keyed by independent speed name (core/independent_speeds.h).
+// "partial_velocity_dot", keyed by independent speed name (core/independent_speeds.h);
+// `incomplete` (segments of the body the model lacks, e.g. a BVH skeleton's "left hand") adds
+// "incomplete": [names] to "system": the whole-body quantities are not the whole body's.
 std::string format_eval_json(const Model& model, const Data<double>& data,
                              const SystemKinematics<double>* system = nullptr,
-                             const PartialVelocities<double>* pv = nullptr);
+                             const PartialVelocities<double>* pv = nullptr,
+                             const std::vector<std::string>& incomplete = {});
 
 }  // namespace mbk

@@ -8,8 +8,13 @@
 
 namespace mbk {
 
-TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model, bool errors)
-    : model_(model), file_(path), errors_(errors), body_cells_(model.bodies.size()) {
+TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model, bool errors,
+                             const std::string& system)
+    : model_(model),
+      file_(path),
+      errors_(errors),
+      body_cells_(model.bodies.size()),
+      system_cells_("," + system + ",0,0") {
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
   for (int k = 1; k <= model.body_count(); ++k)
     body_cells_[k] = "," + model.bodies[k].name + "," + std::to_string(k) + "," +
@@ -80,7 +85,7 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);
   const Vec3<double>&p = system.mass_center, &v = system.velocity, &a = system.acceleration;
-  text.append(stamp_text, stamp_size).append(",system,0,0");
+  text.append(stamp_text, stamp_size).append(system_cells_);
   cells.empty(7);  // no origin, orientation
   for (int i = 0; i < 3; ++i) cells.number(p[i]);
   cells.empty(6);  // no omega, alpha

@@ -22,8 +22,10 @@ namespace mbk {
 
 class TidyCsvWriter {
  public:
-  // Throws std::invalid_argument if `path` cannot be written.
-  TidyCsvWriter(const std::string& path, const Model& model, bool errors = false);
+  // Throws std::invalid_argument if `path` cannot be written. `system` names the whole-body rows'
+  // body ("system_incomplete" for a model that lacks segments of the body: load_model.h).
+  TidyCsvWriter(const std::string& path, const Model& model, bool errors = false,
+                const std::string& system = "system");
   TidyCsvWriter(const TidyCsvWriter&) = delete;
   TidyCsvWriter& operator=(const TidyCsvWriter&) = delete;
 
@@ -49,6 +51,7 @@ class TidyCsvWriter {
   double total_mass_ = 0;
   bool errors_ = false;
   std::vector<std::string> body_cells_;  // per body k: ",name,k,L(k)"
+  std::string system_cells_;             // ",system,0,0"
   std::string buffer_;                   // one sample's rows (write)
 };
 

@@ -22,6 +22,7 @@
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
 #include "mb_kinematics/offline/bvh_recording.h"
+#include "mb_kinematics/offline/error_bar_summary.h"
 #include "mb_kinematics/offline/offline_batch.h"
 #include "mb_kinematics/offline/offline_stream.h"
 #include "mb_kinematics/offline/output_file.h"
@@ -224,7 +225,8 @@ void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
+                                                   mbk::system_row_name(o.model, o.bvh));
   }
   out.base_model = &base_model;
 }
@@ -424,6 +426,11 @@ BagOptions parse_bag_options(int argc, char** argv) {
         throw std::invalid_argument("--threads needs a count from 1 to 1024, not '" +
                                     std::string(argv[i]) + "'");
       o.threads = static_cast<int>(n);
+    } else if (arg == "--verbose") {
+      o.verbose = true;
+    } else if (arg == "--help" || arg == "-h") {
+      o.help = true;
+      return o;
     } else if (arg.rfind("--", 0) != 0 && o.input.empty()) {
       o.input = arg;
     } else {
@@ -508,7 +515,17 @@ BagSummary run_bag(const BagOptions& o) {
 
 int exit_status(const BagSummary& s) { return s.unreadable == 0 && s.written > 0 ? 0 : 2; }
 
-std::string format_summary(const BagSummary& s) {
+const char* bag_usage() {
+  return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
+         "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
+         "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
+         "           [--start-time S] [--verbose]\n"
+         "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
+         "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml] ...\n"
+         "   --verbose: every coordinate's error bars and the times in the summary\n";
+}
+
+std::string format_summary(const BagSummary& s, bool verbose) {
   char line[256];
   std::string out;
   std::snprintf(
@@ -522,11 +539,12 @@ std::string format_summary(const BagSummary& s) {
   for (const auto& n : s.log.notes)
     out += "  note " + std::to_string(n.second) + " samples: " + n.first +
            " (first: " + s.log.example.at(n.first) + ")\n";
-  if (!s.errors.empty())
+  if (!verbose) out += mbk::error_bar_line(s.errors);
+  if (verbose && !s.errors.empty())
     out +=
         "  error bars (noise level; median standard error of velocity, acceleration, medians to "
         "5e-4 relative):\n";
-  for (const mbk::CoordinateError& e : s.errors) {
+  for (const mbk::CoordinateError& e : verbose ? s.errors : std::vector<mbk::CoordinateError>{}) {
     std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n", e.name.c_str(), e.noise,
                   e.velocity_se, e.acceleration_se);
     out += line;
@@ -535,6 +553,7 @@ std::string format_summary(const BagSummary& s) {
     out += "  unreadable " + std::to_string(s.unreadable) +
            " messages, skipped: the output is partial (first: " + s.unreadable_example + ")\n";
   if (s.written == 0) out += "  nothing written\n";
+  if (!verbose) return out;
   const double rate = s.wall_seconds > 0 ? s.written / s.wall_seconds : 0;
   std::snprintf(line, sizeof line,
                 "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s (%d threads, summed; "

@@ -27,6 +27,8 @@ struct BagOptions {
   double start_time = 0;  // seconds added to every time of a .csv or .bvh input
   bool progress = false;  // draw a progress bar on stderr
   int threads = 0;        // computing threads; 0: one per CPU (default_thread_count)
+  bool verbose = false;   // --verbose: the summary with every coordinate's error bars
+  bool help = false;      // --help: print the usage, nothing else
 };
 
 struct BagSummary {
@@ -49,8 +51,12 @@ BagSummary run_bag(const BagOptions& options);
 // counted reason; 2 when some message could not be read or nothing was written (partial).
 int exit_status(const BagSummary& s);
 
-// The summary as printed at the end (several lines).
-std::string format_summary(const BagSummary& s);
+// The summary as printed at the end: samples, drops, the estimator, the noise level and the
+// worst error bar; `verbose` adds every coordinate's error bars and the times.
+std::string format_summary(const BagSummary& s, bool verbose = false);
+
+// `mbk bag`'s usage (--help).
+const char* bag_usage();
 
 // Parses `mbk bag IN --model F ...` (argv[0] is "mbk", argv[1] "bag"); throws
 // std::invalid_argument for a wrong command line.

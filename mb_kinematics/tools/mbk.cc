@@ -35,6 +35,15 @@
 
 namespace {
 
+const char kTablesUsage[] = "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n";
+const char kEvalUsage[] =
+    "usage: mbk eval --model FILE [--state STATE.json | --frame N]\n"
+    "                [--method recursive|partial_velocity] [--partial-velocities]\n";
+const char kUrdfUsage[] = "usage: mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n";
+const char kFileUsage[] =
+    "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
+    "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n";
+
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
     "       mbk eval --model FILE [--state STATE.json|- | --frame N]\n"
@@ -46,7 +55,22 @@ const char kUsage[] =
     "           [--max-gap S] [--threads N] [--start-time S]\n"
     "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) ...\n"
     "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
-    "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n";
+    "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
+    "   mbk COMMAND --help: that command's usage\n";
+
+// `mbk COMMAND --help`'s text; "" for a command mbk does not have.
+std::string command_usage(const std::string& command) {
+  if (command == "tables") return std::string(kTablesUsage) + kFileUsage;
+  if (command == "eval") return std::string(kEvalUsage) + kFileUsage;
+  if (command == "urdf") return kUrdfUsage;
+  return "";
+}
+
+bool asks_help(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
+  return false;
+}
 
 // A wrong command line: the usage follows the one-line error. Bad data gives the error alone.
 struct UsageError : std::invalid_argument {
@@ -168,7 +192,9 @@ int eval(const std::map<std::string, std::string>& options) {
   if (method == "recursive") mbk::forward_kinematics(model, state, data);
   mbk::SystemKinematics<double> system;
   mbk::system_kinematics(model, data, system);
-  std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr);
+  const std::string path = options.at("--model");
+  std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr,
+                                     mbk::missing_segments_of(path, bvh_options(options, path)));
   return 0;
 }
 
@@ -201,6 +227,10 @@ int main(int argc, char** argv) {
   try {
     const std::string command = argv[1];
     if (command == "bag") return exec_bag(argv);
+    if (asks_help(argc, argv) && !command_usage(command).empty()) {
+      std::cout << command_usage(command);
+      return 0;
+    }
     const auto options = parse_options(argc, argv);
     if (command == "tables") return tables(options);
     if (command == "eval") return eval(options);

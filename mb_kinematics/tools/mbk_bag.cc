@@ -17,9 +17,13 @@ int main(int argc, char** argv) {
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   try {
     mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
+    if (options.help) {
+      std::cout << mbk_offline::bag_usage();
+      return 0;
+    }
     options.progress = mbk::stderr_is_terminal();
     const mbk_offline::BagSummary summary = mbk_offline::run_bag(options);
-    std::cerr << mbk_offline::format_summary(summary);
+    std::cerr << mbk_offline::format_summary(summary, options.verbose);
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::exception& e) {
     std::cerr << "mbk: error: " << e.what() << "\n";

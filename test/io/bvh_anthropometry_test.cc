@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,7 @@
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/bvh_model.h"
+#include "mb_kinematics/io/bvh_motion_check.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -217,6 +219,69 @@ TEST(DeLeva, AMapOfJointsToSegmentsGivesWhatTheNamesDoNot) {
   }
 }
 
+// The walk under a ROOT that stays at 0 (Bandai Namco's joint_Root) with the pelvis 4.5 m from
+// it, the legs named as no rule knows: the trunk's parts go on the moving spine, never on the
+// static root (whose origin once stood for the hips' center when no thigh was found).
+TEST(DeLeva, AStaticRootCarriesNoMovingSegment) {
+  const std::string plain =
+      renamed(mbk_test::source_path("test/io/data/cmu_walk.bvh"), {{"LeftUpLeg", "Femur_A"},
+                                                                   {"LeftLeg", "Tibia_A"},
+                                                                   {"LeftFoot", "Pes_A"},
+                                                                   {"RightUpLeg", "Femur_B"},
+                                                                   {"RightLeg", "Tibia_B"},
+                                                                   {"RightFoot", "Pes_B"}});
+  std::string text = plain;
+  const std::string root = "ROOT Hips\n{\n  OFFSET 0 0 0\n";
+  text.replace(text.find(root), root.size(),
+               "ROOT joint_Root\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition "
+               "Zrotation Xrotation Yrotation\n  JOINT Hips\n  {\n  OFFSET 0 90 -450\n");
+  text.replace(text.find("MOTION"), 0, "}\n");
+  for (size_t at = text.find("Frame Time:");
+       (at = text.find('\n', at)) != std::string::npos && at + 1 < text.size(); ++at)
+    text.insert(at + 1, "0 0 0 0 0 0 ");
+  const mbk::Model model =
+      mbk::model_from_bvh(mbk::parse_bvh(text, "bandai.bvh"), {0.01, kMass, "male"});
+  EXPECT_EQ(body(model, "joint_Root").mass, 0.0);
+  // Every body's mass as without the static root.
+  const mbk::Model without =
+      mbk::model_from_bvh(mbk::parse_bvh(plain, "plain.bvh"), {0.01, kMass, "male"});
+  for (int k = 1; k <= without.body_count(); ++k)
+    EXPECT_NEAR(body(model, without.bodies[k].name).mass, without.bodies[k].mass, 1e-12 * kMass)
+        << without.bodies[k].name;
+  EXPECT_NEAR(total_mass(model), kMass, 1e-12 * kMass);
+  // The thighs, shanks and feet are not found: one line says the whole body is incomplete.
+  const std::string incomplete =
+      "bandai.bvh: whole-body outputs incomplete (system_incomplete in the CSV, \"incomplete\" in "
+      "mbk eval's JSON; --segments FILE maps joints to segments): segments not found, their mass "
+      "spread over the others: left thigh, right thigh, left shank, right shank, left foot, right "
+      "foot";
+  EXPECT_NE(std::find(model.warnings.begin(), model.warnings.end(), incomplete),
+            model.warnings.end())
+      << model.warnings.front();
+  EXPECT_EQ(mbk::missing_segments(mbk::parse_bvh(text, "bandai.bvh"), 0.01).size(), 6u);
+  EXPECT_TRUE(mbk::missing_segments(cmu_walk(), 0.01).empty());
+}
+
+// The whole motion against a human's: all the mass on one foot puts the mass center at the
+// floor, which the check names with the segments not found as the likely cause.
+TEST(DeLeva, AMassCenterNoHumanHasIsWarnedAboutWithTheLikelyCause) {
+  const mbk::BvhFile bvh = cmu_walk();
+  mbk::Model model = mbk::model_from_bvh(bvh, {0.01, kMass, "male"});
+  EXPECT_EQ(mbk::motion_warning(bvh, model, 0.01, ""), "");
+  const mbk::MotionFigures human = mbk::motion_figures(bvh, model, 0.01);
+  EXPECT_EQ(human.up, 1);
+  EXPECT_GT(human.mass_center_height / human.height, 0.35);
+  EXPECT_LT(human.mass_center_height / human.height, 0.75);
+  for (mbk::Body& b : model.bodies) b.mass = 0;
+  model.bodies[model.body_index("LeftFoot")].mass = kMass;
+  const std::string warning = mbk::motion_warning(bvh, model, 0.01, "left hand, right hand");
+  EXPECT_NE(warning.find("the whole-body mass center is not a human's"), std::string::npos)
+      << warning;
+  EXPECT_NE(warning.find("likely cause: segments not found, left hand, right hand"),
+            std::string::npos)
+      << warning;
+}
+
 // CMU's cgspeed conversions name the neck lowerneck, Neck: CERV is the lowest *neck* joint.
 TEST(DeLeva, TheHeadReachesDownToTheLowestNeckJoint) {
   const std::string text = renamed(mbk_test::source_path("test/io/data/cmu_walk.bvh"),
@@ -235,11 +300,14 @@ TEST(DeLeva, WhatIsNotMappedIsMasslessAndNamedInOneNote) {
   const mbk::Model model =
       mbk::model_from_bvh(mbk::parse_bvh(text, "cat.bvh"), {0.01, kMass, "male"});
   EXPECT_NEAR(total_mass(model), kMass, 1e-12 * kMass);
-  ASSERT_EQ(model.warnings.size(), 1u);
+  ASSERT_EQ(model.warnings.size(), 2u);
   EXPECT_EQ(model.warnings[0],
             "cat.bvh: segment parameters (de Leva 1996): massless, in no table segment: LeftPaw, "
-            "LeftFingerBase, LThumb, RightPaw, RightFingerBase, RThumb; not found (their mass "
-            "spread over the others): left hand, right hand");
+            "LeftFingerBase, LThumb, RightPaw, RightFingerBase, RThumb");
+  EXPECT_EQ(model.warnings[1],
+            "cat.bvh: whole-body outputs incomplete (system_incomplete in the CSV, \"incomplete\" "
+            "in mbk eval's JSON; --segments FILE maps joints to segments): segments not found, "
+            "their mass spread over the others: left hand, right hand");
   EXPECT_EQ(body(model, "LeftPaw").mass, 0.0);
   EXPECT_NEAR(body(model, "LeftUpLeg").mass, kMass * 0.1416 / (1 - 2 * 0.0061), 1e-12);
   // With no hand the forearm ends at its own tip, the paw's joint (25 cm along +x): its mass
@@ -267,8 +335,8 @@ TEST(DeLeva, ANeckAtTheRootLeavesTheTrunkOut) {
   EXPECT_EQ(body(model, "Head").mass, kMass);
   EXPECT_EQ(body(model, "Neck").mass, 0.0);
   ASSERT_EQ(model.warnings.size(), 1u);
-  EXPECT_NE(model.warnings[0].find("not found (their mass spread over the others): upper trunk, "
-                                   "middle trunk, lower trunk, left upper arm"),
+  EXPECT_NE(model.warnings[0].find("segments not found, their mass spread over the others: upper "
+                                   "trunk, middle trunk, lower trunk, left upper arm"),
             std::string::npos)
       << model.warnings[0];
 }

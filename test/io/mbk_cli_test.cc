@@ -734,6 +734,21 @@ TEST(MbkCli, EulerSceneWithAValidStateWorks) {  // the zero-norm failure above i
 
 // A BVH recording as the model: its skeleton's tables, a frame's kinematics (the segment
 // parameters for --body-mass in the system), the options refused for other models.
+// `mbk COMMAND --help` prints that command's usage on stdout and exits 0; `mbk --help` all.
+TEST(MbkCli, HelpPrintsTheUsage) {
+  for (const std::string command : {"tables", "eval", "urdf"}) {
+    const Output help = mbk(command + " --help");
+    EXPECT_EQ(help.status, 0) << command << ": " << help.err;
+    EXPECT_EQ(help.err, "") << command;
+    EXPECT_EQ(help.out.rfind("usage: mbk " + command + " ", 0), 0u) << help.out;
+  }
+  EXPECT_NE(mbk("eval --model x.bvh -h").out.find("--segments MAP.yaml"), std::string::npos);
+  const Output all = mbk("--help");
+  EXPECT_EQ(all.status, 0);
+  EXPECT_NE(all.out.find("mbk COMMAND --help"), std::string::npos) << all.out;
+  EXPECT_EQ(mbk("nosuch --help").status, 1);
+}
+
 TEST(MbkCli, ABvhFileIsAModel) {
   const std::string walk = "--model test/io/data/cmu_walk.bvh";
   const Output tables = mbk("tables --csv " + walk + " --scale 0.01");

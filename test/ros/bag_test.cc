@@ -180,7 +180,19 @@ TEST(BagTest, CsvInputGivesTheSameKinematics) {
   EXPECT_EQ(mbk_offline::run_bag(b).written, 50);
   // The auto estimator's error bars: in the summary and in OUT.errors.csv, a row each.
   ASSERT_FALSE(summary.errors.empty());
-  EXPECT_NE(mbk_offline::format_summary(summary).find("error bars"), std::string::npos);
+  // The short summary: the noise level and the worst error bar in one line; --verbose: a line
+  // per coordinate under its heading, and the times.
+  const std::string brief = mbk_offline::format_summary(summary);
+  const std::string verbose = mbk_offline::format_summary(summary, true);
+  EXPECT_NE(brief.find("  noise level "), std::string::npos) << brief;
+  EXPECT_NE(brief.find("; worst error bar: "), std::string::npos) << brief;
+  EXPECT_EQ(brief.find("error bars (noise level"), std::string::npos) << brief;
+  EXPECT_EQ(brief.find("wall "), std::string::npos) << brief;
+  EXPECT_EQ(std::count(brief.begin(), brief.end(), '\n'), 2) << brief;
+  EXPECT_NE(verbose.find("error bars (noise level"), std::string::npos) << verbose;
+  EXPECT_NE(verbose.find("wall "), std::string::npos) << verbose;
+  for (const mbk::CoordinateError& e : summary.errors)
+    EXPECT_NE(verbose.find("    " + e.name + ": noise "), std::string::npos) << e.name;
   std::ifstream fe(temp("from_bag.errors.csv"));
   std::stringstream se;
   se << fe.rdbuf();
@@ -721,6 +733,17 @@ int run_mbk_bag(const std::string& in, const std::string& args, std::string& err
   return WEXITSTATUS(status);
 }
 
+// `mbk bag --help` prints the usage on stdout and exits 0, whatever else is given.
+TEST(BagTest, HelpPrintsTheUsage) {
+  const std::string command =
+      std::string(MBK_MBK_PATH) + " bag --help > " + temp("help.out") + " 2>" + temp("help.err");
+  EXPECT_EQ(WEXITSTATUS(std::system(command.c_str())), 0);
+  EXPECT_EQ(read_file(temp("help.out")).rfind("usage: mbk bag IN.bag|IN.csv --model FILE", 0), 0u)
+      << read_file(temp("help.out"));
+  EXPECT_NE(read_file(temp("help.out")).find("--verbose"), std::string::npos);
+  EXPECT_EQ(read_file(temp("help.err")), "");
+}
+
 // Issue 24.4: a full disk (/dev/full) is one `mbk: error:` line naming the file, exit 1.
 TEST(BagTest, AFullDiskIsOneErrorLine) {
   const std::string in = write_bag("full.bag", 100, 2.0);
@@ -1015,6 +1038,6 @@ TEST(BagTest, ABvhFileIsItsOwnRecording) {
     mbk_offline::parse_bag_options(static_cast<int>(argv.size()), argv.data());
     ADD_FAILURE() << "--scale with a .yaml model accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "--scale, --body-mass and --sex apply to a .bvh model only");
+    EXPECT_STREQ(e.what(), "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
   }
 }

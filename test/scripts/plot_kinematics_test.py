@@ -130,6 +130,35 @@ def csv_cases(tmp, failures):
         failures.append("--scale without --bvh: exit %d, %s" % (r.returncode, r.stderr))
 
 
+def incomplete_cases(tmp, failures):
+    """Rows of body system_incomplete (mbk bag's name when segments are missing) are the
+    system's, and both figures' titles say INCOMPLETE; a complete CSV's do not."""
+    import importlib.util
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    spec = importlib.util.spec_from_file_location("plot_kinematics", SCRIPT)
+    plot = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(plot)
+    for name, incomplete in (("system_incomplete", True), ("system", False)):
+        path = os.path.join(tmp, name + ".csv")
+        write_csv(path, ["LeftHip", name])
+        series = plot.read(path, ["LeftHip", "system"])
+        if len(series["system"]["stamp"]) != 20:
+            failures.append("%s: %d system rows" % (name, len(series["system"]["stamp"])))
+            continue
+        for fig in (plot.walk(plt, series, ["LeftHip"], 100, "y", path),
+                    plot.overview(plt, series, ["LeftHip"], 100)):
+            title = fig._suptitle.get_text() if fig._suptitle else ""
+            if ("INCOMPLETE" in title) != incomplete:
+                failures.append("%s: title %r" % (name, title))
+            plt.close(fig)
+        png = os.path.join(tmp, name + ".png")
+        r = run(path, "--bodies", "LeftHip", "--walk", "--up", "y", "--png", png)
+        if r.returncode != 0 or not os.path.getsize(png) > 1000:
+            failures.append("%s --walk: exit %d, %s" % (name, r.returncode, r.stderr))
+
+
 def main():
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -137,6 +166,7 @@ def main():
             bvh_cases(tmp, failures)
         else:
             csv_cases(tmp, failures)
+            incomplete_cases(tmp, failures)
     for f in failures:
         print("FAIL:", f)
     print("PASS" if not failures else "%d failures" % len(failures))
