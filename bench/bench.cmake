@@ -57,7 +57,7 @@ target_link_libraries(bag_benchmark mbk_offline mbk_demo mbk_analysis mbk_io mbk
 target_compile_definitions(bag_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # partial_velocities_benchmark: one ~get_partial_velocities request for a deep chain's tip, its
-# chain only against the whole tree's arrays (issue 24.10).
+# chain only against the whole tree's arrays.
 add_executable(partial_velocities_benchmark bench/partial_velocities_benchmark.cc)
 target_link_libraries(partial_velocities_benchmark mbk_analysis mbk_core benchmark::benchmark)
 

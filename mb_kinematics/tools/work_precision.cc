@@ -1,4 +1,5 @@
-// mbk_work_precision: error against run time for every method (issue "Error against run time").
+// mbk_work_precision: error against run time for every method
+// (doc/error_vs_runtime.md).
 // Writes <out>/work_precision.csv and <out>/work_precision.md; scripts/work_precision.sh runs it
 // and plots the CSV. Error: see mb_kinematics/analysis/kinematics_error.h; reference: the same
 // recursion in quad precision (boost float128) on the method's own inputs.
