@@ -40,6 +40,10 @@ else()
 endif()
 
 find_package(DART QUIET COMPONENTS utils-urdf)
+# DART's CMake config adds -DBOOST_TEST_DYN_LINK to every target of this directory (for
+# Boost.Test, which nothing here uses): a build with the tests would compile again everything a
+# build without them made (scripts/test.sh after scripts/demo.sh).
+remove_definitions(-DBOOST_TEST_DYN_LINK)
 if(DART_FOUND AND MBK_MARCH_NATIVE)  # Debian's DART is not built for this CPU (see Pinocchio)
   message(STATUS "kinematics_benchmark: without DART (Debian's is not built with -march=native)")
 elseif(DART_FOUND)

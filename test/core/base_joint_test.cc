@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "mb_kinematics/core/joint_motion.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/urdf_model.h"

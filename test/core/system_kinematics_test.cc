@@ -15,7 +15,7 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/inertia.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/support/checks.h"

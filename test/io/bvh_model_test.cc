@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/independent_speeds.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"

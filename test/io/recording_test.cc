@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/offline_kinematics.h"

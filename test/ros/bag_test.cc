@@ -26,7 +26,7 @@
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/core/floating_base.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"

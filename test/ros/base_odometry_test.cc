@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "test/ros/ros_test_support.h"
 
 using namespace mbk_ros_test;
