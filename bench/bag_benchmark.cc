@@ -44,7 +44,7 @@
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/load_model.h"

@@ -40,6 +40,10 @@ else()
 endif()
 
 find_package(DART QUIET COMPONENTS utils-urdf)
+# DART's CMake config adds -DBOOST_TEST_DYN_LINK to every target of this directory (for
+# Boost.Test, which nothing here uses): a build with the tests would compile again everything a
+# build without them made (scripts/test.sh after scripts/demo.sh).
+remove_definitions(-DBOOST_TEST_DYN_LINK)
 if(DART_FOUND AND MBK_MARCH_NATIVE)  # Debian's DART is not built for this CPU (see Pinocchio)
   message(STATUS "kinematics_benchmark: without DART (Debian's is not built with -march=native)")
 elseif(DART_FOUND)
@@ -57,7 +61,7 @@ target_link_libraries(bag_benchmark mbk_offline mbk_demo mbk_analysis mbk_io mbk
 target_compile_definitions(bag_benchmark PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # partial_velocities_benchmark: one ~get_partial_velocities request for a deep chain's tip, its
-# chain only against the whole tree's arrays (issue 24.10).
+# chain only against the whole tree's arrays.
 add_executable(partial_velocities_benchmark bench/partial_velocities_benchmark.cc)
 target_link_libraries(partial_velocities_benchmark mbk_analysis mbk_core benchmark::benchmark)
 

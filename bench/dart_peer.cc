@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 
 namespace mbk_bench {
 namespace {

@@ -9,7 +9,7 @@
 #include "bench/bench_scene.h"
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/euler_order.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/io/load_model.h"
 

@@ -53,7 +53,7 @@
 
 #include "bench/bench_scene.h"
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"

@@ -1,4 +1,4 @@
-// The cost of one ~get_partial_velocities request for the tip of a deep chain (issue 24.10),
+// The cost of one ~get_partial_velocities request for the tip of a deep chain,
 // the core's part of it (the node adds the message), both ways in the same run:
 //
 //   partial_velocities/chainN/tip/whole_tree   what the service did before: the whole tree's

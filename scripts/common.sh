@@ -10,26 +10,39 @@ MBK_WS=${MBK_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/mb_kinematics/ws-$(echo "$MBK_S
 export PATH=/usr/bin:$PATH
 export PYTHONNOUSERSITE=1
 
-MBK_PACKAGES=(
+# What scripts/demo.sh needs: the packages' build dependencies (every find_package of the
+# CMakeLists, so that the workspace configures) and what the demo and the README's quick start
+# run (roslaunch, rosrun, rostopic). Nothing that only the tests, benchmarks or fuzzers use.
+MBK_DEMO_PACKAGES=(
   build-essential cmake catkin libroscpp-dev libtf2-ros-dev ros-sensor-msgs ros-geometry-msgs
   ros-std-msgs ros-visualization-msgs ros-message-generation ros-message-runtime liburdf-dev
-  liburdfdom-dev libtinyxml2-dev libeigen3-dev libyaml-cpp-dev python3-rostest
-  python3-roslaunch python3-rostopic python3-rosmsg rosbash ros-robot-state-publisher
-  libkdl-parser-dev liborocos-kdl-dev libbenchmark-dev googletest libboost-dev
-  libdiagnostic-updater-dev libsensor-msgs-dev python3-sensor-msgs python3-geometry-msgs
-  python3-tf2-msgs python3-diagnostic-msgs
-  librviz-dev rviz qtbase5-dev libvisualization-msgs-dev xvfb xauth imagemagick
-  pluginlib-dev libogre-1.12-dev librosbag-dev libtf2-msgs-dev libnav-msgs-dev python3-rosbag
-  libstd-srvs-dev python3-std-srvs tf2-tools  # tf2-tools: static_transform_publisher
-  python3-matplotlib catkin-lint
+  liburdfdom-dev libtinyxml2-dev libeigen3-dev libyaml-cpp-dev libboost-dev
+  libdiagnostic-updater-dev libsensor-msgs-dev libvisualization-msgs-dev librosbag-dev
+  libtf2-msgs-dev libnav-msgs-dev libstd-srvs-dev libnodelet-dev libnodeletlib-dev
+  libtopic-tools-dev pluginlib-dev
+  pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (doc/python.md)
+  python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
   joint-state-publisher-gui  # mb_kinematics.launch gui:=true
-  libnodelet-dev libnodeletlib-dev libnodeletlib-tools libtopic-tools-dev  # the nodelet; load_monitor
+)
+# rviz and what the display plugin builds against: scripts/demo.sh --rviz, and the tests.
+MBK_RVIZ_PACKAGES=(librviz-dev rviz qtbase5-dev libogre-1.12-dev)
+# What scripts/test.sh needs on top: the test frameworks, the peers the tests and benchmarks
+# compare with, and the tools the tests run.
+MBK_TEST_PACKAGES=(
+  "${MBK_RVIZ_PACKAGES[@]}" xvfb xauth imagemagick  # the rviz screenshot tests
+  googletest python3-rostest libbenchmark-dev python3-rosmsg python3-rosbag python3-std-srvs
+  python3-tf2-msgs python3-diagnostic-msgs
+  ros-robot-state-publisher libkdl-parser-dev liborocos-kdl-dev  # the peers of the node tests
+  tf2-tools  # static_transform_publisher (launch/two_robots.launch)
+  python3-matplotlib catkin-lint
+  libnodeletlib-tools  # the nodelet manager (the nodelet's tests; load_monitor)
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
   valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
-  pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (doc/python.md)
-  python3-pytest python3-pykdl python3-dartpy  # its tests and their peers
+  python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
 )
+# What mbk_install_deps installs: scripts/test.sh adds MBK_TEST_PACKAGES.
+MBK_PACKAGES=("${MBK_DEMO_PACKAGES[@]}")
 
 mbk_install_deps() {
   local missing=()
@@ -44,12 +57,19 @@ mbk_install_deps() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# mbk_build [-DCMAKE_OPTION=...] [TARGET...]: catkin_make in MBK_WS; with targets, only those
+# and what they need. A workspace configured here for the first time has its tests off
+# (CATKIN_ENABLE_TESTING=OFF: its configure needs no test package) unless the options say
+# otherwise; a workspace configured before keeps its setting. Either way the same compiler
+# flags: scripts/test.sh after scripts/demo.sh recompiles nothing the demo built.
 mbk_build() {
   mkdir -p "$MBK_WS/src"
   ln -sfn "$MBK_SRC" "$MBK_WS/src/mb_kinematics"
-  echo "== building in $MBK_WS"
+  local testing=()
+  [ -f "$MBK_WS/build/CMakeCache.txt" ] || testing=(-DCATKIN_ENABLE_TESTING=OFF)
+  echo "== building in $MBK_WS${1:+: $*}"
   (cd "$MBK_WS" && catkin_make -j2 -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-     -DCATKIN_ENABLE_TESTING=ON "$@" >"$MBK_WS/build.log" 2>&1) || {
+     "${testing[@]}" "$@" >"$MBK_WS/build.log" 2>&1) || {
     tail -n 60 "$MBK_WS/build.log"
     echo "build failed: full log in $MBK_WS/build.log" >&2
     return 1

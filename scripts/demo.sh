@@ -4,21 +4,26 @@
 # a few seconds (or until Ctrl-C).
 #   scripts/demo.sh [--seconds N] [--model FILE] [--rviz]
 # --rviz opens rviz (installs it if missing; needs a display) and runs until Ctrl-C.
+# It installs and builds only what it runs (the tests' packages and targets are scripts/test.sh's).
 source "$(dirname "$0")/common.sh"
 seconds=4
 rviz=false
+# mb_kinematics_msgs' Python messages: for rostopic in the README's quick start.
+targets=(mbk mb_kinematics_node demo_publisher demo_monitor mb_kinematics_msgs_generate_messages_py
+  mbk_python)  # the Python module (doc/python.md)
 live_model="$MBK_SRC/config/human_body.yaml"
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
     --model) live_model=$(realpath "$2"); shift 2 ;;
     # rviz's RobotModel needs the URDF's frames (ball joints as chains of links).
-    --rviz) rviz=true; seconds=0; live_model="$MBK_SRC/config/human_body.urdf"; MBK_PACKAGES+=(rviz); shift ;;
+    --rviz) rviz=true; seconds=0; live_model="$MBK_SRC/config/human_body.urdf"
+      MBK_PACKAGES+=("${MBK_RVIZ_PACKAGES[@]}"); targets+=(mbk_rviz); shift ;;
     *) echo "usage: scripts/demo.sh [--seconds N] [--model FILE] [--rviz]" >&2; exit 2 ;;
   esac
 done
 mbk_install_deps
-mbk_build
+mbk_build "${targets[@]}"
 model="$MBK_SRC/config/human_body.yaml"
 echo "== mbk tables --model config/human_body.yaml"
 rosrun mb_kinematics mbk tables --model "$model"

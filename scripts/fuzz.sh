@@ -25,7 +25,7 @@ dir=${MBK_FUZZ_DIR:-$MBK_WS/fuzz}
 mkdir -p "$dir/build" "$dir/findings"
 
 # The generated mb_kinematics_msgs headers come from the catkin build (scripts/test.sh's).
-[ -f "$MBK_WS/devel/include/mb_kinematics_msgs/JointAccelerations.h" ] || mbk_build
+[ -f "$MBK_WS/devel/include/mb_kinematics_msgs/JointAccelerations.h" ] || mbk_build mb_kinematics_msgs_generate_messages_cpp
 # The physical path: ctest runs this script through the workspace's src/ link, and another
 # source path would make CMake compile everything again.
 (cmake -S "$(cd "$MBK_SRC" && pwd -P)/test/fuzz" -B "$dir/build" -DCMAKE_C_COMPILER=clang-14 \

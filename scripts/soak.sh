@@ -20,7 +20,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 mbk_install_deps
-mbk_build
+mbk_build mb_kinematics_node demo_publisher demo_monitor
 
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI=http://127.0.0.1:$port ROS_HOSTNAME=127.0.0.1

@@ -28,8 +28,9 @@ if [ -n "$sanitize" ]; then
   # our library (test/ros/nodelet.test).
   export MBK_SANITIZER_PRELOAD="env LD_PRELOAD=$(g++ -print-file-name=libasan.so)"
 fi
+MBK_PACKAGES+=("${MBK_TEST_PACKAGES[@]}")
 mbk_install_deps
-mbk_build "${build_args[@]}"
+mbk_build -DCATKIN_ENABLE_TESTING=ON "${build_args[@]}"
 echo "== building tests"
 (cd "$MBK_WS/build" && make -j2 tests >>"$MBK_WS/build.log" 2>&1) || {
   tail -n 60 "$MBK_WS/build.log"

@@ -5,7 +5,7 @@
 source "$(dirname "$0")/common.sh"
 MBK_PACKAGES+=(python3-matplotlib)
 mbk_install_deps
-mbk_build
+mbk_build mbk_work_precision
 out="$MBK_SRC/doc/work_precision"
 mkdir -p "$out"
 "$MBK_WS/devel/lib/mb_kinematics/mbk_work_precision" --out "$out" "$@"

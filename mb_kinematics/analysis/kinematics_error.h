@@ -1,5 +1,5 @@
 // The error of a kinematics result against a reference, per quantity and overall
-// (issue "error against run time"): for each quantity Q in {orientation, omega, alpha, p, v, a}
+// (doc/error_vs_runtime.md): for each quantity Q in {orientation, omega, alpha, p, v, a}
 // the largest over bodies of |Q_k - Q_ref,k| divided by that quantity's scale, the largest
 // |Q_ref,k| over bodies (1 for orientation; a quantity whose scale is 0 is compared absolutely).
 // Vector norms are Euclidean, the orientation's is the Frobenius norm of S0K - S0K_ref. p is

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/analysis/quad.h"
+#include "mb_kinematics/analysis/reference_kinematics.h"
 #include "mb_kinematics/core/error_indicators.h"
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/state_check.h"

@@ -1,4 +1,4 @@
-// Numerical stability on stiff and extreme cases (issue "Numerical stability"): the forward
+// Numerical stability on stiff and extreme cases (doc/stability.md): the forward
 // error of the double recursion against the same recursion in higher precision on the same
 // double inputs (cast exactly), measured against the scale of the terms that the recursion
 // sums, per body and per link of depth. test/stability/ asserts the bounds; mbk_stability_report

@@ -1,4 +1,4 @@
-// A floating base measured by odometry (the node's ~base_odometry semantics, issue 9): the
+// A floating base measured by odometry (the node's ~base_odometry semantics, doc/node.md): the
 // odometry's frame_id is the inertial frame R; the model's root frame (what the model calls R)
 // moves with the odometry pose, its twist given in the odometry's child frame (the root frame).
 // Poses are interpolated by slerp, twists linearly, at each joint sample's stamp; the base's
@@ -50,7 +50,7 @@ void extrapolate_base(const BaseSample& s, const Vec3<double>& linear_accelerati
 // S0K <- R_b S0K, p <- p_b + R_b p, omega <- w_b + R_b omega, v <- v_b + w_b x R_b p + R_b v,
 // alpha <- a_b' + w_b x R_b omega + R_b alpha,
 // a <- a_b + alpha_b x R_b p + w_b x (w_b x R_b p) + 2 w_b x R_b v + R_b a.
-// Index 0 becomes the root frame's own motion (the root link's mass sits there, issue 25).
+// Index 0 becomes the root frame's own motion (the root link's mass sits there).
 void apply_floating_base(const BaseMotion& base, Data<double>& data);
 
 }  // namespace mbk

@@ -1,4 +1,4 @@
-// Which bodies the coordinates known so far place (issue 9, the node's ~missing_coordinates):
+// Which bodies the coordinates known so far place (the node's ~missing_coordinates):
 // body k is known iff every coordinate of its joint and of every joint on its chain to R is
 // known, the chain k, L(k), L^2(k), ..., 0 of the lower body array (doc/method.md 1, eq. 4.2.1).
 // A mimic coordinate is known iff its source is (q = m q_source + c).

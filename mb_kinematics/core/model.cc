@@ -102,7 +102,7 @@ void order_mimics(Model& model) {
 }
 
 // bodies[0] stands for R: named after it, with the mass, mass center and inertia of the link
-// fixed in R that a URDF's root link gives (issue 25), nothing else.
+// fixed in R that a URDF's root link gives (its mass counts in the system), nothing else.
 void set_root(Model& model) {
   const Body& given = model.bodies[0];
   Body root;

@@ -1,4 +1,4 @@
-// Validation of a joint state before the kinematics (issue "Numerical stability"): what the
+// Validation of a joint state before the kinematics (doc/stability.md): what the
 // recursion cannot turn into finite, meaningful numbers is rejected with a message naming the
 // joint and the coordinate, instead of being published as NaN/Inf. ROS-free; no allocation
 // unless a message is returned.

@@ -167,7 +167,7 @@ Model build_model(const urdf::ModelInterface& urdf, const std::string& xml,
   model.frame = root->name;
   model.bodies.resize(1);
   model.bodies[0].name = root->name;
-  set_mass_properties(*root, model.bodies[0]);  // the root link, fixed in R (issue 25)
+  set_mass_properties(*root, model.bodies[0]);  // the root link, fixed in R: its mass counts
   std::vector<std::pair<urdf::LinkConstSharedPtr, int>> queue = {{root, 0}};  // link, its k
   std::map<std::string, int> index_of_joint;
   std::map<std::string, std::string> parent_joint = {{root->name, ""}};  // of each link reached

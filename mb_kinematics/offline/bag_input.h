@@ -17,7 +17,7 @@ struct BagTopics {
   std::string base_odometry;        // empty: none (nav_msgs/Odometry)
 };
 
-// The base's odometry (issue 9 semantics, core/floating_base.h): samples in time order (a stamp
+// The base's odometry (the node's semantics, core/floating_base.h): samples in time order (a stamp
 // not after the previous one, or NaN/Inf, is dropped and counted) and R's name.
 struct BaseOdometry {
   std::vector<mbk::BaseSample> samples;

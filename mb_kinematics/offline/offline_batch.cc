@@ -4,7 +4,7 @@
 #include <chrono>
 
 #include "mb_kinematics/core/finite_kinematics.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/state_check.h"
 
 namespace mbk {

@@ -1,4 +1,4 @@
-// ~missing_coordinates (issue 9, doc/node.md): per sample, which coordinates come from
+// ~missing_coordinates (doc/node.md): per sample, which coordinates come from
 // the input, which bodies may be published (mbk::known_bodies: a body's whole chain to R), and
 // the names of what is missing, for the node's warnings and /diagnostics.
 //   skip: coordinates never received, or stale (no sample for ~max_sample_gap), are unknown;

@@ -30,7 +30,7 @@ enum class InputProblem {
   // waiting
   kMissingJoints,  // some coordinate never received: nothing published yet
   kNoOdometry,     // ~base_odometry: no odometry received yet, R unknown: nothing published
-  // published with what ~missing_coordinates makes of the coordinates missing (issue 9)
+  // published with what ~missing_coordinates makes of the coordinates missing (doc/node.md)
   kBodiesLeftOut,  // skip: the bodies of coordinates never received or stale left out
   kZeroed,         // zero: coordinates never received taken as 0
   kStaleHeld,      // wait, zero: coordinates without a sample for ~max_sample_gap held

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "mb_kinematics/core/finite_kinematics.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/ros/heap_trim.h"

@@ -13,7 +13,7 @@
 
 namespace mbk_ros {
 
-// ~missing_coordinates: what the node does about coordinates that never arrived (issue 9).
+// ~missing_coordinates: what the node does about coordinates that never arrived (doc/node.md).
 enum class MissingCoordinates {
   kSkip,  // publish the bodies whose chain of coordinates is known; leave the others out
   kWait,  // publish nothing until every coordinate has come once

@@ -19,7 +19,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state_check.h"

@@ -1,5 +1,5 @@
-// mbk_stability_report: the table of the numerical stability suite (issue "Numerical
-// stability"; test/stability/ asserts the same rows). Prints markdown:
+// mbk_stability_report: the table of the numerical stability suite
+// (doc/stability.md; test/stability/ asserts the same rows). Prints markdown:
 // case | quantity | measured | bound | before fix | note, one section per group.
 //   mbk_stability_report [GROUP...]   (default: every group)
 #include <cstdio>

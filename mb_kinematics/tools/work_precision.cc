@@ -1,4 +1,5 @@
-// mbk_work_precision: error against run time for every method (issue "Error against run time").
+// mbk_work_precision: error against run time for every method
+// (doc/error_vs_runtime.md).
 // Writes <out>/work_precision.csv and <out>/work_precision.md; scripts/work_precision.sh runs it
 // and plots the CSV. Error: see mb_kinematics/analysis/kinematics_error.h; reference: the same
 // recursion in quad precision (boost float128) on the method's own inputs.
@@ -17,9 +18,8 @@
 #include "mb_kinematics/analysis/estimator_study.h"
 #include "mb_kinematics/analysis/kinematics_error.h"
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/analysis/quad.h"
+#include "mb_kinematics/analysis/reference_kinematics.h"
 #include "mb_kinematics/analysis/system_error.h"
-#include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/estimation/offline_estimator.h"

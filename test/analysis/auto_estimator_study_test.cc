@@ -1,4 +1,4 @@
-// The automatic offline estimator against the targets on the demo's trajectories and a
+// The automatic offline estimator against its targets on the demo's trajectories and a
 // human-like recording (0.2 to 5 Hz; human body model), every sample including the ends: clean 1
 // kHz within 1e-6 of scale away from the ends and 1e-4 at them (velocities 100x better); with 1e-3
 // and 1e-2 rad of noise no worse than the previous default (centered_0.4s_4); with 1e-4 rad at 100

@@ -12,8 +12,7 @@
 
 #include "mb_kinematics/analysis/kinematics_error.h"
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/analysis/quad.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/analysis/reference_kinematics.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "test/support/checks.h"
 #include "test/support/test_models.h"

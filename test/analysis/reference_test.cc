@@ -5,9 +5,8 @@
 
 #include "mb_kinematics/analysis/kinematics_error.h"
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/analysis/quad.h"
+#include "mb_kinematics/analysis/reference_kinematics.h"
 #include "mb_kinematics/core/joint.h"
-#include "mb_kinematics/core/kinematics.h"
 
 namespace {
 

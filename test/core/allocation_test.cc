@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "test/support/allocation_counter.h"
 #include "test/support/test_models.h"

@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "mb_kinematics/core/joint_motion.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/urdf_model.h"
@@ -186,7 +186,7 @@ TEST(BaseJoint, AgreesWithCarryingIntoR) {
   }
 }
 
-// The root link (issue 25): with a floating base it is the base body, with its link's mass, mass
+// The root link: with a floating base it is the base body, with its link's mass, mass
 // center and inertia, and the system moves with it; the node's way and mbk bag's way agree.
 TEST(BaseJoint, FloatingBaseCarriesTheRootLinksMass) {
   const mbk::Model model = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");

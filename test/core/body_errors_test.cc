@@ -11,7 +11,7 @@
 #include <random>
 
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 
 namespace {
 

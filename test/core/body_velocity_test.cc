@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "test/support/checks.h"
 #include "test/support/test_models.h"
 

@@ -1,5 +1,5 @@
-// Partial velocities of chosen bodies along their chains only (chain_partial_velocity.h, issue
-// 24.10): the same columns as the whole tree's arrays (independent_columns of
+// Partial velocities of chosen bodies along their chains only (chain_partial_velocity.h):
+// the same columns as the whole tree's arrays (independent_columns of
 // partial_velocity_kinematics) on random trees, with mimics and with angular velocity speeds;
 // and on a 10,000-link chain a request for the tip takes chain-sized memory and little time
 // (the whole tree's arrays would be 50 million columns, 7.2 GB).

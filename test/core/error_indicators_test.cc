@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "test/support/test_models.h"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/analysis/reference_kinematics.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "test/support/checks.h"
 #include "test/support/test_models.h"

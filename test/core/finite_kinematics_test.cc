@@ -6,7 +6,7 @@
 
 #include <limits>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "test/support/test_models.h"
 
 namespace {

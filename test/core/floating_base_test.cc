@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/io/load_model.h"
 #include "test/support/test_models.h"

@@ -9,7 +9,7 @@
 
 #include "mb_kinematics/analysis/kinematics_error.h"
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 
 namespace {

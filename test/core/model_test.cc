@@ -52,7 +52,7 @@ void expect_error(mbk::Model model, const Names& fragments) {
   }
 }
 
-// Issue 24.8: a mimic's error names its coordinate and what is wrong.
+// A mimic's error names its coordinate and what is wrong.
 TEST(FinalizeModel, MimicErrorsNameTheCoordinate) {
   mbk::Model self = three_bodies();
   self.bodies[2].joint.name = "elbow";

@@ -1,4 +1,4 @@
-// Whole-system quantities (issue 10): total mass, system mass center G and its motion, linear
+// Whole-system quantities: total mass, system mass center G and its motion, linear
 // momentum, angular momentum about G; and the partial velocities with respect to the independent
 // speeds (mimic columns folded into their sources'). Closed forms, finite differences, point
 // masses, and the recursion v_k = sum_r v_kr y_r.
@@ -15,7 +15,7 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/inertia.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "test/support/checks.h"
@@ -357,7 +357,7 @@ TEST(IndependentSpeeds, DotColumnsAreTimeDerivatives) {
   }
 }
 
-// ---- The root link (issue 25): a URDF root link's mass counts, fixed in R; M is the sum of the
+// ---- The root link: a URDF root link's mass counts, fixed in R; M is the sum of the
 // URDF's <mass> values. H_G = H_O - M p_G x v_G, the root link at rest adding nothing to H_O.
 TEST(SystemKinematics, RootLinkMassCountsFixedInR) {
   const mbk::Model model = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"

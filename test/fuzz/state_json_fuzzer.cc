@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/io/state_json.h"

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/bvh_motion_check.h"

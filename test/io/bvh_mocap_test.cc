@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/bvh_model.h"
 

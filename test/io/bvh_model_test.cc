@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/io/bvh_bones.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// Inertias I_k (issue 10): YAML `inertia: [ixx, iyy, izz, ixy, ixz, iyz]` about G_k in Bk's
+// Inertias I_k: YAML `inertia: [ixx, iyy, izz, ixy, ixz, iyz]` about G_k in Bk's
 // axes, URDF <inertial> with its origin rpy turned into Bk's axes, and `mbk urdf` writing them
 // back; bad inertias are one-line errors naming the file, line (YAML), body and field.
 #include <gtest/gtest.h>
@@ -100,7 +100,7 @@ TEST(Inertia, UrdfInertialRpyIsTurnedIntoTheBodyAxes) {
       1e-14);
 }
 
-// Inertias that are not physical (issue 25: a sensor mount, a 1e-6 kg antenna) never stop a URDF
+// Inertias that are not physical (a sensor mount, a 1e-6 kg antenna) never stop a URDF
 // from loading: those bodies keep no inertia (H_G is left out) and one warning names every link.
 TEST(Inertia, UrdfUnphysicalInertiasLoadWithOneWarningNamingEveryLink) {
   const std::string xml =

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/urdf_model.h"

@@ -18,7 +18,7 @@
 #include <sstream>
 
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/number_format.h"
 

@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
@@ -302,7 +302,7 @@ TEST(KdlPeer, DetectsASmallModelError) {
   EXPECT_LT(e.omega, kVelocityTolerance);  // an offset does not change angular velocities
 }
 
-// ---- The real-robot conformance set (issue 25): published robot descriptions nobody on the
+// ---- The real-robot conformance set: published robot descriptions nobody on the
 // project wrote (test/robots/LICENSES.md), one of each kind. Each loads (imperfect inertias only
 // warn), its poses and twists agree with KDL (robot_state_publisher's solver), its system mass is
 // the sum of the URDF's <mass> values, root link included, and omega and alpha agree with

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "test/ros/ros_test_support.h"
 
 using namespace mbk_ros_test;
@@ -153,7 +153,7 @@ TEST_F(BaseOdometryTest, AbsoluteKinematicsInTheOdometryFrame) {
   EXPECT_EQ(parents["/floating/mb_kinematics"].count("f/base_link -> f/slider"), 1u);
 }
 
-// Issue 25.4: odometry stamped half a period after each joint sample and sent after it. Each
+// Odometry stamped half a period after each joint sample and sent after it. Each
 // sample waits (~base_odometry_wait, default) for the odometry after its stamp and takes the base
 // interpolated between the two around it: on a base motion that slerp and lerp follow exactly,
 // the published base (tf and every body of body_kinematics) is the exact one to 1e-9 m.

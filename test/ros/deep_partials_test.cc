@@ -1,4 +1,4 @@
-// ~get_partial_velocities on a 2,000-link chain (deep_partials.test, issue 24.10): the call is
+// ~get_partial_velocities on a 2,000-link chain (deep_partials.test): the call is
 // served off the input's thread, so /tf keeps arriving while a heavy call runs (it stalled for
 // over a second: every body's arrays were computed under the node's lock); the tip's columns are
 // its chain's; a request over ~partial_velocities_max_entries is refused with a message naming

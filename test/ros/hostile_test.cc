@@ -241,7 +241,7 @@ TEST_F(HostileTest, MalformedAndHugeValues) {
   expect_recovery(trajectory, start, 400 * kDt);
 }
 
-// Issue 14, item 10: single samples of 1.7e308, 1e300 on an angle (valid, but no motion) and
+// Single samples of 1.7e308, 1e300 on an angle (valid, but no motion) and
 // 1e51, 1e300 on a translation (refused) in a positions-only stream. The estimators must not
 // keep them: the stream goes on, and its own samples right after are correct again.
 TEST_F(HostileTest, OneHugeSampleInAPositionsOnlyStream) {

@@ -61,7 +61,7 @@ TEST_F(JointStateInputTest, RejectsBadMessagesWhole) {
   EXPECT_EQ(input_.missing().size(), kAll.size()) << "a rejected message changed the state";
 }
 
-// A published mimic value wins over the mimic rule, as in robot_state_publisher (issue 25): the
+// A published mimic value wins over the mimic rule, as in robot_state_publisher: the
 // finger (2 * arm2 + 0.1) published at 9 is placed at 9; unpublished, the rule places it.
 TEST_F(JointStateInputTest, UnknownNamesIgnoredPublishedMimicsWin) {
   input_.add(msg(kAll, 0.25), 1);
@@ -264,7 +264,7 @@ TEST(JointStateInputEuler, SignFlipsKeepEContinuous) {
 
 }  // namespace
 
-// Issue 14, item 10: one finite sample must not poison the estimators. A positions-only stream
+// One finite sample must not poison the estimators. A positions-only stream
 // of the quadratic q_i = c_i + 0.5 t + 0.2 t^2 at 100 Hz through kalman_smooth (the node's
 // default); `clean` sees the stream, `hit` the same stream and the hostile samples.
 class PoisonTest : public ::testing::Test {

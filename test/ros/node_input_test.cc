@@ -51,7 +51,7 @@ TEST(NodeParams, ABvhModelTakesItsScaleAndBodyMass) {
   EXPECT_NEAR(model.bodies[3].joint.offset.y(), -0.06, 1e-15);  // LeftUpLeg, in metres
 }
 
-// Issue 24.9: a quaternion of finite but huge components (1e200 times a unit one) gives its
+// A quaternion of finite but huge components (1e200 times a unit one) gives its
 // rotation to the base, not the identity its overflowing norm made of it.
 TEST(BaseOdometryInput, HugeQuaternionIsItsRotation) {
   const auto estimator = mbk::make_derivative_estimator("backward_difference");
@@ -92,7 +92,7 @@ mbk_ros::NodeInput::Ready joint_sample(const mbk::Model& model, double t) {
   return {msg, false};
 }
 
-// Issue 25.4: a sample waits for the odometry after its stamp (released by it, interpolated),
+// A sample waits for the odometry after its stamp (released by it, interpolated),
 // at most ~base_odometry_wait (then held, or extrapolated when asked, and counted), in order.
 class OdometryWait : public ::testing::TestWithParam<bool> {};
 

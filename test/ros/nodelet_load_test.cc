@@ -1,7 +1,7 @@
 // A second KinematicsNodelet loaded into the manager while the first takes joint_states at
 // 2 kHz (nodelet_load.test): every load call returns (no lock-order deadlock between an input
-// callback and the loading thread's subscribe, issue 24.1), the new instance advertises
-// ~get_partial_velocities under its own name (not the manager's: issue 24.10), and the first
+// callback and the loading thread's subscribe), the new instance advertises
+// ~get_partial_velocities under its own name (not the manager's), and the first
 // instance keeps publishing.
 #include <gtest/gtest.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/joint.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
 #include "mb_kinematics/messages/body_kinematics.h"
 #include "mb_kinematics/messages/system.h"

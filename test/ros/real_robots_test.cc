@@ -1,4 +1,4 @@
-// The real-robot conformance set (issue 25): for the published robot description on
+// The real-robot conformance set: for the published robot description on
 // /robot_description (real_robots.test), the node's /tf and /tf_static agree with
 // robot_state_publisher's on the same joint_states stream to 1e-12 m and 1e-12 rad (the angle of
 // the quaternion difference), mimic joints published off their rule included (the published
@@ -147,8 +147,8 @@ TEST(RealRobots, NodeAgreesWithRobotStatePublisherAndMbkBag) {
   rosbag::Bag recorded(in_bag, rosbag::bagmode::Write);  // what the node gets, for mbk bag
   const BaseMotion base;
   const ros::Time start(50.0);
-  // The odometry at 100 Hz, half a period after each joint sample and sent after it (issue
-  // 25.4): each sample waits for it and takes the base interpolated, exact on this motion.
+  // The odometry at 100 Hz, half a period after each joint sample and sent after it: each
+  // sample waits for it and takes the base interpolated, exact on this motion.
   const auto send_odometry = [&](double tau) {
     const ros::Time stamp = start + ros::Duration(tau);
     odometry.publish(base.at(tau, stamp));

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "mb_kinematics/analysis/model_generators.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/messages/system.h"
 #include "test/support/test_models.h"

@@ -1,4 +1,4 @@
-// mb_kinematics_node (system.test): body_kinematics carries the whole system (issue 10) as the
+// mb_kinematics_node (system.test): body_kinematics carries the whole system as the
 // core computes it for the same state, and ~get_partial_velocities returns the partial velocity
 // arrays of the latest sample, sparse, keyed by independent speed (finger mimics arm2_joint).
 #include <mb_kinematics_msgs/GetPartialVelocities.h>

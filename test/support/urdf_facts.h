@@ -1,5 +1,5 @@
 // Facts read straight from URDF text (tinyxml2, not urdfdom), for tests that check the loader
-// and the node against the file itself (issue 25).
+// and the node against the file itself.
 #pragma once
 
 #include <gtest/gtest.h>

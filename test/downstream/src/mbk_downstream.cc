@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 

@@ -26,7 +26,7 @@
 
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/core/floating_base.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
@@ -668,7 +668,7 @@ void write_string(rosbag::Bag& bag, double t) {
   bag.write("/joint_states", ros::Time(t), text, header);
 }
 
-// Issue 24.5: an output that is an input (also through a symlink), the model, or the other
+// An output that is an input (also through a symlink), the model, or the other
 // output is refused before anything is written; the inputs are left as they were.
 TEST(BagTest, AnOutputThatIsAnInputIsRefusedBeforeWriting) {
   const std::string in = write_bag("same.bag", 10, 1.0);
@@ -699,7 +699,7 @@ TEST(BagTest, AnOutputThatIsAnInputIsRefusedBeforeWriting) {
   EXPECT_FALSE(absent.good());
 }
 
-// Issue 24.5: with "auto", --csv OUT.csv also writes OUT.errors.csv and OUT.sample_errors.csv;
+// With "auto", --csv OUT.csv also writes OUT.errors.csv and OUT.sample_errors.csv;
 // an input or another output that is one of them is refused before anything is written.
 TEST(BagTest, AnInputOrOutputThatIsACsvSideFileIsRefused) {
   const std::string in = temp("side.errors.csv");  // a trajectory CSV with a side file's name
@@ -744,7 +744,7 @@ TEST(BagTest, HelpPrintsTheUsage) {
   EXPECT_EQ(read_file(temp("help.err")), "");
 }
 
-// Issue 24.4: a full disk (/dev/full) is one `mbk: error:` line naming the file, exit 1.
+// A full disk (/dev/full) is one `mbk: error:` line naming the file, exit 1.
 TEST(BagTest, AFullDiskIsOneErrorLine) {
   const std::string in = write_bag("full.bag", 100, 2.0);
   for (const std::string option : {"--out", "--csv"}) {
@@ -756,7 +756,7 @@ TEST(BagTest, AFullDiskIsOneErrorLine) {
   }
 }
 
-// Issue 24.7: outputs are written under a temporary name and renamed once whole: a run that
+// Outputs are written under a temporary name and renamed once whole: a run that
 // fails (here: an unwritable --csv) leaves no new bag and the old one as it was; a run that
 // succeeds leaves no temporary file.
 TEST(BagTest, AFailedRunLeavesNoPartialOutput) {
@@ -778,7 +778,7 @@ TEST(BagTest, AFailedRunLeavesNoPartialOutput) {
   }
 }
 
-// Issue 24.9: odometry whose quaternion components are finite but huge (1e200 times a unit
+// Odometry whose quaternion components are finite but huge (1e200 times a unit
 // one) is the same rotation, not ignored.
 TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
   const mbk::Model model = mbk::load_model_file(kModel);
@@ -807,7 +807,7 @@ TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
   EXPECT_EQ(s.log.notes.count("base odometry ignored"), 0u);
 }
 
-// Issue 24.3(b): one flipped bit that crashes librosbag itself (a segfault in its reading, found
+// One flipped bit that crashes librosbag itself (a segfault in its reading, found
 // by flipping random bits of this bag) is an error naming the bag, not a crash of mbk.
 TEST(BagTest, ABagThatCrashesLibrosbagIsAnError) {
   const std::string in = write_bag("flip_src.bag", 100, 2.0);
@@ -823,7 +823,7 @@ TEST(BagTest, ABagThatCrashesLibrosbagIsAnError) {
   }
 }
 
-// Issue 24.8: librosbag's own complaints about a damaged connection header stay off stderr;
+// The complaints of librosbag itself about a damaged connection header stay off stderr;
 // only mbk's summary (or its one error line) is printed.
 TEST(BagTest, DamagedHeadersPrintOnlyMbksOwnLines) {
   const std::string in = write_bag("flip_src.bag", 100, 2.0);
@@ -838,7 +838,7 @@ TEST(BagTest, DamagedHeadersPrintOnlyMbksOwnLines) {
     EXPECT_TRUE(line.rfind("mbk", 0) == 0 || line.rfind("  ", 0) == 0) << line;
 }
 
-// Issue 24.3(a), 24.6: a std_msgs/String connection on /joint_states, before or after the
+// A std_msgs/String connection on /joint_states, before or after the
 // JointState one: those messages are skipped and counted, every joint sample is written.
 TEST(BagTest, MessagesOfAnotherTypeAreSkippedAndCounted) {
   for (const bool string_first : {true, false}) {
@@ -865,7 +865,7 @@ TEST(BagTest, ATopicOfOnlyAnotherTypeNamesItsType) {
       << e;
 }
 
-// Issue 25.7: `rosbag record joint_states` stores the relative name; either form finds it.
+// `rosbag record joint_states` stores the relative name; either form finds it.
 TEST(BagTest, RelativeAndAbsoluteTopicNamesMatch) {
   const std::string relative =
       write_mixed("relative.bag", "joint_states", [](int, double, auto&) {});
@@ -879,7 +879,7 @@ TEST(BagTest, RelativeAndAbsoluteTopicNamesMatch) {
   EXPECT_EQ(mbk_offline::exit_status(s), 0);
 }
 
-// Issue 24.2: a JointState whose name count says 2^32 - 1 (one damaged field) is refused from
+// A JointState whose name count says 2^32 - 1 (one damaged field) is refused from
 // its bytes, without allocating, and the reading goes on.
 TEST(BagTest, AnArrayCountBeyondTheMessageIsSkipped) {
   const mbk::Model model = mbk::load_model_file(kModel);
@@ -909,7 +909,7 @@ TEST(BagTest, AnArrayCountBeyondTheMessageIsSkipped) {
       << s.unreadable_example;
 }
 
-// Issue 24.6: the command's exit status says a partial run (2), with the summary.
+// The command's exit status says a partial run (2), with the summary.
 TEST(BagTest, APartialRunExitsTwoWithTheCounts) {
   const std::string in =
       write_mixed("cli_mixed.bag", "/joint_states", [](int i, double t, auto& bag) {
@@ -925,7 +925,7 @@ TEST(BagTest, APartialRunExitsTwoWithTheCounts) {
   EXPECT_NE(text.find("unreadable 1 messages"), std::string::npos) << text;
 }
 
-// Issue 24.11: stamps jittered so that every interval differs, more of them than the survey's
+// Stamps jittered so that every interval differs, more of them than the survey's
 // 16,384 bins: the bounded-memory path surveys the stamps a second time and takes the whole
 // recording's max_gap (5 x the median interval) bit for bit, and writes every sample.
 TEST(BagTest, JitteredStampsGiveTheWholeRecordingsMaxGap) {
@@ -957,7 +957,7 @@ TEST(BagTest, JitteredStampsGiveTheWholeRecordingsMaxGap) {
 
 }  // namespace
 
-// Issue 25.5: a published mimic value wins over the mimic rule, as in the node and
+// A published mimic value wins over the mimic rule, as in the node and
 // robot_state_publisher; the finger (2 q_arm2 + 0.1) is recorded 0.3 off its rule.
 TEST(BagTest, APublishedMimicValueWinsOverItsRule) {
   const std::string urdf = MBK_SOURCE_DIR "/test/ros/test_robot.urdf";

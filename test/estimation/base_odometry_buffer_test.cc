@@ -139,7 +139,7 @@ void expect_exact(const mbk::BaseMotion& m, const mbk::BaseSample& s, const Cons
   expect_near(m.alpha, V::Zero(), 1e-9, "alpha");
 }
 
-// Odometry at 100 Hz read half a period after each sample (issue 25.4): exact to 1e-12.
+// Odometry at 100 Hz read half a period after each sample: exact to 1e-12.
 TEST(BaseOdometryBuffer, InterpolationIsExactOnAConstantTwistAboutAFixedAxis) {
   auto estimator = mbk::make_derivative_estimator("backward_difference");
   mbk::BaseOdometryBuffer buffer(*estimator, 0.5);

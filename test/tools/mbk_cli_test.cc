@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/independent_speeds.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"
@@ -422,7 +422,7 @@ TEST_F(MbkEval, PartialVelocityMethodGivesTheSameNumbers) {
   EXPECT_EQ(mbk(args + " --method recursive").out, mbk(args).out);  // the default
 }
 
-// "system" (issue 10): M, p_G, v_G, a_G, M v_G as the core computes them; the angular momentum
+// "system": M, p_G, v_G, a_G, M v_G as the core computes them; the angular momentum
 // null with the bodies that lack an inertia named, or a vector when all have one.
 void expect_system(const Json& system, const mbk::Model& model, const mbk::Data<double>& data) {
   mbk::SystemKinematics<double> s;
@@ -695,7 +695,7 @@ TEST(MbkCli, BadUrdfIsOneLine) {
 }
 
 // A URDF with an inertia that is not physical loads: mbk prints the warning once on stderr, exits
-// 0, and leaves the angular momentum out (issue 25).
+// 0, and leaves the angular momentum out.
 TEST(MbkCli, UnphysicalUrdfInertiaIsOneWarningAndExitZero) {
   const TempFile robot(
       "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"><inertial><mass value=\"1\"/>"

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/offline_kinematics.h"
@@ -73,7 +73,7 @@ TEST(RecordingTest, AJointNeverNamedIsAnError) {
   }
 }
 
-// Issue 24.8: when every sample was dropped, the error says why (NaN, a name given twice), not
+// When every sample was dropped, the error says why (NaN, a name given twice), not
 // only that no sample names the joints.
 TEST(RecordingTest, EveryDroppedSampleSaysWhy) {
   const mbk::Model model = two_joints();
@@ -145,7 +145,7 @@ TEST(TrajectoryCsvTest, ClearErrors) {
   }
 }
 
-// Issue 24.6, 24.8: CR-only and CRLF line ends and a byte-order mark read as LF; a NUL inside a
+// CR-only and CRLF line ends and a byte-order mark read as LF; a NUL inside a
 // cell and a column given twice are clear errors.
 TEST(TrajectoryCsvTest, LineEndsAndByteOrderMark) {
   const mbk::Model model = two_joints();

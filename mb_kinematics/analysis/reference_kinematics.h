@@ -1,0 +1,18 @@
+// The recursion in quad precision and in long double, the references of the error measures
+// (kinematics_error.h, stability.h) and of the tests, compiled once in mbk_analysis
+// (reference_kinematics.cc). Include this header, not core/kinematics.h, where the update runs
+// in those types: GCC takes about 50 s at -O3 for the flattened loop in Quad (every operation a
+// call into libquadmath, inlined), in every file that instantiates it.
+#pragma once
+
+#include "mb_kinematics/analysis/quad.h"
+#include "mb_kinematics/core/kinematics_double.h"
+
+namespace mbk {
+
+extern template void forward_kinematics<Quad>(const Model&, const JointState<Quad>&, Data<Quad>&,
+                                              Level);
+extern template void forward_kinematics<long double>(const Model&, const JointState<long double>&,
+                                                     Data<long double>&, Level);
+
+}  // namespace mbk
