@@ -5,6 +5,11 @@
 //                                     OUT.bag; counters: samples/s end to end and the seconds
 //                                     spent reading, computing and writing per 1000 samples
 //   bag/human/<rate>Hz/bag_and_csv_out   the same with the tidy CSV too
+//   bag/human_urdf/6000/csv_out       run_bag on a bag of 6000 samples (6 s at 1 kHz) of the demo
+//                                     trajectories of the 37-link human URDF to OUT.csv alone (the
+//                                     default estimator, auto); real time, counter samples_per_s
+//   rosbag_read/human_urdf/6000       the floor: rosbag's own read of the same bag (rosbag::View
+//                                     over its messages, each deserialised by instantiate<>)
 //   compute/<model>/<estimated|given>/threads:T   the computation as mbk bag runs it
 //                                     (OfflineBatch: estimates, state checks, forward_kinematics)
 //                                     on T threads, for 5 s at 1 kHz, derivatives estimated
@@ -34,6 +39,7 @@
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
 #include <rosbag/bag.h>
+#include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
 #include <unistd.h>
 
@@ -55,16 +61,20 @@
 namespace {
 
 const std::string kHuman = std::string(MBK_SOURCE_DIR) + "/config/human_body.yaml";
+const std::string kHumanUrdf = std::string(MBK_SOURCE_DIR) + "/config/human_body.urdf";
 
-std::string demo_bag(double rate) {
-  const std::string path = "/tmp/mbk_bag_benchmark_" + std::to_string(int(rate)) + ".bag";
-  const mbk::Model model = mbk::load_model_file(kHuman);
+// `seconds` of the demo trajectories of `model_path` at `rate` on /joint_states (positions).
+std::string demo_bag(double rate, const std::string& model_path = kHuman, double seconds = 10) {
+  const std::string path = "/tmp/mbk_bag_benchmark_" + std::to_string(int(rate)) + "_" +
+                           std::to_string(int(seconds * rate)) +
+                           (model_path == kHuman ? "" : "_urdf") + ".bag";
+  const mbk::Model model = mbk::load_model_file(model_path);
   const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
   rosbag::Bag bag(path, rosbag::bagmode::Write);
   sensor_msgs::JointState js;
   js.name = model.coordinate_names;
   js.position.resize(model.nq);
-  for (int i = 0; i < 10 * rate; ++i) {
+  for (int i = 0; i < seconds * rate; ++i) {
     const double t = 1.0 + i / rate;
     js.header.stamp = ros::Time(t);
     for (int c = 0; c < model.nq; ++c) js.position[c] = waves[c].at(t, 0);
@@ -91,6 +101,38 @@ void bag_path(benchmark::State& state, double rate, bool csv) {
   state.counters["read_ms_per_1k"] = 1e3 * read * per_k;
   state.counters["compute_ms_per_1k"] = 1e3 * compute * per_k;
   state.counters["write_ms_per_1k"] = 1e3 * write * per_k;
+}
+
+// mbk bag from a bag of the 37-link human URDF to a CSV alone, reading included, in real time.
+void bag_to_csv(benchmark::State& state) {
+  mbk_offline::BagOptions o;
+  o.input = demo_bag(1000, kHumanUrdf, 6);
+  o.model = kHumanUrdf;
+  o.out_csv = "/tmp/mbk_bag_benchmark_urdf_out.csv";
+  long samples = 0;
+  double read = 0;
+  for (auto _ : state) {
+    const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+    samples += s.written;
+    read += s.read_seconds;
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
+  state.counters["read_ms_per_1k"] = 1e6 * read / samples;
+}
+
+// rosbag's own read of bag_to_csv's bag: every message deserialised, nothing else.
+void rosbag_read(benchmark::State& state) {
+  const std::string path = demo_bag(1000, kHumanUrdf, 6);
+  long samples = 0;
+  for (auto _ : state) {
+    rosbag::Bag bag(path, rosbag::bagmode::Read);
+    for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+      const sensor_msgs::JointState::ConstPtr js = m.instantiate<sensor_msgs::JointState>();
+      benchmark::DoNotOptimize(js->position.back());
+      ++samples;
+    }
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
 }
 
 mbk::Recording recording(const mbk::Model& model, double rate, double seconds, bool given) {
@@ -269,6 +311,14 @@ BENCHMARK_CAPTURE(bag_path, human / 100Hz / bag_out, 100.0, false)->Unit(benchma
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_out, 1000.0, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(bag_path, human / 1000Hz / bag_and_csv_out, 1000.0, true)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(bag_to_csv)
+    ->Name("bag/human_urdf/6000/csv_out")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK(rosbag_read)
+    ->Name("rosbag_read/human_urdf/6000")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(compute, human / estimated, human(), false)
     ->ArgName("threads")
     ->Arg(1)

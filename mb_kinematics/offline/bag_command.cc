@@ -2,6 +2,7 @@
 
 #include <ros/time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -294,62 +295,111 @@ void write_errors(const std::string& path, const std::vector<mbk::CoordinateErro
 // Rows computed per OfflineStream chunk: a few blocks, small beside a long recording.
 constexpr int kStreamChunkRows = 8192;
 
-// A pass over the input's stamps alone, for the survey's exact median interval (jittered stamps).
-void survey_stamps(const BagOptions& o, const mbk::Model& model, mbk::RecordingSurvey& survey,
-                   BagSummary& s) {
-  mbk::RecordingBuilder builder(model);
-  builder.stream_to(
-      [&](double t, const double*, const double*, const std::uint8_t*) { survey.add_stamp(t); });
-  BaseOdometry unused;
-  read_input(o, model, builder, unused, s, false);
-  builder.finish();
-}
+// The rows of the streamed path kept in memory for the passes after the first: up to this many
+// bytes (about 26,000 samples of 37 coordinates); a longer recording is read again for each.
+constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 
-// "auto"'s choice pass (offline/offline_stream.h) over the input: the whole recording's choices
-// and the estimating pass's reach.
-mbk::WholeRecording choose_auto(const BagOptions& o, const mbk::Model& model,
-                                const mbk::RecordingSurvey& survey, double max_gap,
-                                mbk::OfflineReach& reach, BagSummary& s) {
-  mbk::AutoChoosePass pass(survey, max_gap, kStreamChunkRows);
-  mbk::RecordingBuilder builder(model);
-  builder.stream_to(
-      [&](double t, const double* p, const double* v, const std::uint8_t*) { pass.add(t, p, v); });
-  BaseOdometry unused;
-  read_input(o, model, builder, unused, s, true);
-  builder.finish();
-  return pass.finish(reach);
-}
+// The streamed path's input: its accepted rows (RecordingBuilder's sink), handed in order to each
+// pass. The first pass reads the input and keeps the rows (up to kKeptRowBytes); the later passes
+// replay them, or read the input again when it was longer. Reads of a bag: two when its rows fit
+// (read_bag's check in a child process, then the first pass), else one more per later pass (the
+// passes: the survey; with jittered stamps, the stamps once more; "auto"'s choice; the computing).
+class InputRows {
+ public:
+  using Sink = mbk::RecordingBuilder::RowSink;
+  InputRows(const BagOptions& o, const mbk::Model& model) : o_(o), model_(model) {}
+  // Every row to `sink`; the first pass's unreadable messages go to `s`.
+  void pass(const Sink& sink, BagSummary& s) {
+    if (read_ && kept_) return replay(sink);
+    const bool first = !read_;
+    mbk::RecordingBuilder builder(model_);
+    builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
+      if (first) keep(t, p, v, g);
+      sink(t, p, v, g);
+    });
+    BaseOdometry unused;
+    read_input(o_, model_, builder, unused, s, read_);
+    builder.finish();  // every coordinate named, or the error
+    if (!first) return;
+    read_ = true;
+    log_ = builder.log();
+    samples_read_ = builder.samples_read();
+  }
+  // The reading's drops and notes (later passes read the same), and the samples read.
+  mbk::DropLog& log() { return log_; }
+  long samples_read() const { return samples_read_; }
 
-// The bounded-memory path (offline/offline_stream.h): a first pass surveys the input (without
-// keeping it), "auto" chooses its windows in a second, the last computes and writes the rows as
-// they are read. False, with nothing written, when the recording needs the whole-recording path
-// (a coordinate in some samples only).
+ private:
+  void keep(double t, const double* p, const double* v, const std::uint8_t* g) {
+    const std::size_t nq = model_.nq, rows = t_.size();
+    const std::size_t most = kKeptRowBytes / (sizeof(double) * (1 + 2 * nq) + nq);
+    if (!kept_) return;
+    if (rows == most) {
+      kept_ = false;
+      t_ = {}, position_ = {}, velocity_ = {}, given_ = {};
+      return;
+    }
+    if (rows == t_.capacity()) {  // grown by hand: never beyond kKeptRowBytes
+      const std::size_t n = std::min(most, std::max<std::size_t>(1024, 2 * rows));
+      t_.reserve(n), position_.reserve(n * nq), velocity_.reserve(n * nq), given_.reserve(n * nq);
+    }
+    t_.push_back(t);
+    position_.insert(position_.end(), p, p + nq);
+    velocity_.insert(velocity_.end(), v, v + nq);
+    given_.insert(given_.end(), g, g + nq);
+  }
+  void replay(const Sink& sink) const {
+    const std::size_t nq = model_.nq, rows = t_.size();
+    mbk::Progress bar("computing", o_.progress);
+    for (std::size_t r = 0; r < rows; ++r) {
+      if (r % 1024 == 0) bar.update(static_cast<long>(r), static_cast<long>(rows));
+      sink(t_[r], position_.data() + r * nq, velocity_.data() + r * nq, given_.data() + r * nq);
+    }
+    bar.finish();
+  }
+
+  const BagOptions& o_;
+  const mbk::Model& model_;
+  bool read_ = false, kept_ = true;
+  mbk::DropLog log_;
+  long samples_read_ = 0;
+  std::vector<double> t_, position_, velocity_;  // rows x nq
+  std::vector<std::uint8_t> given_;
+};
+
+// The bounded-memory path (offline/offline_stream.h): a first pass surveys the input, "auto"
+// chooses its windows in a second, the last computes and writes the rows (InputRows: the input
+// read once when its rows fit in kKeptRowBytes). False, with nothing written, when the
+// recording needs the whole-recording path (a coordinate in some samples only).
 bool run_streamed(const BagOptions& o, const mbk::Model& model,
                   const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
+  InputRows input(o, model);
   mbk::RecordingSurvey survey(model.nq, o.max_gap <= 0 || estimator.automatic);
-  {
-    mbk::RecordingBuilder first(model);
-    first.stream_to([&](double t, const double*, const double*, const std::uint8_t* given) {
-      survey.add(t, given);
-    });
-    BaseOdometry unused;
-    read_input(o, model, first, unused, s, false);
-    first.finish();  // every coordinate named, or the error
-  }
+  input.pass([&](double t, const double*, const double*,
+                 const std::uint8_t* given) { survey.add(t, given); },
+             s);
   if (!survey.streamable()) return false;
-  while (!survey.finish_pass()) survey_stamps(o, model, survey, s);
+  while (!survey.finish_pass())  // jittered stamps: the exact median interval
+    input.pass(
+        [&](double t, const double*, const double*, const std::uint8_t*) { survey.add_stamp(t); },
+        s);
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
-  if (estimator.automatic) whole = choose_auto(o, model, survey, s.max_gap, reach, s);
+  if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
+    mbk::AutoChoosePass choose(survey, s.max_gap, kStreamChunkRows);
+    input.pass([&](double t, const double* p, const double* v,
+                   const std::uint8_t*) { choose.add(t, p, v); },
+               s);
+    whole = choose.finish(reach);
+  }
   Outputs out;
   open_outputs(o, model, model, "", estimator.automatic, out);
-  mbk::RecordingBuilder builder(model);
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole),
       o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
-      [&](const mbk::OfflineRow& row) { take(row, out, builder.log(), s.written); });
+      [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
   stream.set_formatter(out.formatter());
   stream.set_body_errors(out.csv && estimator.automatic);
   std::unique_ptr<SampleErrorsFile> sample_errors;
@@ -361,15 +411,12 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                               int begin,
                               int end) { sample_errors->write(piece, states, begin, end); });
   }
-  builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
-    stream.add(t, p, v, g);
-  });
-  BaseOdometry unused;
-  read_input(o, model, builder, unused, s, true);
-  builder.finish();
+  input.pass([&](double t, const double* p, const double* v,
+                 const std::uint8_t* g) { stream.add(t, p, v, g); },
+             s);
   stream.finish();  // the reading's progress bar is the computing's
-  s.read = builder.samples_read();
-  s.log = builder.log();
+  s.read = input.samples_read();
+  s.log = input.log();
   s.threads = stream.threads();
   s.compute_seconds = stream.seconds().compute;
   const auto t_close = Clock::now();

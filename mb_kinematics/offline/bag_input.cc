@@ -158,6 +158,20 @@ class ByteWalk {
   std::uint32_t count_ = 0;
 };
 
+// A message's serialized bytes into `bytes`, its record read once (MessageInstance::size() would
+// read the record's header a second time).
+void copy_bytes(const rosbag::MessageInstance& m, std::vector<std::uint8_t>& bytes) {
+  struct Sink {  // rosbag's stream: advance(n) gives room for the n bytes it copies
+    std::vector<std::uint8_t>& bytes;
+    std::uint8_t* advance(std::uint32_t n) {
+      bytes.resize(n);
+      return bytes.data();
+    }
+  } sink{bytes};
+  bytes.clear();
+  m.write(sink);
+}
+
 // Reads messages from their bytes, checked before they are deserialized (a count of 2^32 names
 // in a damaged message would otherwise be allocated), into the recording or the odometry.
 class MessageReader {
@@ -186,12 +200,10 @@ class MessageReader {
  private:
   template <typename M>
   std::string load(const rosbag::MessageInstance& m, const std::vector<Field>& fields, M& out) {
-    const std::string type = ros::message_traits::datatype<M>();
+    const char* type = ros::message_traits::datatype<M>();
     if (m.getDataType() != type || m.getMD5Sum() != ros::message_traits::md5sum<M>())
       return "a " + m.getDataType() + " message (md5 " + m.getMD5Sum() + "), not " + type;
-    bytes_.resize(m.size());
-    ros::serialization::OStream copy(bytes_.data(), static_cast<uint32_t>(bytes_.size()));
-    m.write(copy);
+    copy_bytes(m, bytes_);
     const std::string error = ByteWalk(bytes_.data(), bytes_.size()).check(fields);
     if (!error.empty()) return error;
     ros::serialization::IStream in(bytes_.data(), static_cast<uint32_t>(bytes_.size()));
@@ -240,9 +252,7 @@ void survive_or_refuse(const std::string& path) {
       std::vector<std::uint8_t> bytes;
       for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
         try {  // as the real reading: past a message that throws, on to the next
-          bytes.resize(m.size());
-          ros::serialization::OStream copy(bytes.data(), static_cast<uint32_t>(bytes.size()));
-          m.write(copy);
+          copy_bytes(m, bytes);
         } catch (const std::exception&) {
         }
       }
@@ -302,10 +312,11 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
   const long total = view.size();
   long done = 0;
   MessageReader reader;
+  std::string where;  // reused: no allocation per message
   try {
     for (const rosbag::MessageInstance& m : view) {
       if (++done % 1024 == 0) progress(done, total);
-      const std::string where = m.getTopic() + " message " + std::to_string(done);
+      where.assign(m.getTopic()).append(" message ").append(std::to_string(done));
       const std::string error = reader.read(m, kinds.at(m.getTopic()), where, builder, base);
       if (!error.empty()) unreadable.add(1, where + ": " + error);
     }

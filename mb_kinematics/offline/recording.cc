@@ -50,18 +50,38 @@ std::string RecordingBuilder::validate(const std::vector<std::string>& names,
     return std::to_string(n) + " names but " + std::to_string(position.size()) + " positions";
   if (!velocity.empty() && velocity.size() != n)
     return std::to_string(n) + " names but " + std::to_string(velocity.size()) + " velocities";
-  std::fill(message_index_.begin(), message_index_.end(), -1);
-  for (size_t i = 0; i < n; ++i) {
-    auto it = index_.find(names[i]);
-    if (it == index_.end()) continue;
-    if (message_index_[it->second] >= 0) return "joint '" + names[i] + "' is named twice";
-    message_index_[it->second] = static_cast<int>(i);
+  if (names != mapped_names_) map_names(names);  // most samples name the same joints in order
+  for (size_t i = 0; i < n; ++i) {               // the first problem in the sample's order
+    if (i == duplicate_at_) return "joint '" + names[i] + "' is named twice";
+    if (!known_[i]) continue;
     if (!std::isfinite(position[i]))
       return "joint '" + names[i] + "': position is " + describe(position[i]);
     if (!velocity.empty() && !std::isfinite(velocity[i]))
       return "joint '" + names[i] + "': velocity is " + describe(velocity[i]);
   }
   return "";
+}
+
+// message_index_, known_, unknown_ and duplicate_at_ for a sample naming `names`.
+void RecordingBuilder::map_names(const std::vector<std::string>& names) {
+  mapped_names_ = names;
+  std::fill(message_index_.begin(), message_index_.end(), -1);
+  known_.assign(names.size(), 0);
+  unknown_.clear();
+  duplicate_at_ = names.size();
+  for (size_t i = 0; i < names.size(); ++i) {
+    auto it = index_.find(names[i]);
+    if (it == index_.end()) {
+      unknown_.push_back(names[i]);
+      continue;
+    }
+    if (message_index_[it->second] >= 0) {
+      duplicate_at_ = i;
+      return;
+    }
+    message_index_[it->second] = static_cast<int>(i);
+    known_[i] = 1;
+  }
 }
 
 // e and -e are one rotation: a sample that gives all four parameters of a joint with a negative
@@ -96,10 +116,7 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
     return log_.drop(
         t == last_stamp_ ? "repeated stamp" : "stamp goes backwards",
         where + ": stamp " + std::to_string(t) + " after " + std::to_string(last_stamp_));
-  std::vector<std::string> unknown;
-  for (const std::string& name : names)
-    if (!index_.count(name)) unknown.push_back(name);
-  if (!unknown.empty()) log_.note("names not in the model ignored", where + ": " + join(unknown));
+  if (!unknown_.empty()) log_.note("names not in the model ignored", where + ": " + join(unknown_));
   const int nq = model_.nq;
   std::vector<double> row(last_), vrow(nq, 0.0);
   std::vector<std::uint8_t> given(nq, 0);

@@ -72,6 +72,7 @@ class RecordingBuilder {
  private:
   std::string validate(const std::vector<std::string>& names, const std::vector<double>& position,
                        const std::vector<double>& velocity);
+  void map_names(const std::vector<std::string>& names);
   void align_euler_signs(std::vector<double>& row, const std::vector<std::uint8_t>& given) const;
   void emit(double t, const std::vector<double>& row, const std::vector<double>& vrow,
             const std::vector<std::uint8_t>& given);
@@ -81,8 +82,12 @@ class RecordingBuilder {
   std::unordered_map<std::string, int> index_;
   std::vector<char> mimic_;
   Recording rec_;
-  std::vector<int> message_index_;  // where the current sample names each coordinate, or -1
-  std::vector<double> last_;        // last position of every coordinate (for Euler signs)
+  std::vector<int> message_index_;         // where the current sample names each coordinate, or -1
+  std::vector<std::string> mapped_names_;  // the names message_index_ maps (hashed once)
+  std::vector<char> known_;                // per name of mapped_names_: in the model
+  std::vector<std::string> unknown_;       // mapped_names_ not in the model
+  size_t duplicate_at_ = 0;                // the first name given twice, or their count
+  std::vector<double> last_;               // last position of every coordinate (for Euler signs)
   std::vector<char> seen_;
   std::map<double, std::pair<std::vector<double>, std::vector<char>>> accelerations_;
   DropLog log_;
