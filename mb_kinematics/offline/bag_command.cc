@@ -259,7 +259,7 @@ class SampleErrorsFile {
 
  private:
   void open() {
-    file_ = std::make_unique<OutputFile>(path_);
+    file_ = std::make_unique<OutputFile>(path_, false);
     f_.open(file_->writing());
     f_ << "stamp";
     for (const std::string& name : model_.coordinate_names)
@@ -278,7 +278,7 @@ class SampleErrorsFile {
 // a relative 2^-11: MedianHistogram).
 // Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
 void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
-  OutputFile file(path);
+  OutputFile file(path, false);
   std::ofstream f(file.writing());
   f << "coordinate,noise,velocity_se,acceleration_se\n";
   f.precision(6);
