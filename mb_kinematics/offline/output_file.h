@@ -6,7 +6,10 @@
 // The temporary file is `PATH.mbk-tmp-PID-XXXXXX`: created by mkstemp (O_CREAT|O_EXCL, so
 // never through a link planted at its name; XXXXXX unpredictable), and checked to be still the
 // file created (same device and inode, a regular file, not a link) before it is renamed. A link
-// at PATH itself is replaced by the rename, never followed.
+// at PATH itself is replaced by the rename, never followed. The name carries the owning process:
+// a file left by a run that was killed (SIGKILL, a power cut) is removed by the next run on the
+// same output once that process is gone; SIGINT, SIGTERM and SIGHUP remove it at once
+// (temporary_files.h).
 #pragma once
 
 #include <sys/types.h>
@@ -35,6 +38,7 @@ class OutputFile {
   int fd_ = -1;       // the temporary file, open while it is written
   dev_t device_ = 0;  // and its identity
   ino_t inode_ = 0;
+  int slot_ = -1;  // its record for removal on signals
   bool committed_ = false;
 };
 

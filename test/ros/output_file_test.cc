@@ -1,11 +1,16 @@
 // mbk bag's outputs in a folder others can write to: the temporary file is created exclusively
 // under an unpredictable name (a link planted at a name it could have is never written through),
 // checked to be still the file created before it is renamed, and a link found at a side file's
-// name is replaced, never followed (offline/output_file.h).
+// name is replaced, never followed (offline/output_file.h). A run ended by SIGINT, SIGTERM or
+// SIGHUP removes its temporary files; one ended by SIGKILL leaves them to the next run on the
+// same output, which removes them.
 #include "mb_kinematics/offline/output_file.h"
 
+#include <glob.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -13,6 +18,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/offline/bag_command.h"
@@ -68,6 +75,7 @@ TEST(OutputFileTest, ALinkAtAPredictableTemporaryNameIsNotWrittenThrough) {
   o.out_bag = temp("planted_out.bag");
   o.out_csv = temp("planted_out.csv");
   for (const std::string& out : {o.out_bag, o.out_csv}) {
+    std::remove(out.c_str());
     const std::string planted = out + ".mbk-tmp-" + std::to_string(getpid());
     std::remove(planted.c_str());
     ASSERT_EQ(symlink(victim.c_str(), planted.c_str()), 0);
@@ -135,6 +143,71 @@ TEST(OutputFileTest, ALinkAtASideFileIsReplacedNotFollowed) {
     EXPECT_FALSE(is_link(temp(name))) << name;
     EXPECT_GT(read_file(temp(name)).size(), 100u) << name;
   }
+}
+
+// The paths matching a shell pattern.
+std::vector<std::string> matching(const std::string& pattern) {
+  glob_t found;
+  std::vector<std::string> paths;
+  if (glob(pattern.c_str(), 0, nullptr, &found) == 0)
+    paths.assign(found.gl_pathv, found.gl_pathv + found.gl_pathc);
+  globfree(&found);
+  return paths;
+}
+
+// `mbk bag` on a long recording (60,000 samples) into OUT.bag and OUT.csv, started in a child
+// process; returns once its first temporary file exists (the outputs are being written).
+pid_t start_long_run(const std::string& out) {
+  static const std::string in = write_trajectory("long_run.csv", 60000);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    freopen("/dev/null", "w", stderr);
+    execl(MBK_MBK_PATH, "mbk", "bag", in.c_str(), "--model", kModel.c_str(), "--out",
+          (out + ".bag").c_str(), "--csv", (out + ".csv").c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  for (int i = 0; i < 6000 && matching(out + ".*.mbk-tmp-*").empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_FALSE(matching(out + ".*.mbk-tmp-*").empty()) << "no temporary file after 60 s";
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  return pid;
+}
+
+// Ended by SIGINT, SIGTERM or SIGHUP while writing, a run leaves no temporary file, ends by the
+// signal (as it would have without the cleanup), and the previous outputs stay as they were.
+TEST(OutputFileTest, SignalsRemoveTheTemporaryFiles) {
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    const std::string out = temp("signalled_" + std::to_string(signal));
+    std::ofstream(out + ".bag") << "the previous bag";
+    std::ofstream(out + ".csv") << "the previous csv";
+    const pid_t pid = start_long_run(out);
+    ASSERT_EQ(kill(pid, signal), 0);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+        << "signal " << signal << ": status " << status << " (the run ended before the signal?)";
+    EXPECT_EQ(matching(out + ".*.mbk-tmp-*"), std::vector<std::string>{}) << signal;
+    EXPECT_EQ(read_file(out + ".bag"), "the previous bag");
+    EXPECT_EQ(read_file(out + ".csv"), "the previous csv");
+  }
+}
+
+// What a run killed by SIGKILL leaves (its process gone) is removed by the next run on the same
+// output; a temporary file of a process still running (here this test's) is left alone.
+TEST(OutputFileTest, TheNextRunRemovesAKilledRunsTemporaryFiles) {
+  const std::string out = temp("killed");
+  const pid_t pid = start_long_run(out);
+  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  ASSERT_EQ(waitpid(pid, nullptr, 0), pid);
+  ASSERT_FALSE(matching(out + ".*.mbk-tmp-*").empty());
+  const std::string running = out + ".csv.mbk-tmp-" + std::to_string(getpid()) + "-abcdef";
+  std::ofstream(running) << "a run still writing";
+  mbk_offline::BagOptions o = options(write_trajectory("after_kill.csv", 20));
+  o.out_bag = out + ".bag";
+  o.out_csv = out + ".csv";
+  mbk_offline::run_bag(o);
+  EXPECT_EQ(matching(out + ".*.mbk-tmp-*"), std::vector<std::string>{running});
+  std::remove(running.c_str());
 }
 
 }  // namespace
