@@ -2,6 +2,8 @@
 // std::invalid_argument whose one-line message says what is wrong and where (doc/method.md
 // 8), never in a crash, another exception type or a silently accepted model.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <functional>
 #include <initializer_list>
@@ -426,6 +428,27 @@ TEST(LoadModelFileErrors, ExtensionAndMissingFile) {
   expect_error([&] { mbk::load_model_file(yaml); }, {yaml, "cannot open scene file"});
   const std::string urdf = mbk_test::source_path("test/io/data/no_such_robot.xml");
   expect_error([&] { mbk::load_model_file(urdf); }, {urdf, "cannot open URDF file"});
+}
+
+// A model (or state) path that is not a regular file is refused, naming it: a link to
+// /dev/zero would be read until memory runs out, a pipe waited on for a writer.
+TEST(LoadModelFileErrors, ANonRegularFileIsRefused) {
+  const std::string dir = ::testing::TempDir();
+  const std::string folder = dir + "a_folder.yaml";
+  mkdir(folder.c_str(), 0700);
+  expect_error([&] { mbk::load_model_file(folder); }, {folder, "not a regular file"});
+  for (const std::string name : {"zero.urdf", "zero.yaml", "zero.bvh"}) {
+    const std::string link = dir + name;
+    std::remove(link.c_str());
+    ASSERT_EQ(symlink("/dev/zero", link.c_str()), 0);
+    expect_error([&] { mbk::load_model_file(link); }, {link, "not a regular file"});
+  }
+  const std::string pipe = dir + "pipe.urdf";
+  std::remove(pipe.c_str());
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
+  expect_error([&] { mbk::load_model_file(pipe); }, {pipe, "not a regular file"});
+  const mbk::Model model = mbk_test::revolute_chain(2);
+  expect_error([&] { mbk::read_state_file(model, dir + "zero.yaml"); }, {"not a regular file"});
 }
 
 }  // namespace
