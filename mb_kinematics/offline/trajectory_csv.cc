@@ -6,6 +6,7 @@
 #include <istream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace mbk {
 namespace {
@@ -58,11 +59,15 @@ std::vector<std::string> read_header(std::istream& in, const std::string& path) 
     throw std::invalid_argument(path +
                                 ":1: the first column must be 'time' (then one column "
                                 "per coordinate name)");
-  for (size_t i = 1; i < header.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (header[i] == header[j])
-        throw std::invalid_argument(path + ":1: column '" + header[i] + "' is given twice (" +
-                                    std::to_string(j + 1) + " and " + std::to_string(i + 1) + ")");
+  std::unordered_map<std::string, size_t> first;  // name -> its column: linear in the columns
+  first.reserve(header.size());
+  for (size_t i = 0; i < header.size(); ++i) {
+    const auto [it, inserted] = first.emplace(header[i], i);
+    if (!inserted)
+      throw std::invalid_argument(path + ":1: column '" + header[i] + "' is given twice (" +
+                                  std::to_string(it->second + 1) + " and " + std::to_string(i + 1) +
+                                  ")");
+  }
   return header;
 }
 
