@@ -33,10 +33,13 @@ void validate_body(Body& body, int k) {
   if ((c.transpose() * c - Mat3<double>::Identity()).norm() > 1e-9 || c.determinant() < 0)
     fail(body, k, "joint rotation (C_k) is not a proper rotation");
   if (joint_traits(joint.type).uses_axis) {
-    if (joint.axis.norm() < 1e-12) fail(body, k, "joint axis is zero");
+    // Lengths scaled by the largest component first (stable*): the length of [1e200, 1e200, 0]
+    // is 1.4e200, not an overflow to inf that would normalize it to [0, 0, 0].
+    if (joint.axis.stableNorm() < 1e-12) fail(body, k, "joint axis is zero");
     // Normalize unless already unit to rounding, so that finalizing twice changes nothing.
     if (std::abs(joint.axis.squaredNorm() - 1.0) > 4 * std::numeric_limits<double>::epsilon())
-      joint.axis.normalize();
+      joint.axis.stableNormalize();
+    if (std::abs(joint.axis.norm() - 1.0) > 1e-12) fail(body, k, "joint axis cannot be normalized");
   }
 }
 

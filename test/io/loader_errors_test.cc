@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <functional>
 #include <initializer_list>
 #include <string>
@@ -12,6 +13,7 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/state_json.h"
 #include "mb_kinematics/io/urdf_model.h"
+#include "mb_kinematics/io/urdf_writer.h"
 #include "mb_kinematics/io/yaml_scene.h"
 #include "test/support/test_models.h"
 
@@ -449,6 +451,26 @@ TEST(LoadModelFileErrors, ANonRegularFileIsRefused) {
   expect_error([&] { mbk::load_model_file(pipe); }, {pipe, "not a regular file"});
   const mbk::Model model = mbk_test::revolute_chain(2);
   expect_error([&] { mbk::read_state_file(model, dir + "zero.yaml"); }, {"not a regular file"});
+}
+
+// An axis whose length overflows a double ([1e200, 1e200, 0]: its squared norm is inf) is
+// normalized as any other, in a YAML scene and a URDF alike; `mbk urdf` writes it as a unit
+// axis (before: a "rotation" of 0.54 I and axis="0 0 0").
+TEST(HugeAxes, AreNormalizedWithoutOverflow) {
+  const mbk::Model yaml = mbk::load_yaml_scene_string(
+      one_body("joint: {type: revolute, axis: [1e200, 1e200, 0]}, mass: 1"));
+  const mbk::Model urdf = mbk::load_urdf_string(
+      two_links(continuous("j", "a", "b", "<axis xyz=\"1e200 1e200 0\"/>"),
+                std::string("<inertial><mass value=\"2\"/>") + kInertia + "</inertial>"));
+  for (const mbk::Model* model : {&yaml, &urdf}) {
+    const mbk::Vec3<double> axis = model->bodies[1].joint.axis;
+    EXPECT_NEAR(axis.x(), std::sqrt(0.5), 1e-15);
+    EXPECT_NEAR(axis.y(), std::sqrt(0.5), 1e-15);
+    EXPECT_EQ(axis.z(), 0.0);
+    const std::string text = mbk::write_urdf(*model, "r", mbk::UrdfStyle::kEquivalent);
+    EXPECT_EQ(text.find("axis xyz=\"0 0 0\""), std::string::npos) << text;
+    EXPECT_EQ(mbk::load_urdf_string(text).bodies[1].joint.axis, axis);
+  }
 }
 
 }  // namespace
