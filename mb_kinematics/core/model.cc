@@ -43,6 +43,15 @@ void validate_body(Body& body, int k) {
   }
 }
 
+// Refuses masses whose sum a double cannot hold (two links of 1.7e308 kg): the system's mass
+// and mass center would be inf or NaN, whichever loader read them.
+void check_total_mass(const Model& model) {
+  double total = 0;
+  for (const Body& body : model.bodies) total += body.mass;
+  if (!std::isfinite(total))
+    throw std::invalid_argument("the bodies' masses sum to more than a double holds: refused");
+}
+
 // Refuses a name given to two coordinates (or two speeds), naming both joints: a ball joint
 // `s` has `s/alpha`, which a joint named `s/alpha` would have too.
 void check_unique(const Model& model, const std::vector<std::string>& names, bool speeds) {
@@ -186,6 +195,7 @@ void finalize_model(Model& model) {
     if (model.nq != model.nv)
       throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
   }
+  check_total_mass(model);
   order_mimics(model);
   model.steps = make_body_steps(model);
 }

@@ -473,4 +473,18 @@ TEST(HugeAxes, AreNormalizedWithoutOverflow) {
   }
 }
 
+// Masses whose sum overflows (two bodies of 1.7e308 kg) are refused by every loader alike: the
+// URDF loader let them through and `mbk eval` printed "mass": inf, which is not JSON.
+TEST(HugeMasses, WhoseSumOverflowsAreRefusedByEveryLoader) {
+  expect_yaml_error(
+      "frame: R\nbodies:\n  - {name: B1, lower: 0, joint: {type: revolute}, mass: 1.7e308}\n"
+      "  - {name: B2, lower: B1, joint: {type: revolute}, mass: 1.7e308}\n",
+      {"masses sum to more than a double holds"});
+  const std::string heavy =
+      std::string("<inertial><mass value=\"1.7e308\"/>") + kInertia + "</inertial>";
+  expect_urdf_error("<robot name=\"r\"><link name=\"a\">" + heavy + "</link><link name=\"b\">" +
+                        heavy + "</link>" + continuous("j", "a", "b") + "</robot>",
+                    {"robot.urdf", "masses sum to more than a double holds"});
+}
+
 }  // namespace
