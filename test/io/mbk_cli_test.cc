@@ -777,4 +777,25 @@ TEST(MbkCli, ABvhFileIsAModel) {
             "mbk: error: sex: 'other' is neither male nor female (de Leva's columns)\n");
 }
 
+// Without --state, mbk eval evaluates the state an empty STATE.json gives: a mimic with
+// multiplier 2 and offset 0.5 sits at 0.5, not at 0 (its rule applied on both paths).
+TEST(MbkCli, EvalWithoutAStateAppliesTheMimicRules) {
+  const std::string dir = ::testing::TempDir();
+  const std::string urdf = dir + "mimic_offset.urdf", state = dir + "empty_state.json";
+  std::ofstream(urdf) << "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>"
+                         "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/>"
+                         "<child link=\"b\"/></joint>"
+                         "<joint name=\"m\" type=\"continuous\"><parent link=\"b\"/>"
+                         "<child link=\"c\"/><origin xyz=\"1 0 0\"/>"
+                         "<mimic joint=\"j\" multiplier=\"2\" offset=\"0.5\"/></joint></robot>";
+  std::ofstream(state) << "{}";
+  const Output bare = mbk("eval --model " + urdf);
+  const Output empty = mbk("eval --model " + urdf + " --state " + state);
+  ASSERT_EQ(bare.status, 0) << bare.err;
+  ASSERT_EQ(empty.status, 0) << empty.err;
+  EXPECT_EQ(bare.out, empty.out);
+  const mbk::Model model = mbk::load_urdf_file(urdf);
+  EXPECT_EQ(mbk::read_state_file(model, state).position[1], 0.5);
+}
+
 }  // namespace
