@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "mb_kinematics/io/printable.h"
+
 namespace mbk {
 namespace {
 
@@ -35,18 +37,6 @@ bool next_line(std::istream& in, std::string& line) {
     line.push_back(static_cast<char>(c));
   if (c == '\r' && buf.sgetc() == '\n') buf.sbumpc();
   return true;
-}
-
-// A cell as printed in an error: a NUL byte shown as \0.
-std::string printable(const std::string& cell) {
-  std::string out;
-  for (char c : cell) {
-    if (c == '\0')
-      out += "\\0";
-    else
-      out += c;
-  }
-  return out;
 }
 
 // The header's cells (a UTF-8 byte-order mark before it skipped); a name given twice is an error.

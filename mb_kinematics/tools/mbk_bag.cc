@@ -8,6 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/temporary_files.h"
@@ -24,7 +25,7 @@ int main(int argc, char** argv) {
     std::cerr << mbk_offline::format_summary(summary);
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::exception& e) {
-    std::cerr << "mbk: error: " << e.what() << "\n";
+    std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";
     return 1;
   }
 }

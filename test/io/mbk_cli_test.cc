@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -796,6 +797,25 @@ TEST(MbkCli, EvalWithoutAStateAppliesTheMimicRules) {
   EXPECT_EQ(bare.out, empty.out);
   const mbk::Model model = mbk::load_urdf_file(urdf);
   EXPECT_EQ(mbk::read_state_file(model, state).position[1], 0.5);
+}
+
+// mbk bag's error lines escape control bytes as mbk eval's do (io/printable.h): an ANSI escape in
+// a CSV cell and a newline in a path are written as \x1b and \n, one line of text.
+TEST(MbkCli, BagErrorLinesEscapeControlBytes) {
+  const std::string dir = ::testing::TempDir();
+  const std::string csv = dir + "ansi.csv";
+  std::ofstream(csv) << "time,Hips/x\n0,\x1b[31mred\n";
+  const Output cell = mbk("bag " + csv + " --model config/human_body.yaml --csv " + dir + "a.csv");
+  const Output path =
+      mbk("bag '" + dir + "new\nline.csv' --model config/human_body.yaml --csv " + dir + "b.csv");
+  for (const Output* run : {&cell, &path}) {
+    EXPECT_EQ(run->status, 1) << run->err;
+    EXPECT_EQ(run->err.rfind("mbk: error: ", 0), 0u) << run->err;
+    EXPECT_EQ(std::count(run->err.begin(), run->err.end(), '\n'), 1) << run->err;
+    EXPECT_EQ(run->err.find('\x1b'), std::string::npos) << run->err;
+  }
+  EXPECT_NE(cell.err.find("'\\x1b[31mred' is not a number"), std::string::npos) << cell.err;
+  EXPECT_NE(path.err.find("new\\nline.csv"), std::string::npos) << path.err;
 }
 
 }  // namespace

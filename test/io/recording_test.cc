@@ -187,7 +187,7 @@ TEST(TrajectoryCsvTest, NulInACellAndATwiceNamedColumnAreErrors) {
   const mbk::Model model = two_joints();
   for (const auto& bad :
        {std::make_pair(std::string("time,J1,J2\n0,0.5\0abc,0.1\n", 25),
-                       "traj_nul.csv:2: column 'J1': '0.5\\0abc' is not a number"),
+                       "traj_nul.csv:2: column 'J1': '0.5\\x00abc' is not a number"),
         std::make_pair(std::string("time,J1,J1\n0,0.5,0.1\n"),
                        "traj_two.csv:1: column 'J1' is given twice (2 and 3)")}) {
     const std::string path = temp_file(std::string(bad.second).substr(0, 12), bad.first);
