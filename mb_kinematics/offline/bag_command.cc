@@ -403,13 +403,14 @@ BagOptions parse_bag_options(int argc, char** argv) {
     const std::string arg = argv[i];
     auto it = values.find(arg);
     if (it != values.end() && i + 1 < argc) {
+      if (!it->second->empty()) throw std::invalid_argument(arg + " is given twice");
       *it->second = argv[++i];
     } else if (arg == "--max-gap" && i + 1 < argc) {
       char* end = nullptr;
       o.max_gap = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(o.max_gap >= 0))
-        throw std::invalid_argument("--max-gap needs seconds >= 0, not '" + std::string(argv[i]) +
-                                    "'");
+      if (*end != '\0' || !(o.max_gap > 0))  // 0 is the default's mark: not a gap to give
+        throw std::invalid_argument("--max-gap needs seconds > 0, not '" + std::string(argv[i]) +
+                                    "' (leave it out for 5 x the median sample interval)");
     } else if (arg == "--start-time" && i + 1 < argc) {
       char* end = nullptr;
       o.start_time = std::strtod(argv[++i], &end);

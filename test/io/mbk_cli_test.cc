@@ -818,4 +818,18 @@ TEST(MbkCli, BagErrorLinesEscapeControlBytes) {
   EXPECT_NE(path.err.find("new\\nline.csv"), std::string::npos) << path.err;
 }
 
+// `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
+// (the last one silently won).
+TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
+  const std::string in = ::testing::TempDir() + "twice.csv";
+  std::ofstream(in) << "time\n1\n";
+  const std::string bag = "bag " + in + " --model config/human_body.yaml ";
+  const Output zero = mbk(bag + "--csv /dev/null --max-gap 0");
+  EXPECT_EQ(zero.status, 1);
+  EXPECT_NE(zero.err.find("--max-gap needs seconds > 0, not '0'"), std::string::npos) << zero.err;
+  const Output twice = mbk(bag + "--csv /dev/null --csv /dev/null");
+  EXPECT_EQ(twice.status, 1);
+  EXPECT_NE(twice.err.find("--csv is given twice"), std::string::npos) << twice.err;
+}
+
 }  // namespace
