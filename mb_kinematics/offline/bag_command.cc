@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -399,11 +400,12 @@ BagOptions parse_bag_options(int argc, char** argv) {
       {"--scale", &scale},
       {"--body-mass", &body_mass},
       {"--sex", &sex}};
+  std::set<std::string> given;  // of `values`: each once
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     auto it = values.find(arg);
     if (it != values.end() && i + 1 < argc) {
-      if (!it->second->empty()) throw std::invalid_argument(arg + " is given twice");
+      if (!given.insert(arg).second) throw std::invalid_argument(arg + " is given twice");
       *it->second = argv[++i];
     } else if (arg == "--max-gap" && i + 1 < argc) {
       char* end = nullptr;
