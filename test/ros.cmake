@@ -94,6 +94,13 @@ target_link_libraries(bag_test mbk_offline mbk_analysis mbk_io mbk_core gtest_ma
 target_compile_definitions(bag_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   MBK_MBK_PATH="$<TARGET_FILE:mbk>")
 
+# mbk bag's temporary files: created exclusively, never through a link, removed on signals.
+catkin_add_gtest(output_file_test test/ros/output_file_test.cc)
+add_dependencies(output_file_test mbk mbk_bag mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(output_file_test mbk_offline mbk_io mbk_core gtest_main)
+target_compile_definitions(output_file_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+  MBK_MBK_PATH="$<TARGET_FILE:mbk>")
+
 # scripts/node_load.sh end to end on its own master (port 11523), the node and transport_floor
 # (MBK_WORKSPACE: test/tests.cmake).
 add_test(NAME node_load_smoke COMMAND ${PROJECT_SOURCE_DIR}/test/ros/node_load_smoke.sh)

@@ -33,11 +33,23 @@ void validate_body(Body& body, int k) {
   if ((c.transpose() * c - Mat3<double>::Identity()).norm() > 1e-9 || c.determinant() < 0)
     fail(body, k, "joint rotation (C_k) is not a proper rotation");
   if (joint_traits(joint.type).uses_axis) {
-    if (joint.axis.norm() < 1e-12) fail(body, k, "joint axis is zero");
+    // Lengths scaled by the largest component first (stable*): the length of [1e200, 1e200, 0]
+    // is 1.4e200, not an overflow to inf that would normalize it to [0, 0, 0].
+    if (joint.axis.stableNorm() < 1e-12) fail(body, k, "joint axis is zero");
     // Normalize unless already unit to rounding, so that finalizing twice changes nothing.
     if (std::abs(joint.axis.squaredNorm() - 1.0) > 4 * std::numeric_limits<double>::epsilon())
-      joint.axis.normalize();
+      joint.axis.stableNormalize();
+    if (std::abs(joint.axis.norm() - 1.0) > 1e-12) fail(body, k, "joint axis cannot be normalized");
   }
+}
+
+// Refuses masses whose sum a double cannot hold (two links of 1.7e308 kg): the system's mass
+// and mass center would be inf or NaN, whichever loader read them.
+void check_total_mass(const Model& model) {
+  double total = 0;
+  for (const Body& body : model.bodies) total += body.mass;
+  if (!std::isfinite(total))
+    throw std::invalid_argument("the bodies' masses sum to more than a double holds: refused");
 }
 
 // Refuses a name given to two coordinates (or two speeds), naming both joints: a ball joint
@@ -183,6 +195,7 @@ void finalize_model(Model& model) {
     if (model.nq != model.nv)
       throw std::invalid_argument("mimic joints need coordinate-derivative speeds");
   }
+  check_total_mass(model);
   order_mimics(model);
   model.steps = make_body_steps(model);
 }

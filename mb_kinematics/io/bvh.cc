@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/io/number_format.h"
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -264,11 +264,7 @@ BvhFile parse_bvh(const std::string& text, const std::string& path) {
 }
 
 BvhFile read_bvh(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw std::invalid_argument(path + ": cannot open");
-  std::stringstream text;
-  text << file.rdbuf();
-  return parse_bvh(text.str(), path);
+  return parse_bvh(read_text_file(path, "BVH file"), path);
 }
 
 void unwrap_rotations(BvhFile& bvh) {

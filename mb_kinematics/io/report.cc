@@ -1,6 +1,7 @@
 #include "mb_kinematics/io/report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
@@ -14,7 +15,11 @@
 namespace mbk {
 namespace {
 
-std::string number(double x) { return format_double(x); }
+// A JSON number: inf and NaN have none, so that no JSON written is invalid.
+std::string number(double x) {
+  if (!std::isfinite(x)) throw std::runtime_error("a value is not finite: no JSON written");
+  return format_double(x);
+}
 
 template <typename Matrix>
 std::string json_array(const Matrix& m) {  // row-major

@@ -51,7 +51,7 @@ int find_index(const std::unordered_map<std::string, int>& index, const std::str
 
 JointState<double> parse_state(const Model& model, const std::string& text,
                                const std::string& source) {
-  JointState<double> state(model);
+  JointState<double> state(model);  // default_state() before its mimics: they follow the text
   try {
     const YAML::Node root = YAML::Load(text);
     if (!root.IsMap()) throw std::invalid_argument("the state must be a JSON object");
@@ -83,6 +83,12 @@ JointState<double> parse_state(const Model& model, const std::string& text,
 }
 
 }  // namespace
+
+JointState<double> default_state(const Model& model) {
+  JointState<double> state(model);
+  apply_mimics(model, state);
+  return state;
+}
 
 // Messages hold names and yaml-cpp's text: control characters escaped to keep them one line.
 JointState<double> read_state_string(const Model& model, const std::string& text,

@@ -10,6 +10,10 @@
 
 namespace mbk {
 
+// The state when none is given, as an empty STATE.json reads: coordinates 0 (an Euler parameter
+// set the identity), mimic coordinates from their sources (multiplier * 0 + offset).
+JointState<double> default_state(const Model& model);
+
 // Throws std::invalid_argument naming the file and the bad key or value.
 JointState<double> read_state_string(const Model& model, const std::string& text,
                                      const std::string& source = "<state>");

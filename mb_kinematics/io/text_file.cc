@@ -1,10 +1,25 @@
 #include "mb_kinematics/io/text_file.h"
 
-#include <fstream>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <sstream>
 #include <stdexcept>
 
 namespace mbk {
+namespace {
+
+// Closes the file however the reading ends.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
 
 std::string read_text_stream(std::istream& in) {
   std::stringstream text;
@@ -13,9 +28,26 @@ std::string read_text_stream(std::istream& in) {
 }
 
 std::string read_text_file(const std::string& path, const std::string& what) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument(path + ": cannot open " + what);
-  return read_text_stream(in);
+  // O_NONBLOCK: a pipe is refused below, not waited on for a writer.
+  const Descriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+  if (file.fd < 0) throw std::invalid_argument(path + ": cannot open " + what);
+  struct stat st;
+  if (::fstat(file.fd, &st) != 0 || !S_ISREG(st.st_mode))
+    throw std::invalid_argument(path + ": cannot read " + what +
+                                ": not a regular file (a device, a pipe or a folder)");
+  std::string text;
+  text.reserve(static_cast<size_t>(st.st_size));
+  char buffer[65536];
+  for (;;) {
+    const ssize_t n = ::read(file.fd, buffer, sizeof buffer);
+    if (n > 0) {
+      text.append(buffer, static_cast<size_t>(n));
+    } else if (n == 0) {
+      return text;
+    } else if (errno != EINTR) {
+      throw std::invalid_argument(path + ": cannot read " + what);
+    }
+  }
 }
 
 }  // namespace mbk

@@ -6,9 +6,10 @@
 
 namespace mbk {
 
-// Throws std::invalid_argument("<path>: cannot open <what>") if the file cannot be read.
 // All that is left in the stream (empty if it is at its end).
 std::string read_text_stream(std::istream& in);
+// Throws std::invalid_argument("<path>: cannot open <what>") if the file cannot be read, and
+// refuses what is not a regular file (a link to /dev/zero or a pipe would be read without end).
 std::string read_text_file(const std::string& path, const std::string& what);
 
 }  // namespace mbk

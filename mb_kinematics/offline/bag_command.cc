@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -262,7 +263,7 @@ class SampleErrorsFile {
 
  private:
   void open() {
-    file_ = std::make_unique<OutputFile>(path_);
+    file_ = std::make_unique<OutputFile>(path_, false);
     f_.open(file_->writing());
     f_ << "stamp";
     for (const std::string& name : model_.coordinate_names)
@@ -281,7 +282,7 @@ class SampleErrorsFile {
 // a relative 2^-11: MedianHistogram).
 // Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
 void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
-  OutputFile file(path);
+  OutputFile file(path, false);
   std::ofstream f(file.writing());
   f << "coordinate,noise,velocity_se,acceleration_se\n";
   f.precision(6);
@@ -449,17 +450,19 @@ BagOptions parse_bag_options(int argc, char** argv) {
       {"--body-mass", &body_mass},
       {"--sex", &sex},
       {"--segments", &segments}};
+  std::set<std::string> given;  // of `values`: each once
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     auto it = values.find(arg);
     if (it != values.end() && i + 1 < argc) {
+      if (!given.insert(arg).second) throw std::invalid_argument(arg + " is given twice");
       *it->second = argv[++i];
     } else if (arg == "--max-gap" && i + 1 < argc) {
       char* end = nullptr;
       o.max_gap = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(o.max_gap >= 0))
-        throw std::invalid_argument("--max-gap needs seconds >= 0, not '" + std::string(argv[i]) +
-                                    "'");
+      if (*end != '\0' || !(o.max_gap > 0))  // 0 is the default's mark: not a gap to give
+        throw std::invalid_argument("--max-gap needs seconds > 0, not '" + std::string(argv[i]) +
+                                    "' (leave it out for 5 x the median sample interval)");
     } else if (arg == "--start-time" && i + 1 < argc) {
       char* end = nullptr;
       o.start_time = std::strtod(argv[++i], &end);

@@ -1,5 +1,6 @@
 #include "mb_kinematics/offline/bvh_recording.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "mb_kinematics/estimation/offline_estimator.h"
@@ -8,8 +9,19 @@
 
 namespace mbk {
 
+// The outputs' stamps hold nanoseconds (a bag's ros::Time, the CSV's %.9f): frames closer than
+// that would all get one stamp.
+constexpr double kFinestFrameTime = 1e-9;
+
 void add_bvh_frames(const BvhFile& bvh, const Model& model, double scale,
                     RecordingBuilder& builder) {
+  if (bvh.frame_time < kFinestFrameTime) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", bvh.frame_time);
+    throw std::invalid_argument(bvh.path + ": Frame Time " + text +
+                                " s is below 1 ns, finer than a stamp holds: correct the file's "
+                                "Frame Time (seconds per frame, e.g. 0.008333 for 120 Hz)");
+  }
   BvhFile unwrapped = bvh;
   unwrap_rotations(unwrapped);
   for (int f = 0; f < bvh.frame_count; ++f)

@@ -1,35 +1,132 @@
 #include "mb_kinematics/offline/output_file.h"
 
+#include <dirent.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <stdexcept>
+#include <utility>
+
+#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/offline/temporary_files.h"
 
 namespace mbk_offline {
 namespace {
+
+const char kTag[] = ".mbk-tmp-";
 
 bool in_place(const std::string& path) {
   struct stat st;
   return stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
 }
 
+// The folder of `path` ("." for a bare name) and its last component.
+std::pair<std::string, std::string> split(const std::string& path) {
+  const size_t slash = path.rfind('/');
+  if (slash == std::string::npos) return {".", path};
+  return {slash == 0 ? "/" : path.substr(0, slash), path.substr(slash + 1)};
+}
+
+// The process that owns a temporary file named `name` (`BASE.mbk-tmp-PID` or
+// `BASE.mbk-tmp-PID-XXXXXX`) of output `base`, or 0 when `name` is not one.
+pid_t owner(const std::string& name, const std::string& base) {
+  const std::string prefix = base + kTag;
+  if (name.compare(0, prefix.size(), prefix) != 0) return 0;
+  const char* digits = name.c_str() + prefix.size();
+  char* end = nullptr;
+  const long pid = std::strtol(digits, &end, 10);
+  if (end == digits || !(*end == '\0' || *end == '-') || pid <= 0) return 0;
+  return static_cast<pid_t>(pid);
+}
+
+bool running(pid_t pid) { return pid == getpid() || kill(pid, 0) == 0 || errno == EPERM; }
+
+// Removes the temporary files of `path` left by runs that were killed (their process is gone):
+// this user's regular files only, each named in a note.
+void remove_leftovers(const std::string& path) {
+  const auto [folder, base] = split(path);
+  DIR* dir = opendir(folder.c_str());
+  if (!dir) return;
+  while (const dirent* entry = readdir(dir)) {
+    const std::string name = entry->d_name;
+    const pid_t pid = owner(name, base);
+    if (pid == 0 || running(pid)) continue;
+    const std::string leftover = folder + "/" + name;
+    struct stat st;
+    if (lstat(leftover.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != geteuid())
+      continue;
+    if (unlink(leftover.c_str()) == 0)
+      std::cerr << "mbk: note: removed " << mbk::printable(leftover)
+                << ", left by an interrupted run (process " << pid << " has ended)\n";
+  }
+  closedir(dir);
+}
+
+// The permissions a file created by open(..., 0666) would have.
+mode_t default_mode() {
+  static const mode_t mode = [] {
+    const mode_t mask = umask(0);
+    umask(mask);
+    return 0666 & ~mask;
+  }();
+  return mode;
+}
+
 }  // namespace
 
-OutputFile::OutputFile(const std::string& path)
-    : path_(path),
-      writing_(in_place(path) ? path : path + ".mbk-tmp-" + std::to_string(getpid())) {}
+OutputFile::OutputFile(const std::string& path, bool named) : path_(path) {
+  if (named && in_place(path)) {
+    writing_ = path;
+    return;
+  }
+  remove_leftovers(path);
+  create_temporary();
+}
+
+void OutputFile::create_temporary() {
+  std::string name = path_ + kTag + std::to_string(getpid()) + "-XXXXXX";
+  fd_ = mkostemp(name.data(), O_CLOEXEC);
+  if (fd_ < 0)
+    throw std::invalid_argument(path_ + ": cannot create a file beside it (" +
+                                std::strerror(errno) + ")");
+  slot_ = record_temporary(name);
+  writing_ = name;
+  struct stat st;
+  if (fchmod(fd_, default_mode()) != 0 || fstat(fd_, &st) != 0) {
+    const std::string error = std::strerror(errno);
+    unlink(writing_.c_str());
+    forget_temporary(slot_);
+    close(fd_);
+    throw std::invalid_argument(writing_ + ": cannot set up (" + error + ")");
+  }
+  device_ = st.st_dev, inode_ = st.st_ino;
+}
 
 OutputFile::~OutputFile() {
-  if (!committed_ && writing_ != path_) std::remove(writing_.c_str());
+  if (!committed_ && fd_ >= 0) unlink(writing_.c_str());
+  forget_temporary(slot_);
+  if (fd_ >= 0) close(fd_);
 }
 
 void OutputFile::commit() {
-  if (writing_ != path_ && std::rename(writing_.c_str(), path_.c_str()) != 0)
-    throw std::runtime_error(path_ + ": cannot rename " + writing_ + " to it (" +
-                             std::strerror(errno) + ")");
+  if (fd_ >= 0) {
+    struct stat st;
+    if (lstat(writing_.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_dev != device_ ||
+        st.st_ino != inode_)
+      throw std::runtime_error(writing_ +
+                               ": replaced while it was written (by another process?): " + path_ +
+                               " left as it was");
+    if (std::rename(writing_.c_str(), path_.c_str()) != 0)
+      throw std::runtime_error(path_ + ": cannot rename " + writing_ + " to it (" +
+                               std::strerror(errno) + ")");
+  }
   committed_ = true;
 }
 

@@ -1,8 +1,18 @@
-// An output of mbk bag written under a temporary name beside it (`PATH.mbk-tmp-PID`) and renamed
-// over PATH only once it is whole (commit), so that a failed run never leaves a partial file
-// that looks whole. A path that exists and is not a regular file (/dev/stdout, a pipe, a device
-// such as /dev/full) is written in place, never replaced.
+// An output of mbk bag written under a temporary name beside it and renamed over PATH only once
+// it is whole (commit), so that a failed run never leaves a partial file that looks whole. A
+// path the user named that exists and is not a regular file (/dev/stdout, a pipe, a device such
+// as /dev/full, or a link to one) is written in place, never replaced.
+//
+// The temporary file is `PATH.mbk-tmp-PID-XXXXXX`: created by mkstemp (O_CREAT|O_EXCL, so
+// never through a link planted at its name; XXXXXX unpredictable), and checked to be still the
+// file created (same device and inode, a regular file, not a link) before it is renamed. A link
+// at PATH itself is replaced by the rename, never followed. The name carries the owning process:
+// a file left by a run that was killed (SIGKILL, a power cut) is removed by the next run on the
+// same output once that process is gone; SIGINT, SIGTERM and SIGHUP remove it at once
+// (temporary_files.h).
 #pragma once
+
+#include <sys/types.h>
 
 #include <string>
 
@@ -10,17 +20,25 @@ namespace mbk_offline {
 
 class OutputFile {
  public:
-  explicit OutputFile(const std::string& path);
+  // `named`: the user named `path` (--out, --csv); a side file (OUT.errors.csv) is not written
+  // in place through whatever is found at its name.
+  explicit OutputFile(const std::string& path, bool named = true);
   ~OutputFile();  // removes the temporary file unless committed
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 
   const std::string& writing() const { return writing_; }  // the path to write to now
-  // The written file renamed over the path; throws std::runtime_error if that fails.
+  // The written file renamed over the path; throws std::runtime_error if that fails or if the
+  // temporary file is no longer the one created.
   void commit();
 
  private:
+  void create_temporary();
   std::string path_, writing_;
+  int fd_ = -1;       // the temporary file, open while it is written
+  dev_t device_ = 0;  // and its identity
+  ino_t inode_ = 0;
+  int slot_ = -1;  // its record for removal on signals
   bool committed_ = false;
 };
 

@@ -6,6 +6,9 @@
 #include <istream>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
+
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {
@@ -36,18 +39,6 @@ bool next_line(std::istream& in, std::string& line) {
   return true;
 }
 
-// A cell as printed in an error: a NUL byte shown as \0.
-std::string printable(const std::string& cell) {
-  std::string out;
-  for (char c : cell) {
-    if (c == '\0')
-      out += "\\0";
-    else
-      out += c;
-  }
-  return out;
-}
-
 // The header's cells (a UTF-8 byte-order mark before it skipped); a name given twice is an error.
 std::vector<std::string> read_header(std::istream& in, const std::string& path) {
   std::string line;
@@ -58,11 +49,15 @@ std::vector<std::string> read_header(std::istream& in, const std::string& path) 
     throw std::invalid_argument(path +
                                 ":1: the first column must be 'time' (then one column "
                                 "per coordinate name)");
-  for (size_t i = 1; i < header.size(); ++i)
-    for (size_t j = 0; j < i; ++j)
-      if (header[i] == header[j])
-        throw std::invalid_argument(path + ":1: column '" + header[i] + "' is given twice (" +
-                                    std::to_string(j + 1) + " and " + std::to_string(i + 1) + ")");
+  std::unordered_map<std::string, size_t> first;  // name -> its column: linear in the columns
+  first.reserve(header.size());
+  for (size_t i = 0; i < header.size(); ++i) {
+    const auto [it, inserted] = first.emplace(header[i], i);
+    if (!inserted)
+      throw std::invalid_argument(path + ":1: column '" + header[i] + "' is given twice (" +
+                                  std::to_string(it->second + 1) + " and " + std::to_string(i + 1) +
+                                  ")");
+  }
   return header;
 }
 

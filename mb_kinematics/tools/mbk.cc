@@ -175,7 +175,7 @@ int eval(const std::map<std::string, std::string>& options) {
   const mbk::JointState<double> state = options.count("--state")
                                             ? mbk::read_state_file(model, options.at("--state"))
                                         : options.count("--frame") ? frame_state(options, model)
-                                                                   : mbk::JointState<double>(model);
+                                                                   : mbk::default_state(model);
   const std::string problem = mbk::check_state(model, state);  // NaN/Inf, |e| ~ 0, overflow
   if (!problem.empty()) throw std::invalid_argument(state_source(options) + ": " + problem);
   mbk::Data<double> data(model);

@@ -8,13 +8,16 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/progress.h"
+#include "mb_kinematics/offline/temporary_files.h"
 
 int main(int argc, char** argv) {
   // librosbag's own messages on damaged records ("Error: Received an invalid TCPROS header")
   // would break the one-line format: what it cannot read is counted and named in the summary.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  mbk_offline::remove_temporaries_on_signals();  // an interrupted run leaves no partial file
   try {
     mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
     if (options.help) {
@@ -26,7 +29,7 @@ int main(int argc, char** argv) {
     std::cerr << mbk_offline::format_summary(summary, options.verbose);
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::exception& e) {
-    std::cerr << "mbk: error: " << e.what() << "\n";
+    std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";
     return 1;
   }
 }

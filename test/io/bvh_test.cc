@@ -175,7 +175,7 @@ TEST(Bvh, ReadsAFileFromDisk) {
     mbk::read_bvh(path);
     ADD_FAILURE() << "no error for a missing file";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), path + ": cannot open");
+    EXPECT_EQ(std::string(e.what()), path + ": cannot open BVH file");
   }
 }
 

@@ -2,7 +2,10 @@
 // std::invalid_argument whose one-line message says what is wrong and where (doc/method.md
 // 8), never in a crash, another exception type or a silently accepted model.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cmath>
 #include <functional>
 #include <initializer_list>
 #include <string>
@@ -10,6 +13,7 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/state_json.h"
 #include "mb_kinematics/io/urdf_model.h"
+#include "mb_kinematics/io/urdf_writer.h"
 #include "mb_kinematics/io/yaml_scene.h"
 #include "test/support/test_models.h"
 
@@ -426,6 +430,61 @@ TEST(LoadModelFileErrors, ExtensionAndMissingFile) {
   expect_error([&] { mbk::load_model_file(yaml); }, {yaml, "cannot open scene file"});
   const std::string urdf = mbk_test::source_path("test/io/data/no_such_robot.xml");
   expect_error([&] { mbk::load_model_file(urdf); }, {urdf, "cannot open URDF file"});
+}
+
+// A model (or state) path that is not a regular file is refused, naming it: a link to
+// /dev/zero would be read until memory runs out, a pipe waited on for a writer.
+TEST(LoadModelFileErrors, ANonRegularFileIsRefused) {
+  const std::string dir = ::testing::TempDir();
+  const std::string folder = dir + "a_folder.yaml";
+  mkdir(folder.c_str(), 0700);
+  expect_error([&] { mbk::load_model_file(folder); }, {folder, "not a regular file"});
+  for (const std::string name : {"zero.urdf", "zero.yaml", "zero.bvh"}) {
+    const std::string link = dir + name;
+    std::remove(link.c_str());
+    ASSERT_EQ(symlink("/dev/zero", link.c_str()), 0);
+    expect_error([&] { mbk::load_model_file(link); }, {link, "not a regular file"});
+  }
+  const std::string pipe = dir + "pipe.urdf";
+  std::remove(pipe.c_str());
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
+  expect_error([&] { mbk::load_model_file(pipe); }, {pipe, "not a regular file"});
+  const mbk::Model model = mbk_test::revolute_chain(2);
+  expect_error([&] { mbk::read_state_file(model, dir + "zero.yaml"); }, {"not a regular file"});
+}
+
+// An axis whose length overflows a double ([1e200, 1e200, 0]: its squared norm is inf) is
+// normalized as any other, in a YAML scene and a URDF alike; `mbk urdf` writes it as a unit
+// axis (before: a "rotation" of 0.54 I and axis="0 0 0").
+TEST(HugeAxes, AreNormalizedWithoutOverflow) {
+  const mbk::Model yaml = mbk::load_yaml_scene_string(
+      one_body("joint: {type: revolute, axis: [1e200, 1e200, 0]}, mass: 1"));
+  const mbk::Model urdf = mbk::load_urdf_string(
+      two_links(continuous("j", "a", "b", "<axis xyz=\"1e200 1e200 0\"/>"),
+                std::string("<inertial><mass value=\"2\"/>") + kInertia + "</inertial>"));
+  for (const mbk::Model* model : {&yaml, &urdf}) {
+    const mbk::Vec3<double> axis = model->bodies[1].joint.axis;
+    EXPECT_NEAR(axis.x(), std::sqrt(0.5), 1e-15);
+    EXPECT_NEAR(axis.y(), std::sqrt(0.5), 1e-15);
+    EXPECT_EQ(axis.z(), 0.0);
+    const std::string text = mbk::write_urdf(*model, "r", mbk::UrdfStyle::kEquivalent);
+    EXPECT_EQ(text.find("axis xyz=\"0 0 0\""), std::string::npos) << text;
+    EXPECT_EQ(mbk::load_urdf_string(text).bodies[1].joint.axis, axis);
+  }
+}
+
+// Masses whose sum overflows (two bodies of 1.7e308 kg) are refused by every loader alike: the
+// URDF loader let them through and `mbk eval` printed "mass": inf, which is not JSON.
+TEST(HugeMasses, WhoseSumOverflowsAreRefusedByEveryLoader) {
+  expect_yaml_error(
+      "frame: R\nbodies:\n  - {name: B1, lower: 0, joint: {type: revolute}, mass: 1.7e308}\n"
+      "  - {name: B2, lower: B1, joint: {type: revolute}, mass: 1.7e308}\n",
+      {"masses sum to more than a double holds"});
+  const std::string heavy =
+      std::string("<inertial><mass value=\"1.7e308\"/>") + kInertia + "</inertial>";
+  expect_urdf_error("<robot name=\"r\"><link name=\"a\">" + heavy + "</link><link name=\"b\">" +
+                        heavy + "</link>" + continuous("j", "a", "b") + "</robot>",
+                    {"robot.urdf", "masses sum to more than a double holds"});
 }
 
 }  // namespace

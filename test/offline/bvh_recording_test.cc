@@ -37,6 +37,26 @@ TEST(BvhRecording, FramesAtTheirTimesWithUnwrappedAngles) {
   }
 }
 
+// Frames closer than a stamp's nanosecond (Frame Time 1e-12) are refused, naming the fix: they
+// were all stamped 0.000000000.
+TEST(BvhRecording, AFrameTimeBelowANanosecondIsRefused) {
+  mbk::BvhFile bvh = walk();
+  const mbk::Model model = mbk::model_from_bvh(bvh, {kScale});
+  bvh.frame_time = 1e-12;
+  mbk::RecordingBuilder builder(model);
+  try {
+    mbk::add_bvh_frames(bvh, model, kScale, builder);
+    ADD_FAILURE() << "Frame Time 1e-12 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cmu_walk.bvh: Frame Time 1e-12 s is below 1 ns"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("correct the file's Frame Time"), std::string::npos);
+  }
+  bvh.frame_time = 1e-9;  // the finest a stamp holds
+  EXPECT_NO_THROW(mbk::add_bvh_frames(bvh, model, kScale, builder));
+}
+
 TEST(BvhRecording, AFramesStateHasTheEstimatorsDerivatives) {
   const mbk::BvhFile bvh = walk();
   const mbk::Model model = mbk::model_from_bvh(bvh, {kScale});

@@ -162,11 +162,32 @@ TEST(TrajectoryCsvTest, LineEndsAndByteOrderMark) {
   }
 }
 
+// A header of many columns is checked for a name given twice in time linear in its length: here
+// 300,000 columns (2.4 MB; a pairwise check makes 4.5e10 comparisons, minutes beyond the test's
+// timeout), the last naming the first again.
+TEST(TrajectoryCsvTest, ATwiceNamedColumnAmongManyIsFoundInLinearTime) {
+  constexpr int kColumns = 300000;
+  std::string header = "time";
+  for (int i = 0; i < kColumns; ++i) header += ",c" + std::to_string(i);
+  const std::string path = temp_file("traj_wide.csv", header + ",c0\n0" +
+                                                          std::string(kColumns + 1, ',') + "\n");
+  mbk::RecordingBuilder b(two_joints());
+  try {
+    mbk::read_trajectory_csv(path, b);
+    FAIL() << "no error for a column given twice";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("column 'c0' is given twice (2 and " +
+                                         std::to_string(kColumns + 2) + ")"),
+              std::string::npos)
+        << std::string(e.what()).substr(0, 200);
+  }
+}
+
 TEST(TrajectoryCsvTest, NulInACellAndATwiceNamedColumnAreErrors) {
   const mbk::Model model = two_joints();
   for (const auto& bad :
        {std::make_pair(std::string("time,J1,J2\n0,0.5\0abc,0.1\n", 25),
-                       "traj_nul.csv:2: column 'J1': '0.5\\0abc' is not a number"),
+                       "traj_nul.csv:2: column 'J1': '0.5\\x00abc' is not a number"),
         std::make_pair(std::string("time,J1,J1\n0,0.5,0.1\n"),
                        "traj_two.csv:1: column 'J1' is given twice (2 and 3)")}) {
     const std::string path = temp_file(std::string(bad.second).substr(0, 12), bad.first);

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -832,6 +833,60 @@ TEST(MbkCli, ABvhFileIsAModel) {
       << yaml.err;
   EXPECT_EQ(mbk("eval " + walk + " --scale 0.01 --sex other").err,
             "mbk: error: sex: 'other' is neither male nor female (de Leva's columns)\n");
+}
+
+// Without --state, mbk eval evaluates the state an empty STATE.json gives: a mimic with
+// multiplier 2 and offset 0.5 sits at 0.5, not at 0 (its rule applied on both paths).
+TEST(MbkCli, EvalWithoutAStateAppliesTheMimicRules) {
+  const std::string dir = ::testing::TempDir();
+  const std::string urdf = dir + "mimic_offset.urdf", state = dir + "empty_state.json";
+  std::ofstream(urdf) << "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><link name=\"c\"/>"
+                         "<joint name=\"j\" type=\"continuous\"><parent link=\"a\"/>"
+                         "<child link=\"b\"/></joint>"
+                         "<joint name=\"m\" type=\"continuous\"><parent link=\"b\"/>"
+                         "<child link=\"c\"/><origin xyz=\"1 0 0\"/>"
+                         "<mimic joint=\"j\" multiplier=\"2\" offset=\"0.5\"/></joint></robot>";
+  std::ofstream(state) << "{}";
+  const Output bare = mbk("eval --model " + urdf);
+  const Output empty = mbk("eval --model " + urdf + " --state " + state);
+  ASSERT_EQ(bare.status, 0) << bare.err;
+  ASSERT_EQ(empty.status, 0) << empty.err;
+  EXPECT_EQ(bare.out, empty.out);
+  const mbk::Model model = mbk::load_urdf_file(urdf);
+  EXPECT_EQ(mbk::read_state_file(model, state).position[1], 0.5);
+}
+
+// mbk bag's error lines escape control bytes as mbk eval's do (io/printable.h): an ANSI escape in
+// a CSV cell and a newline in a path are written as \x1b and \n, one line of text.
+TEST(MbkCli, BagErrorLinesEscapeControlBytes) {
+  const std::string dir = ::testing::TempDir();
+  const std::string csv = dir + "ansi.csv";
+  std::ofstream(csv) << "time,Hips/x\n0,\x1b[31mred\n";
+  const Output cell = mbk("bag " + csv + " --model config/human_body.yaml --csv " + dir + "a.csv");
+  const Output path =
+      mbk("bag '" + dir + "new\nline.csv' --model config/human_body.yaml --csv " + dir + "b.csv");
+  for (const Output* run : {&cell, &path}) {
+    EXPECT_EQ(run->status, 1) << run->err;
+    EXPECT_EQ(run->err.rfind("mbk: error: ", 0), 0u) << run->err;
+    EXPECT_EQ(std::count(run->err.begin(), run->err.end(), '\n'), 1) << run->err;
+    EXPECT_EQ(run->err.find('\x1b'), std::string::npos) << run->err;
+  }
+  EXPECT_NE(cell.err.find("'\\x1b[31mred' is not a number"), std::string::npos) << cell.err;
+  EXPECT_NE(path.err.find("new\\nline.csv"), std::string::npos) << path.err;
+}
+
+// `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
+// (the last one silently won).
+TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
+  const std::string in = ::testing::TempDir() + "twice.csv";
+  std::ofstream(in) << "time\n1\n";
+  const std::string bag = "bag " + in + " --model config/human_body.yaml ";
+  const Output zero = mbk(bag + "--csv /dev/null --max-gap 0");
+  EXPECT_EQ(zero.status, 1);
+  EXPECT_NE(zero.err.find("--max-gap needs seconds > 0, not '0'"), std::string::npos) << zero.err;
+  const Output twice = mbk(bag + "--csv /dev/null --csv /dev/null");
+  EXPECT_EQ(twice.status, 1);
+  EXPECT_NE(twice.err.find("--csv is given twice"), std::string::npos) << twice.err;
 }
 
 }  // namespace
