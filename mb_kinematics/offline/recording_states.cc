@@ -20,8 +20,7 @@ Recording read_recording_file(const Model& model, const std::string& path, doubl
   else if (path.size() >= 4 && path.compare(path.size() - 4, 4, ".csv") == 0)
     read_trajectory_csv(path, builder);
   else
-    throw std::invalid_argument(path +
-                                ": not a recording this reads (.csv or .bvh; a bag: mbk bag)");
+    throw std::invalid_argument(path + ": not a recording this reads (.csv or .bvh)");
   Recording recording = builder.finish();
   log = builder.log();
   return recording;

@@ -21,6 +21,7 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
+#include "mb_kinematics/offline/recording_input.h"
 #include "mb_kinematics/offline/recording_states.h"
 
 namespace py = pybind11;
@@ -146,10 +147,11 @@ py::array_t<double> where_given(const mbk::Recording& r, const std::vector<doubl
   return out;
 }
 
-RecordedPtr read_recording(const ModelPtr& model, const std::string& path, double scale) {
+RecordedPtr read_recording(const ModelPtr& model, const std::string& path, double scale,
+                           const std::string& joint_states) {
   auto out = std::make_shared<Recorded>();
   py::gil_scoped_release release;
-  out->recording = mbk::read_recording_file(*model, path, scale, out->log);
+  out->recording = mbk_offline::read_recording_input(*model, path, scale, joint_states, out->log);
   return out;
 }
 

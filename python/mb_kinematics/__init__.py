@@ -104,14 +104,15 @@ class Model:
         return "<mb_kinematics.Model: %d bodies, nq=%d, nv=%d, frame %r>" % (
             self.body_count, self.nq, self.nv, self.frame)
 
-    def read_recording(self, path, scale=1.0):
-        """A trajectory CSV (`time,<coordinate>,...`) or a BVH file's motion (this model being
-        its skeleton, loaded with the same `scale`) read as `mbk bag` reads it: a Recording."""
+    def read_recording(self, path, scale=1.0, joint_states="/joint_states"):
+        """A rosbag (sensor_msgs/JointState on `joint_states`), a trajectory CSV
+        (`time,<coordinate>,...`) or a BVH file's motion (this model being its skeleton, loaded
+        with the same `scale`) read as `mbk bag` reads it: a Recording."""
         if isinstance(path, os.PathLike):
             path = os.fspath(path)
         if not isinstance(path, str):
             raise TypeError("path: a file name (str), not %s" % type(path).__name__)
-        return _core.read_recording(self._core, path, float(scale))
+        return _core.read_recording(self._core, path, float(scale), joint_states)
 
     def recording(self, times, positions):
         """A Recording of positions (N, nq) at increasing times (N,): every coordinate in every

@@ -1,4 +1,4 @@
-"""Recordings in memory: read_recording (BVH motion, trajectory CSV), Model.states (the offline
+"""Recordings in memory: read_recording (BVH motion, trajectory CSV, rosbag), Model.states (the offline
 estimators, "auto" with standard errors) and Model.recording_kinematics against `mbk bag`'s tidy
 CSV of the same recording, number for number; bad input."""
 import csv
@@ -86,6 +86,36 @@ def test_trajectory_csv_and_arrays(mbk_kinematics, tmp_path):
         assert np.array_equal(from_arrays[name], from_file[name]), name
 
 
+def test_bag_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
+    import rosbag
+    import rospy
+    from sensor_msgs.msg import JointState
+    model = mbk_kinematics.load(source("test/robots/panda.urdf"))
+    names = list(model.coordinate_names[:7])  # the arm; the fingers in every other message
+    path = str(tmp_path / "arm.bag")
+    with rosbag.Bag(path, "w") as bag:
+        for i in range(300):
+            t = 1 + 0.01 * i
+            msg = JointState(name=names, position=[0.4 * np.sin((1 + 0.3 * j) * t)
+                                                   for j in range(7)])
+            if i % 2 == 0:
+                msg.name = names + ["panda_finger_joint1"]
+                msg.position = list(msg.position) + [0.02 + 0.01 * np.sin(t)]
+            msg.header.stamp = rospy.Time.from_sec(t)
+            bag.write("/joint_states", msg, msg.header.stamp)
+    recording = model.read_recording(path)
+    assert recording.positions.shape == (300, model.nq)
+    assert np.isnan(recording.positions[1, model.coordinate_names.index("panda_finger_joint1")])
+    out = model.recording_kinematics(recording)
+    csv_path = str(tmp_path / "arm.csv")
+    mbk("bag", path, "--model", source("test/robots/panda.urdf"), "--csv", csv_path)
+    expect_same_as_bag(model, out, tidy_csv(csv_path))
+    states = model.states(recording)
+    assert "velocity_se" not in states  # the fingers are in every other sample only
+    with pytest.raises(ValueError, match="topic"):
+        model.read_recording(path, joint_states="/other")
+
+
 def test_bad_recordings(mbk_kinematics, tmp_path):
     model = mbk_kinematics.load(source("test/robots/panda.urdf"))
     t = np.array([0.0, 0.1, 0.1, 0.3])
@@ -102,7 +132,7 @@ def test_bad_recordings(mbk_kinematics, tmp_path):
         model.states(recording, estimator="median")
     with pytest.raises(TypeError, match="recording: a Recording"):
         model.states(np.zeros((4, model.nq)))
-    with pytest.raises(ValueError, match="recording this reads"):
+    with pytest.raises(ValueError, match="not a recording"):
         model.read_recording(str(tmp_path / "run.txt"))
     with pytest.raises(ValueError, match="missing.csv"):
         model.read_recording(str(tmp_path / "missing.csv"))
