@@ -7,6 +7,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -18,6 +21,8 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
+#include "mb_kinematics/offline/recording_input.h"
+#include "mb_kinematics/offline/recording_states.h"
 
 namespace py = pybind11;
 
@@ -119,6 +124,68 @@ void batch_kinematics(const ModelPtr& model, const InputArray& position, py::obj
     run<double>(*model, position, velocity, acceleration, outputs, bodies, threads);
 }
 
+// A recording read as mbk bag reads it, and what was dropped.
+struct Recorded {
+  mbk::Recording recording;
+  mbk::DropLog log;
+};
+using RecordedPtr = std::shared_ptr<Recorded>;
+
+py::array_t<double> matrix(const std::vector<double>& values, std::size_t rows, std::size_t cols) {
+  py::array_t<double> out({rows, cols});
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+// Recorded values where `flag` is set, NaN elsewhere.
+py::array_t<double> where_given(const mbk::Recording& r, const std::vector<double>& values,
+                                std::uint8_t flag) {
+  py::array_t<double> out = matrix(values, r.rows(), r.nq);
+  double* x = out.mutable_data();
+  for (std::size_t i = 0; i < r.given.size(); ++i)
+    if (!(r.given[i] & flag)) x[i] = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+RecordedPtr read_recording(const ModelPtr& model, const std::string& path, double scale,
+                           const std::string& joint_states) {
+  auto out = std::make_shared<Recorded>();
+  py::gil_scoped_release release;
+  out->recording = mbk_offline::read_recording_input(*model, path, scale, joint_states, out->log);
+  return out;
+}
+
+RecordedPtr recording_of_positions(const ModelPtr& model, const InputArray& time,
+                                   const InputArray& position) {
+  if (time.ndim() != 1 || position.ndim() != 2 || position.shape(0) != time.shape(0) ||
+      position.shape(1) != model->nq)
+    throw std::invalid_argument("times, positions: wrong shapes");
+  auto out = std::make_shared<Recorded>();
+  out->recording =
+      mbk::recording_of_positions(model->nq, time.shape(0), time.data(), position.data());
+  return out;
+}
+
+py::dict recording_states(const ModelPtr& model, const RecordedPtr& recorded,
+                          const std::string& estimator, double max_gap) {
+  mbk::RecordingStates s;
+  {
+    py::gil_scoped_release release;
+    s = mbk::recording_states(*model, recorded->recording, estimator, max_gap);
+  }
+  const std::size_t rows = recorded->recording.rows(), nq = model->nq;
+  py::dict out;
+  out["position"] = matrix(s.position, rows, nq);
+  out["velocity"] = matrix(s.velocity, rows, nq);
+  out["acceleration"] = matrix(s.acceleration, rows, nq);
+  if (!s.velocity_se.empty()) {
+    out["velocity_se"] = matrix(s.velocity_se, rows, nq);
+    out["acceleration_se"] = matrix(s.acceleration_se, rows, nq);
+  }
+  out["drop_reason"] = s.drop_reason;
+  return out;
+}
+
 py::dict field_traits() {
   py::dict out;
   for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
@@ -184,4 +251,29 @@ PYBIND11_MODULE(_core, m) {
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
   m.def("field_traits", &field_traits);
+  py::class_<Recorded, RecordedPtr>(m, "Recording")
+      .def_property_readonly(
+          "times",
+          [](const Recorded& r) {
+            return matrix(r.recording.stamp, r.recording.rows(), 1).attr("ravel")();
+          })
+      .def_property_readonly("positions",
+                             [](const Recorded& r) {
+                               return where_given(r.recording, r.recording.position,
+                                                  mbk::Recording::kPosition);
+                             })
+      .def_property_readonly("velocities",
+                             [](const Recorded& r) {
+                               return where_given(r.recording, r.recording.velocity,
+                                                  mbk::Recording::kVelocity);
+                             })
+      .def_property_readonly("accelerations",
+                             [](const Recorded& r) {
+                               return where_given(r.recording, r.recording.acceleration,
+                                                  mbk::Recording::kAcceleration);
+                             })
+      .def_property_readonly("drops", [](const Recorded& r) { return r.log.drops; });
+  m.def("read_recording", &read_recording);
+  m.def("recording_of_positions", &recording_of_positions);
+  m.def("recording_states", &recording_states);
 }

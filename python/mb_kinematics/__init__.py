@@ -16,7 +16,12 @@ import numpy as np
 
 from mb_kinematics import _core
 
-__all__ = ["load", "Model", "OUTPUTS"]
+__all__ = ["load", "Model", "OUTPUTS", "Recording"]
+
+#: A recording's samples (read_recording, or Model.recording from arrays): `times` (rows,),
+#: `positions` (rows, nq), `velocities` and `accelerations` (rows, nq, NaN where not recorded),
+#: `drops` (samples dropped, by reason, as `mbk bag` counts them).
+Recording = _core.Recording
 
 _TRAITS = _core.field_traits()
 _POSE, _VELOCITY, _ACCELERATION = 0, 1, 2
@@ -98,6 +103,64 @@ class Model:
     def __repr__(self):
         return "<mb_kinematics.Model: %d bodies, nq=%d, nv=%d, frame %r>" % (
             self.body_count, self.nq, self.nv, self.frame)
+
+    def read_recording(self, path, scale=1.0, joint_states="/joint_states"):
+        """A rosbag (sensor_msgs/JointState on `joint_states`), a trajectory CSV
+        (`time,<coordinate>,...`) or a BVH file's motion (this model being its skeleton, loaded
+        with the same `scale`) read as `mbk bag` reads it: a Recording."""
+        if isinstance(path, os.PathLike):
+            path = os.fspath(path)
+        if not isinstance(path, str):
+            raise TypeError("path: a file name (str), not %s" % type(path).__name__)
+        return _core.read_recording(self._core, path, float(scale), joint_states)
+
+    def recording(self, times, positions):
+        """A Recording of positions (N, nq) at increasing times (N,): every coordinate in every
+        row."""
+        times = np.ascontiguousarray(_real(times, "times"), dtype=np.float64)
+        positions = _real(positions, "positions")
+        if times.ndim != 1 or positions.shape != (len(times), self.nq):
+            raise ValueError("times, positions: shapes %s, %s, expected (N,) and (N, %d)" %
+                             (times.shape, positions.shape, self.nq))
+        if not (np.isfinite(times).all() and np.isfinite(positions).all()):
+            raise ValueError("times, positions: not finite (drop or repair those samples)")
+        return _core.recording_of_positions(
+            self._core, times, np.ascontiguousarray(positions, dtype=np.float64))
+
+    def states(self, recording, estimator="auto", max_gap=None):
+        """Every row's joint state as `mbk bag` computes it: the recorded values, velocities and
+        accelerations from the offline estimator where not recorded (`estimator` as
+        `mbk bag --estimator`; `max_gap` seconds, default 5 x the median interval). A dict:
+        `time`, `position`, `velocity`, `acceleration` (rows, nq), with "auto" `velocity_se`
+        and `acceleration_se` (standard errors, 0 where recorded; absent when some coordinate
+        is not in every row), and `valid` (rows,): False where mbk bag drops the row (too few
+        samples around it), whose `drop_reason` says why."""
+        if not isinstance(recording, Recording):
+            raise TypeError("recording: a Recording (read_recording or recording), not %s"
+                            % type(recording).__name__)
+        if not isinstance(estimator, str):
+            raise TypeError("estimator: a name such as 'auto', not %s" % type(estimator).__name__)
+        gap = 0.0 if max_gap is None else float(max_gap)
+        if gap < 0 or not np.isfinite(gap):
+            raise ValueError("max_gap: %r, expected seconds above 0" % (max_gap,))
+        out = _core.recording_states(self._core, recording, estimator, gap)
+        out["time"] = recording.times
+        out["valid"] = np.array([not r for r in out["drop_reason"]], dtype=bool)
+        return out
+
+    def recording_kinematics(self, recording, estimator="auto", max_gap=None, **options):
+        """What `mbk bag` does, in memory: states() of the recording, then kinematics() of its
+        valid rows (options as kinematics()). The dict of kinematics() plus `time` and the
+        states' arrays under `joint_position`, `joint_velocity`, `joint_acceleration`, of
+        the valid rows."""
+        s = self.states(recording, estimator, max_gap)
+        keep = s["valid"]
+        out = self.kinematics(s["position"][keep], s["velocity"][keep],
+                              s["acceleration"][keep], **options)
+        out["time"] = s["time"][keep]
+        for name in ("position", "velocity", "acceleration"):
+            out["joint_" + name] = s[name][keep]
+        return out
 
     def kinematics(self, q, velocity=None, acceleration=None, outputs=None, bodies=None,
                    threads=None, out=None, dtype=np.float64):
