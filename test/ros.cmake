@@ -38,11 +38,11 @@ catkin_add_gtest(kinematics_markers_test test/ros/kinematics_markers_test.cc)
 target_link_libraries(kinematics_markers_test mbk_markers mbk_io gtest_main)
 target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 # Its limits: far bodies, long names, many bodies (ROS-free).
-catkin_add_gtest(glyph_limits_test test/ros/glyph_limits_test.cc)
+catkin_add_gtest(glyph_limits_test test/viz/glyph_limits_test.cc)
 target_link_libraries(glyph_limits_test mbk_viz gtest_main)
 
 # The rviz display's legend: its colors named (no master needed).
-catkin_add_gtest(legend_test test/ros/legend_test.cc)
+catkin_add_gtest(legend_test test/viz/legend_test.cc)
 target_link_libraries(legend_test mbk_viz gtest_main)
 
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
@@ -95,7 +95,7 @@ target_compile_definitions(bag_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR
   MBK_MBK_PATH="$<TARGET_FILE:mbk>")
 
 # mbk bag's temporary files: created exclusively, never through a link, removed on signals.
-catkin_add_gtest(output_file_test test/ros/output_file_test.cc)
+catkin_add_gtest(output_file_test test/offline/output_file_test.cc)
 add_dependencies(output_file_test mbk mbk_bag mb_kinematics_msgs_generate_messages_cpp)
 target_link_libraries(output_file_test mbk_offline mbk_io mbk_core gtest_main)
 target_compile_definitions(output_file_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"

@@ -1,6 +1,7 @@
 # The tests mirror the source tree: the tests of mb_kinematics/<folder>/ are in test/<folder>/.
 # Every test/{core,estimation,io,offline,tools,analysis,stability}/*_test.cc is a GoogleTest
-# executable of its own (but test/offline/bag_test.cc, which needs ROS: test/ros.cmake);
+# executable of its own (but test/offline/bag_test.cc and output_file_test.cc, which need ROS:
+# test/ros.cmake);
 # test/peers/*_test.cc also link the peer libraries (Orocos KDL, found
 # in CMakeLists.txt also when the benchmarks are not built).
 
@@ -12,7 +13,7 @@ target_link_libraries(mbk_test_models mbk_analysis mbk_core)
 file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/estimation/*_test.cc
   test/io/*_test.cc test/offline/*_test.cc test/tools/*_test.cc test/analysis/*_test.cc
   test/stability/*_test.cc)
-list(FILTER MBK_UNIT_TESTS EXCLUDE REGEX "/test/offline/bag_test\\.cc$")
+list(FILTER MBK_UNIT_TESTS EXCLUDE REGEX "/test/offline/(bag|output_file)_test\\.cc$")
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
