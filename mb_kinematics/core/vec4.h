@@ -1,5 +1,5 @@
 // Three-vectors of double in four-lane vectors (GCC vector extensions; lane 3 unused), for the
-// revolute kernels of forward_kinematics' AVX2 copy (kinematics.h, MBK_AVX2_DISPATCH): each
+// revolute kernels of forward_kinematics' AVX2 copy (fast_kernels_avx2.h, MBK_AVX2_DISPATCH): each
 // operation once on 256 bits. Each lane does what Eigen's code does to that coordinate, in the
 // same order, with no fused multiply-add: the results are the portable update's bit for bit
 // (Formulations.CpuDispatchIsThePortableUpdate).

@@ -84,8 +84,7 @@ Joint joint_of(const BvhFile& bvh, const BvhSegment& segment, double scale) {
     joint.type = JointType::kRevolute;
     joint.axis = Vec3<double>::Unit(c.rotations[0]);
   }
-  if (joint.type == JointType::kFree123 || joint.type == JointType::kBall123)
-    joint.euler_order = completed_order(c.rotations);
+  if (takes_euler_order(joint.type)) joint.euler_order = completed_order(c.rotations);
   return joint;
 }
 

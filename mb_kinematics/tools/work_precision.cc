@@ -132,7 +132,7 @@ void formulation_rows(const Scene& scene, bool quick, std::vector<Row>& rows) {
   }
   bool has_angles = false;
   for (const Body& b : scene.model.bodies)
-    has_angles |= b.joint.type == JointType::kBall123 || b.joint.type == JointType::kFree123;
+    has_angles |= takes_euler_order(b.joint.type);
   if (!has_angles) return;
   for (SpeedKind speeds : {SpeedKind::kCoordinateDerivatives, SpeedKind::kAngularVelocity}) {
     const bool quasi = speeds == SpeedKind::kAngularVelocity;

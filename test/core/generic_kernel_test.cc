@@ -1,4 +1,4 @@
-// The fast kernels of the recursion (core/kinematics.h, the AVX2 copy included) are opt-in
+// The fast kernels of the recursion (core/fast_kernels.h, the AVX2 copy included) are opt-in
 // specializations of the generic path, joint_motion per body (JointKernel::kGeneric): for every
 // joint type, with and without offset rotations, on random trees and random states, both
 // formulations give what the generic path gives, to rounding.

@@ -1,0 +1,185 @@
+// The AVX2 copy's revolute kernels (forward_kinematics_avx2 in kinematics.h, chosen at run time
+// on x86-64 CPUs with AVX2: MBK_AVX2_DISPATCH).
+// What it speeds up: revolute joints (about x, y, z or any axis) at velocity and acceleration
+// level, the chains' and the URDF models' joints: each 3-vector (a column of S0J or S0K, omega,
+// alpha, a point's position, velocity and acceleration) is one 256-bit register (vec4.h), a
+// cross product three lane turns, two products and a difference (doc/speed.md, "How the update
+// is fast").
+// How it is checked: each lane repeats what fast_kernels.h's Eigen code does to that coordinate,
+// in its order and without fused multiply-add, so the results are the portable update's bit for
+// bit (Formulations.CpuDispatchIsThePortableUpdate, test/core/finite_difference_test.cc), and
+// test/core/generic_kernel_test.cc checks every kernel, this copy included (what
+// forward_kinematics runs on this machine), against the generic path (motion_step).
+#pragma once
+
+#include "mb_kinematics/core/kinematics_views.h"  // first: MBK_AVX2_DISPATCH, which vec4.h reads
+#include "mb_kinematics/core/vec4.h"
+
+namespace mbk {
+namespace detail {
+
+#ifdef MBK_VEC4
+// The revolute kernels of the AVX2 copy on four-lane vectors (vec4.h): the sums of the kernels
+// of fast_kernels.h, term for term and in the same order, so the same results bit for bit, in fewer
+// instructions.
+namespace v4 {
+
+// A point's position, velocity and acceleration, and a body's omega and alpha, in registers.
+struct PointMotion {
+  V4 p{}, v{}, a{};
+};
+struct BodySpin {
+  V4 omega{}, alpha{};
+};
+
+// Where Data keeps a point's motion (the origins', or the mass centers').
+struct PointArrays {
+  Vec3<double>*p, *v, *a;
+};
+
+template <Level L>
+MBK_AVX2 PointMotion load_point(const PointArrays& arrays, int k) {
+  PointMotion m;
+  m.p = load3(arrays.p[k].data());
+  if constexpr (L != Level::kPose) m.v = load3(arrays.v[k].data());
+  if constexpr (L == Level::kAcceleration) m.a = load3(arrays.a[k].data());
+  return m;
+}
+
+template <Level L>
+MBK_AVX2 void store_point(const PointArrays& arrays, int k, const PointMotion& m) {
+  store3(arrays.p[k].data(), m.p);
+  if constexpr (L != Level::kPose) store3(arrays.v[k].data(), m.v);
+  if constexpr (L == Level::kAcceleration) store3(arrays.a[k].data(), m.a);
+}
+
+// Q = P + r fixed in a body of omega and alpha s (eq. 4.6.2 and its derivatives):
+// Q' = P' + omega x r, Q'' = P'' + alpha x r + omega x (omega x r).
+template <Level L>
+MBK_AVX2 PointMotion carried(const PointMotion& p, const BodySpin& s, V4 r) {
+  PointMotion q;
+  q.p = p.p + r;
+  if constexpr (L != Level::kPose) {
+    const V4 omega_r = cross(s.omega, r);
+    q.v = p.v + omega_r;
+    if constexpr (L == Level::kAcceleration)
+      q.a = (p.a + cross(s.alpha, r)) + cross(s.omega, omega_r);
+  }
+  return q;
+}
+
+// m v for a constant v of the given shape (times_constant, kinematics_views.h).
+MBK_AVX2 inline V4 times_constant(const Cols& m, const Vec3<double>& v, VectorShape shape) {
+  if (shape == VectorShape::kDense) return times(m, v.data());  // first: random offsets
+  switch (shape) {
+    case VectorShape::kZero:
+      return V4{};
+    case VectorShape::kX:
+      return m.c0 * splat_at(v.data());
+    case VectorShape::kY:
+      return m.c1 * splat_at(v.data() + 1);
+    case VectorShape::kZ:
+      return m.c2 * splat_at(v.data() + 2);
+    case VectorShape::kDense:
+      break;
+  }
+  return times(m, v.data());
+}
+
+// omega_k = omega_j + w (eq. 4.4.6), alpha_k = alpha_j + wd + omega_j x w (eq. 4.5.1), with
+// w = u q', wd = u q'': u = S0J w_k / q', the joint's axis in R; v: the joint's speed.
+template <Level L>
+MBK_AVX2 BodySpin turned_spin(const BodySpin& j, V4 u, const StateView<double>& state, int v) {
+  BodySpin k;
+  if constexpr (L != Level::kPose) {
+    const V4 w = u * splat_at(state.y + v);
+    k.omega = j.omega + w;
+    if constexpr (L == Level::kAcceleration)
+      k.alpha = (j.alpha + u * splat_at(state.yd + v)) + cross(j.omega, w);
+  }
+  return k;
+}
+
+// Stores S0K (reorthonormalized at its depth, body_update) and returns S0K r_k.
+MBK_AVX2 inline V4 store_rotation(const BodyStep& b, int k, const Cols& s0k,
+                                  const DataView<double>& data) {
+  store_cols(data.rotation[k], s0k);
+  if (!b.reorthonormalize) return times_constant(s0k, b.mass_center, b.mass_center_shape);
+  reorthonormalize(data.rotation[k]);
+  return times_constant(load_cols(data.rotation[k]), b.mass_center, b.mass_center_shape);
+}
+
+// Body k of a revolute joint (body_update): S0K, its spin from u (turned_spin), O_k = O_j +
+// S0J q_k and G_k = O_k + S0K r_k with their motion (carried; r = 0 leaves the point's).
+template <Level L>
+MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const Cols& s0k, V4 u,
+                              const StateView<double>& state, const DataView<double>& data) {
+  const int j = b.lower;
+  const V4 rho = store_rotation(b, k, s0k, data);
+  BodySpin spin_j;
+  if constexpr (L != Level::kPose) spin_j.omega = load3(data.omega[j].data());
+  if constexpr (L == Level::kAcceleration) spin_j.alpha = load3(data.alpha[j].data());
+  const BodySpin spin_k = turned_spin<L>(spin_j, u, state, b.v_index);
+  if constexpr (L != Level::kPose) store3(data.omega[k].data(), spin_k.omega);
+  if constexpr (L == Level::kAcceleration) store3(data.alpha[k].data(), spin_k.alpha);
+  const PointArrays origins{data.origin, data.origin_velocity, data.origin_acceleration};
+  const PointArrays centers{data.mass_center, data.mass_center_velocity,
+                            data.mass_center_acceleration};
+  PointMotion point = load_point<L>(origins, j);
+  if (b.offset_shape != VectorShape::kZero)
+    point = carried<L>(point, spin_j, times_constant(s0j, b.offset, b.offset_shape));
+  store_point<L>(origins, k, point);
+  if (b.mass_center_shape != VectorShape::kZero) point = carried<L>(point, spin_k, rho);
+  store_point<L>(centers, k, point);
+}
+
+// S0K = S0J SJK for a turn (cos, sin at c, s) about coordinate axis I (turn_columns).
+template <int I>
+MBK_AVX2 Cols turn_columns(const Cols& s0j, const double* c, const double* s) {
+  constexpr int a = (I + 1) % 3, b = (I + 2) % 3;
+  const V4 cos = splat_at(c), sin = splat_at(s);
+  const V4 turned_a = cos * col<a>(s0j) + sin * col<b>(s0j);
+  const V4 turned_b = cos * col<b>(s0j) - sin * col<a>(s0j);
+  if constexpr (I == 0) return {s0j.c0, turned_a, turned_b};
+  if constexpr (I == 1) return {turned_b, s0j.c1, turned_a};
+  if constexpr (I == 2) return {turned_a, turned_b, s0j.c2};
+}
+
+// Column i of S0J SJK with SJK = P0 + c P1 + s P2 (folded_turn); p: P0 P1 P2 padded.
+MBK_AVX2 inline V4 folded_column(const PaddedMat3* p, int i, const Cols& s0j, V4 cos, V4 sin) {
+  const V4 sjk = (load4(p[0].col[i]) + cos * load4(p[1].col[i])) + sin * load4(p[2].col[i]);
+  return times(s0j, sjk);
+}
+
+MBK_AVX2 inline Cols folded_turn(const PaddedMat3* p, const Cols& s0j, const double* c,
+                                 const double* s) {
+  const V4 cos = splat_at(c), sin = splat_at(s);
+  return {folded_column(p, 0, s0j, cos, sin), folded_column(p, 1, s0j, cos, sin),
+          folded_column(p, 2, s0j, cos, sin)};
+}
+
+// Revolute joint about coordinate axis I, C_k = I: u = column I of S0J.
+template <Level L, int I>
+MBK_AVX2 void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
+                                 const DataView<double>& data) {
+  const Cols s0j = load_cols(data.rotation[b.lower]);
+  const Cols s0k = turn_columns<I>(s0j, data.cosine + b.angle, data.sine + b.angle);
+  revolute_update<L>(b, k, s0j, s0k, col<I>(s0j), state, data);
+}
+
+// Revolute joint about any axis with any C_k: u = S0J (C_k a).
+template <Level L>
+MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
+                            const StateView<double>& state, const DataView<double>& data) {
+  const Cols s0j = load_cols(data.rotation[b.lower]);
+  const Cols s0k = folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
+                               data.sine + b.angle);
+  const V4 u = L == Level::kPose ? V4{} : times(s0j, b.axis.data());
+  revolute_update<L>(b, k, s0j, s0k, u, state, data);
+}
+
+}  // namespace v4
+#endif  // MBK_VEC4
+
+}  // namespace detail
+}  // namespace mbk
