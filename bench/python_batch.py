@@ -3,7 +3,7 @@
 config/human_body.urdf and test/robots/panda.urdf (a 7-joint arm), full outputs (the default
 with accelerations) and poses only, one and two threads, into out= arrays allocated before
 (as batch_benchmark's C++ rows, run in the same invocation) and freshly allocated; a Python loop
-over PyKDL's chain solvers (panda: the hand's pose and velocity) and over dartpy (every body's
+over PyKDL's chain solvers (panda: the hand's pose and velocity, then every body's) and over dartpy (every body's
 pose, velocities and accelerations) on 1000 states; the peak memory of a fresh call (a child
 process: its peak RSS during the call, VmHWM reset just before it, above its RSS then) against the bytes of the arrays
 asked for. Prints a markdown table. Not a test: the figures depend on the machine's load.
@@ -78,23 +78,28 @@ print(status("VmHWM:") - before, sum(x.nbytes for x in out.values()))
     return used, asked
 
 
-def pykdl_loop(model, q, v):
+def pykdl_loop(model, q, v, tips):
+    """Per sample, PyKDL's position and velocity solvers on a chain to each tip's mass center."""
     import PyKDL
     sys.path.insert(0, os.path.join(ROOT, "test", "python"))
     from test_peers import kdl_chain
-    chain, names = kdl_chain(PyKDL, os.path.join(ROOT, MODELS["panda"]), "panda_hand",
-                             model.mass_centers[model.body_index("panda_hand") - 1])
-    columns = [model.coordinate_names.index(n) for n in names]
-    pos, vel = PyKDL.ChainFkSolverPos_recursive(chain), PyKDL.ChainFkSolverVel_recursive(chain)
-    qq, vv, frame, frame_vel = (PyKDL.JntArray(len(names)), PyKDL.JntArray(len(names)),
-                                PyKDL.Frame(), PyKDL.FrameVel())
+    solvers = []
+    for tip in tips:
+        chain, names = kdl_chain(PyKDL, os.path.join(ROOT, MODELS["panda"]), tip,
+                                 model.mass_centers[model.body_index(tip) - 1])
+        solvers.append(([model.coordinate_names.index(n) for n in names],
+                        PyKDL.ChainFkSolverPos_recursive(chain),
+                        PyKDL.ChainFkSolverVel_recursive(chain),
+                        PyKDL.JntArray(len(names)), PyKDL.JntArray(len(names))))
+    frame, frame_vel = PyKDL.Frame(), PyKDL.FrameVel()
 
     def run():
         for s in range(len(q)):
-            for i, c in enumerate(columns):
-                qq[i], vv[i] = q[s, c], v[s, c]
-            pos.JntToCart(qq, frame)
-            vel.JntToCart(PyKDL.JntArrayVel(qq, vv), frame_vel)
+            for columns, pos, vel, qq, vv in solvers:
+                for i, c in enumerate(columns):
+                    qq[i], vv[i] = q[s, c], v[s, c]
+                pos.JntToCart(qq, frame)
+                vel.JntToCart(PyKDL.JntArrayVel(qq, vv), frame_vel)
     return best(run, 1) / len(q)
 
 
@@ -157,12 +162,13 @@ def main():
         print("%s: dartpy loop %.1f us per sample, Model.kinematics %.2f us: %.0fx" % (
             name, dart * 1e6, ours * 1e6, dart / ours))
         if name == "panda":
-            kdl = pykdl_loop(model, q, v)
             pose = best(lambda: model.kinematics(q, v, outputs=["rotation", "origin", "omega",
                                                                 "velocity"], threads=1)) / 1000
-            print("panda: PyKDL loop (hand pose and velocity) %.1f us per sample, "
-                  "Model.kinematics (every body) %.2f us: %.0fx" % (kdl * 1e6, pose * 1e6,
-                                                                    kdl / pose))
+            for what, tips in (("the hand", ["panda_hand"]), ("every body", model.body_names)):
+                kdl = pykdl_loop(model, q, v, tips)
+                print("panda: PyKDL loop (%s: pose and velocity) %.1f us per sample, "
+                      "Model.kinematics (every body) %.2f us: %.0fx" % (
+                          what, kdl * 1e6, pose * 1e6, kdl / pose))
     for name in MODELS:
         for kind, outputs in (("full", [k for k in mb_kinematics.OUTPUTS
                                         if not k.startswith("partial")]), ("pose", POSE)):
