@@ -129,6 +129,29 @@ def fail(what):
     sys.exit("plot_kinematics.py: error: " + what)
 
 
+def check_png(plt, path):
+    """--png's folder exists and its extension is an image format matplotlib writes."""
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        fail("--png %s: no folder %s" % (path, folder))
+    formats = plt.figure().canvas.get_supported_filetypes()
+    plt.close("all")
+    ext = os.path.splitext(path)[1].lstrip(".").lower()
+    if ext not in formats:
+        fail("--png %s: not an image format ('%s'; one of %s)" % (path, ext, ", ".join(
+            sorted(formats))))
+
+
+def read_rows(path, bodies):
+    """read(), with a missing or unreadable file and text that is not UTF-8 as one error line."""
+    try:
+        return read(path, bodies)
+    except UnicodeDecodeError as e:
+        fail("%s: not UTF-8 text (byte %d)" % (path, e.start))
+    except OSError as e:
+        fail("%s: %s" % (path, e.strerror or e))
+
+
 def find_mbk():
     """The mbk executable: beside this script (install space), else in the sourced workspaces'
     lib/mb_kinematics (devel space), as rosrun finds it."""
@@ -217,6 +240,11 @@ def main():
     bvh.add_argument("--estimator", help="mbk bag --estimator")
     bvh.add_argument("--segments", help="a YAML map joint name: segment (mbk bag --segments)")
     args = parser.parse_args()
+    if args.png:
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    if args.png:
+        check_png(plt, args.png)
     if args.bvh:
         bvh_defaults(parser, args)
     elif not args.csv or not args.bodies:
@@ -225,12 +253,8 @@ def main():
         parser.error("--csv, --scale, --body-mass, --sex, --estimator and --segments go with "
                      "--bvh")
     args.up = args.up or "z"
-    if args.png:
-        matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     bodies = [b for b in args.bodies.split(",") if b]
-    series = read(args.csv, bodies + ["system"])
+    series = read_rows(args.csv, bodies + ["system"])
     missing = [b for b in bodies if not series[b]["stamp"]]
     if missing:
         sys.exit("plot_kinematics.py: error: %s: no rows for bodies %s" %

@@ -130,6 +130,32 @@ def csv_cases(tmp, failures):
         failures.append("--scale without --bvh: exit %d, %s" % (r.returncode, r.stderr))
 
 
+def bad_path_cases(tmp, failures):
+    """A missing CSV, a CSV that is not UTF-8, a PNG in a missing folder or with an extension no
+    image format has: one error line naming it, exit 2 or 1, no traceback."""
+    full, latin = os.path.join(tmp, "ok.csv"), os.path.join(tmp, "latin1.csv")
+    write_csv(full, ["LeftHip", "system"])
+    with open(full, "rb") as f:
+        data = f.read()
+    with open(latin, "wb") as f:
+        f.write(data.replace(b"LeftHip", b"LeftH\xefp\xff", 1))
+    cases = [
+        ("a missing CSV", [os.path.join(tmp, "none.csv"), "--png", os.path.join(tmp, "a.png")],
+         "none.csv"),
+        ("a CSV that is not UTF-8", [latin, "--png", os.path.join(tmp, "b.png")], "latin1.csv"),
+        ("a PNG in a missing folder",
+         [full, "--png", os.path.join(tmp, "no", "such", "c.png")], "no/such"),
+        ("an image extension no format has", [full, "--png", os.path.join(tmp, "d.xyz")],
+         "d.xyz"),
+    ]
+    for what, args, named in cases:
+        r = run(*args, "--bodies", "LeftHip")
+        lines = r.stderr.strip().splitlines()
+        if (r.returncode == 0 or "Traceback" in r.stderr or len(lines) != 1
+                or named not in lines[0] or "plot_kinematics.py: error:" not in lines[0]):
+            failures.append("%s: exit %d, %s" % (what, r.returncode, r.stderr[-400:]))
+
+
 def incomplete_cases(tmp, failures):
     """Rows of body system_incomplete (mbk bag's name when segments are missing) are the
     system's, and both figures' titles say INCOMPLETE; a complete CSV's do not."""
@@ -166,6 +192,7 @@ def main():
             bvh_cases(tmp, failures)
         else:
             csv_cases(tmp, failures)
+            bad_path_cases(tmp, failures)
             incomplete_cases(tmp, failures)
     for f in failures:
         print("FAIL:", f)
