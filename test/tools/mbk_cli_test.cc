@@ -893,6 +893,19 @@ TEST(MbkCli, EvalErrorsShowANulInANameWhole) {
             "mbk: error: " + escaped + ": velocity: unknown coordinate 'ab\\x00cd'\n");
 }
 
+// A NUL in a YAML scene's name (YAML's "\\0") is escaped the same way.
+TEST(MbkCli, EvalErrorsShowANulInASceneNameWhole) {
+  const std::string scene = ::testing::TempDir() + "nul_scene.yaml";
+  std::ofstream(scene) << "frame: world\nbodies:\n"
+                          "  - {name: a, lower: \"no\\0such\", joint: {name: j, type: revolute, "
+                          "origin: [0, 0, 0], axis: [0, 0, 1]}, mass_center: [0, 0, 0], mass: 1}\n";
+  const Output run = mbk("eval --model " + scene);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.err, "mbk: error: " + scene +
+                         ":3: body 1 lower 'no\\x00such' is neither an earlier body's name nor a "
+                         "number below 1\n");
+}
+
 // `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
 // (the last one silently won).
 TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
