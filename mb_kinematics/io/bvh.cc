@@ -14,12 +14,15 @@ namespace {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f'; }
 bool is_brace(char c) { return c == '{' || c == '}'; }
+// A line ends at LF, CRLF or a lone CR (old Mac exports).
+bool is_line_end(char c) { return c == '\n' || c == '\r'; }
 
 // Whitespace-separated tokens of the text, each with its line number, and the text's lines
-// (for MOTION's frames, one per line).
+// (for MOTION's frames, one per line). A UTF-8 byte-order mark at the start is skipped.
 class Scanner {
  public:
-  Scanner(const std::string& text, const std::string& path) : text_(text), path_(path) {}
+  Scanner(const std::string& text, const std::string& path)
+      : text_(text), path_(path), pos_(text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0) {}
 
   [[noreturn]] void fail(int line, const std::string& what) const {
     throw std::invalid_argument(path_ + ":" + std::to_string(line) + ": " + what);
@@ -28,10 +31,7 @@ class Scanner {
 
   // The next token, or "" at the end of the text; token_line() is its line.
   std::string next() {
-    while (pos_ < text_.size() && is_space(text_[pos_])) {
-      if (text_[pos_] == '\n') ++line_;
-      ++pos_;
-    }
+    skip_space();
     token_line_ = line_;
     const size_t begin = pos_;
     if (pos_ < text_.size() && is_brace(text_[pos_])) return text_.substr(pos_++, 1);
@@ -65,10 +65,7 @@ class Scanner {
 
   // Moves to the start of the next line that has more than whitespace; false at the end.
   bool next_line() {
-    while (pos_ < text_.size() && is_space(text_[pos_])) {
-      if (text_[pos_] == '\n') ++line_;
-      ++pos_;
-    }
+    skip_space();
     return pos_ < text_.size();
   }
 
@@ -76,8 +73,8 @@ class Scanner {
   void frame_values(double* row, int row_size, int frame) {
     int n = 0;
     while (true) {
-      while (pos_ < text_.size() && text_[pos_] != '\n' && is_space(text_[pos_])) ++pos_;
-      if (pos_ == text_.size() || text_[pos_] == '\n') break;
+      while (pos_ < text_.size() && !is_line_end(text_[pos_]) && is_space(text_[pos_])) ++pos_;
+      if (pos_ == text_.size() || is_line_end(text_[pos_])) break;
       char* end = nullptr;
       const double x = std::strtod(text_.c_str() + pos_, &end);
       const size_t stop = end - text_.c_str();
@@ -102,6 +99,13 @@ class Scanner {
   }
 
  private:
+  // Moves past whitespace, counting the line ends (a CRLF once).
+  void skip_space() {
+    for (; pos_ < text_.size() && is_space(text_[pos_]); ++pos_) {
+      const bool crlf = text_[pos_] == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n';
+      if (is_line_end(text_[pos_]) && !crlf) ++line_;
+    }
+  }
   static std::string text_of(double x) {
     std::ostringstream s;
     s << x;
@@ -115,7 +119,7 @@ class Scanner {
 
   const std::string& text_;
   const std::string& path_;
-  size_t pos_ = 0;
+  size_t pos_;
   int line_ = 1;
   int token_line_ = 1;
 };

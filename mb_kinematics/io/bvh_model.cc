@@ -14,6 +14,7 @@
 #include "mb_kinematics/io/bvh_bones.h"
 #include "mb_kinematics/io/bvh_motion_check.h"
 #include "mb_kinematics/io/name_list.h"
+#include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 namespace {
@@ -122,6 +123,9 @@ void refuse_repeated_names(const BvhFile& bvh) {
   }
 }
 
+// A scale --scale and model_from_bvh accept: metres per file unit, positive and finite.
+bool is_scale(double scale) { return scale > 0 && std::isfinite(scale); }
+
 // The file unit that makes a skeleton `extent` file units tall most human: of the common units
 // whose height falls in the human range, the one nearest 1.7 m (by ratio); without one, the
 // scale that makes it 1.7 m. Returns the scale and a name for it ("" for a computed one).
@@ -152,6 +156,9 @@ std::string height_warning(const BvhFile& bvh, double scale) {
     << "), outside a human's " << kHumanHeight[0] << "-" << kHumanHeight[1] << " m";
   if (!(height > 0)) return s.str() + ": the rest pose has no extent";
   const auto [human, unit] = human_scale(height / scale);
+  if (!is_scale(human))
+    return s.str() + ": its " + format_double(height / scale) + " file units are too " +
+           (human > 1 ? "small" : "large") + " for any --scale to make it human";
   s << ": --scale " << std::setprecision(5) << human << " (bvh.launch scale:=" << human
     << ", the node's ~scale) gives " << std::setprecision(3) << human * height / scale << " m"
     << (unit.empty() ? "" : " (file units in " + unit + ")");
@@ -180,7 +187,7 @@ BvhModelOptions bvh_model_options(const std::string& scale, const std::string& b
   o.scale = number("--scale", scale, o.scale);
   o.body_mass = number("--body-mass", body_mass, o.body_mass);
   if (!sex.empty()) o.sex = sex;
-  if (!(o.scale > 0)) throw std::invalid_argument("--scale needs metres per file unit > 0");
+  if (!is_scale(o.scale)) throw std::invalid_argument("--scale needs metres per file unit > 0");
   if (!(o.body_mass >= 0)) throw std::invalid_argument("--body-mass needs kg >= 0");
   if (!segments.empty() && o.body_mass == 0)
     throw std::invalid_argument("--segments maps joints to masses: it needs --body-mass KG");
@@ -189,7 +196,7 @@ BvhModelOptions bvh_model_options(const std::string& scale, const std::string& b
 }
 
 Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
-  if (!(options.scale > 0) || !std::isfinite(options.scale))
+  if (!is_scale(options.scale))
     throw std::invalid_argument("scale: must be a positive number of metres per file unit");
   if (!(options.body_mass >= 0) || !std::isfinite(options.body_mass))
     throw std::invalid_argument("body mass: must be a number of kg >= 0 (0: massless segments)");

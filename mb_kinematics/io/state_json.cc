@@ -16,6 +16,7 @@ namespace {
 
 // Reads one section {name: value} into `out`, where index_of maps a name to its slot.
 template <typename IndexOf>
+// Names are escaped where they enter a message: a NUL would end what() there.
 void read_section(const YAML::Node& root, const char* key, IndexOf index_of, VecX<double>& out) {
   const YAML::Node section = root[key];
   if (!section) return;
@@ -24,15 +25,16 @@ void read_section(const YAML::Node& root, const char* key, IndexOf index_of, Vec
     const std::string name = entry.first.Scalar();
     const int i = index_of(name);
     if (i < 0)
-      throw std::invalid_argument(std::string(key) + ": unknown coordinate '" + name + "'");
+      throw std::invalid_argument(std::string(key) + ": unknown coordinate '" + printable(name) +
+                                  "'");
     double value = 0;
     try {
       value = entry.second.as<double>();
     } catch (const YAML::Exception&) {
-      throw std::invalid_argument(std::string(key) + "." + name + " is not a number");
+      throw std::invalid_argument(std::string(key) + "." + printable(name) + " is not a number");
     }
     if (!std::isfinite(value))
-      throw std::invalid_argument(std::string(key) + "." + name + " is not finite");
+      throw std::invalid_argument(std::string(key) + "." + printable(name) + " is not finite");
     out[i] = value;
   }
 }
@@ -58,7 +60,7 @@ JointState<double> parse_state(const Model& model, const std::string& text,
     for (const auto& entry : root) {
       const std::string key = entry.first.Scalar();
       if (key != "position" && key != "velocity" && key != "acceleration")
-        throw std::invalid_argument("unknown key '" + key +
+        throw std::invalid_argument("unknown key '" + printable(key) +
                                     "' (expected position, velocity, acceleration)");
     }
     const auto coordinates = name_index(model.coordinate_names);

@@ -16,9 +16,10 @@
 namespace mbk {
 namespace {
 
+// `what` holds the scene's names: escaped here, as a NUL in one would end what() there.
 struct SceneError : std::invalid_argument {
   SceneError(const YAML::Node& node, const std::string& what)
-      : std::invalid_argument(std::to_string(node.Mark().line + 1) + ": " + what) {}
+      : std::invalid_argument(std::to_string(node.Mark().line + 1) + ": " + printable(what)) {}
 };
 
 double read_number(const YAML::Node& node, const std::string& field) {

@@ -321,4 +321,46 @@ TEST(BvhModel, AScaleThatMakesNoHumanIsWarnedAbout) {
   EXPECT_THROW(model_of(kSkeleton, {-1.0}), std::invalid_argument);
 }
 
+// A two-bone skeleton `2 bone` file units tall.
+std::string skeleton_of_height(const std::string& bone) {
+  return "HIERARCHY\nROOT Hips\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\nJOINT Spine\n{\nOFFSET 0 " +
+         bone + " 0\nCHANNELS 1 Xrotation\nEnd Site\n{\nOFFSET 0 " + bone +
+         " 0\n}\n}\n}\nMOTION\nFrames: 1\nFrame Time: 0.01\n0 0\n";
+}
+
+// The --scale a height warning suggests ("" when it suggests none).
+std::string suggested_scale(const std::string& warning) {
+  const std::string key = ": --scale ";
+  const size_t at = warning.find(key);
+  if (at == std::string::npos) return "";
+  const size_t begin = at + key.size();
+  return warning.substr(begin, warning.find(' ', begin) - begin);
+}
+
+TEST(BvhModel, AHeightWarningSuggestsOnlyAScaleThatScaleAccepts) {
+  // Tiny and huge skeletons that a --scale makes human: the one suggested does.
+  for (const std::string height : {"1e-9", "1e-300", "1e300"}) {
+    SCOPED_TRACE(height);
+    const mbk::Model model = model_of(skeleton_of_height(height), {1.0});
+    ASSERT_EQ(model.warnings.size(), 1u);
+    const std::string scale = suggested_scale(model.warnings[0]);
+    ASSERT_FALSE(scale.empty()) << model.warnings[0];
+    const mbk::BvhModelOptions options = mbk::bvh_model_options(scale, "", "", "");
+    EXPECT_TRUE(model_of(skeleton_of_height(height), options).warnings.empty());
+  }
+  // Skeletons no double --scale makes human: named, and no scale suggested.
+  for (const auto& [height, what] :
+       {std::pair<std::string, std::string>{"1e-320", "small"}, {"1e308", "large"}}) {
+    SCOPED_TRACE(height);
+    const mbk::Model model = model_of(skeleton_of_height(height), {1.0});
+    ASSERT_EQ(model.warnings.size(), 1u);
+    EXPECT_EQ(suggested_scale(model.warnings[0]), "") << model.warnings[0];
+    EXPECT_NE(model.warnings[0].find("walk.bvh: the skeleton's standing height is "),
+              std::string::npos)
+        << model.warnings[0];
+    EXPECT_NE(model.warnings[0].find("too " + what + " for any --scale"), std::string::npos)
+        << model.warnings[0];
+  }
+}
+
 }  // namespace

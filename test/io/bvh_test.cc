@@ -121,6 +121,52 @@ TEST(Bvh, ReadsTheMotionRowMajor) {
   EXPECT_EQ(bvh.frames[2 * 15 + 14], 180.0);
 }
 
+// `text` with every line ended by `end` ("\r\n" or a lone "\r").
+std::string with_line_ends(const std::string& text, const std::string& end) {
+  std::string out;
+  for (char c : text) out += c == '\n' ? end : std::string(1, c);
+  return out;
+}
+
+void expect_same_bvh(const mbk::BvhFile& read, const mbk::BvhFile& plain) {
+  ASSERT_EQ(read.segments.size(), plain.segments.size());
+  for (size_t i = 0; i < plain.segments.size(); ++i) {
+    const mbk::BvhSegment& a = read.segments[i];
+    const mbk::BvhSegment& b = plain.segments[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.parent, b.parent);
+    EXPECT_EQ(a.offset, b.offset);
+    EXPECT_EQ(a.channels, b.channels);
+    EXPECT_EQ(a.first_column, b.first_column);
+    EXPECT_EQ(a.has_end_site, b.has_end_site);
+    EXPECT_EQ(a.end_site, b.end_site);
+    EXPECT_EQ(a.line, b.line);
+  }
+  EXPECT_EQ(read.channel_count, plain.channel_count);
+  EXPECT_EQ(read.frame_count, plain.frame_count);
+  EXPECT_EQ(read.frame_time, plain.frame_time);
+  EXPECT_EQ(read.frames, plain.frames);
+}
+
+TEST(Bvh, ReadsAByteOrderMarkAndEveryLineEnd) {
+  // kWalk with its one CRLF made an LF.
+  const std::string plain_text = with_line(30, "-1.5 2.5e1 0 179 -179 90 0 0 0 -0 0.25 -0.5 1 2 3");
+  const mbk::BvhFile plain = mbk::parse_bvh(plain_text, "walk.bvh");
+  ASSERT_EQ(plain.frame_count, 3);
+  const std::string bom = "\xEF\xBB\xBF";
+  // Each variant: its byte-order mark and line end.
+  const std::vector<std::pair<std::string, std::string>> variants = {
+      {bom, "\n"}, {"", "\r"}, {"", "\r\n"}, {bom, "\r"}, {bom, "\r\n"}};
+  for (const auto& [mark, end] : variants) {
+    SCOPED_TRACE(testing::PrintToString(mark + end));
+    expect_same_bvh(mbk::parse_bvh(mark + with_line_ends(plain_text, end), "walk.bvh"), plain);
+    // A damaged frame is named by the same line as in the plain file.
+    const std::string bad = mark + with_line_ends(with_line(29, "1 2 x"), end);
+    EXPECT_NE(error_of(bad).find("walk.bvh:29: frame 0, value 3"), std::string::npos)
+        << error_of(bad);
+  }
+}
+
 TEST(Bvh, ErrorsNameTheFileAndLine) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
       {with_line(31, ""), {"walk.bvh:31:", "truncated MOTION", "2 of the 3 frames", "line 27"}},

@@ -875,6 +875,37 @@ TEST(MbkCli, BagErrorLinesEscapeControlBytes) {
   EXPECT_NE(path.err.find("new\\nline.csv"), std::string::npos) << path.err;
 }
 
+// A NUL in a state's name, raw or as JSON's \u0000, is escaped: it would end the C string that
+// the error is printed from.
+TEST(MbkCli, EvalErrorsShowANulInANameWhole) {
+  const std::string dir = ::testing::TempDir();
+  const std::string raw = dir + "nul_raw_state.json", escaped = dir + "nul_escaped_state.json";
+  const char raw_text[] = "{\"position\": {\"ab\0cd\": 1}}";
+  std::ofstream(raw) << std::string(raw_text, sizeof raw_text - 1);
+  std::ofstream(escaped) << "{\"velocity\": {\"ab\\u0000cd\": 1}}";
+  const std::string model = " --model config/human_body.yaml --state ";
+  const Output raw_run = mbk("eval" + model + raw);
+  EXPECT_EQ(raw_run.status, 1);
+  EXPECT_EQ(raw_run.err, "mbk: error: " + raw + ": position: unknown coordinate 'ab\\x00cd'\n");
+  const Output escaped_run = mbk("eval" + model + escaped);
+  EXPECT_EQ(escaped_run.status, 1);
+  EXPECT_EQ(escaped_run.err,
+            "mbk: error: " + escaped + ": velocity: unknown coordinate 'ab\\x00cd'\n");
+}
+
+// A NUL in a YAML scene's name (YAML's "\\0") is escaped the same way.
+TEST(MbkCli, EvalErrorsShowANulInASceneNameWhole) {
+  const std::string scene = ::testing::TempDir() + "nul_scene.yaml";
+  std::ofstream(scene) << "frame: world\nbodies:\n"
+                          "  - {name: a, lower: \"no\\0such\", joint: {name: j, type: revolute, "
+                          "origin: [0, 0, 0], axis: [0, 0, 1]}, mass_center: [0, 0, 0], mass: 1}\n";
+  const Output run = mbk("eval --model " + scene);
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(run.err, "mbk: error: " + scene +
+                         ":3: body 1 lower 'no\\x00such' is neither an earlier body's name nor a "
+                         "number below 1\n");
+}
+
 // `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
 // (the last one silently won).
 TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
