@@ -73,6 +73,11 @@ add_test(NAME python_module COMMAND /usr/bin/python3 -m pytest -q -p no:cachepro
   ${PROJECT_SOURCE_DIR}/test/python WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(python_module PROPERTIES TIMEOUT 300 ENVIRONMENT
   "PYTHONPATH=${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION};MBK_DEVEL=${CATKIN_DEVEL_PREFIX};PYTHONNOUSERSITE=1")
+# mbk batch (doc/batch.md): test/batch/ under pytest, as python_module, on a small collection.
+add_test(NAME python_batch COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
+  ${PROJECT_SOURCE_DIR}/test/batch WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(python_batch PROPERTIES TIMEOUT 120 ENVIRONMENT
+  "PYTHONPATH=${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION};MBK_DEVEL=${CATKIN_DEVEL_PREFIX};PYTHONNOUSERSITE=1")
 # Every JSON `mbk eval` writes parses as JSON (no inf or nan), on the fuzzers' starting models,
 # the workspace's fuzz corpus when a fuzz run left one, and models at a double's limits; a
 # refused model is one error line and nothing on stdout (test/tools/eval_json_test.py).

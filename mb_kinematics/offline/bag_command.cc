@@ -93,6 +93,7 @@ void refuse_same_files(const BagOptions& o, bool side_files) {
   std::vector<Named> outputs;
   if (!o.out_bag.empty()) outputs.push_back({"--out", o.out_bag});
   if (!o.out_csv.empty()) outputs.push_back({"--csv", o.out_csv});
+  if (!o.summary_json.empty()) outputs.push_back({"--summary-json", o.summary_json});
   if (side_files && has_side_files(o.out_csv))
     for (const char* suffix : {".errors.csv", ".sample_errors.csv"})
       outputs.push_back({"--csv's side file", errors_path(o.out_csv, suffix)});
@@ -441,6 +442,7 @@ BagOptions parse_bag_options(int argc, char** argv) {
       {"--model", &o.model},
       {"--out", &o.out_bag},
       {"--csv", &o.out_csv},
+      {"--summary-json", &o.summary_json},
       {"--joint-states", &o.joint_states},
       {"--joint-accelerations", &o.joint_accelerations},
       {"--base-odometry", &o.base_odometry},
@@ -569,10 +571,11 @@ const char* bag_usage() {
   return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
          "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
          "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
-         "           [--start-time S] [--verbose]\n"
+         "           [--start-time S] [--verbose] [--summary-json FILE]\n"
          "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
          "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml] ...\n"
-         "   --verbose: every coordinate's error bars and the times in the summary\n";
+         "   --verbose: every coordinate's error bars and the times in the summary\n"
+         "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";
 }
 
 std::string format_summary(const BagSummary& s, bool verbose) {

@@ -18,6 +18,7 @@ struct BagOptions {
   std::string model;         // a .bvh input's own skeleton when empty
   mbk::BvhModelOptions bvh;  // --scale, --body-mass, --sex: a .bvh model's
   std::string out_bag, out_csv;
+  std::string summary_json;  // --summary-json: the summary for programs (bag_summary_json.h)
   std::string joint_states = "/joint_states";
   std::string joint_accelerations;
   std::string base_odometry;  // nav_msgs/Odometry of a floating base (core/floating_base.h)

@@ -14,4 +14,7 @@ namespace mbk {
 // The worst is the coordinate with the largest acceleration standard error.
 std::string error_bar_line(const std::vector<CoordinateError>& errors);
 
+// The noise level of that line: the median of the coordinates' noise (errors not empty).
+double median_noise(const std::vector<CoordinateError>& errors);
+
 }  // namespace mbk

@@ -8,6 +8,8 @@
 //       rviz's RobotModel beside a node that runs the scene)
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] ...   (runs mbk_bag, beside
 //       mbk, which links the ROS libraries that mbk itself does without)
+//   mbk batch INPUT... --out-dir DIR [--jobs N] [--scheduler tcp://HOST:PORT] ...   (runs
+//       mbk_batch, the Python package's mb_kinematics.batch: mbk bag over a collection)
 #include <unistd.h>
 
 #include <cstdio>
@@ -53,7 +55,9 @@ const char kUsage[] =
     "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
     "P]\n"
     "           [--max-gap S] [--threads N] [--start-time S]\n"
-    "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) ...\n"
+    "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) ... [--summary-json FILE]\n"
+    "       mbk batch INPUT... --out-dir DIR [--jobs N] [--scheduler tcp://HOST:PORT]\n"
+    "           [--model FILE] [--bag] [--csv] [mbk bag's options]   (mbk batch --help)\n"
     "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
     "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
     "   mbk COMMAND --help: that command's usage\n";
@@ -207,14 +211,34 @@ int urdf(const std::map<std::string, std::string>& options) {
   return 0;
 }
 
-// Replaces this process by mbk_bag from mbk's own directory, with the same arguments.
-int exec_bag(char** argv) {
+// mbk's own directory, with the trailing '/'.
+std::string own_directory(char** argv) {
   char self[4096];
   const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-  std::string path = n > 0 ? std::string(self, n) : std::string(argv[0]);
-  path = path.substr(0, path.rfind('/') + 1) + "mbk_bag";
+  const std::string path = n > 0 ? std::string(self, n) : std::string(argv[0]);
+  return path.substr(0, path.rfind('/') + 1);
+}
+
+// Replaces this process by mbk_bag from mbk's own directory, with the same arguments.
+int exec_bag(char** argv) {
+  const std::string path = own_directory(argv) + "mbk_bag";
   execv(path.c_str(), argv);
   throw std::runtime_error("cannot run " + path + " (is mb_kinematics built with rosbag?)");
+}
+
+// Replaces this process by mbk_batch from mbk's own directory with the arguments after
+// "batch", the package's Python folder (devel or install space: lib/mb_kinematics/../../
+// MBK_PYTHON_DIR) first on PYTHONPATH and that directory's mbk_bag as MBK_BAG.
+int exec_batch(char** argv) {
+  const std::string directory = own_directory(argv);
+  std::string python_path = directory + "../../" MBK_PYTHON_DIR;
+  if (const char* earlier = std::getenv("PYTHONPATH")) python_path += std::string(":") + earlier;
+  setenv("PYTHONPATH", python_path.c_str(), 1);
+  setenv("MBK_BAG", (directory + "mbk_bag").c_str(), 0);
+  const std::string path = directory + "mbk_batch";
+  argv[1] = argv[0];
+  execv(path.c_str(), argv + 1);
+  throw std::runtime_error("cannot run " + path);
 }
 
 }  // namespace
@@ -227,6 +251,7 @@ int main(int argc, char** argv) {
   try {
     const std::string command = argv[1];
     if (command == "bag") return exec_bag(argv);
+    if (command == "batch") return exec_batch(argv);
     if (asks_help(argc, argv) && !command_usage(command).empty()) {
       std::cout << command_usage(command);
       return 0;

@@ -1,7 +1,7 @@
 // mbk_bag: `mbk bag` (mbk runs it, so that mbk itself stays free of ROS libraries).
 //   mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states TOPIC]
 //       [--joint-accelerations TOPIC] [--base-odometry TOPIC] [--estimator NAME]
-//       [--frame-prefix P] [--max-gap S] [--threads N] [--start-time S]
+//       [--frame-prefix P] [--max-gap S] [--threads N] [--start-time S] [--summary-json FILE]
 //   mbk bag WALK.bvh [--model FILE] [--scale M] [--body-mass KG] [--sex male|female] ...
 #include <console_bridge/console.h>
 
@@ -10,16 +10,33 @@
 
 #include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/offline/bag_command.h"
+#include "mb_kinematics/offline/bag_summary_json.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/temporary_files.h"
+
+namespace {
+
+// --summary-json's record of a run that stopped with `error` (nothing when that cannot be
+// written either: the error line on stderr still says what happened).
+void record_failure(const mbk_offline::BagOptions& options, const std::string& error) {
+  if (options.summary_json.empty()) return;
+  try {
+    mbk_offline::write_summary_json(options.summary_json,
+                                    mbk_offline::format_failure_json(options, error));
+  } catch (const std::exception&) {
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // librosbag's own messages on damaged records ("Error: Received an invalid TCPROS header")
   // would break the one-line format: what it cannot read is counted and named in the summary.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   mbk_offline::remove_temporaries_on_signals();  // an interrupted run leaves no partial file
+  mbk_offline::BagOptions options;
   try {
-    mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
+    options = mbk_offline::parse_bag_options(argc, argv);
     if (options.help) {
       std::cout << mbk_offline::bag_usage();
       return 0;
@@ -27,8 +44,12 @@ int main(int argc, char** argv) {
     options.progress = mbk::stderr_is_terminal();
     const mbk_offline::BagSummary summary = mbk_offline::run_bag(options);
     std::cerr << mbk_offline::format_summary(summary, options.verbose);
+    if (!options.summary_json.empty())
+      mbk_offline::write_summary_json(options.summary_json,
+                                      mbk_offline::format_summary_json(options, summary));
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::exception& e) {
+    record_failure(options, e.what());
     std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";
     return 1;
   }

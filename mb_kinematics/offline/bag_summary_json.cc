@@ -1,0 +1,69 @@
+#include "mb_kinematics/offline/bag_summary_json.h"
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+
+#include "mb_kinematics/io/number_format.h"
+#include "mb_kinematics/io/report.h"
+#include "mb_kinematics/offline/error_bar_summary.h"
+#include "mb_kinematics/offline/output_file.h"
+
+namespace mbk_offline {
+namespace {
+
+std::string number(double x) { return std::isfinite(x) ? mbk::format_double(x) : "null"; }
+
+std::string outputs(const BagOptions& o) {
+  std::vector<std::string> paths;
+  if (!o.out_bag.empty()) paths.push_back(mbk::json_string(o.out_bag));
+  if (!o.out_csv.empty()) paths.push_back(mbk::json_string(o.out_csv));
+  std::string text = "[";
+  for (size_t i = 0; i < paths.size(); ++i) text += (i ? ", " : "") + paths[i];
+  return text + "]";
+}
+
+std::string drops(const mbk::DropLog& log) {
+  std::string text = "{";
+  for (const auto& d : log.drops)
+    text +=
+        (text.size() > 1 ? ", " : "") + mbk::json_string(d.first) + ": " + std::to_string(d.second);
+  return text + "}";
+}
+
+std::string object(const BagOptions& o, const std::string& status, const BagSummary& s,
+                   const std::string& error) {
+  const double noise = s.errors.empty() ? NAN : mbk::median_noise(s.errors);
+  return "{\"input\": " + mbk::json_string(o.input) + ", \"outputs\": " + outputs(o) +
+         ", \"status\": \"" + status + "\", \"read\": " + std::to_string(s.read) +
+         ", \"written\": " + std::to_string(s.written) +
+         ", \"dropped\": " + std::to_string(s.log.dropped()) + ", \"drops\": " + drops(s.log) +
+         ", \"unreadable\": " + std::to_string(s.unreadable) +
+         ", \"estimator\": " + mbk::json_string(s.estimator) +
+         ", \"noise_level\": " + number(noise) + ", \"max_gap\": " + number(s.max_gap) +
+         ", \"seconds\": " + number(s.wall_seconds) + ", \"error\": " + mbk::json_string(error) +
+         "}\n";
+}
+
+}  // namespace
+
+std::string format_summary_json(const BagOptions& options, const BagSummary& summary) {
+  return object(options, exit_status(summary) == 0 ? "ok" : "partial", summary, "");
+}
+
+std::string format_failure_json(const BagOptions& options, const std::string& error) {
+  return object(options, "failed", BagSummary{}, error);
+}
+
+void write_summary_json(const std::string& path, const std::string& text) {
+  OutputFile file(path);
+  {
+    std::ofstream out(file.writing(), std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out.flush()) throw std::runtime_error("cannot write " + path);
+  }
+  file.commit();
+}
+
+}  // namespace mbk_offline

@@ -1,0 +1,124 @@
+"""mbk batch on one machine (doc/batch.md): a folder of recordings with a damaged bag among
+them, the outputs of one job and of two byte for byte those of direct `mbk bag` runs, the
+summary from mbk bag's own --summary-json, the exit status counting the failure."""
+import os
+
+from conftest import (DAMAGED, PANDA, batch, batch_arguments, direct, output_files,
+                      recordings, summary_rows)
+
+
+def test_one_job_two_jobs_and_direct_runs_agree(collection, tmp_path):
+    one, two, alone = str(tmp_path / "one"), str(tmp_path / "two"), str(tmp_path / "alone")
+    status, table, _ = batch(*batch_arguments(collection, one, "--jobs", "1"))
+    assert status == 1  # the damaged bag
+    assert "failed" in table and DAMAGED in table
+    batch(*batch_arguments(collection, two, "--jobs", "2"), check=1)
+    expected = {r: direct(collection, r, alone) for r in recordings(collection)}
+    outputs = output_files(one)
+    assert outputs == output_files(alone)
+    assert outputs == output_files(two)
+    good = [r for r in expected if r != DAMAGED]
+    for relative in good:  # every good recording's CSV, its samples all there
+        csv = outputs[os.path.splitext(relative)[0] + ".csv"].decode()
+        assert expected[relative]["written"] > 0
+        assert csv.count("\n") > expected[relative]["written"]
+    assert not any(name.startswith("arm/damaged") for name in outputs)
+
+
+def test_summary_rows_are_mbk_bags_own(collection, tmp_path):
+    out, alone = str(tmp_path / "out"), str(tmp_path / "alone")
+    batch(*batch_arguments(collection, out, "--jobs", "2"), check=1)
+    rows = summary_rows(out)
+    assert [os.path.relpath(r["input"], collection) for r in rows] == recordings(collection)
+    for row in rows:
+        relative = os.path.relpath(row["input"], collection)
+        expected = direct(collection, relative, alone)
+        assert row["status"] == expected["status"], row
+        assert row["error"] == expected["error"].replace(os.path.join(collection, relative),
+                                                         row["input"])
+        assert int(row["samples_read"]) == expected["read"]
+        assert int(row["samples_written"]) == expected["written"]
+        assert int(row["dropped"]) == expected["dropped"]
+        assert row["estimator"] == expected["estimator"]
+        noise = expected["noise_level"]
+        assert row["noise_level"] == ("" if noise is None else repr(noise))
+        assert row["output"] == os.path.join(out, os.path.splitext(relative)[0] + ".csv")
+        assert row["resumed"] == "0"
+    failed = [r for r in rows if r["status"] != "ok"]
+    assert [os.path.relpath(r["input"], collection) for r in failed] == [DAMAGED]
+    assert "damaged or truncated bag" in failed[0]["error"]
+
+
+def test_failures_counted_in_the_exit_status(collection, tmp_path):
+    # Without --model the bags and the CSV fail (no model), the BVH files are their own models.
+    status, _, progress = batch(collection, "--out-dir", str(tmp_path / "out"), "--scale",
+                                "0.056444", "--progress")
+    assert status == 4
+    rows = summary_rows(str(tmp_path / "out"))
+    failed = [r for r in rows if r["status"] == "failed"]
+    assert len(failed) == 4 and all("needs --model" in r["error"] for r in failed)
+    assert "mbk batch: 8/8 files (4 not ok), " in progress.split("\r")[-1]
+
+
+def test_list_file_and_single_files(collection, tmp_path):
+    listing = tmp_path / "list.txt"
+    walks = os.path.join(collection, "walks")
+    listing.write_text("# two walks\n%s\n\nsynthetic\n" % os.path.join(walks, "131_01.bvh"))
+    os.symlink(os.path.join(walks, "synthetic"), str(tmp_path / "synthetic"))
+    out = str(tmp_path / "out")
+    batch(str(listing), os.path.join(collection, "arm", "reach.bag"), "--out-dir", out,
+          "--model", PANDA, "--scale", "0.056444", "--bag", "--csv", check=0)
+    names = sorted(n for n in output_files(out) if not n.endswith("errors.csv"))
+    assert names == ["131_01.bag", "131_01.csv", "bandai_layout_walk.bag",
+                     "bandai_layout_walk.csv", "lafan1_layout_walk.bag", "lafan1_layout_walk.csv",
+                     "mixamo_layout_walk.bag", "mixamo_layout_walk.csv", "reach.bag", "reach.csv"]
+
+
+def test_bad_command_lines(collection, tmp_path):
+    status, out, err = batch(str(tmp_path / "missing"), "--out-dir", str(tmp_path / "o"))
+    assert (status, out) == (125, "")
+    assert err == "mbk: error: %s: no such file or folder\n" % (tmp_path / "missing")
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    for folder in ("a", "b"):
+        (tmp_path / folder / "walk.bvh").write_text("")
+    status, _, err = batch(str(tmp_path / "a"), str(tmp_path / "b"), "--out-dir",
+                           str(tmp_path / "o"))
+    assert status == 125 and "both would be written as walk" in err
+    status, _, err = batch(collection, "--out-dir", str(tmp_path / "o"), "--jobs", "0")
+    assert status == 125 and "--jobs" in err
+    assert not os.path.exists(str(tmp_path / "o"))
+
+
+def test_summary_json_is_the_printed_summary(tmp_path):
+    """mbk bag --summary-json against its printed summary, on a trajectory with two drops."""
+    import json
+    import re
+    import subprocess
+    from conftest import mbk_path, write_arm_csv
+    folder = tmp_path / "in"
+    folder.mkdir()
+    path = str(folder / "drops.csv")
+    write_arm_csv(path, samples=100)
+    with open(path, "a") as f:
+        f.write("0.5" + ",0.1" * 8 + "\n")  # backwards
+        f.write("1.5,nan" + ",0.1" * 7 + "\n")
+    done = subprocess.run([mbk_path(), "bag", path, "--model", PANDA, "--csv",
+                           str(tmp_path / "out.csv"), "--summary-json",
+                           str(tmp_path / "s.json")], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with open(str(tmp_path / "s.json")) as f:
+        summary = json.load(f)
+    printed = re.match(r"mbk bag: (\d+) samples read, (\d+) written, (\d+) dropped "
+                       r"\(estimator (\w+)", done.stderr).groups()
+    assert printed == (str(summary["read"]), str(summary["written"]), str(summary["dropped"]),
+                       summary["estimator"])
+    drops = dict((cause, int(n)) for n, cause in
+                 re.findall(r"  dropped (\d+): (.*) \(first: ", done.stderr))
+    assert summary["drops"] == drops and len(drops) == 2
+    noise = float(re.search(r"noise level (\S+) ", done.stderr).group(1))
+    assert abs(summary["noise_level"] - noise) <= 0.005 * noise
+    assert (summary["status"], summary["outputs"]) == ("ok", [str(tmp_path / "out.csv")])
+    batch(str(folder), "--out-dir", str(tmp_path / "b"), "--model", PANDA, check=0)
+    row, = summary_rows(str(tmp_path / "b"))
+    assert row["drops"] == "; ".join("%s: %d" % d for d in sorted(drops.items()))
