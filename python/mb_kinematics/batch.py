@@ -341,6 +341,16 @@ class Interrupted(Exception):
         self.signum = signum
 
 
+def _report_finished(waiting, report):
+    """On an interruption: the jobs of `waiting` (future -> job) that finished all the same
+    (ok or partial: they left their records) are reported; the others stay not run."""
+    for future, job in waiting.items():
+        if future.done() and not future.cancelled() and future.exception() is None:
+            summary = future.result()
+            if summary["status"] != "failed":
+                report(job, summary)
+
+
 def _run_local(jobs, count, report, stop):
     """Runs `jobs` on `count` concurrent child processes; report(job, summary) as each ends."""
     running = set()
@@ -357,6 +367,8 @@ def _run_local(jobs, count, report, stop):
                 future.cancel()
             for child in list(running):
                 child.terminate()  # mbk bag removes its temporary files
+            wait(list(waiting))
+            _report_finished(waiting, report)
             raise
 
 
@@ -365,18 +377,19 @@ def run_on_client(client, jobs, report, stop):
     another worker when its worker dies; a job whose task fails anyway is reported failed."""
     from distributed import as_completed
     futures = client.map(run_job, jobs, pure=False)
-    job_of = dict(zip([f.key for f in futures], jobs))
+    waiting = dict(zip(futures, jobs))
     try:
         for future in as_completed(futures):
             stop.check()
-            job = job_of[future.key]
+            job = waiting.pop(future)
             try:
                 summary = future.result()
             except Exception as e:  # KilledWorker, a worker that cannot import the package
                 summary = _failure(job, "%s: %s" % (type(e).__name__, e))
             report(job, summary)
     except Interrupted:
-        client.cancel(futures)
+        _report_finished(waiting, report)
+        client.cancel(list(waiting))
         raise
 
 

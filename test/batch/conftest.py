@@ -65,6 +65,23 @@ def collection(tmp_path_factory):
     return str(root)
 
 
+def trimmed_walk(name, path, frames):
+    """test/mocap/NAME's first `frames` frames, as a BVH file at `path`."""
+    with open(source("test/mocap/" + name)) as f:
+        lines = f.read().split("\n")
+    motion = lines.index("MOTION")
+    lines[motion + 1] = "Frames: %d" % frames
+    with open(path, "w") as f:
+        f.write("\n".join(lines[:motion + 3 + frames]) + "\n")
+
+
+@pytest.fixture(scope="session")
+def direct_runs(collection, tmp_path_factory):
+    """(folder, {recording: its --summary-json}) of direct `mbk bag` runs on the collection."""
+    alone = str(tmp_path_factory.mktemp("alone"))
+    return alone, {r: direct(collection, r, alone) for r in recordings(collection)}
+
+
 def recordings(folder):
     """Every recording under `folder`, relative to it."""
     found = []

@@ -3,17 +3,17 @@ them, the outputs of one job and of two byte for byte those of direct `mbk bag` 
 summary from mbk bag's own --summary-json, the exit status counting the failure."""
 import os
 
-from conftest import (DAMAGED, PANDA, batch, batch_arguments, direct, output_files,
-                      recordings, summary_rows)
+from conftest import (DAMAGED, PANDA, batch, batch_arguments, output_files, recordings,
+                      summary_rows)
 
 
-def test_one_job_two_jobs_and_direct_runs_agree(collection, tmp_path):
-    one, two, alone = str(tmp_path / "one"), str(tmp_path / "two"), str(tmp_path / "alone")
+def test_one_job_two_jobs_and_direct_runs_agree(collection, direct_runs, tmp_path):
+    one, two = str(tmp_path / "one"), str(tmp_path / "two")
+    alone, expected = direct_runs
     status, table, _ = batch(*batch_arguments(collection, one, "--jobs", "1"))
     assert status == 1  # the damaged bag
     assert "failed" in table and DAMAGED in table
     batch(*batch_arguments(collection, two, "--jobs", "2"), check=1)
-    expected = {r: direct(collection, r, alone) for r in recordings(collection)}
     outputs = output_files(one)
     assert outputs == output_files(alone)
     assert outputs == output_files(two)
@@ -25,14 +25,14 @@ def test_one_job_two_jobs_and_direct_runs_agree(collection, tmp_path):
     assert not any(name.startswith("arm/damaged") for name in outputs)
 
 
-def test_summary_rows_are_mbk_bags_own(collection, tmp_path):
-    out, alone = str(tmp_path / "out"), str(tmp_path / "alone")
+def test_summary_rows_are_mbk_bags_own(collection, direct_runs, tmp_path):
+    out = str(tmp_path / "out")
     batch(*batch_arguments(collection, out, "--jobs", "2"), check=1)
     rows = summary_rows(out)
     assert [os.path.relpath(r["input"], collection) for r in rows] == recordings(collection)
     for row in rows:
         relative = os.path.relpath(row["input"], collection)
-        expected = direct(collection, relative, alone)
+        expected = direct_runs[1][relative]
         assert row["status"] == expected["status"], row
         assert row["error"] == expected["error"].replace(os.path.join(collection, relative),
                                                          row["input"])

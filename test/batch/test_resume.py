@@ -1,0 +1,125 @@
+"""mbk batch interrupted (SIGINT, SIGTERM, SIGKILL) and run again: what finished is skipped and
+recorded as resumed, nothing half-written counts, and a changed input or option is done again;
+the outputs in the end those of direct `mbk bag` runs, byte for byte (doc/batch.md)."""
+import glob
+import os
+import shutil
+import signal
+import subprocess
+import time
+
+import pytest
+
+from conftest import (CMU_MASS, CMU_SCALE, batch, direct, mbk_path, output_files, recordings,
+                      summary_rows, trimmed_walk)
+
+FRAMES = 400  # about 0.2 s of mbk bag per walk
+
+
+@pytest.fixture(scope="module")
+def template(tmp_path_factory):
+    """Six CMU walks (the two trials' first frames, three copies each), and the outputs of
+    direct `mbk bag` runs on them."""
+    folder = tmp_path_factory.mktemp("template") / "walks"
+    (folder / "b").mkdir(parents=True)
+    for i in range(3):
+        trimmed_walk("131_01.bvh", str(folder / ("a%d.bvh" % i)), FRAMES)
+        trimmed_walk("131_03.bvh", str(folder / "b" / ("c%d.bvh" % i)), FRAMES)
+    alone = str(tmp_path_factory.mktemp("alone"))
+    for relative in recordings(str(folder)):
+        direct(str(folder), relative, alone)
+    return str(folder), output_files(alone)
+
+
+@pytest.fixture
+def walks(template, tmp_path):
+    shutil.copytree(template[0], str(tmp_path / "walks"))
+    return str(tmp_path / "walks")
+
+
+@pytest.fixture
+def expected(template):
+    return template[1]
+
+
+def arguments(walks, out, *more):
+    return [walks, "--out-dir", out, "--jobs", "1", "--scale", CMU_SCALE, "--body-mass",
+            CMU_MASS] + list(more)
+
+
+def records(out):
+    return [p for p in glob.glob(os.path.join(out, ".mbk-batch", "**", "*.json"), recursive=True)
+            if not p.endswith(".run.json")]
+
+
+def interrupt(walks, out, signum):
+    """Starts mbk batch, sends `signum` once two files are done; its exit status."""
+    child = subprocess.Popen([mbk_path(), "batch"] + arguments(walks, out),
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while len(records(out)) < 2 and child.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    time.sleep(0.15)  # the third file's mbk bag running
+    child.send_signal(signum)
+    child.communicate(timeout=60)
+    return child.returncode
+
+
+def no_temporaries(out):
+    return not glob.glob(os.path.join(out, "**", "*mbk-tmp*"), recursive=True)
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_interrupted_then_resumed(walks, expected, tmp_path, signum):
+    out = str(tmp_path / "out")
+    assert interrupt(walks, out, signum) == 128 + signum
+    assert no_temporaries(out)
+    rows = summary_rows(out)
+    done = [r["input"] for r in rows if r["status"] == "ok"]
+    assert 2 <= len(done) < len(rows) == 6
+    assert {r["status"] for r in rows} == {"ok", "not run"}
+    want = expected
+    for name, data in output_files(out).items():
+        assert data == want[name], name  # what is there is whole
+    status, _, _ = batch(*arguments(walks, out))
+    assert status == 0
+    rows = summary_rows(out)
+    assert [r["input"] for r in rows if r["resumed"] == "1"] == done
+    assert all(r["status"] == "ok" for r in rows)
+    assert output_files(out) == want
+    assert no_temporaries(out)
+
+
+def test_killed_batch_leaves_nothing_half_written(walks, expected, tmp_path):
+    """SIGKILL: no summary, no handler; the running mbk bag ends with the batch (its parent
+    death signal) and removes its temporary file."""
+    out = str(tmp_path / "out")
+    assert interrupt(walks, out, signal.SIGKILL) == -signal.SIGKILL
+    time.sleep(0.5)
+    assert no_temporaries(out)
+    assert not os.path.exists(os.path.join(out, "summary.csv"))
+    batch(*arguments(walks, out), check=0)
+    rows = summary_rows(out)
+    assert sum(r["resumed"] == "1" for r in rows) >= 2
+    assert output_files(out) == expected
+
+
+def test_changed_input_option_or_output_is_done_again(walks, expected, tmp_path):
+    out = str(tmp_path / "out")
+    batch(*arguments(walks, out), check=0)
+    shutil.copy(os.path.join(walks, "b", "c0.bvh"), os.path.join(walks, "a0.bvh"))  # new content
+    with open(os.path.join(out, "b", "c1.csv"), "r+b") as f:  # an output cut short
+        f.truncate(1000)
+    os.remove(os.path.join(out, "b", "c2.csv"))
+    batch(*arguments(walks, out), check=0)
+    rows = {os.path.relpath(r["input"], walks): r for r in summary_rows(out)}
+    again = sorted(name for name, r in rows.items() if r["resumed"] == "0")
+    assert again == ["a0.bvh", "b/c1.bvh", "b/c2.bvh"]
+    want = dict(expected)
+    for name in ("a0.csv", "a0.errors.csv", "a0.sample_errors.csv"):
+        want[name] = expected["b/c0" + name[2:]]
+    assert output_files(out) == want
+    batch(*arguments(walks, out, "--max-gap", "0.2"), check=0)  # another option: all again
+    assert all(r["resumed"] == "0" for r in summary_rows(out))
+    batch(*arguments(walks, out, "--max-gap", "0.2", "--jobs", "2"), check=0)  # jobs: the same
+    assert all(r["resumed"] == "1" for r in summary_rows(out))
