@@ -40,6 +40,7 @@ MBK_TEST_PACKAGES=(
   valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
+  python3-dask python3-distributed python3-psutil  # mbk batch --scheduler's tests (Dask)
 )
 # What mbk_install_deps installs: scripts/test.sh adds MBK_TEST_PACKAGES.
 MBK_PACKAGES=("${MBK_DEMO_PACKAGES[@]}")

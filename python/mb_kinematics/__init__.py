@@ -11,10 +11,16 @@ arguments, names what is wrong (ValueError, TypeError) and makes the arrays.
 """
 import operator
 import os
+import pkgutil
 
 import numpy as np
 
-from mb_kinematics import _core
+try:
+    from mb_kinematics import _core
+except ImportError:  # imported from the source folder first on sys.path (a devel space's child
+    # processes, e.g. Dask's workers, inherit its sys.path): _core is in the devel space's folder
+    __path__ = pkgutil.extend_path(__path__, __name__)
+    from mb_kinematics import _core
 
 __all__ = ["load", "Model", "OUTPUTS", "Recording"]
 

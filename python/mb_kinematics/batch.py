@@ -192,7 +192,7 @@ def run_job(job, running=None):
     summary["seconds"] = time.monotonic() - started
     if summary["status"] != "failed":
         record = {"key": job["key"], "summary": summary,
-                  "outputs": {path: _file_identity(path) for path in job["outputs"]}}
+                  "outputs": [_file_identity(path) for path in job["outputs"]]}
         _write_atomically(job["record"], json.dumps(record, sort_keys=True))
     return summary
 
@@ -258,9 +258,8 @@ def finished(job):
             record = json.load(f)
         if record["key"] != job["key"]:
             return None
-        for path in job["outputs"]:
-            if _file_identity(path) != record["outputs"][path]:
-                return None
+        if [_file_identity(path) for path in job["outputs"]] != record["outputs"]:
+            return None
         return record["summary"]
     except (OSError, ValueError, KeyError, TypeError):
         return None
@@ -372,11 +371,22 @@ def _run_local(jobs, count, report, stop):
             raise
 
 
+def _absolute(job):
+    """The job with absolute paths, for a worker whose working directory is not ours."""
+    absolute = dict(job, input=os.path.abspath(job["input"]),
+                    outputs=[os.path.abspath(o) for o in job["outputs"]])
+    absolute["output_arguments"] = [os.path.abspath(a) if a in job["outputs"] else a
+                                    for a in job["output_arguments"]]
+    for name in ("record", "run_summary"):
+        absolute[name] = os.path.abspath(job[name])
+    return absolute
+
+
 def run_on_client(client, jobs, report, stop):
     """Runs `jobs` on a Dask cluster (a dask.distributed.Client): one task per job, retried on
     another worker when its worker dies; a job whose task fails anyway is reported failed."""
     from distributed import as_completed
-    futures = client.map(run_job, jobs, pure=False)
+    futures = client.map(run_job, [_absolute(job) for job in jobs], pure=False)
     waiting = dict(zip(futures, jobs))
     try:
         for future in as_completed(futures):
@@ -426,7 +436,10 @@ def _bag_options(model, options):
     if unknown:
         raise BatchError("unknown option %s" % ", ".join(u[2:].replace("-", "_") for u in unknown))
     if model is not None:
-        named["--model"] = os.path.abspath(model)
+        named["--model"] = model
+    for name in ("--model", "--segments"):  # a worker's working directory is not ours
+        if name in named:
+            named[name] = os.path.abspath(named[name])
     return named
 
 

@@ -51,7 +51,7 @@ def collection(tmp_path_factory):
     root = tmp_path_factory.mktemp("collection") / "recordings"
     (root / "walks" / "synthetic").mkdir(parents=True)
     (root / "arm").mkdir()
-    shutil.copy(source("test/mocap/131_01.bvh"), str(root / "walks"))
+    trimmed_walk("131_01.bvh", str(root / "walks" / "131_01.bvh"), 400)
     for name in ("bandai", "lafan1", "mixamo"):
         shutil.copy(source("test/mocap/synthetic/%s_layout_walk.bvh" % name),
                     str(root / "walks" / "synthetic"))
@@ -82,6 +82,21 @@ def direct_runs(collection, tmp_path_factory):
     return alone, {r: direct(collection, r, alone) for r in recordings(collection)}
 
 
+@pytest.fixture(scope="session")
+def walk_template(tmp_path_factory):
+    """Six CMU walks (the two trials' first 400 frames, about 0.2 s of mbk bag each, three
+    copies each), and the outputs of direct `mbk bag` runs on them."""
+    folder = tmp_path_factory.mktemp("template") / "walks"
+    (folder / "b").mkdir(parents=True)
+    for i in range(3):
+        trimmed_walk("131_01.bvh", str(folder / ("a%d.bvh" % i)), 400)
+        trimmed_walk("131_03.bvh", str(folder / "b" / ("c%d.bvh" % i)), 400)
+    alone = str(tmp_path_factory.mktemp("alone"))
+    for relative in recordings(str(folder)):
+        direct(str(folder), relative, alone)
+    return str(folder), output_files(alone)
+
+
 def recordings(folder):
     """Every recording under `folder`, relative to it."""
     found = []
@@ -98,9 +113,10 @@ def bag_arguments(relative):
     return ["--model", PANDA]
 
 
-def batch(*args, check=None):
+def batch(*args, check=None, cwd=None):
     """`mbk batch ARGS...`: (exit status, stdout, stderr)."""
-    done = subprocess.run([mbk_path(), "batch"] + list(args), capture_output=True, text=True)
+    done = subprocess.run([mbk_path(), "batch"] + list(args), capture_output=True, text=True,
+                          cwd=cwd)
     if check is not None:
         assert done.returncode == check, done.stderr
     return done.returncode, done.stdout, done.stderr

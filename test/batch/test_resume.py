@@ -10,36 +10,17 @@ import time
 
 import pytest
 
-from conftest import (CMU_MASS, CMU_SCALE, batch, direct, mbk_path, output_files, recordings,
-                      summary_rows, trimmed_walk)
-
-FRAMES = 400  # about 0.2 s of mbk bag per walk
-
-
-@pytest.fixture(scope="module")
-def template(tmp_path_factory):
-    """Six CMU walks (the two trials' first frames, three copies each), and the outputs of
-    direct `mbk bag` runs on them."""
-    folder = tmp_path_factory.mktemp("template") / "walks"
-    (folder / "b").mkdir(parents=True)
-    for i in range(3):
-        trimmed_walk("131_01.bvh", str(folder / ("a%d.bvh" % i)), FRAMES)
-        trimmed_walk("131_03.bvh", str(folder / "b" / ("c%d.bvh" % i)), FRAMES)
-    alone = str(tmp_path_factory.mktemp("alone"))
-    for relative in recordings(str(folder)):
-        direct(str(folder), relative, alone)
-    return str(folder), output_files(alone)
-
+from conftest import CMU_MASS, CMU_SCALE, batch, mbk_path, output_files, summary_rows
 
 @pytest.fixture
-def walks(template, tmp_path):
-    shutil.copytree(template[0], str(tmp_path / "walks"))
+def walks(walk_template, tmp_path):
+    shutil.copytree(walk_template[0], str(tmp_path / "walks"))
     return str(tmp_path / "walks")
 
 
 @pytest.fixture
-def expected(template):
-    return template[1]
+def expected(walk_template):
+    return walk_template[1]
 
 
 def arguments(walks, out, *more):
