@@ -1,0 +1,166 @@
+#!/usr/bin/env python3
+"""mbk batch's speed (doc/speed.md#a-collection-mbk-batch): a collection of --files BVH walks
+(the CMU trials of test/mocap, their first --frames frames, copied in turn) through a shell loop
+of `mbk bag`, `mbk batch --jobs 1` and `--jobs 2`, and a Dask LocalCluster of two worker
+processes (one thread each), in the same run; files/s, samples/s, and the speed-ups. Then the
+per-file overhead: the start of mbk_bag (`mbk bag --help`), and an `mbk bag` run on a walk of 10
+frames (start, model, reading, writing), the least of --repeats runs. Prints a markdown table
+(CPU s: the CPU time of the processes a run started, which the machine's other load leaves
+about as it is).
+Not a test: the figures depend on the machine's load.
+
+  source devel/setup.bash; cd /tmp; /usr/bin/python3 .../bench/batch_collection.py [--files 200]
+  (run outside the repository's root, which would shadow the package)
+"""
+import argparse
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+from mb_kinematics import batch
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+TRIALS = ["131_01.bvh", "131_03.bvh"]
+SCALE, MASS = "0.056444", "68.5"
+
+
+def mbk():
+    return os.path.join(os.path.dirname(batch.locate_mbk_bag()), "mbk")
+
+
+def trimmed(name, path, frames):
+    with open(os.path.join(ROOT, "test", "mocap", name)) as f:
+        lines = f.read().split("\n")
+    motion = lines.index("MOTION")
+    lines[motion + 1] = "Frames: %d" % frames
+    with open(path, "w") as f:
+        f.write("\n".join(lines[:motion + 3 + frames]) + "\n")
+
+
+def collection(folder, files, frames):
+    """`files` walks in ten subfolders."""
+    for i in range(files):
+        sub = os.path.join(folder, "session%d" % (i % 10))
+        os.makedirs(sub, exist_ok=True)
+        trimmed(TRIALS[i % 2], os.path.join(sub, "walk%03d.bvh" % i), frames)
+
+
+def timed(f):
+    start = time.perf_counter()
+    f()
+    return time.perf_counter() - start
+
+
+def children_cpu():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def timed_with_cpu(f):
+    """Wall seconds and the CPU seconds of the child processes (and theirs) it waited for."""
+    cpu = children_cpu()
+    return timed(f), children_cpu() - cpu
+
+
+def shell_loop(folder, out):
+    script = ('for f in $(find "$1" -name "*.bvh" | sort); do r=${f#$1/}; mkdir -p "$2/$(dirname '
+              '"$r")"; "$3" bag "$f" --scale %s --body-mass %s --csv "$2/${r%%.bvh}.csv" '
+              '2>/dev/null; done' % (SCALE, MASS))
+    subprocess.run(["bash", "-c", script, "loop", folder, out, mbk()], check=True)
+
+
+def mbk_batch(folder, out, jobs):
+    done = subprocess.run([mbk(), "batch", folder, "--out-dir", out, "--jobs", str(jobs),
+                           "--scale", SCALE, "--body-mass", MASS], capture_output=True)
+    assert done.returncode == 0, done.stderr
+
+
+def dask_run(folder, out, client):
+    rows = batch.run([folder], out, client=client, scale=SCALE, body_mass=MASS)
+    assert all(r["status"] == "ok" for r in rows)
+
+
+def least(command, repeats):
+    return min(timed(lambda: subprocess.run(command, capture_output=True))
+               for _ in range(repeats))
+
+
+def overhead(work, repeats):
+    tiny = os.path.join(work, "tiny.bvh")
+    trimmed(TRIALS[0], tiny, 10)
+    start = least([mbk(), "bag", "--help"], repeats)
+    run = least([mbk(), "bag", tiny, "--scale", SCALE, "--body-mass", MASS, "--csv",
+                 os.path.join(work, "tiny.csv")], repeats)
+    python = least([sys.executable, "-c", "import mb_kinematics.batch"], repeats)
+    return start, run, python
+
+
+def same_outputs(a, b):
+    for top, dirs, files in os.walk(a):
+        dirs[:] = [d for d in dirs if d != batch.STATE]
+        for name in files:
+            if name == batch.SUMMARY:
+                continue
+            path = os.path.join(top, name)
+            with open(path, "rb") as f, open(os.path.join(b, os.path.relpath(path, a)), "rb") as g:
+                if f.read() != g.read():
+                    return False
+    return True
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--files", type=int, default=200)
+    p.add_argument("--frames", type=int, default=240, help="per walk (120 Hz)")
+    p.add_argument("--repeats", type=int, default=5)
+    args = p.parse_args()
+    from distributed import Client, LocalCluster
+    work = tempfile.mkdtemp(prefix="mbk_batch_bench_")
+    try:
+        folder = os.path.join(work, "walks")
+        collection(folder, args.files, args.frames)
+        samples = args.files * args.frames
+        seconds, cpu = {}, {}
+        seconds["shell loop of mbk bag"], cpu["shell loop of mbk bag"] = timed_with_cpu(
+            lambda: shell_loop(folder, work + "/loop"))
+        for jobs, out in ((1, "/one"), (2, "/two")):
+            name = "mbk batch --jobs %d" % jobs
+            seconds[name], cpu[name] = timed_with_cpu(lambda: mbk_batch(folder, work + out, jobs))
+        started = time.perf_counter()
+        cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                               host="127.0.0.1", dashboard_address=None)
+        with Client(cluster) as client:
+            cluster_start = time.perf_counter() - started
+            seconds["Dask LocalCluster, 2 workers"] = timed(
+                lambda: dask_run(folder, work + "/dask", client))
+        cluster.close()
+        for out in ("one", "two", "dask"):
+            assert same_outputs(os.path.join(work, "loop"), os.path.join(work, out)), out
+        start, run, python = overhead(work, args.repeats)
+    finally:
+        shutil.rmtree(work)
+    print("%d walks of %d frames (%d samples), %d cores\n" % (args.files, args.frames, samples,
+                                                               len(os.sched_getaffinity(0))))
+    print("| run | s | files/s | samples/s | vs --jobs 1 | CPU s |")
+    print("|---|---|---|---|---|---|")
+    one = seconds["mbk batch --jobs 1"]
+    for name, s in seconds.items():
+        print("| %s | %.1f | %.1f | %.0f | %.2fx | %s |" % (
+            name, s, args.files / s, samples / s, one / s,
+            "%.1f" % cpu[name] if name in cpu else "(workers')"))
+    two = seconds["mbk batch --jobs 2"]
+    dask = seconds["Dask LocalCluster, 2 workers"]
+    print("\nDask / --jobs 2: %.2f (the cluster's start, %.1f s, not counted)" % (dask / two,
+                                                                                 cluster_start))
+    print("per file: mbk bag's start (--help) %.3f s; a 10-frame walk %.3f s (start, model, "
+          "read, write); the batch's Python start %.3f s once; the collection's mean %.3f s "
+          "per file with one job" % (start, run, python, one / args.files))
+    print("outputs: the loop's, --jobs 1's, --jobs 2's and Dask's byte for byte the same")
+
+
+if __name__ == "__main__":
+    main()
