@@ -46,10 +46,19 @@ std::string object(const BagOptions& o, const std::string& status, const BagSumm
          "}\n";
 }
 
+// Why a finished run is partial, in the words of the printed summary; "" when it is not.
+std::string partial_reason(const BagSummary& s) {
+  if (s.unreadable > 0)
+    return "unreadable " + std::to_string(s.unreadable) +
+           " messages, skipped: the output is partial (first: " + s.unreadable_example + ")";
+  return s.written == 0 ? "nothing written" : "";
+}
+
 }  // namespace
 
 std::string format_summary_json(const BagOptions& options, const BagSummary& summary) {
-  return object(options, exit_status(summary) == 0 ? "ok" : "partial", summary, "");
+  return object(options, exit_status(summary) == 0 ? "ok" : "partial", summary,
+                partial_reason(summary));
 }
 
 std::string format_failure_json(const BagOptions& options, const std::string& error) {

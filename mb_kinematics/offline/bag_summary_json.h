@@ -11,7 +11,8 @@ namespace mbk_offline {
 
 // {"input": ..., "outputs": [...], "status": "ok" | "partial", "read": n, "written": n,
 //  "dropped": n, "drops": {cause: n}, "unreadable": n, "estimator": ..., "noise_level": x or
-//  null, "max_gap": s, "seconds": s, "error": ""} (status by exit_status: 0 ok, 2 partial).
+//  null, "max_gap": s, "seconds": s, "error": ""} (status by exit_status: 0 ok, 2 partial;
+//  a partial run's "error" says why: unreadable messages, nothing written).
 std::string format_summary_json(const BagOptions& options, const BagSummary& summary);
 
 // The same object for a run that stopped with `error`: "status": "failed", counts 0.

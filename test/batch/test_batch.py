@@ -122,3 +122,30 @@ def test_summary_json_is_the_printed_summary(tmp_path):
     batch(str(folder), "--out-dir", str(tmp_path / "b"), "--model", PANDA, check=0)
     row, = summary_rows(str(tmp_path / "b"))
     assert row["drops"] == "; ".join("%s: %d" % d for d in sorted(drops.items()))
+
+
+def test_partial_recording_counted_and_resumed(tmp_path):
+    """A bag with messages of another type on /joint_states: mbk bag skips and counts them
+    (exit status 2, partial); its row says why, it counts in the exit status, and a second run
+    resumes it as it was (finished: the same input gives the same partial output)."""
+    import rosbag
+    from std_msgs.msg import String
+    from conftest import write_arm_bag
+    folder = tmp_path / "in"
+    folder.mkdir()
+    write_arm_bag(str(folder / "good.bag"))
+    write_arm_bag(str(folder / "mixed.bag"))
+    with rosbag.Bag(str(folder / "mixed.bag"), "a") as bag:
+        import rospy
+        for t in (1.5, 2.5):
+            bag.write("/joint_states", String(data="not a joint state"), rospy.Time.from_sec(t))
+    out = str(tmp_path / "out")
+    for resumed in ("0", "1"):
+        status, table, _ = batch(str(folder), "--out-dir", out, "--model", PANDA)
+        assert status == 1
+        good, mixed = summary_rows(out)
+        assert (good["status"], mixed["status"]) == ("ok", "partial")
+        assert mixed["error"].startswith("unreadable 2 messages, skipped")
+        assert "partial %s: unreadable 2 messages" % mixed["input"] in table
+        assert int(mixed["samples_written"]) == int(good["samples_written"]) == 300
+        assert (good["resumed"], mixed["resumed"]) == (resumed, resumed)
