@@ -89,17 +89,18 @@ def find_inputs(paths, out_dir):
     inputs under `out_dir` are left out. Raises BatchError for a missing path, no recording at
     all, or two inputs whose outputs would have the same name."""
     out = os.path.realpath(out_dir)
-    stems, found = {}, []
+    stems, seen, found = {os.path.splitext(SUMMARY)[0]: SUMMARY}, set(), []
     for path in paths:
         for item, stem in _expand(path, frozenset()):
             real = os.path.realpath(item)
-            if real == out or real.startswith(out + os.sep) or real in stems.values():
+            if real == out or real.startswith(out + os.sep) or real in seen:
                 continue
             key = os.path.normpath(stem)
             if key in stems:
                 raise BatchError("%s and %s: both would be written as %s in --out-dir"
                                  % (stems[key], item, key))
-            stems[key] = real
+            stems[key] = item
+            seen.add(real)
             found.append((item, key))
     if not found:
         raise BatchError("no recording (%s) in %s" % (", ".join(EXTENSIONS), " ".join(paths)))
@@ -241,7 +242,7 @@ def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1):
         output_arguments = sum(([flags[k], o] for k, o in zip(kinds, outputs)), [])
         key = {"input": _file_identity(path), "arguments": arguments, "files": _files_of(arguments),
                "kinds": list(kinds), "tool": tool}
-        jobs.append({"input": path, "stem": stem, "outputs": outputs, "arguments": arguments,
+        jobs.append({"input": path, "outputs": outputs, "arguments": arguments,
                      "output_arguments": output_arguments, "mbk_bag": mbk_bag, "key": key,
                      "threads": options.get("--threads", threads),
                      "record": os.path.join(state, stem + ".json"),
@@ -314,8 +315,9 @@ def write_summary(out_dir, rows):
     _write_atomically(os.path.join(out_dir, SUMMARY), text.getvalue())
 
 
-def format_table(rows, seconds):
-    """The printed summary: files and samples by status, then each file that is not ok."""
+def format_table(rows, seconds, most_listed=20):
+    """The printed summary: files and samples by status, then each file that is not ok (the
+    first `most_listed` of them; summary.csv has them all)."""
     lines = ["%-9s %7s %7s %12s %12s" % ("status", "files", "resumed", "samples in",
                                          "samples out")]
     for status in ("ok", "partial", "failed", "not run"):
@@ -326,9 +328,11 @@ def format_table(rows, seconds):
                 sum(int(r["samples_read"] or 0) for r in some),
                 sum(int(r["samples_written"] or 0) for r in some)))
     lines.append("%d files in %.1f s" % (len(rows), seconds))
-    for r in rows:
-        if r["status"] in ("partial", "failed"):
-            lines.append("%s %s: %s" % (r["status"], r["input"], r["error"] or "see its summary"))
+    not_ok = [r for r in rows if r["status"] in ("partial", "failed")]
+    for r in not_ok[:most_listed]:
+        lines.append("%s %s: %s" % (r["status"], r["input"], r["error"]))
+    if len(not_ok) > most_listed:
+        lines.append("... and %d more in summary.csv" % (len(not_ok) - most_listed))
     return "\n".join(lines) + "\n"
 
 

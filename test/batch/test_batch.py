@@ -87,6 +87,9 @@ def test_bad_command_lines(collection, tmp_path):
     assert status == 125 and "both would be written as walk" in err
     status, _, err = batch(collection, "--out-dir", str(tmp_path / "o"), "--jobs", "0")
     assert status == 125 and "--jobs" in err
+    (tmp_path / "summary.bvh").write_text("")
+    status, _, err = batch(str(tmp_path / "summary.bvh"), "--out-dir", str(tmp_path / "o"))
+    assert status == 125 and err.startswith("mbk: error: summary.csv and ")
     assert not os.path.exists(str(tmp_path / "o"))
 
 
@@ -149,3 +152,13 @@ def test_partial_recording_counted_and_resumed(tmp_path):
         assert "partial %s: unreadable 2 messages" % mixed["input"] in table
         assert int(mixed["samples_written"]) == int(good["samples_written"]) == 300
         assert (good["resumed"], mixed["resumed"]) == (resumed, resumed)
+
+
+def test_table_lists_the_first_failures():
+    from mb_kinematics.batch import format_table
+    rows = [{"input": "f%d.bag" % i, "status": "failed", "resumed": 0, "samples_read": 0,
+             "samples_written": 0, "error": "e%d" % i} for i in range(25)]
+    lines = format_table(rows, 1.0).splitlines()
+    assert lines[1].split() == ["failed", "25", "0", "0", "0"]
+    assert lines[3:] == ["failed f%d.bag: e%d" % (i, i) for i in range(20)] + [
+        "... and 5 more in summary.csv"]
