@@ -182,7 +182,7 @@ def run_job(job, running=None):
     stderr = stderr.decode("utf-8", "replace")
     if child.returncode < 0:
         name = signal.Signals(-child.returncode).name
-        return _failure(job, "mbk bag ended by %s %s" % (name, _last_error_line(stderr)).strip())
+        return _failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip())
     try:
         with open(job["run_summary"], encoding="utf-8") as f:
             summary = json.load(f)

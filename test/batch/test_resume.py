@@ -104,3 +104,35 @@ def test_changed_input_option_or_output_is_done_again(walks, expected, tmp_path)
     assert all(r["resumed"] == "0" for r in summary_rows(out))
     batch(*arguments(walks, out, "--max-gap", "0.2", "--jobs", "2"), check=0)  # jobs: the same
     assert all(r["resumed"] == "1" for r in summary_rows(out))
+
+
+def test_a_crashed_job_fails_alone_and_is_done_again(walks, expected, tmp_path):
+    """An mbk bag run killed (SIGKILL, as a crash) while the batch goes on: its row is failed,
+    naming the signal, the others are done; the next run does that one only."""
+    import psutil
+    out = str(tmp_path / "out")
+    child = subprocess.Popen([mbk_path(), "batch"] + arguments(walks, out),
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    crashed = None
+    while crashed is None and child.poll() is None:
+        for process in psutil.Process(child.pid).children(recursive=True):
+            try:
+                command = " ".join(process.cmdline())
+                if "mbk_bag" in command and len(records(out)) >= 1:
+                    process.kill()
+                    crashed = command
+                    break
+            except psutil.NoSuchProcess:
+                pass
+        time.sleep(0.01)
+    child.communicate(timeout=60)
+    assert child.returncode == 1 and crashed is not None
+    rows = summary_rows(out)
+    failed = [r for r in rows if r["status"] == "failed"]
+    assert len(failed) == 1 and failed[0]["error"].startswith("mbk bag ended by SIGKILL")
+    assert failed[0]["input"] in crashed
+    assert all(r["status"] == "ok" for r in rows if r is not failed[0])
+    batch(*arguments(walks, out), check=0)
+    rows = summary_rows(out)
+    assert [r["input"] for r in rows if r["resumed"] == "0"] == [failed[0]["input"]]
+    assert output_files(out) == expected
