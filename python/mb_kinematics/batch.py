@@ -527,6 +527,18 @@ def _options(arguments):
             for name in list(COMMON_OPTIONS) + list(BVH_OPTIONS)}
 
 
+def _connect(address):
+    """A Client of the Dask scheduler at `address`; BatchError if there is none to reach."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise BatchError("--scheduler needs Dask's distributed (Debian: python3-distributed)")
+    try:
+        return Client(address)
+    except (OSError, ValueError) as e:  # TimeoutError is an OSError
+        raise BatchError("cannot reach the Dask scheduler %s: %s" % (address, e))
+
+
 def main(argv=None):
     parser = _parser()
     try:
@@ -540,8 +552,7 @@ def main(argv=None):
     client, started = None, time.monotonic()
     try:
         if arguments.scheduler:
-            from distributed import Client
-            client = Client(arguments.scheduler)
+            client = _connect(arguments.scheduler)
         rows = run(arguments.inputs, arguments.out_dir, arguments.model, kinds, arguments.jobs,
                    client, arguments.progress or sys.stderr.isatty(), **_options(arguments))
     except BatchError as e:

@@ -75,6 +75,8 @@ def test_list_file_and_single_files(collection, tmp_path):
 
 
 def test_bad_command_lines(collection, tmp_path):
+    status, out, _ = batch("--help")
+    assert status == 0 and out.startswith("usage: mbk batch ")
     status, out, err = batch(str(tmp_path / "missing"), "--out-dir", str(tmp_path / "o"))
     assert (status, out) == (125, "")
     assert err == "mbk: error: %s: no such file or folder\n" % (tmp_path / "missing")

@@ -97,3 +97,19 @@ def test_worker_killed_mid_run(walk_template, client, tmp_path):
                                              if name.split(".")[0] in ok}
     time.sleep(0.3)  # the killed worker's mbk bag ended with it: no temporary file left
     assert not [name for name in os.listdir(out) if "mbk-tmp" in name]
+
+
+def test_no_scheduler_there(collection, tmp_path):
+    import socket
+    with socket.socket() as s:  # a port nothing listens on
+        s.bind(("127.0.0.1", 0))
+        address = "tcp://127.0.0.1:%d" % s.getsockname()[1]
+    os.environ["DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT"] = "1s"
+    try:
+        status, out, err = batch(collection, "--out-dir", str(tmp_path / "o"), "--scheduler",
+                                 address)
+    finally:
+        del os.environ["DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT"]
+    assert (status, out) == (125, "")
+    assert err.startswith("mbk: error: cannot reach the Dask scheduler %s: " % address), err
+    assert len(err.splitlines()) == 1
