@@ -104,7 +104,7 @@ def test_no_scheduler_there(collection, tmp_path):
     with socket.socket() as s:  # a port nothing listens on
         s.bind(("127.0.0.1", 0))
         address = "tcp://127.0.0.1:%d" % s.getsockname()[1]
-    os.environ["DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT"] = "1s"
+    os.environ["DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT"] = "0.3s"
     try:
         status, out, err = batch(collection, "--out-dir", str(tmp_path / "o"), "--scheduler",
                                  address)

@@ -8,6 +8,7 @@ import signal
 import subprocess
 import time
 
+import psutil
 import pytest
 
 from conftest import CMU_MASS, CMU_SCALE, batch, mbk_path, output_files, summary_rows
@@ -33,14 +34,28 @@ def records(out):
             if not p.endswith(".run.json")]
 
 
+def running_mbk_bag(batch_process):
+    """(process, command line) of an mbk bag run the batch has started, or None."""
+    for process in psutil.Process(batch_process.pid).children(recursive=True):
+        try:
+            command = " ".join(process.cmdline())
+        except psutil.NoSuchProcess:
+            continue
+        if "mbk_bag" in command:
+            return process, command
+    return None
+
+
 def interrupt(walks, out, signum):
-    """Starts mbk batch, sends `signum` once two files are done; its exit status."""
+    """Starts mbk batch, sends `signum` once two files are done and a third is running; its
+    exit status."""
     child = subprocess.Popen([mbk_path(), "batch"] + arguments(walks, out),
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 60
-    while len(records(out)) < 2 and child.poll() is None and time.monotonic() < deadline:
-        time.sleep(0.02)
-    time.sleep(0.15)  # the third file's mbk bag running
+    while child.poll() is None and time.monotonic() < deadline:
+        if len(records(out)) >= 2 and running_mbk_bag(child):
+            break
+        time.sleep(0.01)
     child.send_signal(signum)
     child.communicate(timeout=60)
     return child.returncode
@@ -109,21 +124,18 @@ def test_changed_input_option_or_output_is_done_again(walks, expected, tmp_path)
 def test_a_crashed_job_fails_alone_and_is_done_again(walks, expected, tmp_path):
     """An mbk bag run killed (SIGKILL, as a crash) while the batch goes on: its row is failed,
     naming the signal, the others are done; the next run does that one only."""
-    import psutil
     out = str(tmp_path / "out")
     child = subprocess.Popen([mbk_path(), "batch"] + arguments(walks, out),
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     crashed = None
     while crashed is None and child.poll() is None:
-        for process in psutil.Process(child.pid).children(recursive=True):
-            try:
-                command = " ".join(process.cmdline())
-                if "mbk_bag" in command and len(records(out)) >= 1:
-                    process.kill()
-                    crashed = command
-                    break
-            except psutil.NoSuchProcess:
-                pass
+        running = running_mbk_bag(child) if records(out) else None
+        try:
+            if running:
+                running[0].kill()
+                crashed = running[1]
+        except psutil.NoSuchProcess:  # it ended first: the next one
+            pass
         time.sleep(0.01)
     child.communicate(timeout=60)
     assert child.returncode == 1 and crashed is not None
