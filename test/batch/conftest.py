@@ -84,13 +84,13 @@ def direct_runs(collection, tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def walk_template(tmp_path_factory):
-    """Six CMU walks (the two trials' first 400 frames, about 0.2 s of mbk bag each, three
+    """Six CMU walks (the two trials' first 300 frames, about 0.15 s of mbk bag each, three
     copies each), and the outputs of direct `mbk bag` runs on them."""
     folder = tmp_path_factory.mktemp("template") / "walks"
     (folder / "b").mkdir(parents=True)
     for i in range(3):
-        trimmed_walk("131_01.bvh", str(folder / ("a%d.bvh" % i)), 400)
-        trimmed_walk("131_03.bvh", str(folder / "b" / ("c%d.bvh" % i)), 400)
+        trimmed_walk("131_01.bvh", str(folder / ("a%d.bvh" % i)), 300)
+        trimmed_walk("131_03.bvh", str(folder / "b" / ("c%d.bvh" % i)), 300)
     alone = str(tmp_path_factory.mktemp("alone"))
     for relative in recordings(str(folder)):
         direct(str(folder), relative, alone)
