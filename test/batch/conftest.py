@@ -38,7 +38,7 @@ def write_arm_bag(path, samples=300, phase=0.0):
 
 def write_arm_csv(path, samples=200):
     names = ["panda_joint%d" % j for j in range(1, 8)] + ["panda_finger_joint1"]
-    t = np.arange(samples) * 0.01
+    t = 1 + np.arange(samples) * 0.01  # from 1 s: a bag holds no stamp 0
     q = np.column_stack([0.3 * np.cos((1 + 0.2 * j) * t) for j in range(7)] + [0.01 + 0 * t])
     np.savetxt(path, np.column_stack([t, q]), delimiter=",", header="time," + ",".join(names),
                comments="", fmt="%.17g")
@@ -93,7 +93,7 @@ def walk_template(tmp_path_factory):
         trimmed_walk("131_03.bvh", str(folder / "b" / ("c%d.bvh" % i)), 300)
     alone = str(tmp_path_factory.mktemp("alone"))
     for relative in recordings(str(folder)):
-        direct(str(folder), relative, alone)
+        direct(str(folder), relative, alone, bag=False)
     return str(folder), output_files(alone)
 
 
@@ -123,18 +123,19 @@ def batch(*args, check=None, cwd=None):
 
 
 def batch_arguments(collection, out_dir, *more):
+    """mbk batch's arguments for the collection: both outputs, a bag and a CSV."""
     return [collection, "--out-dir", out_dir, "--model", PANDA, "--scale", CMU_SCALE,
-            "--body-mass", CMU_MASS] + list(more)
+            "--body-mass", CMU_MASS, "--bag", "--csv"] + list(more)
 
 
-def direct(collection, relative, out_dir):
+def direct(collection, relative, out_dir, bag=True):
     """One `mbk bag` run on a recording of the collection: its --summary-json (the CSV and its
-    side files under out_dir, mirrored)."""
+    side files, and with `bag` the bag, under out_dir, mirrored)."""
     stem = os.path.join(out_dir, os.path.splitext(relative)[0])
     os.makedirs(os.path.dirname(stem), exist_ok=True)
     subprocess.run([mbk_path(), "bag", os.path.join(collection, relative), "--csv",
-                    stem + ".csv", "--summary-json", stem + ".json"] + bag_arguments(relative),
-                   capture_output=True)
+                    stem + ".csv", "--summary-json", stem + ".json"] + bag_arguments(relative) +
+                   (["--out", stem + ".bag"] if bag else []), capture_output=True)
     with open(stem + ".json") as f:
         summary = json.load(f)
     os.remove(stem + ".json")

@@ -18,10 +18,11 @@ def test_one_job_two_jobs_and_direct_runs_agree(collection, direct_runs, tmp_pat
     assert outputs == output_files(alone)
     assert outputs == output_files(two)
     good = [r for r in expected if r != DAMAGED]
-    for relative in good:  # every good recording's CSV, its samples all there
+    for relative in good:  # every good recording's CSV and bag, its samples all there
         csv = outputs[os.path.splitext(relative)[0] + ".csv"].decode()
         assert expected[relative]["written"] > 0
         assert csv.count("\n") > expected[relative]["written"]
+        assert os.path.splitext(relative)[0] + ".bag" in outputs
     assert not any(name.startswith("arm/damaged") for name in outputs)
 
 
@@ -42,7 +43,8 @@ def test_summary_rows_are_mbk_bags_own(collection, direct_runs, tmp_path):
         assert row["estimator"] == expected["estimator"]
         noise = expected["noise_level"]
         assert row["noise_level"] == ("" if noise is None else repr(noise))
-        assert row["output"] == os.path.join(out, os.path.splitext(relative)[0] + ".csv")
+        stem = os.path.join(out, os.path.splitext(relative)[0])
+        assert row["output"] == stem + ".bag " + stem + ".csv"
         assert row["resumed"] == "0"
     failed = [r for r in rows if r["status"] != "ok"]
     assert [os.path.relpath(r["input"], collection) for r in failed] == [DAMAGED]
@@ -107,7 +109,7 @@ def test_summary_json_is_the_printed_summary(tmp_path):
     write_arm_csv(path, samples=100)
     with open(path, "a") as f:
         f.write("0.5" + ",0.1" * 8 + "\n")  # backwards
-        f.write("1.5,nan" + ",0.1" * 7 + "\n")
+        f.write("2.5,nan" + ",0.1" * 7 + "\n")
     done = subprocess.run([mbk_path(), "bag", path, "--model", PANDA, "--csv",
                            str(tmp_path / "out.csv"), "--summary-json",
                            str(tmp_path / "s.json")], capture_output=True, text=True)
