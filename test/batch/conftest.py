@@ -51,7 +51,7 @@ def collection(tmp_path_factory):
     root = tmp_path_factory.mktemp("collection") / "recordings"
     (root / "walks" / "synthetic").mkdir(parents=True)
     (root / "arm").mkdir()
-    trimmed_walk("131_01.bvh", str(root / "walks" / "131_01.bvh"), 400)
+    trimmed_walk("131_01.bvh", str(root / "walks" / "131_01.bvh"), 300)
     for name in ("bandai", "lafan1", "mixamo"):
         shutil.copy(source("test/mocap/synthetic/%s_layout_walk.bvh" % name),
                     str(root / "walks" / "synthetic"))
