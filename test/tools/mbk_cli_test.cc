@@ -906,6 +906,82 @@ TEST(MbkCli, EvalErrorsShowANulInASceneNameWhole) {
                          "number below 1\n");
 }
 
+// The text of a file, one string per line.
+std::vector<std::string> file_lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A CSV line's cells.
+std::vector<std::string> cells(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+  return out;
+}
+
+// A 1e300 and a -1e30 in a BVH's Hips/x and Hips/y: noted by coordinate and frame, excluded; no
+// cell of any output is NaN or inf (before: the noise level was inf and the error bars -nan), and
+// what the other coordinates give (every body's omega, alpha and their error bars) is as without.
+TEST(MbkCli, BagExcludesAGrossOutlierAndWritesNoNan) {
+  const std::string dir = ::testing::TempDir();
+  std::vector<std::string> lines = file_lines(source_path("test/io/data/cmu_walk.bvh"));
+  const size_t first =
+      std::find_if(lines.begin(), lines.end(),
+                   [](const std::string& l) { return l.rfind("Frame Time", 0) == 0; }) -
+      lines.begin() + 1;
+  auto replace_cell = [&](int frame, int column, const std::string& value) {
+    std::vector<std::string> words;
+    std::istringstream in(lines[first + frame]);
+    for (std::string w; in >> w;) words.push_back(w);
+    words[column] = value;
+    std::string line;
+    for (const std::string& w : words) line += (line.empty() ? "" : " ") + w;
+    lines[first + frame] = line;
+  };
+  replace_cell(15, 0, "1e300");
+  replace_cell(28, 1, "-1e30");
+  const std::string spiky = dir + "spiky_walk.bvh";
+  std::ofstream out(spiky);
+  for (const std::string& line : lines) out << line << "\n";
+  out.close();
+  const std::string options = " --scale 0.01 --body-mass 61.5 --csv ";
+  const Output clean = mbk("bag test/io/data/cmu_walk.bvh" + options + dir + "clean_walk.csv");
+  const Output run = mbk("bag " + spiky + options + dir + "spiky_walk.csv");
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.err.find("note 2 samples: outliers excluded"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("frame 15 (t = 0.266667): coordinate 'Hips/x' is 1e+298"),
+            std::string::npos)
+      << run.err;
+  for (const char* file :
+       {"spiky_walk.csv", "spiky_walk.errors.csv", "spiky_walk.sample_errors.csv"}) {
+    const std::vector<std::string> written = file_lines(dir + file);
+    EXPECT_GT(written.size(), 1u) << file;
+    for (std::string line : written) {
+      std::transform(line.begin(), line.end(), line.begin(), ::tolower);
+      EXPECT_EQ(line.find("nan"), std::string::npos) << file << ": " << line;
+      EXPECT_EQ(line.find("inf"), std::string::npos) << file << ": " << line;
+    }
+  }
+  const std::vector<std::string> a = file_lines(dir + "clean_walk.csv"),
+                                 b = file_lines(dir + "spiky_walk.csv");
+  ASSERT_EQ(a.size(), b.size());
+  const std::vector<std::string> header = cells(a[0]);
+  for (size_t i = 1; i < a.size(); ++i) {
+    const std::vector<std::string> x = cells(a[i]), y = cells(b[i]);
+    ASSERT_EQ(x.size(), y.size());
+    for (size_t c = 0; c < x.size(); ++c) {
+      const std::string& name = header[c];
+      const bool other =
+          name.rfind("omega", 0) == 0 || name.rfind("alpha", 0) == 0 || name == "origin_z";
+      EXPECT_TRUE(!other || x[c] == y[c]) << name << " line " << i << ": " << x[c] << " " << y[c];
+    }
+  }
+}
+
 // `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
 // (the last one silently won).
 TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
