@@ -23,11 +23,11 @@ std::string join(const std::vector<std::string>& names, size_t max = 8) {
 }  // namespace
 
 void DropLog::drop(const std::string& reason, const std::string& detail) {
-  if (drops[reason]++ == 0) example[reason] = detail;
+  if (drops[reason]++ == 0) example[reason] = printable(detail);
 }
 
 void DropLog::note(const std::string& reason, const std::string& detail) {
-  if (notes[reason]++ == 0) example[reason] = detail;
+  if (notes[reason]++ == 0) example[reason] = printable(detail);
 }
 
 long DropLog::dropped() const {
@@ -202,7 +202,7 @@ void RecordingBuilder::exclude_outlier(int p, int c, double median, double scale
                 outlier, std::abs(outlier - median) / scale, median);
   log_.note("outliers excluded (Hampel's test, doc/recorded_data.md)",
             r.where + " (t = " + std::to_string(r.t) + "): coordinate '" +
-                printable(model_.coordinate_names[c]) + "' is " + numbers);
+                model_.coordinate_names[c] + "' is " + numbers);
   r.row[c] = median, r.vrow[c] = 0, r.given[c] = 0;
   for (size_t q = p + 1; q < pending_.size(); ++q) {
     if (pending_[q].given[c] & Recording::kPosition) return;
@@ -256,7 +256,7 @@ Recording RecordingBuilder::finish() {
       why += " (" + std::to_string(log_.dropped()) + " of " + std::to_string(read_) +
              " samples dropped, " + std::to_string(most->second) + " as " + most->first +
              "; first: " + log_.example.at(most->first) + ")";
-    throw std::invalid_argument(why);
+    throw std::invalid_argument(printable(why));
   }
   if (sink_) {
     Recording empty;

@@ -982,6 +982,67 @@ TEST(MbkCli, BagExcludesAGrossOutlierAndWritesNoNan) {
   }
 }
 
+// No raw control byte reaches the terminal: `run`'s stderr holds none (a NUL, \v, an ANSI
+// escape) and each of `shown` as escaped text.
+void expect_escaped(const Output& run, const std::vector<std::string>& shown) {
+  for (char c : {'\0', '\v', '\x1b'})
+    EXPECT_EQ(run.err.find(c), std::string::npos) << static_cast<int>(c) << ": " << run.err;
+  for (const std::string& text : shown)
+    EXPECT_NE(run.err.find(text), std::string::npos) << text << " in " << run.err;
+}
+
+// Names with a NUL, \v and an ANSI escape in a BVH joint and a URDF link and joint: every error,
+// drop, note and summary line of mbk eval and mbk bag shows them escaped (io/printable.h), and
+// whole (before: a NUL in a BVH name or a YAML body name cut the error there; mbk bag's summary
+// wrote the bytes raw).
+TEST(MbkCli, NamesWithControlBytesAreEscapedInEveryLine) {
+  const std::string dir = ::testing::TempDir();
+  std::string walk;
+  for (const std::string& line : file_lines(source_path("test/io/data/cmu_walk.bvh")))
+    walk += line + "\n";
+  const char raw[] = "Le\0ft\v\x1b[31mUpLeg";
+  const std::string bad_name(raw, sizeof raw - 1);
+  for (const char* joint : {"JOINT LeftUpLeg", "JOINT LeftLeg"})
+    walk.replace(walk.find(joint), std::strlen(joint), "JOINT " + bad_name);
+  const std::string bvh = dir + "control_names.bvh";
+  std::ofstream(bvh) << walk;
+  const std::string shown = "JOINT Le\\x00ft\\x0b\\x1b[31mUpLeg: a second segment of this name";
+  for (const std::string& command :
+       {"eval --model " + bvh, "bag " + bvh + " --csv " + dir + "control_names.csv"}) {
+    const Output run = mbk(command);
+    EXPECT_EQ(run.status, 1) << command;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    expect_escaped(run, {shown});
+  }
+  const std::string link = "b\x1b[31mX\vY", joint = "j\x1b[31m\v";
+  const std::string inertia =
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/>";
+  auto robot = [&](const std::string& mass) {
+    return "<robot name=\"r\"><link name=\"base\"/><link name=\"b&#27;[31mX&#11;Y\"><inertial>"
+           "<mass value=\"" +
+           mass + "\"/>" + inertia +
+           "</inertial></link>"
+           "<joint name=\"j&#27;[31m&#11;\" type=\"continuous\"><parent link=\"base\"/>"
+           "<child link=\"b&#27;[31mX&#11;Y\"/></joint></robot>";
+  };
+  const TempFile bad_mass(robot("-1"), ".urdf"), good(robot("1"), ".urdf");
+  std::string csv = "time," + joint + ",extra\x1b[32m\vcolumn\n";
+  for (int i = 0; i < 50; ++i) csv += std::to_string(0.01 * i) + ",1e60,1\n";  // too large
+  const TempFile recording(csv, ".csv");
+  const std::string mass_error = "body 1 'b\\x1b[31mX\\x0bY': mass must be finite and >= 0";
+  for (const std::string& command :
+       {"eval --model " + bad_mass.path,
+        "bag " + recording.path + " --model " + bad_mass.path + " --csv " + dir + "c.csv"}) {
+    const Output run = mbk(command);
+    EXPECT_EQ(run.status, 1) << command;
+    expect_escaped(run, {mass_error});
+  }
+  const Output bag =
+      mbk("bag " + recording.path + " --model " + good.path + " --verbose --csv " + dir + "d.csv");
+  expect_escaped(bag, {"body 1 'b\\x1b[31mX\\x0bY', acceleration of 'j\\x1b[31m\\x0b'",
+                       ": extra\\x1b[32m\\x0bcolumn)", "    j\\x1b[31m\\x0b: noise"});
+}
+
 // `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
 // (the last one silently won).
 TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
