@@ -188,13 +188,12 @@ bool OfflineStates::body_errors(int r, const JointState<double>& state,
                                 std::vector<Vec3<double>>& acceleration_se) {
   if (!estimator_.automatic || model_.speeds != SpeedKind::kCoordinateDerivatives) return false;
   if (!scratch_.pv) {
-    scratch_.pv = std::make_unique<PartialVelocities<double>>(model_);
+    scratch_.pv = std::make_unique<PartialVelocities<double>>(model_, kStreamed);
     scratch_.data = std::make_unique<Data<double>>(model_);
     speed_se_.setZero(rec_.nq), speed_dot_se_.setZero(rec_.nq);
   }
   coordinate_errors(r, speed_se_.data(), speed_dot_se_.data());  // y = q': speed c is q_c'
-  partial_velocity_kinematics(model_, state, *scratch_.pv, *scratch_.data);
-  body_acceleration_errors(model_, *scratch_.pv, *scratch_.data, speed_se_.data(),
+  body_acceleration_errors(model_, state, *scratch_.pv, *scratch_.data, speed_se_.data(),
                            speed_dot_se_.data(), alpha_se, acceleration_se);
   return true;
 }
