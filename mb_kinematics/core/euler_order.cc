@@ -3,6 +3,8 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "mb_kinematics/core/printable.h"
+
 namespace mbk {
 
 Mat3<double> SignedPermutation::matrix() const {
@@ -47,7 +49,7 @@ EulerOrder euler_order_from_string(const std::string& text) {
   }
   for (const std::array<int, 3>& a : kEulerAxes)
     if (ok && a == axes) return euler_order_from_axes(axes);
-  throw std::invalid_argument("unknown Euler order '" + text +
+  throw std::invalid_argument("unknown Euler order '" + printable(text) +
                               "' (one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, "
                               "ZYZ, or the same as digits 123, 313, ...)");
 }

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "mb_kinematics/core/printable.h"
+
 namespace mbk {
 
 // The table of joint facts (doc/method.md 2; coordinates as in doc/conventions.md "Coordinates and
@@ -68,7 +70,8 @@ JointType joint_type_from_string(const std::string& name) {
     if (name == joint_traits(type).name) return type;
     known += std::string(known.empty() ? "" : ", ") + joint_traits(type).name;
   }
-  throw std::invalid_argument("unknown joint type '" + name + "' (known: " + known + ")");
+  throw std::invalid_argument("unknown joint type '" + printable(name) + "' (known: " + known +
+                              ")");
 }
 
 std::string to_string(JointType type) { return joint_traits(type).name; }
@@ -77,7 +80,8 @@ JointType joint_type_from_urdf_type(const std::string& urdf_type) {
   const std::string name = urdf_type == "revolute" ? "continuous" : urdf_type;
   for (JointType type : all_joint_types())
     if (!name.empty() && name == joint_traits(type).urdf_type) return type;
-  throw std::invalid_argument("URDF joint type '" + urdf_type + "' has no joint type here");
+  throw std::invalid_argument("URDF joint type '" + printable(urdf_type) +
+                              "' has no joint type here");
 }
 
 const std::vector<std::string>& coordinate_suffixes(JointType type) {

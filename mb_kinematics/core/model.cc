@@ -9,12 +9,15 @@
 
 #include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk {
 namespace {
 
+// The message holds the model's names: escaped (a NUL in one would end what() there).
 [[noreturn]] void fail(const Body& body, int k, const std::string& what) {
-  throw std::invalid_argument("body " + std::to_string(k) + " '" + body.name + "': " + what);
+  throw std::invalid_argument(
+      printable("body " + std::to_string(k) + " '" + body.name + "': " + what));
 }
 
 bool all_finite(const Eigen::MatrixXd& m) { return m.allFinite(); }
@@ -80,7 +83,8 @@ void order_mimics(Model& model) {
   std::unordered_map<int, int> mimic_of;  // coordinate -> its mimic
   for (size_t i = 0; i < model.mimics.size(); ++i)
     if (!mimic_of.emplace(model.mimics[i].coordinate, static_cast<int>(i)).second)
-      throw std::invalid_argument("mimic: '" + model.coordinate_names[model.mimics[i].coordinate] +
+      throw std::invalid_argument("mimic: '" +
+                                  printable(model.coordinate_names[model.mimics[i].coordinate]) +
                                   "' mimics two joints");
   std::vector<int> level(model.mimics.size(), -1);  // hops to a source that is no mimic
   std::vector<char> on_path(model.mimics.size(), 0);
@@ -94,7 +98,7 @@ void order_mimics(Model& model) {
         std::string cycle;
         for (auto j = std::find(path.begin(), path.end(), i); j != path.end(); ++j)
           cycle += name(*j) + " -> ";
-        throw std::invalid_argument("mimic joints form a cycle: " + cycle + name(i));
+        throw std::invalid_argument(printable("mimic joints form a cycle: " + cycle + name(i)));
       }
       on_path[i] = 1;
       path.push_back(i);

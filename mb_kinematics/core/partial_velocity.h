@@ -3,6 +3,7 @@
 // only the columns of the speeds of its own joint and its ancestors' joints.
 #pragma once
 
+#include <algorithm>
 #include <cassert>
 #include <vector>
 
@@ -17,6 +18,13 @@ namespace mbk {
 // Body k's columns are begin[k] .. begin[k] + count[k] - 1 in the flat arrays below: first its
 // lower body's columns (same order), then its own joint's. speed[i] is the generalized speed
 // index r of flat column i. All vectors in R components.
+// Streamed (made with kStreamed): a body's columns live in a slot of the largest body's size only
+// from its computation until its last child's, and partial_velocity_kinematics hands each body
+// to a callback as it is done: memory for the bodies alive at once (2 on a chain, about a
+// breadth-first level of a tree) instead of sum_k count[k], N x depth / 2 on a chain.
+struct Streamed {};
+constexpr Streamed kStreamed{};
+
 template <typename S>
 struct PartialVelocities {
   std::vector<int> begin, count, speed;
@@ -41,21 +49,78 @@ struct PartialVelocities {
         speed.push_back(body.v_index + i - count[body.lower]);
       total += count[k];
     }
+    resize(total);
+  }
+
+  PartialVelocities(const Model& model, Streamed) : streamed(true) {
+    const int n = model.body_count();
+    begin.assign(n + 1, 0);
+    count.assign(n + 1, 0);
+    last_child.assign(n + 1, 0);
+    for (int k = 1; k <= n; ++k) {
+      const Body& body = model.bodies[k];
+      count[k] = count[body.lower] + speed_count(body.joint.type, model.speeds);
+      slot_size = std::max(slot_size, count[k]);
+      last_child[body.lower] = k;
+    }
+    int alive = 0, slots = 0;  // as open() and close() will go
+    for (int k = 1; k <= n; ++k) {
+      slots = std::max(slots, ++alive);
+      alive -= (last_child[k] == 0) +
+               (model.bodies[k].lower > 0 && last_child[model.bodies[k].lower] == k);
+    }
+    for (int slot = slots - 1; slot >= 0; --slot) free_slots.push_back(slot);
+    speed.assign(static_cast<std::size_t>(slots) * slot_size, 0);
+    resize(speed.size());
+  }
+
+  // Streamed: body k's slot, its lower body's speeds then its own joint's.
+  void open(const Model& model, int k) {
+    const Body& body = model.bodies[k];
+    begin[k] = free_slots.back() * slot_size;
+    free_slots.pop_back();
+    const int j = body.lower, nj = count[j];
+    for (int i = 0; i < nj; ++i) speed[begin[k] + i] = speed[begin[j] + i];
+    for (int i = nj; i < count[k]; ++i) speed[begin[k] + i] = body.v_index + i - nj;
+  }
+  // Streamed: body k is done; its slot and its lower body's go when no child needs them.
+  void close(const Model& model, int k) {
+    const int j = model.bodies[k].lower;
+    if (last_child[k] == 0) free_slots.push_back(begin[k] / slot_size);
+    if (j > 0 && last_child[j] == k) free_slots.push_back(begin[j] / slot_size);
+  }
+  // The entries the arrays hold (six 3-vectors and a speed index each).
+  std::size_t entries() const { return speed.size(); }
+
+  bool streamed = false;
+  std::vector<int> last_child;  // streamed: per body, its last child (0: none)
+  std::vector<int> free_slots;
+  int slot_size = 0;
+
+ private:
+  void resize(std::size_t total) {
     for (auto* v :
          {&omega, &origin_velocity, &velocity, &omega_dot, &origin_velocity_dot, &velocity_dot})
       v->assign(total, Vec3<S>::Zero());
   }
 };
 
+struct NoCallback {
+  void operator()(int) const {}
+};
+
 // Same outputs as forward_kinematics, through the partial velocity arrays: omega_k = sum_r
 // omega_kr y_r, v_k = sum_r v_kr y_r, alpha_k = sum_r (omega_kr y_r' + omega_kr' y_r),
-// a_k = sum_r (v_kr y_r' + v_kr' y_r). No allocation.
-template <typename S>
+// a_k = sum_r (v_kr y_r' + v_kr' y_r). No allocation. At Level::kAcceleration, done(k) is called
+// as each body k is complete (its columns and data's entries); a streamed pv needs it there.
+template <typename S, typename Done = NoCallback>
 void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                  PartialVelocities<S>& pv, Data<S>& data,
-                                 Level level = Level::kAcceleration) {
+                                 Level level = Level::kAcceleration, Done done = {}) {
   assert(sized_for(data, model) && pv.begin.size() == model.bodies.size() &&
          "partial_velocity_kinematics: Data or PartialVelocities made for another model");
+  assert((!pv.streamed || level == Level::kAcceleration) &&
+         "partial_velocity_kinematics: a streamed PartialVelocities needs every level");
   JointMotion<S> m;
   const bool velocities = level != Level::kPose;
   const bool accelerations = level == Level::kAcceleration;
@@ -68,6 +133,7 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
     if (velocities || detail::uses_joint_motion<S>(model.steps.steps[k].kernel))  // else unused
       joint_motion(body.joint, model.speeds, state.position.data() + body.q_index,
                    velocities ? y + body.v_index : nullptr, m);
+    if (pv.streamed) pv.open(model, k);
     Vec3<S> d = Vec3<S>::Zero(), rho;  // d: set by pose_step (zero for GCC's warning)
     detail::BallFrame<S> f;
     detail::pose_step(model, k, state.position.data(), m, data, d, rho, f);
@@ -132,6 +198,8 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
     data.alpha[k] = alpha;
     data.mass_center_acceleration[k] = a;
     data.origin_acceleration[k] = ao;
+    done(k);
+    if (pv.streamed) pv.close(model, k);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "mb_kinematics/estimation/median_histogram.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace mbk {
@@ -20,6 +21,20 @@ std::uint64_t ordered_bits(double value) {
 }  // namespace
 
 void MedianHistogram::add(double value) {
+  if (count_ < kExactValues) {
+    values_.push_back(value);
+    ++count_;
+    return;
+  }
+  if (!values_.empty()) {  // the bins take over
+    count_ = 0;
+    for (double v : values_) add_to_bins(v);
+    std::vector<double>().swap(values_);
+  }
+  add_to_bins(value);
+}
+
+void MedianHistogram::add_to_bins(double value) {
   const std::uint64_t key = ordered_bits(value);
   std::vector<Bin>& octave = octaves_[static_cast<std::uint32_t>(key >> 52)];
   if (octave.empty()) octave.resize(std::size_t{1} << kMantissaBits);
@@ -36,6 +51,12 @@ void MedianHistogram::add(double value) {
 
 double MedianHistogram::median() const {
   std::uint64_t rank = count_ / 2;
+  if (!values_.empty()) {  // in the bins' order: NaN last
+    std::vector<double> v = values_;
+    std::nth_element(v.begin(), v.begin() + rank, v.end(),
+                     [](double a, double b) { return ordered_bits(a) < ordered_bits(b); });
+    return v[rank];
+  }
   for (const auto& entry : octaves_)
     for (const Bin& bin : entry.second) {
       if (rank >= bin.count) {
@@ -49,7 +70,7 @@ double MedianHistogram::median() const {
 }
 
 std::size_t MedianHistogram::bytes() const {
-  return octaves_.size() * (sizeof(Bin) << kMantissaBits);
+  return values_.capacity() * sizeof(double) + octaves_.size() * (sizeof(Bin) << kMantissaBits);
 }
 
 }  // namespace mbk

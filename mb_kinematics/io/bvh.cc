@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/io/number_format.h"
+#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
@@ -24,8 +25,9 @@ class Scanner {
   Scanner(const std::string& text, const std::string& path)
       : text_(text), path_(path), pos_(text.rfind("\xEF\xBB\xBF", 0) == 0 ? 3 : 0) {}
 
+  // `what` may hold the file's names: escaped, as a NUL in one would end what() there.
   [[noreturn]] void fail(int line, const std::string& what) const {
-    throw std::invalid_argument(path_ + ":" + std::to_string(line) + ": " + what);
+    throw std::invalid_argument(printable(path_ + ":" + std::to_string(line) + ": " + what));
   }
   int line() const { return line_; }
 

@@ -8,6 +8,7 @@
 
 #include "mb_kinematics/io/bvh_bones.h"
 #include "mb_kinematics/io/name_list.h"
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {
@@ -96,7 +97,8 @@ class Skeleton {
     for (const auto& [joint, segment] : map.segment_of) {
       const auto it = index_.find(joint);
       if (it == index_.end())
-        throw std::invalid_argument(map.path + ": joint " + joint + " is not in " + bvh.path);
+        throw std::invalid_argument(
+            printable(map.path + ": joint " + joint + " is not in " + bvh.path));
       mapped_[segment] = it->second;
     }
   }

@@ -15,6 +15,7 @@
 #include "mb_kinematics/io/bvh_motion_check.h"
 #include "mb_kinematics/io/name_list.h"
 #include "mb_kinematics/io/number_format.h"
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {
@@ -23,9 +24,9 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kHumanHeight[2] = {0.5, 2.5};  // metres: outside, the scale is likely wrong
 
 [[noreturn]] void fail(const BvhFile& bvh, const BvhSegment& segment, const std::string& what) {
-  throw std::invalid_argument(bvh.path + ":" + std::to_string(segment.line) + ": " +
-                              (segment.parent < 0 ? "ROOT " : "JOINT ") + segment.name + ": " +
-                              what);
+  throw std::invalid_argument(printable(bvh.path + ":" + std::to_string(segment.line) + ": " +
+                                        (segment.parent < 0 ? "ROOT " : "JOINT ") + segment.name +
+                                        ": " + what));
 }
 
 int axis_of(BvhChannel channel) { return static_cast<int>(channel) % 3; }  // X, Y, Z -> 0, 1, 2
@@ -243,8 +244,8 @@ std::vector<double> bvh_frame_coordinates(const BvhFile& bvh, const Model& model
     const BvhSegment& segment = bvh.segments[k - 1];
     const Body& body = model.bodies[k];
     if (body.name != segment.name)
-      throw std::invalid_argument(bvh.path + ": body " + std::to_string(k) + " is " + body.name +
-                                  ", not the file's " + segment.name);
+      throw std::invalid_argument(printable(bvh.path + ": body " + std::to_string(k) + " is " +
+                                            body.name + ", not the file's " + segment.name));
     const int translations = translation_count(body.joint.type);
     int angle = 0;
     for (size_t i = 0; i < segment.channels.size(); ++i) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/io/name_list.h"
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {
@@ -48,12 +49,13 @@ SegmentMap parse_segment_map(const std::string& text, const std::string& path) {
     const std::string joint = entry.first.as<std::string>();
     const std::string segment = entry.second.as<std::string>();
     if (!is_key(segment))
-      throw std::invalid_argument(path + ": joint " + joint + ": '" + segment +
-                                  "' is not a segment (" + name_list(segment_keys()) + ")");
+      throw std::invalid_argument(printable(path + ": joint " + joint + ": '" + segment +
+                                            "' is not a segment (" + name_list(segment_keys()) +
+                                            ")"));
     const auto [it, fresh] = joint_of.emplace(segment, joint);
     if (!fresh)
-      throw std::invalid_argument(path + ": " + segment + " given to two joints, " + it->second +
-                                  " and " + joint);
+      throw std::invalid_argument(printable(path + ": " + segment + " given to two joints, " +
+                                            it->second + " and " + joint));
     map.segment_of[joint] = segment;
   }
   return map;

@@ -150,7 +150,8 @@ std::string partials_json(const Model& model, const PartialVelocities<double>& p
     for (size_t i = 0; i < columns.size(); ++i) {
       const Vec3<double>& v = columns[i].*fields[f];
       if (!v.allFinite())
-        throw std::runtime_error("body " + std::to_string(k) + " '" + model.bodies[k].name +
+        throw std::runtime_error("body " + std::to_string(k) + " '" +
+                                 printable(model.bodies[k].name) +
                                  "': partial velocities not finite");
       out += (i ? ", " : "") + json_string(model.speed_names[columns[i].speed]) + ": " +
              json_array(v.transpose());
@@ -174,7 +175,8 @@ std::string format_eval_json(const Model& model, const Data<double>& data,
                         data.alpha[k].allFinite() && data.mass_center_velocity[k].allFinite() &&
                         data.mass_center_acceleration[k].allFinite();
     if (!finite)
-      throw std::runtime_error("body " + std::to_string(k) + " '" + model.bodies[k].name +
+      throw std::runtime_error("body " + std::to_string(k) + " '" +
+                               printable(model.bodies[k].name) +
                                "': kinematics not finite (check the state, e.g. Euler "
                                "parameters of zero norm)");
     out << (k > 1 ? ",\n  " : "\n  ") << "{\"index\": " << k

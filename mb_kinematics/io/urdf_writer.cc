@@ -226,8 +226,9 @@ std::string write_urdf(const Model& model, const std::string& robot_name, UrdfSt
         write_axis_chain(out, body, parent);
         break;
       case UrdfForm::kNone:
-        throw std::invalid_argument("body '" + body.name + "': joint '" + joint.name + "' (" +
-                                    to_string(joint.type) + ") has no URDF equivalent");
+        throw std::invalid_argument(printable("body '" + body.name + "': joint '" + joint.name +
+                                              "' (" + to_string(joint.type) +
+                                              ") has no URDF equivalent"));
     }
     write_link(out, body.name, &body, visuals(model, k, children[k]));
   }

@@ -20,6 +20,7 @@
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
@@ -48,7 +49,7 @@ bool ends_with(const std::string& s, const std::string& end) {
 mbk::Model load(const std::string& path, const mbk::BvhModelOptions& bvh) {
   mbk::Model model = mbk::load_model_file(path, bvh);
   for (const std::string& warning : model.warnings)
-    std::cerr << "mbk: warning: " << warning << "\n";
+    std::cerr << "mbk: warning: " << mbk::printable(warning) << "\n";
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {
     model.speeds = mbk::SpeedKind::kCoordinateDerivatives;
     mbk::finalize_model(model);
@@ -598,8 +599,8 @@ std::string format_summary(const BagSummary& s, bool verbose) {
         "  error bars (noise level; median standard error of velocity, acceleration, medians to "
         "5e-4 relative):\n";
   for (const mbk::CoordinateError& e : verbose ? s.errors : std::vector<mbk::CoordinateError>{}) {
-    std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n", e.name.c_str(), e.noise,
-                  e.velocity_se, e.acceleration_se);
+    std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n",
+                  mbk::printable(e.name).c_str(), e.noise, e.velocity_se, e.acceleration_se);
     out += line;
   }
   if (s.unreadable > 0)

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/quaternion_scale.h"
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk_offline {
 namespace {
@@ -63,10 +64,11 @@ std::vector<std::string> require(const Topics& topics, const std::string& path,
     if (without_slash(t.first) == without_slash(topic))
       names.push_back(t.first), types.insert(t.second.begin(), t.second.end());
   if (names.empty())
-    throw std::invalid_argument(path + ": no topic '" + topic + "'; " + list(topics));
+    throw std::invalid_argument(
+        mbk::printable(path + ": no topic '" + topic + "'; " + list(topics)));
   if (!types.count(type))
-    throw std::invalid_argument(path + ": topic '" + topic + "' is " + join(types) + ", not " +
-                                type);
+    throw std::invalid_argument(
+        mbk::printable(path + ": topic '" + topic + "' is " + join(types) + ", not " + type));
   return names;
 }
 
@@ -290,10 +292,10 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
     char magic[13] = {};
     in.read(magic, sizeof magic);
     if (std::string(magic, sizeof magic) == "#ROSBAG V2.0\n")  // a bag, damaged or cut short
-      throw std::invalid_argument(path + ": not a readable bag (" + e.what() +
-                                  "): truncated or corrupt; `rosbag reindex " + path +
-                                  "` may recover it");
-    throw std::invalid_argument(path + ": not a readable bag (" + e.what() + ")");
+      throw std::invalid_argument(mbk::printable(path + ": not a readable bag (" + e.what() +
+                                                 "): truncated or corrupt; `rosbag reindex " +
+                                                 path + "` may recover it"));
+    throw std::invalid_argument(mbk::printable(path + ": not a readable bag (" + e.what() + ")"));
   }
   const Topics present = bag_topics(bag);
   std::map<std::string, Kind> kinds;

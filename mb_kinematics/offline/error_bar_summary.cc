@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "mb_kinematics/io/printable.h"
+
 namespace mbk {
 
 double median_noise(const std::vector<CoordinateError>& errors) {
@@ -25,8 +27,8 @@ std::string error_bar_line(const std::vector<CoordinateError>& errors) {
   std::snprintf(line, sizeof line,
                 "  noise level %.2e (median over %zu coordinates; largest %.2e, %s); worst error "
                 "bar: %s, acceleration %.2e (velocity %.2e)\n",
-                median_noise(errors), errors.size(), noisiest->noise, noisiest->name.c_str(),
-                worst->name.c_str(), worst->acceleration_se, worst->velocity_se);
+                median_noise(errors), errors.size(), noisiest->noise, printable(noisiest->name).c_str(),
+                printable(worst->name).c_str(), worst->acceleration_se, worst->velocity_se);
   return line;
 }
 

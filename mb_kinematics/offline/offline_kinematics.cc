@@ -147,8 +147,12 @@ std::vector<CoordinateError> OfflineStates::error_summary(const ErrorColumns* wh
 }
 
 bool OfflineStates::coordinate_errors(int r, double* velocity_se, double* acceleration_se) const {
-  if (!positions_fit_ || !partial_.empty()) return false;
+  if (!estimator_.automatic) return false;
   const int nq = rec_.nq;
+  for (size_t i = 0; i < partial_.size(); ++i)
+    if (r >= rule_until_[partial_[i]])  // else a mimic placed by its rule: exact
+      series_errors(i, r, velocity_se[partial_[i]], acceleration_se[partial_[i]]);
+  if (!positions_fit_) return true;
   for (int c : full_) {  // what the sample gives is exact
     const size_t at = static_cast<size_t>(r) * nq + c;
     const std::uint8_t given = rec_.given[at];
@@ -162,19 +166,34 @@ bool OfflineStates::coordinate_errors(int r, double* velocity_se, double* accele
   return true;
 }
 
+// Partial coordinate i's error bars at row r: those of its last sample up to r, whose
+// derivatives hold until its next (estimate_series).
+void OfflineStates::series_errors(size_t i, int r, double& velocity_se,
+                                  double& acceleration_se) const {
+  const Series& s = series_[i];
+  const int c = partial_[i];
+  const auto next = std::upper_bound(s.row.begin(), s.row.end(), r);
+  velocity_se = acceleration_se = 0;
+  if (next == s.row.begin() || !s.fit) return;
+  const AutoEstimate& a = *s.fit;
+  const size_t entry = static_cast<size_t>(next - s.row.begin()) - 1, at = entry * a.series;
+  const std::uint8_t given = rec_.given[static_cast<size_t>(s.row[entry]) * rec_.nq + c];
+  if (!(given & Recording::kVelocity)) velocity_se = a.first_se[at];
+  if (!(given & Recording::kAcceleration))
+    acceleration_se = velocity_everywhere_[c] ? a.first_se[at + 1] : a.second_se[at];
+}
+
 bool OfflineStates::body_errors(int r, const JointState<double>& state,
                                 std::vector<Vec3<double>>& alpha_se,
                                 std::vector<Vec3<double>>& acceleration_se) {
-  if (!positions_fit_ || !partial_.empty() || model_.speeds != SpeedKind::kCoordinateDerivatives)
-    return false;
+  if (!estimator_.automatic || model_.speeds != SpeedKind::kCoordinateDerivatives) return false;
   if (!scratch_.pv) {
-    scratch_.pv = std::make_unique<PartialVelocities<double>>(model_);
+    scratch_.pv = std::make_unique<PartialVelocities<double>>(model_, kStreamed);
     scratch_.data = std::make_unique<Data<double>>(model_);
     speed_se_.setZero(rec_.nq), speed_dot_se_.setZero(rec_.nq);
   }
   coordinate_errors(r, speed_se_.data(), speed_dot_se_.data());  // y = q': speed c is q_c'
-  partial_velocity_kinematics(model_, state, *scratch_.pv, *scratch_.data);
-  body_acceleration_errors(model_, *scratch_.pv, *scratch_.data, speed_se_.data(),
+  body_acceleration_errors(model_, state, *scratch_.pv, *scratch_.data, speed_se_.data(),
                            speed_dot_se_.data(), alpha_se, acceleration_se);
   return true;
 }

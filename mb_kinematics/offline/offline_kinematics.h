@@ -64,8 +64,8 @@ class OfflineStates {
   void append_errors(int begin, int end, ErrorColumns& out) const;
   // "auto": the standard errors of each body's alpha and mass-center acceleration at row r, in
   // `state` (from state_at), propagated from the coordinates' (core/body_errors.h; given
-  // derivatives and mimic rules count as exact). False, with nothing set, without them: a fixed
-  // estimator, or a coordinate estimated over its own samples.
+  // derivatives and mimic rules count as exact; a coordinate estimated over its own samples
+  // has its last sample's). False, with nothing set, for a fixed estimator.
   // "auto": the standard errors of row r's joint velocities and accelerations into the
   // coordinates' places of velocity_se and acceleration_se (nq each; a coordinate set by a mimic
   // rule is left as it is); false, with nothing set, as for body_errors.
@@ -87,6 +87,7 @@ class OfflineStates {
   void fit_automatic();
   void load_automatic(int r);
   void estimate_series(size_t i, size_t entry);
+  void series_errors(size_t i, int r, double& velocity_se, double& acceleration_se) const;
   void fill_full(int r, JointState<double>& state, int& valid) const;
   void derivatives(const DerivativeWeights& w, const std::vector<int>* rows, int c, bool velocity,
                    double& first, double& second) const;

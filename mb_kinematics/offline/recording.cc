@@ -1,7 +1,12 @@
 #include "mb_kinematics/offline/recording.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+
+#include "mb_kinematics/estimation/outliers.h"
+#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {
@@ -18,11 +23,11 @@ std::string join(const std::vector<std::string>& names, size_t max = 8) {
 }  // namespace
 
 void DropLog::drop(const std::string& reason, const std::string& detail) {
-  if (drops[reason]++ == 0) example[reason] = detail;
+  if (drops[reason]++ == 0) example[reason] = printable(detail);
 }
 
 void DropLog::note(const std::string& reason, const std::string& detail) {
-  if (notes[reason]++ == 0) example[reason] = detail;
+  if (notes[reason]++ == 0) example[reason] = printable(detail);
 }
 
 long DropLog::dropped() const {
@@ -133,7 +138,14 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
     if (row[i] != before[i]) vrow[i] = -vrow[i];
     if (given[i]) seen_[i] = 1, last_[i] = row[i];
   }
-  emit(t, row, vrow, given);
+  has_last_stamp_ = true, last_stamp_ = t;
+  if (sink_) {  // as finish() drops the rows before every coordinate was named
+    const std::vector<std::string> missing = not_named_yet();
+    if (!missing.empty())
+      return log_.drop("missing joints (not named yet)",
+                       "sample at t = " + std::to_string(t) + ": " + join(missing));
+  }
+  hold({t, std::move(row), std::move(vrow), std::move(given), where});
 }
 
 // The coordinates (mimics aside) no sample has named so far.
@@ -144,20 +156,67 @@ std::vector<std::string> RecordingBuilder::not_named_yet() const {
   return names;
 }
 
-void RecordingBuilder::emit(double t, const std::vector<double>& row,
-                            const std::vector<double>& vrow,
-                            const std::vector<std::uint8_t>& given) {
-  has_last_stamp_ = true, last_stamp_ = t;
-  if (sink_) {  // as finish() drops the rows before every coordinate was named
-    const std::vector<std::string> missing = not_named_yet();
-    if (missing.empty()) return sink_(t, row.data(), vrow.data(), given.data());
-    return log_.drop("missing joints (not named yet)",
-                     "sample at t = " + std::to_string(t) + ": " + join(missing));
+void RecordingBuilder::hold(PendingRow pending) {
+  constexpr int h = kOutlierHalfWindow, window = 2 * h + 1;
+  pending_.push_back(std::move(pending));
+  if (static_cast<int>(pending_.size()) < window) return;
+  if (!tested_head_)
+    for (int p = 0; p < h; ++p) test_outliers(p);
+  tested_head_ = true;
+  test_outliers(h);
+  emit(pending_.front());
+  pending_.pop_front();
+}
+
+void RecordingBuilder::release_pending() {
+  const int held = static_cast<int>(pending_.size());
+  for (int p = tested_head_ ? kOutlierHalfWindow : 0; p < held; ++p) test_outliers(p);
+  for (const PendingRow& r : pending_) emit(r);
+  pending_.clear();
+  tested_head_ = false;
+}
+
+void RecordingBuilder::test_outliers(int p) {
+  constexpr int h = kOutlierHalfWindow, window = 2 * h + 1;
+  const int held = static_cast<int>(pending_.size());
+  const int lo = std::clamp(p - h, 0, std::max(0, held - window)), hi = std::min(held, lo + window);
+  for (int c = 0; c < model_.nq; ++c) {
+    if (!(pending_[p].given[c] & Recording::kPosition)) continue;
+    window_.clear();
+    for (int q = lo; q < hi; ++q)
+      if (pending_[q].given[c] & Recording::kPosition) window_.push_back(pending_[q].row[c]);
+    if (static_cast<int>(window_.size()) < kOutlierMinimumWindow) continue;
+    const OutlierTest test =
+        hampel_test(window_.data(), static_cast<int>(window_.size()), pending_[p].row[c]);
+    if (test.outlier) exclude_outlier(p, c, test.median, test.scale);
   }
-  rec_.stamp.push_back(t);
-  rec_.position.insert(rec_.position.end(), row.begin(), row.end());
-  rec_.velocity.insert(rec_.velocity.end(), vrow.begin(), vrow.end());
-  rec_.given.insert(rec_.given.end(), given.begin(), given.end());
+}
+
+// Coordinate c of pending row p is not given there; its value (and the later rows' that kept
+// it) becomes its window's median.
+void RecordingBuilder::exclude_outlier(int p, int c, double median, double scale) {
+  PendingRow& r = pending_[p];
+  const double outlier = r.row[c];
+  char numbers[128];
+  std::snprintf(numbers, sizeof numbers, "%.6g, %.3g robust scales from its window's median %.6g",
+                outlier, std::abs(outlier - median) / scale, median);
+  log_.note("outliers excluded (Hampel's test, doc/recorded_data.md)",
+            r.where + " (t = " + std::to_string(r.t) + "): coordinate '" +
+                model_.coordinate_names[c] + "' is " + numbers);
+  r.row[c] = median, r.vrow[c] = 0, r.given[c] = 0;
+  for (size_t q = p + 1; q < pending_.size(); ++q) {
+    if (pending_[q].given[c] & Recording::kPosition) return;
+    pending_[q].row[c] = median;
+  }
+  last_[c] = median;
+}
+
+void RecordingBuilder::emit(const PendingRow& r) {
+  if (sink_) return sink_(r.t, r.row.data(), r.vrow.data(), r.given.data());
+  rec_.stamp.push_back(r.t);
+  rec_.position.insert(rec_.position.end(), r.row.begin(), r.row.end());
+  rec_.velocity.insert(rec_.velocity.end(), r.vrow.begin(), r.vrow.end());
+  rec_.given.insert(rec_.given.end(), r.given.begin(), r.given.end());
 }
 
 void RecordingBuilder::add_accelerations(double t, const std::vector<std::string>& names,
@@ -185,6 +244,7 @@ void RecordingBuilder::add_accelerations(double t, const std::vector<std::string
 }
 
 Recording RecordingBuilder::finish() {
+  release_pending();
   const int nq = model_.nq, rows = rec_.rows();
   const std::vector<std::string> never = not_named_yet();
   if (!never.empty() && read_ > 0) {
@@ -196,7 +256,7 @@ Recording RecordingBuilder::finish() {
       why += " (" + std::to_string(log_.dropped()) + " of " + std::to_string(read_) +
              " samples dropped, " + std::to_string(most->second) + " as " + most->first +
              "; first: " + log_.example.at(most->first) + ")";
-    throw std::invalid_argument(why);
+    throw std::invalid_argument(printable(why));
   }
   if (sink_) {
     Recording empty;

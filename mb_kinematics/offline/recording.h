@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <string>
@@ -41,7 +42,11 @@ struct Recording {
 // (the derivatives of that coordinate come from its own samples), mimic coordinates are
 // computed later. Dropped (counted): unequal lengths, a name given twice, NaN/Inf, a stamp
 // before the previous sample's or equal to it, samples before every coordinate has been named
-// once. Euler parameters that flip sign (e and -e) are kept continuous.
+// once. Euler parameters that flip sign (e and -e) are kept continuous. A position that is a
+// gross outlier of its coordinate's series (estimation/outliers.h) is noted and excluded: that
+// coordinate is not given in that row (its derivatives come from its other samples) and its
+// value there is its window's median. Rows leave a few samples late for that test (finish()
+// sends the last ones).
 class RecordingBuilder {
  public:
   explicit RecordingBuilder(const Model& model);
@@ -74,8 +79,18 @@ class RecordingBuilder {
                        const std::vector<double>& velocity);
   void map_names(const std::vector<std::string>& names);
   void align_euler_signs(std::vector<double>& row, const std::vector<std::uint8_t>& given) const;
-  void emit(double t, const std::vector<double>& row, const std::vector<double>& vrow,
-            const std::vector<std::uint8_t>& given);
+  // A row held until the outlier test has seen the samples after it.
+  struct PendingRow {
+    double t;
+    std::vector<double> row, vrow;
+    std::vector<std::uint8_t> given;
+    std::string where;
+  };
+  void hold(PendingRow pending);
+  void test_outliers(int p);  // pending_[p] against the pending rows around it
+  void exclude_outlier(int p, int c, double median, double scale);
+  void release_pending();  // the rows held at the end
+  void emit(const PendingRow& r);
   std::vector<std::string> not_named_yet() const;
 
   const Model& model_;
@@ -96,6 +111,9 @@ class RecordingBuilder {
   bool has_last_stamp_ = false;
   double last_stamp_ = 0;  // of the last row accepted
   double time_offset_ = 0;
+  std::deque<PendingRow> pending_;
+  bool tested_head_ = false;  // the first rows held have been tested
+  std::vector<double> window_;
 };
 
 }  // namespace mbk

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "mb_kinematics/io/printable.h"
+
 namespace mbk_ros {
 namespace {
 
@@ -33,7 +35,7 @@ void InputTally::warn(InputProblem problem, const std::string& message) {
       now - last < std::chrono::duration<double>(kThrottle))
     return;
   last = now;
-  ROS_WARN_STREAM(message);
+  ROS_WARN_STREAM(mbk::printable(message));
 }
 
 void InputTally::published(double seconds) {

@@ -10,6 +10,7 @@
 #include "mb_kinematics/core/finite_kinematics.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/ros/heap_trim.h"
 #include "mb_kinematics/ros/outputs/output_table.h"
@@ -25,7 +26,8 @@ constexpr double kPairingPeriod = 0.05;  // seconds between looks for joint_acce
 constexpr long kMaxLoggedTableCells = 10000;
 
 void log_model(const mbk::Model& model, const std::string& frame) {
-  for (const std::string& warning : model.warnings) ROS_WARN_STREAM("mb_kinematics: " << warning);
+  for (const std::string& warning : model.warnings)
+    ROS_WARN_STREAM("mb_kinematics: " << mbk::printable(warning));
   int depth = 0;
   for (int k = 1; k <= model.body_count(); ++k) depth = std::max(depth, model.bodies[k].depth);
   const long cells = static_cast<long>(model.body_count()) * (depth + 1);
@@ -144,7 +146,7 @@ bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::R
     start(running);
     response.success = false;
     response.message = e.what();
-    ROS_WARN_STREAM("~reload refused, the running model stays: " << e.what());
+    ROS_WARN_STREAM("~reload refused, the running model stays: " << mbk::printable(e.what()));
     return true;
   }
   response.success = true;

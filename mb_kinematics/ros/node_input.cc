@@ -9,6 +9,7 @@
 
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/messages/frames.h"
 
 namespace mbk_ros {
@@ -142,7 +143,7 @@ bool NodeInput::cover(double t) {
     return false;
   }
   const std::string missing = coverage_->describe();
-  if (changed && !missing.empty()) ROS_WARN_STREAM("mb_kinematics: " << missing);
+  if (changed && !missing.empty()) ROS_WARN_STREAM("mb_kinematics: " << mbk::printable(missing));
   if (changed && missing.empty()) ROS_INFO_STREAM("mb_kinematics: every joint received");
   if (!coverage_->never().empty() || !coverage_->stale().empty())
     tally_.count(coverage_->mode() == MissingCoordinates::kSkip ? InputProblem::kBodiesLeftOut

@@ -120,7 +120,7 @@ mbk::BvhModelOptions bvh_options(const std::map<std::string, std::string>& optio
 
 void print_warnings(const mbk::Model& model) {
   for (const std::string& warning : model.warnings)
-    std::cerr << "mbk: warning: " << warning << "\n";
+    std::cerr << "mbk: warning: " << mbk::printable(warning) << "\n";
 }
 
 // The model of FILE; what the loader let through (e.g. inertias that are not physical) is

@@ -69,4 +69,34 @@ TEST(BodyErrorsTest, RandomTreeMatchesMonteCarlo) {
   check_against_monte_carlo(mbk::make_random_tree(8, 3), 2);
 }
 
+// Streamed (each body's errors as its columns are done, PartialVelocities(model, kStreamed)):
+// the same numbers, bit for bit, as from the whole arrays, in memory for the bodies alive at
+// once: 2 slots of the deepest body on a chain (the whole arrays: N (N + 1) / 2 columns).
+TEST(BodyErrorsTest, StreamedEqualsTheWholeArraysInMemoryOfTheBodiesAlive) {
+  for (const mbk::Model& model :
+       {mbk::make_random_tree(60, 4), mbk::make_chain(300, mbk::JointType::kRevolute),
+        mbk::make_chain(20, mbk::JointType::kBall123)}) {
+    std::mt19937 rng(5);
+    const mbk::JointState<double> state = mbk::random_state(model, rng);
+    std::vector<double> velocity_se(model.nv), acceleration_se(model.nv);
+    for (int r = 0; r < model.nv; ++r) velocity_se[r] = 1e-3 * (r + 1), acceleration_se[r] = 1e-2;
+    mbk::PartialVelocities<double> whole(model), streamed(model, mbk::kStreamed);
+    mbk::Data<double> data(model), streamed_data(model);
+    mbk::partial_velocity_kinematics(model, state, whole, data);
+    std::vector<mbk::Vec3<double>> alpha_se, a_se, streamed_alpha_se, streamed_a_se;
+    mbk::body_acceleration_errors(model, whole, data, velocity_se.data(), acceleration_se.data(),
+                                  alpha_se, a_se);
+    for (int twice = 0; twice < 2; ++twice)  // its slots come back for the next state
+      mbk::body_acceleration_errors(model, state, streamed, streamed_data, velocity_se.data(),
+                                    acceleration_se.data(), streamed_alpha_se, streamed_a_se);
+    EXPECT_EQ(streamed_alpha_se, alpha_se);
+    EXPECT_EQ(streamed_a_se, a_se);
+    EXPECT_EQ(streamed_data.alpha, data.alpha);
+    EXPECT_LT(streamed.entries(), whole.entries());
+  }
+  const mbk::Model chain = mbk::make_chain(300, mbk::JointType::kRevolute);
+  EXPECT_EQ(mbk::PartialVelocities<double>(chain).entries(), 300u * 301 / 2);
+  EXPECT_EQ(mbk::PartialVelocities<double>(chain, mbk::kStreamed).entries(), 2u * 300);
+}
+
 }  // namespace

@@ -75,4 +75,22 @@ TEST(MedianHistogramTest, MemoryDoesNotGrowWithTheCount) {
   EXPECT_LE(large.bytes(), 2u * 32768);  // 0.8e-3 .. 1.2e-3: two octaves
 }
 
+// Fewer values than kExactValues take 8 bytes each (the vector's growth aside) and give the
+// exact median; the next value moves them into bins.
+TEST(MedianHistogramTest, FewValuesTakeTheirOwnSize) {
+  mbk::MedianHistogram h;
+  std::vector<double> v;
+  for (int i = 0; i < 3; ++i) h.add(1.0 + i), v.push_back(1.0 + i);
+  EXPECT_LE(h.bytes(), 4 * sizeof(double));
+  EXPECT_EQ(h.median(), 2.0);
+  for (int i = 3; i < mbk::MedianHistogram::kExactValues; ++i)
+    h.add(std::sqrt(1.0 + i)), v.push_back(std::sqrt(1.0 + i));
+  EXPECT_LE(h.bytes(), mbk::MedianHistogram::kExactValues * sizeof(double));
+  EXPECT_EQ(h.median(), exact_median(v));
+  h.add(5.0), v.push_back(5.0);
+  EXPECT_EQ(h.count(), v.size());
+  EXPECT_NEAR(h.median(), exact_median(v), kPrecision * exact_median(v));
+  EXPECT_GE(h.bytes(), 32768u);  // bins now
+}
+
 }  // namespace

@@ -12,6 +12,7 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
 
@@ -22,11 +23,13 @@ namespace mbk_fuzz {
   std::abort();
 }
 
-// The message of a refused input: one line, not empty.
+// The message of a refused input: one line, not empty, its user text escaped.
 inline void expect_one_line(const char* what) {
   const std::string message = what;
   if (message.empty() || message.find('\n') != std::string::npos)
     finding("error message not one line: '" + message + "'");
+  if (mbk::printable(message) != message)  // user text is escaped where the message is made
+    finding("error message with raw control bytes: '" + mbk::printable(message) + "'");
 }
 
 // The kinematics of a loaded model at a state that check_state accepts: all finite.

@@ -1,6 +1,6 @@
 // The inputs the fuzz harnesses (test/fuzz/) once failed on, kept in test/fuzz/regressions/
 // <harness>/, replayed in the ordinary build: each loads, or is refused with one
-// std::invalid_argument of one line (doc/reliability.md).
+// std::invalid_argument of one line, its user text escaped (doc/reliability.md).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include <string>
 
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/lower_body_text.h"
 #include "mb_kinematics/io/state_json.h"
@@ -38,6 +39,7 @@ int replay(const std::string& harness, const std::function<void(const std::strin
       load(text.str());
     } catch (const std::invalid_argument& e) {
       EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      EXPECT_EQ(mbk::printable(e.what()), e.what());  // user text escaped where it is made
     }
   }
   return files;
@@ -60,6 +62,7 @@ void yaml_round_trip(const std::string& text) {
       written = mbk::write_urdf(model, "fuzz", style);
     } catch (const std::invalid_argument& e) {
       EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      EXPECT_EQ(mbk::printable(e.what()), e.what());  // user text escaped where it is made
       continue;
     }
     EXPECT_NO_THROW(mbk::load_urdf_string(written, "written.urdf")) << written;

@@ -271,6 +271,17 @@ TEST(OfflineStreamTest, AutoErrorMediansDoNotGrowWithTheRecording) {
   EXPECT_LE(long_bytes, static_cast<std::size_t>(2 * model.nq * 12 * 32768));
 }
 
+// ... and a short recording of a large model takes what its values take (8 bytes each, the
+// vector's growth aside), not 32 KiB per column: 200 samples of 400 bodies.
+TEST(OfflineStreamTest, AutoErrorMediansOfAShortRecordingTakeItsValues) {
+  const mbk::Model model = mbk::make_random_tree(400, 5);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("auto");
+  std::size_t bytes = 0;
+  EXPECT_EQ(streamed(model, e, 200, 1000, nullptr, nullptr, &bytes).size(), 200u);
+  EXPECT_GT(bytes, 0u);
+  EXPECT_LE(bytes, static_cast<std::size_t>(2 * model.nq * 256 * 8));
+}
+
 // RecordingBuilder::stream_to hands out the rows finish() keeps and drops the same ones, counted
 // the same way.
 TEST(OfflineStreamTest, StreamingBuilderKeepsAndDropsTheRowsOfTheTable) {

@@ -115,6 +115,55 @@ TEST(RecordingTest, EulerParametersStayContinuousAndAccelerationsPair) {
   EXPECT_EQ(b.log().notes.at("joint_accelerations ignored"), 1);
 }
 
+// A gross outlier (1e300 in J1, 1e30 in J2) is noted, naming the coordinate and the sample, and
+// excluded: not given in its row (its derivatives come from the other samples), its value the
+// median of its window; every other cell is as added. The same rows are streamed.
+TEST(RecordingTest, AGrossOutlierIsNotedAndExcluded) {
+  const mbk::Model model = two_joints();
+  std::vector<double> j1(40), j2(40);
+  for (int i = 0; i < 40; ++i) j1[i] = std::sin(0.1 * i), j2[i] = 0.5 * std::cos(0.07 * i);
+  std::vector<double> spiky1 = j1, spiky2 = j2;
+  spiky1[12] = 1e300, spiky2[37] = -1e30;
+  mbk::RecordingBuilder table(model), streamed(model);
+  mbk::Recording rows;
+  rows.nq = 2;
+  streamed.stream_to([&](double t, const double* q, const double*, const std::uint8_t* given) {
+    rows.stamp.push_back(t);
+    rows.position.insert(rows.position.end(), q, q + 2);
+    rows.given.insert(rows.given.end(), given, given + 2);
+  });
+  for (mbk::RecordingBuilder* b : {&table, &streamed})
+    for (int i = 0; i < 40; ++i)
+      b->add(0.01 * i, {"J1", "J2"}, {spiky1[i], spiky2[i]}, {}, "s" + std::to_string(i));
+  const mbk::Recording r = table.finish();
+  streamed.finish();
+  const mbk::Recording& sent = rows;
+  for (const mbk::Recording* out : {&r, &sent}) {
+    ASSERT_EQ(out->rows(), 40);
+    for (int i = 0; i < 40; ++i) {
+      const bool out1 = i == 12, out2 = i == 37;
+      EXPECT_EQ(out->given[2 * i], out1 ? 0 : mbk::Recording::kPosition) << i;
+      EXPECT_EQ(out->given[2 * i + 1], out2 ? 0 : mbk::Recording::kPosition) << i;
+      if (!out1) {
+        EXPECT_EQ(out->position[2 * i], j1[i]) << i;
+      }
+      if (!out2) {
+        EXPECT_EQ(out->position[2 * i + 1], j2[i]) << i;
+      }
+    }
+    EXPECT_NEAR(out->position[2 * 12], j1[12], 0.1);  // the median of its window
+    EXPECT_NEAR(out->position[2 * 37 + 1], j2[37], 0.1);
+  }
+  for (mbk::RecordingBuilder* b : {&table, &streamed}) {
+    const mbk::DropLog& log = b->log();
+    EXPECT_EQ(log.dropped(), 0);
+    ASSERT_EQ(log.notes.size(), 1u);
+    EXPECT_EQ(log.notes.begin()->second, 2);
+    const std::string example = log.example.at(log.notes.begin()->first);
+    EXPECT_EQ(example.rfind("s12 (t = 0.120000): coordinate 'J1' is 1e+300", 0), 0u) << example;
+  }
+}
+
 TEST(TrajectoryCsvTest, ReadsSamplesAndCountsBadLines) {
   const mbk::Model model = two_joints();
   const std::string path = temp_file(

@@ -906,6 +906,143 @@ TEST(MbkCli, EvalErrorsShowANulInASceneNameWhole) {
                          "number below 1\n");
 }
 
+// The text of a file, one string per line.
+std::vector<std::string> file_lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// A CSV line's cells.
+std::vector<std::string> cells(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+  return out;
+}
+
+// A 1e300 and a -1e30 in a BVH's Hips/x and Hips/y: noted by coordinate and frame, excluded; no
+// cell of any output is NaN or inf (before: the noise level was inf and the error bars -nan), and
+// what the other coordinates give (every body's omega, alpha and their error bars) is as without.
+TEST(MbkCli, BagExcludesAGrossOutlierAndWritesNoNan) {
+  const std::string dir = ::testing::TempDir();
+  std::vector<std::string> lines = file_lines(source_path("test/io/data/cmu_walk.bvh"));
+  const size_t first =
+      std::find_if(lines.begin(), lines.end(),
+                   [](const std::string& l) { return l.rfind("Frame Time", 0) == 0; }) -
+      lines.begin() + 1;
+  auto replace_cell = [&](int frame, int column, const std::string& value) {
+    std::vector<std::string> words;
+    std::istringstream in(lines[first + frame]);
+    for (std::string w; in >> w;) words.push_back(w);
+    words[column] = value;
+    std::string line;
+    for (const std::string& w : words) line += (line.empty() ? "" : " ") + w;
+    lines[first + frame] = line;
+  };
+  replace_cell(15, 0, "1e300");
+  replace_cell(28, 1, "-1e30");
+  const std::string spiky = dir + "spiky_walk.bvh";
+  std::ofstream out(spiky);
+  for (const std::string& line : lines) out << line << "\n";
+  out.close();
+  const std::string options = " --scale 0.01 --body-mass 61.5 --csv ";
+  const Output clean = mbk("bag test/io/data/cmu_walk.bvh" + options + dir + "clean_walk.csv");
+  const Output run = mbk("bag " + spiky + options + dir + "spiky_walk.csv");
+  ASSERT_EQ(clean.status, 0) << clean.err;
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.err.find("note 2 samples: outliers excluded"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("frame 15 (t = 0.266667): coordinate 'Hips/x' is 1e+298"),
+            std::string::npos)
+      << run.err;
+  for (const char* file :
+       {"spiky_walk.csv", "spiky_walk.errors.csv", "spiky_walk.sample_errors.csv"}) {
+    const std::vector<std::string> written = file_lines(dir + file);
+    EXPECT_GT(written.size(), 1u) << file;
+    for (std::string line : written) {
+      std::transform(line.begin(), line.end(), line.begin(), ::tolower);
+      EXPECT_EQ(line.find("nan"), std::string::npos) << file << ": " << line;
+      EXPECT_EQ(line.find("inf"), std::string::npos) << file << ": " << line;
+    }
+  }
+  const std::vector<std::string> a = file_lines(dir + "clean_walk.csv"),
+                                 b = file_lines(dir + "spiky_walk.csv");
+  ASSERT_EQ(a.size(), b.size());
+  const std::vector<std::string> header = cells(a[0]);
+  for (size_t i = 1; i < a.size(); ++i) {
+    const std::vector<std::string> x = cells(a[i]), y = cells(b[i]);
+    ASSERT_EQ(x.size(), y.size());
+    for (size_t c = 0; c < x.size(); ++c) {
+      const std::string& name = header[c];
+      const bool other =
+          name.rfind("omega", 0) == 0 || name.rfind("alpha", 0) == 0 || name == "origin_z";
+      EXPECT_TRUE(!other || x[c] == y[c]) << name << " line " << i << ": " << x[c] << " " << y[c];
+    }
+  }
+}
+
+// No raw control byte reaches the terminal: `run`'s stderr holds none (a NUL, \v, an ANSI
+// escape) and each of `shown` as escaped text.
+void expect_escaped(const Output& run, const std::vector<std::string>& shown) {
+  for (char c : {'\0', '\v', '\x1b'})
+    EXPECT_EQ(run.err.find(c), std::string::npos) << static_cast<int>(c) << ": " << run.err;
+  for (const std::string& text : shown)
+    EXPECT_NE(run.err.find(text), std::string::npos) << text << " in " << run.err;
+}
+
+// Names with a NUL, \v and an ANSI escape in a BVH joint and a URDF link and joint: every error,
+// drop, note and summary line of mbk eval and mbk bag shows them escaped (io/printable.h), and
+// whole (before: a NUL in a BVH name or a YAML body name cut the error there; mbk bag's summary
+// wrote the bytes raw).
+TEST(MbkCli, NamesWithControlBytesAreEscapedInEveryLine) {
+  const std::string dir = ::testing::TempDir();
+  std::string walk;
+  for (const std::string& line : file_lines(source_path("test/io/data/cmu_walk.bvh")))
+    walk += line + "\n";
+  const char raw[] = "Le\0ft\v\x1b[31mUpLeg";
+  const std::string bad_name(raw, sizeof raw - 1);
+  for (const char* joint : {"JOINT LeftUpLeg", "JOINT LeftLeg"})
+    walk.replace(walk.find(joint), std::strlen(joint), "JOINT " + bad_name);
+  const std::string bvh = dir + "control_names.bvh";
+  std::ofstream(bvh) << walk;
+  const std::string shown = "JOINT Le\\x00ft\\x0b\\x1b[31mUpLeg: a second segment of this name";
+  for (const std::string& command :
+       {"eval --model " + bvh, "bag " + bvh + " --csv " + dir + "control_names.csv"}) {
+    const Output run = mbk(command);
+    EXPECT_EQ(run.status, 1) << command;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    expect_escaped(run, {shown});
+  }
+  const std::string link = "b\x1b[31mX\vY", joint = "j\x1b[31m\v";
+  const std::string inertia =
+      "<inertia ixx=\"1\" ixy=\"0\" ixz=\"0\" iyy=\"1\" iyz=\"0\" izz=\"1\"/>";
+  auto robot = [&](const std::string& mass) {
+    return "<robot name=\"r\"><link name=\"base\"/><link name=\"b&#27;[31mX&#11;Y\"><inertial>"
+           "<mass value=\"" +
+           mass + "\"/>" + inertia +
+           "</inertial></link>"
+           "<joint name=\"j&#27;[31m&#11;\" type=\"continuous\"><parent link=\"base\"/>"
+           "<child link=\"b&#27;[31mX&#11;Y\"/></joint></robot>";
+  };
+  const TempFile bad_mass(robot("-1"), ".urdf"), good(robot("1"), ".urdf");
+  std::string csv = "time," + joint + ",extra\x1b[32m\vcolumn\n";
+  for (int i = 0; i < 50; ++i) csv += std::to_string(0.01 * i) + ",1e60,1\n";  // too large
+  const TempFile recording(csv, ".csv");
+  const std::string mass_error = "body 1 'b\\x1b[31mX\\x0bY': mass must be finite and >= 0";
+  for (const std::string& command :
+       {"eval --model " + bad_mass.path,
+        "bag " + recording.path + " --model " + bad_mass.path + " --csv " + dir + "c.csv"}) {
+    const Output run = mbk(command);
+    EXPECT_EQ(run.status, 1) << command;
+    expect_escaped(run, {mass_error});
+  }
+  const Output bag =
+      mbk("bag " + recording.path + " --model " + good.path + " --verbose --csv " + dir + "d.csv");
+  expect_escaped(bag, {"body 1 'b\\x1b[31mX\\x0bY', acceleration of 'j\\x1b[31m\\x0b'",
+                       ": extra\\x1b[32m\\x0bcolumn)", "    j\\x1b[31m\\x0b: noise"});
+}
+
 // `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
 // (the last one silently won).
 TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {

@@ -3,12 +3,15 @@
 #include <ros/console.h>
 #include <ros/this_node.h>
 
+#include "mb_kinematics/io/printable.h"
+
 namespace mbk_ros {
 namespace {
 
 // One line: the other node, the frame, and what to do.
 std::string duplicate_tf_warning(const std::string& node, const std::string& frame) {
-  return "mb_kinematics: " + node + " also publishes frame '" + frame +
+  return "mb_kinematics: " + mbk::printable(node) + " also publishes frame '" +
+         mbk::printable(frame) +
          "' on /tf, as this node does: tf listeners get it twice (TF_REPEATED_DATA); leave /tf "
          "to it with the launch argument publish_tf:=false (the node's ~outputs without tf)";
 }
