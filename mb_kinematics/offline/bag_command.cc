@@ -164,10 +164,18 @@ struct Outputs {
 
 // The odometry of a floating base with its accelerations from the offline estimator.
 mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
-                                  const mbk::OfflineEstimator& estimator, double max_gap) {
+                                  const mbk::OfflineEstimator& estimator, double max_gap,
+                                  const mbk::StampGrid& joints) {
   mbk::FloatingBaseTrack track;
   std::vector<double> t;
   for (const auto& b : samples) t.push_back(b.t);
+  // Stamps on the joint states' grid take its times (the joint samples' times stay within the
+  // odometry's span where they were); else those on a grid of their own take that grid's.
+  if (!joints.moves || !std::all_of(t.begin(), t.end(), [&](double x) { return joints.holds(x); }))
+    mbk::snap_to_stamp_grid(t);
+  else
+    for (double& x : t) x = joints.snap(x);
+  for (size_t i = 0; i < t.size(); ++i) samples[i].t = t[i];
   std::vector<int> valid;
   mbk::base_accelerations(samples, estimator, max_gap > 0 ? max_gap : mbk::default_max_gap(t),
                           track.linear_acceleration, track.angular_acceleration, valid);
@@ -304,7 +312,8 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 // pass. The first pass reads the input and keeps the rows (up to kKeptRowBytes); the later passes
 // replay them, or read the input again when it was longer. Reads of a bag: two when its rows fit
 // (read_bag's check in a child process, then the first pass), else one more per later pass (the
-// passes: the survey; with jittered stamps, the stamps once more; "auto"'s choice; the computing).
+// passes: the survey; the stamps' grid check, and the survey again when they are moved onto the
+// grid; with jittered stamps, the stamps once more; "auto"'s choice; the computing).
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
@@ -376,22 +385,38 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                   const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
   InputRows input(o, model);
-  mbk::RecordingSurvey survey(model.nq, o.max_gap <= 0 || estimator.automatic);
-  input.pass([&](double t, const double*, const double*,
-                 const std::uint8_t* given) { survey.add(t, given); },
-             s);
+  const bool intervals = o.max_gap <= 0 || estimator.automatic;
+  mbk::RecordingSurvey survey(model.nq, intervals);
+  mbk::StampGridFit grid_fit;
+  input.pass(
+      [&](double t, const double*, const double*, const std::uint8_t* given) {
+        survey.add(t, given);
+        grid_fit.add(t);
+      },
+      s);
   if (!survey.streamable()) return false;
-  while (!survey.finish_pass())  // jittered stamps: the exact median interval
+  if (grid_fit.fit())
     input.pass(
-        [&](double t, const double*, const double*, const std::uint8_t*) { survey.add_stamp(t); },
-        s);
+        [&](double t, const double*, const double*, const std::uint8_t*) { grid_fit.check(t); }, s);
+  s.grid = grid_fit.grid();
+  const mbk::StampGrid& grid = s.grid;  // every later pass sees the grid's times
+  if (grid.moves) {
+    survey = mbk::RecordingSurvey(model.nq, intervals);
+    input.pass([&](double t, const double*, const double*,
+                   const std::uint8_t* given) { survey.add(grid.snap(t), given); },
+               s);
+  }
+  while (!survey.finish_pass())  // jittered stamps: the exact median interval
+    input.pass([&](double t, const double*, const double*,
+                   const std::uint8_t*) { survey.add_stamp(grid.snap(t)); },
+               s);
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
   if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
     mbk::AutoChoosePass choose(survey, s.max_gap, kStreamChunkRows);
     input.pass([&](double t, const double* p, const double* v,
-                   const std::uint8_t*) { choose.add(t, p, v); },
+                   const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
                s);
     whole = choose.finish(reach);
   }
@@ -413,7 +438,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                               int end) { sample_errors->write(piece, states, begin, end); });
   }
   input.pass([&](double t, const double* p, const double* v,
-                 const std::uint8_t* g) { stream.add(t, p, v, g); },
+                 const std::uint8_t* g) { stream.add(grid.snap(t), p, v, g); },
              s);
   stream.finish();  // the reading's progress bar is the computing's
   s.read = input.samples_read();
@@ -524,6 +549,7 @@ BagSummary run_bag(const BagOptions& o) {
   BaseOdometry base;
   read_input(o, model, builder, base, s, may_stream);
   const mbk::Recording rec = builder.finish();
+  s.grid = rec.grid;
   s.read = builder.samples_read();
   s.log = builder.log();
   s.read_seconds = since(wall);
@@ -531,7 +557,7 @@ BagSummary run_bag(const BagOptions& o) {
   if (floating && base.samples.empty())
     throw std::invalid_argument(o.input + ": no usable message on '" + o.base_odometry + "'");
   const mbk::FloatingBaseTrack track =
-      floating ? base_track(std::move(base.samples), estimator, o.max_gap)
+      floating ? base_track(std::move(base.samples), estimator, o.max_gap, rec.grid)
                : mbk::FloatingBaseTrack{};
   mbk::OfflineBatch batch(model, rec, estimator, o.max_gap, floating ? &track : nullptr,
                           o.threads > 0 ? o.threads : mbk::default_thread_count());
@@ -589,6 +615,13 @@ std::string format_summary(const BagSummary& s, bool verbose) {
   for (const auto& n : s.log.notes)
     out += "  note " + std::to_string(n.second) + " samples: " + n.first +
            " (first: " + s.log.example.at(n.first) + ")\n";
+  if (s.grid.moves) {
+    std::snprintf(line, sizeof line,
+                  "  stamps on a uniform grid of %.9g s: differentiated at the grid's times, %.2g "
+                  "s at most from the stamps (tolerance %.2g s)\n",
+                  static_cast<double>(s.grid.period), s.grid.worst, s.grid.tolerance);
+    out += line;
+  }
   if (!verbose) out += mbk::error_bar_line(s.errors);
   if (verbose && !s.errors.empty())
     out +=

@@ -235,6 +235,7 @@ Recording RecordingBuilder::finish() {
         out.given[r * nq + i] |= Recording::kAcceleration;
       }
   }
+  out.grid = snap_to_stamp_grid(out.stamp);
   return out;
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/estimation/stamp_grid.h"
 
 namespace mbk {
 
@@ -32,6 +33,7 @@ struct Recording {
   std::vector<double> velocity;      // rows x nq, where kVelocity is set
   std::vector<double> acceleration;  // rows x nq, where kAcceleration is set
   std::vector<std::uint8_t> given;   // rows x nq: kPosition | kVelocity | kAcceleration
+  StampGrid grid;  // the stamps' uniform grid, when they are on one (estimation/stamp_grid.h)
   static constexpr std::uint8_t kPosition = 1, kVelocity = 2, kAcceleration = 4;
   int rows() const { return static_cast<int>(stamp.size()); }
 };
@@ -64,6 +66,8 @@ class RecordingBuilder {
   void offset_times(double seconds) { time_offset_ = seconds; }
 
   // The table; rows before every coordinate was named are dropped here ("missing joints").
+  // Stamps on a uniform grid to within their rounding are moved to the grid's times
+  // (snap_to_stamp_grid; Recording::grid says how far).
   // Streaming: checks that every coordinate was named and returns an empty table.
   Recording finish();
   DropLog& log() { return log_; }

@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import mbk, source
+from conftest import mbk, mbk_path, source
 
 BVH = source("test/mocap/131_01.bvh")
 SCALE, MASS = 0.056444, 68.5
@@ -114,6 +114,65 @@ def test_bag_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
     assert "velocity_se" not in states  # the fingers are in every other sample only
     with pytest.raises(ValueError, match="topic"):
         model.read_recording(path, joint_states="/other")
+
+
+def test_rounded_stamps_on_their_grid(mbk_kinematics, tmp_path):
+    """An arm moving at 1 to 6 rad/s sampled on an exact 1 kHz grid, its stamps written through
+    rospy.Time.from_sec (up to 1 ns early): read back on the grid, mbk bag says so, its CSV
+    (the streamed path) equals the in-memory one, and the bodies' accelerations are those of
+    the exact times; at the stamps as they are they would be 100 times worse."""
+    import subprocess
+    import rosbag
+    import rospy
+    from sensor_msgs.msg import JointState
+    urdf = source("test/robots/panda.urdf")
+    model = mbk_kinematics.load(urdf)
+    mimic = {m["coordinate"] for m in model.mimics}
+    names = [n for n in model.coordinate_names if n not in mimic]
+    rate = np.linspace(2, 12, len(names))
+    amplitude = np.where([n.startswith("panda_finger") for n in names], 0.01, 0.5)
+    exact = 10 + np.arange(2000) * 1e-3
+
+    def motion(d):  # (rows, coordinates): the d-th derivative of amplitude sin(rate t + j)
+        x = np.outer(exact, rate) + np.arange(len(names))
+        return amplitude * rate ** d * np.sin(x + d * np.pi / 2)
+
+    path = str(tmp_path / "grid.bag")
+    with rosbag.Bag(path, "w") as bag:
+        for t, q in zip(exact, motion(0)):
+            msg = JointState(name=names, position=list(q))
+            msg.header.stamp = rospy.Time.from_sec(t)
+            bag.write("/joint_states", msg, msg.header.stamp)
+    stamps = np.array([rospy.Time.from_sec(t).to_sec() for t in exact])
+    assert np.abs(stamps - exact).max() > 5e-10  # the rounding is there
+    recording = model.read_recording(path)
+    shift = recording.times - exact  # the rounding's mean, the same for every time
+    assert np.abs(shift).max() < 1e-9 and np.ptp(shift) < 2e-10
+    out = model.recording_kinematics(recording)
+    csv_path = str(tmp_path / "grid.csv")
+    done = subprocess.run([mbk_path(), "bag", path, "--model", urdf, "--csv", csv_path],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "stamps on a uniform grid of 0.001 s" in done.stderr
+    expect_same_as_bag(model, out, tidy_csv(csv_path))
+
+    columns = [model.coordinate_names.index(n) for n in names]
+    full = [np.zeros((len(exact), model.nq)) for _ in range(3)]
+    for d in range(3):
+        full[d][:, columns] = motion(d)
+    truth = model.kinematics(*full)
+
+    def error(result):
+        worst = max(np.abs(result[f] - truth[f]).max() for f in ("alpha", "acceleration"))
+        return worst / max(np.abs(truth[f]).max() for f in ("alpha", "acceleration"))
+
+    positions = recording.positions.copy()
+    for m in model.mimics:
+        positions[:, model.coordinate_names.index(m["coordinate"])] = (
+            m["multiplier"] * positions[:, model.coordinate_names.index(m["source"])] + m["offset"])
+    at_stamps = model.recording_kinematics(model.recording(stamps, positions))
+    assert error(out) < 1e-5
+    assert error(at_stamps) > 100 * error(out)
 
 
 def test_bad_recordings(mbk_kinematics, tmp_path):
