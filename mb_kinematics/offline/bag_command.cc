@@ -16,13 +16,13 @@
 #include <vector>
 
 #include "mb_kinematics/core/base_joint.h"
-#include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
+#include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/bvh_recording.h"
 #include "mb_kinematics/offline/error_bar_summary.h"
 #include "mb_kinematics/offline/offline_batch.h"
@@ -122,7 +122,7 @@ struct Outputs {
 
   void write(const mbk::OfflineRow& row) {
     const mbk::Data<double>* data = &row.data;
-    if (floating) with_base_body(*base_model, row.data, *base_data), data = base_data.get();
+    if (floating) mbk::with_base_body(*base_model, row.data, *base_data), data = base_data.get();
     if (bag) {
       check_bag_stamp(row.stamp);
       bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
@@ -161,27 +161,6 @@ struct Outputs {
     if (csv_file) csv_file->commit();
   }
 };
-
-// The odometry of a floating base with its accelerations from the offline estimator.
-mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
-                                  const mbk::OfflineEstimator& estimator, double max_gap,
-                                  const mbk::StampGrid& joints) {
-  mbk::FloatingBaseTrack track;
-  std::vector<double> t;
-  for (const auto& b : samples) t.push_back(b.t);
-  // Stamps on the joint states' grid take its times (the joint samples' times stay within the
-  // odometry's span where they were); else those on a grid of their own take that grid's.
-  if (!joints.moves || !std::all_of(t.begin(), t.end(), [&](double x) { return joints.holds(x); }))
-    mbk::snap_to_stamp_grid(t);
-  else
-    for (double& x : t) x = joints.snap(x);
-  for (size_t i = 0; i < t.size(); ++i) samples[i].t = t[i];
-  std::vector<int> valid;
-  mbk::base_accelerations(samples, estimator, max_gap > 0 ? max_gap : mbk::default_max_gap(t),
-                          track.linear_acceleration, track.angular_acceleration, valid);
-  track.samples = std::move(samples);
-  return track;
-}
 
 // A computed row written, or its drop counted (in order).
 void take(const mbk::OfflineRow& row, Outputs& out, mbk::DropLog& log, long& written) {
@@ -557,7 +536,7 @@ BagSummary run_bag(const BagOptions& o) {
   if (floating && base.samples.empty())
     throw std::invalid_argument(o.input + ": no usable message on '" + o.base_odometry + "'");
   const mbk::FloatingBaseTrack track =
-      floating ? base_track(std::move(base.samples), estimator, o.max_gap, rec.grid)
+      floating ? mbk::base_track(std::move(base.samples), estimator, o.max_gap, rec.grid)
                : mbk::FloatingBaseTrack{};
   mbk::OfflineBatch batch(model, rec, estimator, o.max_gap, floating ? &track : nullptr,
                           o.threads > 0 ? o.threads : mbk::default_thread_count());
