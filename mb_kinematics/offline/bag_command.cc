@@ -235,7 +235,7 @@ class SampleErrorsFile {
     for (int r = begin; r < end; ++r) {
       states.coordinate_errors(r, v_.data(), a_.data());
       char stamp[64];
-      std::snprintf(stamp, sizeof stamp, "%.9f", rec.stamp[r]);
+      std::snprintf(stamp, sizeof stamp, "%.9f", rec.recorded(r));
       f_ << stamp;
       for (int c = 0; c < model_.nq; ++c) f_ << "," << v_[c] << "," << a_[c];
       f_ << "\n";
@@ -405,6 +405,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
       model, estimator, reach, s.max_gap, std::move(whole),
       o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
+  stream.set_stamp_grid(grid);
   stream.set_formatter(out.formatter());
   stream.set_body_errors(out.csv && estimator.automatic);
   std::unique_ptr<SampleErrorsFile> sample_errors;
@@ -417,7 +418,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                               int end) { sample_errors->write(piece, states, begin, end); });
   }
   input.pass([&](double t, const double* p, const double* v,
-                 const std::uint8_t* g) { stream.add(grid.snap(t), p, v, g); },
+                 const std::uint8_t* g) { stream.add(t, p, v, g); },
              s);
   stream.finish();  // the reading's progress bar is the computing's
   s.read = input.samples_read();

@@ -17,6 +17,13 @@ std::string join(const std::vector<std::string>& names, size_t max = 8) {
 
 }  // namespace
 
+void Recording::snap_to_grid() {
+  grid = find_stamp_grid(stamp);
+  if (!grid.moves) return;
+  recorded_stamp = stamp;
+  for (double& t : stamp) t = grid.snap(t);
+}
+
 void DropLog::drop(const std::string& reason, const std::string& detail) {
   if (drops[reason]++ == 0) example[reason] = detail;
 }
@@ -235,7 +242,7 @@ Recording RecordingBuilder::finish() {
         out.given[r * nq + i] |= Recording::kAcceleration;
       }
   }
-  out.grid = snap_to_stamp_grid(out.stamp);
+  out.snap_to_grid();
   return out;
 }
 

@@ -33,9 +33,16 @@ struct Recording {
   std::vector<double> velocity;      // rows x nq, where kVelocity is set
   std::vector<double> acceleration;  // rows x nq, where kAcceleration is set
   std::vector<std::uint8_t> given;   // rows x nq: kPosition | kVelocity | kAcceleration
-  StampGrid grid;  // the stamps' uniform grid, when they are on one (estimation/stamp_grid.h)
+  // The stamps' uniform grid, when they are on one (estimation/stamp_grid.h). When it moves
+  // them, `stamp` holds the grid's times (for the derivatives) and `recorded_stamp` the stamps
+  // as recorded (the outputs' times); else recorded_stamp is empty.
+  StampGrid grid;
+  std::vector<double> recorded_stamp;
   static constexpr std::uint8_t kPosition = 1, kVelocity = 2, kAcceleration = 4;
   int rows() const { return static_cast<int>(stamp.size()); }
+  double recorded(int r) const { return recorded_stamp.empty() ? stamp[r] : recorded_stamp[r]; }
+  // Moves the stamps onto their grid when they lie on one (recorded_stamp keeps them).
+  void snap_to_grid();
 };
 
 // Builds a Recording from samples by coordinate name, as the node merges joint_states:
@@ -67,7 +74,7 @@ class RecordingBuilder {
 
   // The table; rows before every coordinate was named are dropped here ("missing joints").
   // Stamps on a uniform grid to within their rounding are moved to the grid's times
-  // (snap_to_stamp_grid; Recording::grid says how far).
+  // (Recording::snap_to_grid).
   // Streaming: checks that every coordinate was named and returns an empty table.
   Recording finish();
   DropLog& log() { return log_; }

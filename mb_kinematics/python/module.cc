@@ -344,8 +344,22 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly(
           "times",
           [](const Recorded& r) {
-            return matrix(r.recording.stamp, r.recording.rows(), 1).attr("ravel")();
+            const mbk::Recording& rec = r.recording;
+            return matrix(rec.recorded_stamp.empty() ? rec.stamp : rec.recorded_stamp, rec.rows(),
+                          1)
+                .attr("ravel")();
           })
+      .def_property_readonly("grid",
+                             [](const Recorded& r) {
+                               const mbk::StampGrid& g = r.recording.grid;
+                               py::dict d;
+                               d["found"] = g.found;
+                               d["moves"] = g.moves;
+                               d["period"] = static_cast<double>(g.period);
+                               d["worst"] = g.worst;
+                               d["tolerance"] = g.tolerance;
+                               return d;
+                             })
       .def_property_readonly("positions",
                              [](const Recorded& r) {
                                return where_given(r.recording, r.recording.position,

@@ -20,7 +20,8 @@ __all__ = ["load", "Model", "OUTPUTS", "Recording"]
 
 #: A recording's samples (read_recording, or Model.recording from arrays): `times` (rows,),
 #: `positions` (rows, nq), `velocities` and `accelerations` (rows, nq, NaN where not recorded),
-#: `drops` (samples dropped, by reason, as `mbk bag` counts them).
+#: `drops` (samples dropped, by reason, as `mbk bag` counts them), `grid` (the stamps' uniform
+#: grid, when they lie on one), `base` (a bag's base odometry, or None).
 Recording = _core.Recording
 
 _TRAITS = _core.field_traits()

@@ -191,6 +191,7 @@ def test_bag_base_odometry_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
     out = model.recording_kinematics(recording)
     assert out["body_names"] == [model.frame] + list(model.body_names)
     assert out["origin"].shape == (300, model.body_count + 1, 3)
+    assert np.array_equal(out["time"], recording.times)  # as recorded, off the grid by < 1 ns
     csv_path = str(tmp_path / "arm.csv")
     mbk("bag", path, "--model", urdf, "--base-odometry", "odom", "--csv", csv_path)
     expect_same_as_bag(model, out, tidy_csv(csv_path))
@@ -204,9 +205,10 @@ def test_bag_base_odometry_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
 
 def test_rounded_stamps_on_their_grid(mbk_kinematics, tmp_path):
     """An arm moving at 1 to 6 rad/s sampled on an exact 1 kHz grid, its stamps written through
-    rospy.Time.from_sec (up to 1 ns early): read back on the grid, mbk bag says so, its CSV
-    (the streamed path) equals the in-memory one, and the bodies' accelerations are those of
-    the exact times; at the stamps as they are they would be 100 times worse."""
+    rospy.Time.from_sec (up to 1 ns early): differentiated on the grid, mbk bag says so, its CSV
+    (the streamed path) equals the in-memory one at the recorded stamps, and the bodies'
+    accelerations are those of the exact times (test/offline/stamp_rounding_test.cc: 1e4 times
+    worse at the stamps as they are)."""
     import subprocess
     import rosbag
     import rospy
@@ -232,15 +234,20 @@ def test_rounded_stamps_on_their_grid(mbk_kinematics, tmp_path):
     stamps = np.array([rospy.Time.from_sec(t).to_sec() for t in exact])
     assert np.abs(stamps - exact).max() > 5e-10  # the rounding is there
     recording = model.read_recording(path)
-    shift = recording.times - exact  # the rounding's mean, the same for every time
-    assert np.abs(shift).max() < 1e-9 and np.ptp(shift) < 2e-10
+    assert np.allclose(recording.times, stamps, rtol=0, atol=1e-12)  # as recorded
+    grid = recording.grid
+    assert grid["moves"] and abs(grid["period"] - 1e-3) < 1e-13 and grid["worst"] <= 1e-9
     out = model.recording_kinematics(recording)
+    assert np.array_equal(out["time"], recording.times)
     csv_path = str(tmp_path / "grid.csv")
     done = subprocess.run([mbk_path(), "bag", path, "--model", urdf, "--csv", csv_path],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "stamps on a uniform grid of 0.001 s" in done.stderr
-    expect_same_as_bag(model, out, tidy_csv(csv_path))
+    rows = tidy_csv(csv_path)
+    written = np.array([float(next(iter(r.values()))["stamp"]) for r in rows])
+    assert np.allclose(written, stamps, rtol=0, atol=1e-12)  # the stamps as recorded
+    expect_same_as_bag(model, out, rows)
 
     columns = [model.coordinate_names.index(n) for n in names]
     full = [np.zeros((len(exact), model.nq)) for _ in range(3)]
@@ -252,13 +259,15 @@ def test_rounded_stamps_on_their_grid(mbk_kinematics, tmp_path):
         worst = max(np.abs(result[f] - truth[f]).max() for f in ("alpha", "acceleration"))
         return worst / max(np.abs(truth[f]).max() for f in ("alpha", "acceleration"))
 
-    positions = recording.positions.copy()
+    assert error(out) < 1e-5
+    positions = recording.positions.copy()  # from arrays: the same grid
     for m in model.mimics:
         positions[:, model.coordinate_names.index(m["coordinate"])] = (
             m["multiplier"] * positions[:, model.coordinate_names.index(m["source"])] + m["offset"])
-    at_stamps = model.recording_kinematics(model.recording(stamps, positions))
-    assert error(out) < 1e-5
-    assert error(at_stamps) > 100 * error(out)
+    from_arrays = model.recording(recording.times, positions)
+    assert from_arrays.grid["moves"]
+    assert np.array_equal(model.states(from_arrays)["acceleration"][:, columns],
+                          model.states(recording)["acceleration"][:, columns])
 
 
 def test_bad_recordings(mbk_kinematics, tmp_path):
