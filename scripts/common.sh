@@ -22,6 +22,7 @@ MBK_DEMO_PACKAGES=(
   libtopic-tools-dev pluginlib-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (doc/python.md)
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
+  python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
   joint-state-publisher-gui  # mb_kinematics.launch gui:=true
 )
 # rviz and what the display plugin builds against: scripts/demo.sh --rviz, and the tests.

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "mb_kinematics/core/base_joint.h"
-#include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
@@ -24,6 +23,7 @@
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
+#include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/bvh_recording.h"
 #include "mb_kinematics/offline/error_bar_summary.h"
 #include "mb_kinematics/offline/offline_batch.h"
@@ -124,7 +124,7 @@ struct Outputs {
 
   void write(const mbk::OfflineRow& row) {
     const mbk::Data<double>* data = &row.data;
-    if (floating) with_base_body(*base_model, row.data, *base_data), data = base_data.get();
+    if (floating) mbk::with_base_body(*base_model, row.data, *base_data), data = base_data.get();
     if (bag) {
       check_bag_stamp(row.stamp);
       bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
@@ -163,19 +163,6 @@ struct Outputs {
     if (csv_file) csv_file->commit();
   }
 };
-
-// The odometry of a floating base with its accelerations from the offline estimator.
-mbk::FloatingBaseTrack base_track(std::vector<mbk::BaseSample> samples,
-                                  const mbk::OfflineEstimator& estimator, double max_gap) {
-  mbk::FloatingBaseTrack track;
-  std::vector<double> t;
-  for (const auto& b : samples) t.push_back(b.t);
-  std::vector<int> valid;
-  mbk::base_accelerations(samples, estimator, max_gap > 0 ? max_gap : mbk::default_max_gap(t),
-                          track.linear_acceleration, track.angular_acceleration, valid);
-  track.samples = std::move(samples);
-  return track;
-}
 
 // A computed row written, or its drop counted (in order).
 void take(const mbk::OfflineRow& row, Outputs& out, mbk::DropLog& log, long& written) {
@@ -250,7 +237,7 @@ class SampleErrorsFile {
     for (int r = begin; r < end; ++r) {
       states.coordinate_errors(r, v_.data(), a_.data());
       char stamp[64];
-      std::snprintf(stamp, sizeof stamp, "%.9f", rec.stamp[r]);
+      std::snprintf(stamp, sizeof stamp, "%.9f", rec.recorded(r));
       f_ << stamp;
       for (int c = 0; c < model_.nq; ++c) f_ << "," << v_[c] << "," << a_[c];
       f_ << "\n";
@@ -306,7 +293,8 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 // pass. The first pass reads the input and keeps the rows (up to kKeptRowBytes); the later passes
 // replay them, or read the input again when it was longer. Reads of a bag: two when its rows fit
 // (read_bag's check in a child process, then the first pass), else one more per later pass (the
-// passes: the survey; with jittered stamps, the stamps once more; "auto"'s choice; the computing).
+// passes: the survey; the stamps' grid check, and the survey again when they are moved onto the
+// grid; with jittered stamps, the stamps once more; "auto"'s choice; the computing).
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
@@ -378,22 +366,38 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                   const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
   InputRows input(o, model);
-  mbk::RecordingSurvey survey(model.nq, o.max_gap <= 0 || estimator.automatic);
-  input.pass([&](double t, const double*, const double*,
-                 const std::uint8_t* given) { survey.add(t, given); },
-             s);
+  const bool intervals = o.max_gap <= 0 || estimator.automatic;
+  mbk::RecordingSurvey survey(model.nq, intervals);
+  mbk::StampGridFit grid_fit;
+  input.pass(
+      [&](double t, const double*, const double*, const std::uint8_t* given) {
+        survey.add(t, given);
+        grid_fit.add(t);
+      },
+      s);
   if (!survey.streamable()) return false;
-  while (!survey.finish_pass())  // jittered stamps: the exact median interval
+  if (grid_fit.fit())
     input.pass(
-        [&](double t, const double*, const double*, const std::uint8_t*) { survey.add_stamp(t); },
-        s);
+        [&](double t, const double*, const double*, const std::uint8_t*) { grid_fit.check(t); }, s);
+  s.grid = grid_fit.grid();
+  const mbk::StampGrid& grid = s.grid;  // every later pass sees the grid's times
+  if (grid.moves) {
+    survey = mbk::RecordingSurvey(model.nq, intervals);
+    input.pass([&](double t, const double*, const double*,
+                   const std::uint8_t* given) { survey.add(grid.snap(t), given); },
+               s);
+  }
+  while (!survey.finish_pass())  // jittered stamps: the exact median interval
+    input.pass([&](double t, const double*, const double*,
+                   const std::uint8_t*) { survey.add_stamp(grid.snap(t)); },
+               s);
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
   if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
     mbk::AutoChoosePass choose(survey, s.max_gap, kStreamChunkRows);
     input.pass([&](double t, const double* p, const double* v,
-                   const std::uint8_t*) { choose.add(t, p, v); },
+                   const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
                s);
     whole = choose.finish(reach);
   }
@@ -403,6 +407,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
       model, estimator, reach, s.max_gap, std::move(whole),
       o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
+  stream.set_stamp_grid(grid);
   stream.set_formatter(out.formatter());
   stream.set_body_errors(out.csv && estimator.automatic);
   std::unique_ptr<SampleErrorsFile> sample_errors;
@@ -527,6 +532,7 @@ BagSummary run_bag(const BagOptions& o) {
   BaseOdometry base;
   read_input(o, model, builder, base, s, may_stream);
   const mbk::Recording rec = builder.finish();
+  s.grid = rec.grid;
   s.read = builder.samples_read();
   s.log = builder.log();
   s.read_seconds = since(wall);
@@ -534,7 +540,7 @@ BagSummary run_bag(const BagOptions& o) {
   if (floating && base.samples.empty())
     throw std::invalid_argument(o.input + ": no usable message on '" + o.base_odometry + "'");
   const mbk::FloatingBaseTrack track =
-      floating ? base_track(std::move(base.samples), estimator, o.max_gap)
+      floating ? mbk::base_track(std::move(base.samples), estimator, o.max_gap, rec.grid)
                : mbk::FloatingBaseTrack{};
   mbk::OfflineBatch batch(model, rec, estimator, o.max_gap, floating ? &track : nullptr,
                           o.threads > 0 ? o.threads : mbk::default_thread_count());
@@ -593,6 +599,13 @@ std::string format_summary(const BagSummary& s, bool verbose) {
   for (const auto& n : s.log.notes)
     out += "  note " + std::to_string(n.second) + " samples: " + n.first +
            " (first: " + s.log.example.at(n.first) + ")\n";
+  if (s.grid.moves) {
+    std::snprintf(line, sizeof line,
+                  "  stamps on a uniform grid of %.9g s: differentiated at the grid's times, %.2g "
+                  "s at most from the stamps (tolerance %.2g s)\n",
+                  static_cast<double>(s.grid.period), s.grid.worst, s.grid.tolerance);
+    out += line;
+  }
   if (!verbose) out += mbk::error_bar_line(s.errors);
   if (verbose && !s.errors.empty())
     out +=

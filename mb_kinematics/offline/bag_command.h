@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/estimation/stamp_grid.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/offline/offline_kinematics.h"
 #include "mb_kinematics/offline/recording.h"
@@ -43,6 +44,7 @@ struct BagSummary {
   std::string estimator;
   double max_gap = 0;
   std::vector<mbk::CoordinateError> errors;  // "auto": each coordinate's error bars
+  mbk::StampGrid grid;  // the joint states' stamps on a uniform grid (estimation/stamp_grid.h)
 };
 
 // Throws std::invalid_argument (bad options, model, input) with a one-line message.

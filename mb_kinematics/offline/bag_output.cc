@@ -77,25 +77,4 @@ void BagOutput::close() {
   }
 }
 
-void with_base_body(const mbk::Model& base_model, const mbk::Data<double>& data,
-                    mbk::Data<double>& out) {
-  for (size_t k = 0; k < data.rotation.size(); ++k) {  // index 0: the root frame's motion
-    out.rotation[k + 1] = data.rotation[k];
-    out.origin[k + 1] = data.origin[k];
-    out.omega[k + 1] = data.omega[k];
-    out.alpha[k + 1] = data.alpha[k];
-    out.origin_velocity[k + 1] = data.origin_velocity[k];
-    out.origin_acceleration[k + 1] = data.origin_acceleration[k];
-    out.mass_center[k + 1] = data.mass_center[k];
-    out.mass_center_velocity[k + 1] = data.mass_center_velocity[k];
-    out.mass_center_acceleration[k + 1] = data.mass_center_acceleration[k];
-  }
-  const mbk::Vec3<double> r = out.rotation[1] * base_model.bodies[1].mass_center;
-  const mbk::Vec3<double>&w = out.omega[1], &alpha = out.alpha[1];
-  out.mass_center[1] = out.origin[1] + r;  // p = O + S0K r
-  out.mass_center_velocity[1] = out.origin_velocity[1] + w.cross(r);
-  out.mass_center_acceleration[1] =
-      out.origin_acceleration[1] + alpha.cross(r) + w.cross(w.cross(r));
-}
-
 }  // namespace mbk_offline

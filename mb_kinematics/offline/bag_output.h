@@ -50,10 +50,4 @@ class BagOutput {
   bool static_written_ = false;
 };
 
-// The node's layout with ~base_odometry: `data` (of the model, carried into R by
-// apply_floating_base) as `out` (of with_floating_base(model)): body 1 is the base, the root link
-// on its free joint, with its mass center r_1 (p = O + S0K r, doc/method.md 3), the others follow.
-void with_base_body(const mbk::Model& base_model, const mbk::Data<double>& data,
-                    mbk::Data<double>& out);
-
 }  // namespace mbk_offline

@@ -40,7 +40,8 @@ int OfflineBatch::rows_per_block(size_t bytes) const {
 }
 
 void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) const {
-  out.stamp = rec_.stamp[r];
+  const double t = rec_.stamp[r];  // on the stamps' grid when they lie on one
+  out.stamp = rec_.recorded(r);
   out.drop_reason.clear();
   const auto drop = [&](const char* reason, const std::string& detail) {
     out.drop_reason = reason;
@@ -53,7 +54,7 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
   forward_kinematics(model_, out.state, out.data, Level::kAcceleration);
   if (base_) {
     if (!interpolate_base(base_->samples, base_->linear_acceleration, base_->angular_acceleration,
-                          out.stamp, out.base))
+                          t, out.base))
       return drop("outside the base odometry's time span", "");
     apply_floating_base(out.base, out.data);
   }

@@ -87,7 +87,8 @@ OfflineStream::OfflineStream(const Model& model, const OfflineEstimator& estimat
 void OfflineStream::add(double t, const double* position, const double* velocity,
                         const std::uint8_t* given) {
   const int nq = buffer_.nq;
-  buffer_.stamp.push_back(t);
+  buffer_.stamp.push_back(grid_.snap(t));
+  if (grid_.moves) buffer_.recorded_stamp.push_back(t);
   buffer_.position.insert(buffer_.position.end(), position, position + nq);
   buffer_.velocity.insert(buffer_.velocity.end(), velocity, velocity + nq);
   buffer_.acceleration.insert(buffer_.acceleration.end(), nq, 0.0);
@@ -121,6 +122,7 @@ void OfflineStream::forget() {
   if (drop == 0) return;
   const size_t nq = buffer_.nq;
   drop_front(buffer_.stamp, drop);
+  if (grid_.moves) drop_front(buffer_.recorded_stamp, drop);
   for (auto* v : {&buffer_.position, &buffer_.velocity, &buffer_.acceleration})
     drop_front(*v, drop * nq);
   drop_front(buffer_.given, drop * nq);

@@ -58,6 +58,10 @@ class OfflineStream {
 
   // A row as RecordingBuilder's sink gives it; computes a chunk when its rows are ready.
   void add(double t, const double* position, const double* velocity, const std::uint8_t* given);
+  // The stamps' grid (estimation/stamp_grid.h, found over the whole recording in passes before):
+  // when it moves them, the rows are differentiated at the grid's times and keep their stamps
+  // (Recording::recorded_stamp). Set before the first add.
+  void set_stamp_grid(const StampGrid& grid) { grid_ = grid; }
   // Computes the rows left.
   void finish();
   // Every chunk's OfflineBatch formats its rows with `f` (OfflineBatch::set_formatter).
@@ -93,6 +97,7 @@ class OfflineStream {
   OfflineBatch::Formatter formatter_;
   bool body_errors_ = false;
   ChunkHook hook_;
+  StampGrid grid_;
   ErrorColumns columns_;  // "auto": every row's, for the medians of error_summary
   std::vector<CoordinateError> errors_;
   Recording buffer_;  // the rows kept, oldest first

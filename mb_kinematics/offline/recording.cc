@@ -22,6 +22,13 @@ std::string join(const std::vector<std::string>& names, size_t max = 8) {
 
 }  // namespace
 
+void Recording::snap_to_grid() {
+  grid = find_stamp_grid(stamp);
+  if (!grid.moves) return;
+  recorded_stamp = stamp;
+  for (double& t : stamp) t = grid.snap(t);
+}
+
 void DropLog::drop(const std::string& reason, const std::string& detail) {
   if (drops[reason]++ == 0) example[reason] = printable(detail);
 }
@@ -295,6 +302,7 @@ Recording RecordingBuilder::finish() {
         out.given[r * nq + i] |= Recording::kAcceleration;
       }
   }
+  out.snap_to_grid();
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/estimation/stamp_grid.h"
 
 namespace mbk {
 
@@ -33,8 +34,16 @@ struct Recording {
   std::vector<double> velocity;      // rows x nq, where kVelocity is set
   std::vector<double> acceleration;  // rows x nq, where kAcceleration is set
   std::vector<std::uint8_t> given;   // rows x nq: kPosition | kVelocity | kAcceleration
+  // The stamps' uniform grid, when they are on one (estimation/stamp_grid.h). When it moves
+  // them, `stamp` holds the grid's times (for the derivatives) and `recorded_stamp` the stamps
+  // as recorded (the outputs' times); else recorded_stamp is empty.
+  StampGrid grid;
+  std::vector<double> recorded_stamp;
   static constexpr std::uint8_t kPosition = 1, kVelocity = 2, kAcceleration = 4;
   int rows() const { return static_cast<int>(stamp.size()); }
+  double recorded(int r) const { return recorded_stamp.empty() ? stamp[r] : recorded_stamp[r]; }
+  // Moves the stamps onto their grid when they lie on one (recorded_stamp keeps them).
+  void snap_to_grid();
 };
 
 // Builds a Recording from samples by coordinate name, as the node merges joint_states:
@@ -69,6 +78,8 @@ class RecordingBuilder {
   void offset_times(double seconds) { time_offset_ = seconds; }
 
   // The table; rows before every coordinate was named are dropped here ("missing joints").
+  // Stamps on a uniform grid to within their rounding are moved to the grid's times
+  // (Recording::snap_to_grid).
   // Streaming: checks that every coordinate was named and returns an empty table.
   Recording finish();
   DropLog& log() { return log_; }

@@ -38,6 +38,7 @@ Recording recording_of_positions(int nq, std::size_t rows, const double* time,
   for (std::size_t i = 1; i < rows; ++i)
     if (!(time[i] > time[i - 1]))
       throw std::invalid_argument("times: not increasing at row " + std::to_string(i));
+  r.snap_to_grid();  // as RecordingBuilder::finish
   return r;
 }
 

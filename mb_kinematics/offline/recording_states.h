@@ -18,7 +18,8 @@ namespace mbk {
 Recording read_recording_file(const Model& model, const std::string& path, double bvh_scale,
                               DropLog& log);
 
-// Positions (rows x nq, every coordinate in every row) at increasing times as a Recording;
+// Positions (rows x nq, every coordinate in every row) at increasing times as a Recording (times
+// on a uniform grid to within their rounding moved onto it, as RecordingBuilder::finish does);
 // throws std::invalid_argument naming the first row whose time is not after the one before.
 Recording recording_of_positions(int nq, std::size_t rows, const double* time,
                                  const double* position);

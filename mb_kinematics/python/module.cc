@@ -20,6 +20,7 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
+#include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
 #include "mb_kinematics/offline/recording_input.h"
 #include "mb_kinematics/offline/recording_states.h"
@@ -124,9 +125,10 @@ void batch_kinematics(const ModelPtr& model, const InputArray& position, py::obj
     run<double>(*model, position, velocity, acceleration, outputs, bodies, threads);
 }
 
-// A recording read as mbk bag reads it, and what was dropped.
+// A recording read as mbk bag reads it (with a bag's base odometry), and what was dropped.
 struct Recorded {
   mbk::Recording recording;
+  mbk_offline::BaseOdometry base;
   mbk::DropLog log;
 };
 using RecordedPtr = std::shared_ptr<Recorded>;
@@ -148,10 +150,97 @@ py::array_t<double> where_given(const mbk::Recording& r, const std::vector<doubl
 }
 
 RecordedPtr read_recording(const ModelPtr& model, const std::string& path, double scale,
-                           const std::string& joint_states) {
+                           const std::string& joint_states, const std::string& joint_accelerations,
+                           const std::string& base_odometry) {
   auto out = std::make_shared<Recorded>();
   py::gil_scoped_release release;
-  out->recording = mbk_offline::read_recording_input(*model, path, scale, joint_states, out->log);
+  mbk_offline::RecordingInput in = mbk_offline::read_recording_input(
+      *model, path, scale, {joint_states, joint_accelerations, base_odometry}, out->log);
+  out->recording = std::move(in.recording);
+  out->base = std::move(in.base);
+  return out;
+}
+
+// The base odometry's samples as arrays (None without): times (n,), position, linear, angular
+// (n, 3), orientation (n, 4: x, y, z, w), frame.
+py::object base_arrays(const Recorded& r) {
+  const std::vector<mbk::BaseSample>& b = r.base.samples;
+  if (b.empty()) return py::none();
+  const std::size_t n = b.size();
+  py::array_t<double> t(n), position({n, std::size_t{3}}), orientation({n, std::size_t{4}}),
+      linear({n, std::size_t{3}}), angular({n, std::size_t{3}});
+  for (std::size_t i = 0; i < n; ++i) {
+    t.mutable_data()[i] = b[i].t;
+    std::copy(b[i].position.data(), b[i].position.data() + 3, position.mutable_data() + 3 * i);
+    std::copy(b[i].orientation.coeffs().data(), b[i].orientation.coeffs().data() + 4,
+              orientation.mutable_data() + 4 * i);
+    std::copy(b[i].linear.data(), b[i].linear.data() + 3, linear.mutable_data() + 3 * i);
+    std::copy(b[i].angular.data(), b[i].angular.data() + 3, angular.mutable_data() + 3 * i);
+  }
+  py::dict out;
+  out["times"] = t;
+  out["position"] = position;
+  out["orientation"] = orientation;
+  out["linear"] = linear;
+  out["angular"] = angular;
+  out["frame"] = r.base.frame;
+  return out;
+}
+
+// (rows, bodies, 3) of one Data field, bodies 1..N of each row.
+template <typename Field>
+py::array_t<double> body_vectors(const std::vector<mbk::Data<double>>& data, Field field) {
+  const std::size_t rows = data.size(), bodies = rows ? data[0].origin.size() - 1 : 0;
+  py::array_t<double> out({rows, bodies, std::size_t{3}});
+  double* x = out.mutable_data();
+  for (const mbk::Data<double>& d : data)
+    for (std::size_t k = 1; k <= bodies; ++k, x += 3) std::copy_n((d.*field)[k].data(), 3, x);
+  return out;
+}
+
+// mbk bag's rows of a recording with its base odometry (offline/base_track.h), in the node's
+// layout, under the names of Model.kinematics, with the body names and the drops.
+py::dict floating_base_kinematics(const ModelPtr& model, const RecordedPtr& recorded,
+                                  const std::string& estimator, double max_gap, int threads) {
+  mbk::DropLog log = recorded->log;
+  mbk::BaseRows rows;
+  {
+    py::gil_scoped_release release;
+    rows = mbk::floating_base_rows(*model, recorded->recording, recorded->base.samples,
+                                   recorded->base.frame, mbk::make_offline_estimator(estimator),
+                                   max_gap, threads, log);
+  }
+  const std::size_t n = rows.stamp.size(), bodies = rows.layout.body_count();
+  py::dict out;
+  out["time"] = matrix(rows.stamp, n, 1).attr("ravel")();
+  std::vector<std::string> names;
+  for (std::size_t k = 1; k <= bodies; ++k) names.push_back(rows.layout.bodies[k].name);
+  out["body_names"] = names;
+  py::array_t<double> rotation({n, bodies, std::size_t{3}, std::size_t{3}});
+  double* r = rotation.mutable_data();
+  for (const mbk::Data<double>& d : rows.data)
+    for (std::size_t k = 1; k <= bodies; ++k)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) *r++ = d.rotation[k](i, j);
+  out["rotation"] = rotation;
+  using D = mbk::Data<double>;
+  out["origin"] = body_vectors(rows.data, &D::origin);
+  out["omega"] = body_vectors(rows.data, &D::omega);
+  out["alpha"] = body_vectors(rows.data, &D::alpha);
+  out["mass_center"] = body_vectors(rows.data, &D::mass_center);
+  out["velocity"] = body_vectors(rows.data, &D::mass_center_velocity);
+  out["acceleration"] = body_vectors(rows.data, &D::mass_center_acceleration);
+  py::array_t<double> g({n, std::size_t{3}}), v({n, std::size_t{3}}), a({n, std::size_t{3}});
+  for (std::size_t i = 0; i < n; ++i) {
+    const mbk::SystemKinematics<double>& system = rows.system[i];
+    std::copy_n(system.mass_center.data(), 3, g.mutable_data() + 3 * i);
+    std::copy_n(system.velocity.data(), 3, v.mutable_data() + 3 * i);
+    std::copy_n(system.acceleration.data(), 3, a.mutable_data() + 3 * i);
+  }
+  out["system_mass_center"] = g;
+  out["system_velocity"] = v;
+  out["system_acceleration"] = a;
+  out["drops"] = log.drops;
   return out;
 }
 
@@ -255,8 +344,22 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly(
           "times",
           [](const Recorded& r) {
-            return matrix(r.recording.stamp, r.recording.rows(), 1).attr("ravel")();
+            const mbk::Recording& rec = r.recording;
+            return matrix(rec.recorded_stamp.empty() ? rec.stamp : rec.recorded_stamp, rec.rows(),
+                          1)
+                .attr("ravel")();
           })
+      .def_property_readonly("grid",
+                             [](const Recorded& r) {
+                               const mbk::StampGrid& g = r.recording.grid;
+                               py::dict d;
+                               d["found"] = g.found;
+                               d["moves"] = g.moves;
+                               d["period"] = static_cast<double>(g.period);
+                               d["worst"] = g.worst;
+                               d["tolerance"] = g.tolerance;
+                               return d;
+                             })
       .def_property_readonly("positions",
                              [](const Recorded& r) {
                                return where_given(r.recording, r.recording.position,
@@ -272,8 +375,10 @@ PYBIND11_MODULE(_core, m) {
                                return where_given(r.recording, r.recording.acceleration,
                                                   mbk::Recording::kAcceleration);
                              })
+      .def_property_readonly("base", &base_arrays)
       .def_property_readonly("drops", [](const Recorded& r) { return r.log.drops; });
   m.def("read_recording", &read_recording);
   m.def("recording_of_positions", &recording_of_positions);
   m.def("recording_states", &recording_states);
+  m.def("floating_base_kinematics", &floating_base_kinematics);
 }

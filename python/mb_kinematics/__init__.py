@@ -26,7 +26,8 @@ __all__ = ["load", "Model", "OUTPUTS", "Recording"]
 
 #: A recording's samples (read_recording, or Model.recording from arrays): `times` (rows,),
 #: `positions` (rows, nq), `velocities` and `accelerations` (rows, nq, NaN where not recorded),
-#: `drops` (samples dropped, by reason, as `mbk bag` counts them).
+#: `drops` (samples dropped, by reason, as `mbk bag` counts them), `grid` (the stamps' uniform
+#: grid, when they lie on one), `base` (a bag's base odometry, or None).
 Recording = _core.Recording
 
 _TRAITS = _core.field_traits()
@@ -110,15 +111,24 @@ class Model:
         return "<mb_kinematics.Model: %d bodies, nq=%d, nv=%d, frame %r>" % (
             self.body_count, self.nq, self.nv, self.frame)
 
-    def read_recording(self, path, scale=1.0, joint_states="/joint_states"):
-        """A rosbag (sensor_msgs/JointState on `joint_states`), a trajectory CSV
+    def read_recording(self, path, scale=1.0, joint_states="/joint_states",
+                       joint_accelerations=None, base_odometry=None):
+        """A rosbag (sensor_msgs/JointState on `joint_states`; with `joint_accelerations`,
+        mb_kinematics_msgs/JointAccelerations on that topic; with `base_odometry`, the floating
+        base's nav_msgs/Odometry on that topic, as `mbk bag --base-odometry`), a trajectory CSV
         (`time,<coordinate>,...`) or a BVH file's motion (this model being its skeleton, loaded
         with the same `scale`) read as `mbk bag` reads it: a Recording."""
         if isinstance(path, os.PathLike):
             path = os.fspath(path)
         if not isinstance(path, str):
             raise TypeError("path: a file name (str), not %s" % type(path).__name__)
-        return _core.read_recording(self._core, path, float(scale), joint_states)
+        topics = {"joint_states": joint_states, "joint_accelerations": joint_accelerations or "",
+                  "base_odometry": base_odometry or ""}
+        for name, topic in topics.items():
+            if not isinstance(topic, str):
+                raise TypeError("%s: a topic name (str), not %s" % (name, type(topic).__name__))
+        return _core.read_recording(self._core, path, float(scale), topics["joint_states"],
+                                    topics["joint_accelerations"], topics["base_odometry"])
 
     def recording(self, times, positions):
         """A Recording of positions (N, nq) at increasing times (N,): every coordinate in every
@@ -141,14 +151,7 @@ class Model:
         and `acceleration_se` (standard errors, 0 where recorded; absent when some coordinate
         is not in every row), and `valid` (rows,): False where mbk bag drops the row (too few
         samples around it), whose `drop_reason` says why."""
-        if not isinstance(recording, Recording):
-            raise TypeError("recording: a Recording (read_recording or recording), not %s"
-                            % type(recording).__name__)
-        if not isinstance(estimator, str):
-            raise TypeError("estimator: a name such as 'auto', not %s" % type(estimator).__name__)
-        gap = 0.0 if max_gap is None else float(max_gap)
-        if gap < 0 or not np.isfinite(gap):
-            raise ValueError("max_gap: %r, expected seconds above 0" % (max_gap,))
+        gap = _estimator_arguments(recording, estimator, max_gap)
         out = _core.recording_states(self._core, recording, estimator, gap)
         out["time"] = recording.times
         out["valid"] = np.array([not r for r in out["drop_reason"]], dtype=bool)
@@ -158,7 +161,22 @@ class Model:
         """What `mbk bag` does, in memory: states() of the recording, then kinematics() of its
         valid rows (options as kinematics()). The dict of kinematics() plus `time` and the
         states' arrays under `joint_position`, `joint_velocity`, `joint_acceleration`, of
-        the valid rows."""
+        the valid rows.
+
+        A recording with base odometry (read_recording's `base_odometry`): every body in R as
+        `mbk bag --base-odometry` computes it, in the node's layout (body 1 the base, named
+        in `body_names`): `time`, `rotation`, `origin`, `omega`, `alpha`, `mass_center`,
+        `velocity`, `acceleration`, `system_mass_center`, `system_velocity`,
+        `system_acceleration`, and `drops` (rows dropped by reason, the reading's included);
+        options: `threads` only."""
+        if isinstance(recording, Recording) and recording.base is not None:
+            unknown = set(options) - {"threads"}
+            if unknown:
+                raise ValueError("with base odometry: %s not available (threads only)"
+                                 % ", ".join(sorted(unknown)))
+            gap = _estimator_arguments(recording, estimator, max_gap)
+            return _core.floating_base_kinematics(self._core, recording, estimator, gap,
+                                                  _threads(options.get("threads")))
         s = self.states(recording, estimator, max_gap)
         keep = s["valid"]
         out = self.kinematics(s["position"][keep], s["velocity"][keep],
@@ -202,6 +220,19 @@ class Model:
             return {name: (out[name] if out is not None and name in out else a[0])
                     for name, a in arrays.items()}
         return arrays
+
+
+def _estimator_arguments(recording, estimator, max_gap):
+    """Checks states()' arguments; the gap in seconds (0: the default)."""
+    if not isinstance(recording, Recording):
+        raise TypeError("recording: a Recording (read_recording or recording), not %s"
+                        % type(recording).__name__)
+    if not isinstance(estimator, str):
+        raise TypeError("estimator: a name such as 'auto', not %s" % type(estimator).__name__)
+    gap = 0.0 if max_gap is None else float(max_gap)
+    if gap < 0 or not np.isfinite(gap):
+        raise ValueError("max_gap: %r, expected seconds above 0" % (max_gap,))
+    return gap
 
 
 def _real(value, name):

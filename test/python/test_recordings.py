@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import mbk, source
+from conftest import mbk, mbk_path, source
 
 BVH = source("test/mocap/131_01.bvh")
 SCALE, MASS = 0.056444, 68.5
@@ -31,7 +31,7 @@ def vector(row, name):
 def expect_same_as_bag(model, out, rows):
     assert len(rows) == len(out["time"])
     for s, sample in enumerate(rows):
-        for i, body in enumerate(model.body_names):
+        for i, body in enumerate(out.get("body_names", model.body_names)):
             for ours, theirs in FIELDS.items():
                 assert np.array_equal(out[ours][s, i], vector(sample[body], theirs)), (
                     "sample %d body %s %s: %s vs %s" % (s, body, ours, out[ours][s, i],
@@ -114,6 +114,160 @@ def test_bag_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
     assert "velocity_se" not in states  # the fingers are in every other sample only
     with pytest.raises(ValueError, match="topic"):
         model.read_recording(path, joint_states="/other")
+
+
+def write_arm_bag(model, path, accelerations=False, odometry=False):
+    """300 samples of the Panda arm at 100 Hz (positions and velocities) and, at the same stamps,
+    its JointAccelerations and a base's nav_msgs/Odometry (driving on and turning)."""
+    import rosbag
+    import rospy
+    from geometry_msgs.msg import Quaternion
+    from mb_kinematics_msgs.msg import JointAccelerations
+    from nav_msgs.msg import Odometry
+    from sensor_msgs.msg import JointState
+    mimic = {m["coordinate"] for m in model.mimics}
+    names = [n for n in model.coordinate_names if n not in mimic]
+    rate = 1 + 0.3 * np.arange(len(names))
+    amplitude = np.where([n.startswith("panda_finger") for n in names], 0.01, 0.4)
+    with rosbag.Bag(path, "w") as bag:
+        for i in range(300):
+            t = 1 + 0.01 * i
+            stamp = rospy.Time.from_sec(t)
+            js = JointState(name=names, position=list(amplitude * np.sin(rate * t)),
+                            velocity=list(amplitude * rate * np.cos(rate * t)))
+            js.header.stamp = stamp
+            bag.write("/joint_states", js, stamp)
+            if accelerations:
+                a = JointAccelerations(name=names,
+                                       acceleration=list(-amplitude * rate ** 2 * np.sin(rate * t)))
+                a.header.stamp = stamp
+                bag.write("/joint_accelerations", a, stamp)
+            if odometry:
+                yaw = 0.3 * t
+                o = Odometry()
+                o.header.stamp, o.header.frame_id, o.child_frame_id = stamp, "odom", "base"
+                o.pose.pose.position.x, o.pose.pose.position.y = 0.5 * t, 0.1 * t * t
+                o.pose.pose.orientation = Quaternion(0, 0, np.sin(yaw / 2), np.cos(yaw / 2))
+                o.twist.twist.linear.x = 0.5 * np.cos(yaw) + 0.2 * t * np.sin(yaw)
+                o.twist.twist.linear.y = -0.5 * np.sin(yaw) + 0.2 * t * np.cos(yaw)
+                o.twist.twist.angular.z = 0.3
+                bag.write("/odom", o, stamp)
+    return names
+
+
+def test_bag_accelerations_as_mbk_bag_reads_them(mbk_kinematics, tmp_path):
+    urdf = source("test/robots/panda.urdf")
+    model = mbk_kinematics.load(urdf)
+    path = str(tmp_path / "arm.bag")
+    names = write_arm_bag(model, path, accelerations=True)
+    columns = [model.coordinate_names.index(n) for n in names]
+    recording = model.read_recording(path, joint_accelerations="/joint_accelerations")
+    assert np.isfinite(recording.accelerations[:, columns]).all()
+    assert np.isnan(model.read_recording(path).accelerations).all()  # not asked for
+    t = 1 + 0.01 * np.arange(300)[:, None]  # as written
+    rate = 1 + 0.3 * np.arange(len(names))
+    amplitude = np.where([n.startswith("panda_finger") for n in names], 0.01, 0.4)
+    assert np.allclose(recording.accelerations[:, columns], -amplitude * rate ** 2 *
+                       np.sin(rate * t), rtol=0, atol=1e-12)
+    out = model.recording_kinematics(recording)
+    assert np.array_equal(out["joint_acceleration"][:, columns], recording.accelerations[:, columns])
+    csv_path = str(tmp_path / "arm.csv")
+    mbk("bag", path, "--model", urdf, "--joint-accelerations", "/joint_accelerations",
+        "--csv", csv_path)
+    expect_same_as_bag(model, out, tidy_csv(csv_path))
+
+
+def test_bag_base_odometry_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
+    urdf = source("test/robots/panda.urdf")
+    model = mbk_kinematics.load(urdf)
+    path = str(tmp_path / "arm.bag")
+    write_arm_bag(model, path, odometry=True)
+    recording = model.read_recording(path, base_odometry="odom")
+    base = recording.base
+    assert base["frame"] == "odom" and base["position"].shape == (300, 3)
+    assert np.allclose(base["position"][:, 0], 0.5 * (1 + 0.01 * np.arange(300)), rtol=0,
+                       atol=1e-12)
+    assert model.read_recording(path).base is None  # not asked for
+    out = model.recording_kinematics(recording)
+    assert out["body_names"] == [model.frame] + list(model.body_names)
+    assert out["origin"].shape == (300, model.body_count + 1, 3)
+    assert np.array_equal(out["time"], recording.times)  # as recorded, off the grid by < 1 ns
+    csv_path = str(tmp_path / "arm.csv")
+    mbk("bag", path, "--model", urdf, "--base-odometry", "odom", "--csv", csv_path)
+    expect_same_as_bag(model, out, tidy_csv(csv_path))
+    with pytest.raises(ValueError, match="threads only"):
+        model.recording_kinematics(recording, outputs=["origin"])
+    with pytest.raises(ValueError, match="no topic '/other'"):
+        model.read_recording(path, base_odometry="/other")
+    with pytest.raises(ValueError, match="need a bag"):
+        model.read_recording(source("test/mocap/131_01.bvh"), base_odometry="odom")
+
+
+def test_rounded_stamps_on_their_grid(mbk_kinematics, tmp_path):
+    """An arm moving at 1 to 6 rad/s sampled on an exact 1 kHz grid, its stamps written through
+    rospy.Time.from_sec (up to 1 ns early): differentiated on the grid, mbk bag says so, its CSV
+    (the streamed path) equals the in-memory one at the recorded stamps, and the bodies'
+    accelerations are those of the exact times (test/offline/stamp_rounding_test.cc: 1e4 times
+    worse at the stamps as they are)."""
+    import subprocess
+    import rosbag
+    import rospy
+    from sensor_msgs.msg import JointState
+    urdf = source("test/robots/panda.urdf")
+    model = mbk_kinematics.load(urdf)
+    mimic = {m["coordinate"] for m in model.mimics}
+    names = [n for n in model.coordinate_names if n not in mimic]
+    rate = np.linspace(2, 12, len(names))
+    amplitude = np.where([n.startswith("panda_finger") for n in names], 0.01, 0.5)
+    exact = 10 + np.arange(2000) * 1e-3
+
+    def motion(d):  # (rows, coordinates): the d-th derivative of amplitude sin(rate t + j)
+        x = np.outer(exact, rate) + np.arange(len(names))
+        return amplitude * rate ** d * np.sin(x + d * np.pi / 2)
+
+    path = str(tmp_path / "grid.bag")
+    with rosbag.Bag(path, "w") as bag:
+        for t, q in zip(exact, motion(0)):
+            msg = JointState(name=names, position=list(q))
+            msg.header.stamp = rospy.Time.from_sec(t)
+            bag.write("/joint_states", msg, msg.header.stamp)
+    stamps = np.array([rospy.Time.from_sec(t).to_sec() for t in exact])
+    assert np.abs(stamps - exact).max() > 5e-10  # the rounding is there
+    recording = model.read_recording(path)
+    assert np.allclose(recording.times, stamps, rtol=0, atol=1e-12)  # as recorded
+    grid = recording.grid
+    assert grid["moves"] and abs(grid["period"] - 1e-3) < 1e-13 and grid["worst"] <= 1e-9
+    out = model.recording_kinematics(recording)
+    assert np.array_equal(out["time"], recording.times)
+    csv_path = str(tmp_path / "grid.csv")
+    done = subprocess.run([mbk_path(), "bag", path, "--model", urdf, "--csv", csv_path],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "stamps on a uniform grid of 0.001 s" in done.stderr
+    rows = tidy_csv(csv_path)
+    written = np.array([float(next(iter(r.values()))["stamp"]) for r in rows])
+    assert np.allclose(written, stamps, rtol=0, atol=1e-12)  # the stamps as recorded
+    expect_same_as_bag(model, out, rows)
+
+    columns = [model.coordinate_names.index(n) for n in names]
+    full = [np.zeros((len(exact), model.nq)) for _ in range(3)]
+    for d in range(3):
+        full[d][:, columns] = motion(d)
+    truth = model.kinematics(*full)
+
+    def error(result):
+        worst = max(np.abs(result[f] - truth[f]).max() for f in ("alpha", "acceleration"))
+        return worst / max(np.abs(truth[f]).max() for f in ("alpha", "acceleration"))
+
+    assert error(out) < 1e-5
+    positions = recording.positions.copy()  # from arrays: the same grid
+    for m in model.mimics:
+        positions[:, model.coordinate_names.index(m["coordinate"])] = (
+            m["multiplier"] * positions[:, model.coordinate_names.index(m["source"])] + m["offset"])
+    from_arrays = model.recording(recording.times, positions)
+    assert from_arrays.grid["moves"]
+    assert np.array_equal(model.states(from_arrays)["acceleration"][:, columns],
+                          model.states(recording)["acceleration"][:, columns])
 
 
 def test_bad_recordings(mbk_kinematics, tmp_path):
