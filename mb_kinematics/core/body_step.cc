@@ -98,12 +98,6 @@ PaddedMat3 padded(const Mat3<double>& m) {
   return out;
 }
 
-bool is_ball_or_free(JointKernel kernel) {
-  return kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
-         kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
-         kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered;
-}
-
 }  // namespace
 
 BodySteps make_body_steps(const Model& model, KernelChoice choice) {

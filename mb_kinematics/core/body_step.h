@@ -38,6 +38,13 @@ enum class JointKernel : std::uint8_t {
   kGeneric,           // any joint type through joint_motion (a type without a kernel of its own)
 };
 
+// Ball and free joints' kernels (angles or Euler parameters): M = S0J C_k, then the rotation.
+constexpr bool is_ball_or_free(JointKernel kernel) {
+  return kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
+         kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
+         kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered;
+}
+
 // Which kernels make_body_steps picks: each type's own where it has one (opt-in, kernel_of in
 // body_step.cc), or joint_motion for every body (the generic path the kernels are tested against).
 enum class KernelChoice : std::uint8_t { kFast, kGenericOnly };

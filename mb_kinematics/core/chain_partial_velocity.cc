@@ -6,17 +6,16 @@
 
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/own_column.h"
 
 namespace mbk {
 namespace {
 
 using V = Vec3<double>;
 
-// One column of a body's own joint, at that body b: omega_br, the partial velocity of O_b and
-// their time derivatives (doc/method.md 5, the joint's own columns).
-struct OwnColumn {
+// One column of a body's own joint, at that body b (own_column.h), and its speed's index.
+struct ChainColumn : OwnColumn<double> {
   int speed;
-  V omega, origin_velocity, omega_dot, origin_velocity_dot;
 };
 
 // A body of the chains: S0K, O_k, omega_k, the velocity of O_k (doc/method.md 4), and its own
@@ -46,7 +45,7 @@ int position(const std::vector<int>& chain, int k) {
 // Body k from its lower body (doc/method.md 4, 5): pose, omega_k, the velocity of O_k, and its
 // own joint's columns appended to `own`.
 ChainBody chain_body(const Model& model, const JointState<double>& state, int k,
-                     const ChainBody* lower, std::vector<OwnColumn>& own) {
+                     const ChainBody* lower, std::vector<ChainColumn>& own) {
   const Body& body = model.bodies[k];
   const BodyStep& b = model.steps.steps[k];
   JointMotion<double> m;
@@ -60,20 +59,13 @@ ChainBody chain_body(const Model& model, const JointState<double>& state, int k,
   const V d = s0j * (b.offset + m.translation);                  // eq. 4.6.2
   c.origin = (lower ? lower->origin : zero) + d;
   c.origin_velocity = (lower ? lower->origin_velocity : zero) + omega_j.cross(d);
-  for (int i = 0; i < m.speeds; ++i) {  // the joint's own columns (eq. 4.4.20-4.4.32)
-    const bool linear = i < m.linear_speeds;
-    const V column = s0j * (linear ? m.linear[i] : m.angular[i]);
+  for (int i = 0; i < m.speeds; ++i) {
+    const ChainColumn o{own_column(m, i, joint_column(m, i, s0j), s0j, omega_j), body.v_index + i};
     const double y = state.velocity[body.v_index + i];
-    OwnColumn o{body.v_index + i, zero, zero, zero, zero};
-    if (linear) {
-      o.origin_velocity = column;
-      o.origin_velocity_dot = omega_j.cross(column);
-      c.origin_velocity += column * y;
-    } else {
-      o.omega = column;
-      o.omega_dot = omega_j.cross(column) + s0j * m.angular_dot[i];
-      c.omega += column * y;  // eq. 4.4.6
-    }
+    if (i < m.linear_speeds)
+      c.origin_velocity += o.origin_velocity * y;
+    else
+      c.omega += o.omega * y;  // eq. 4.4.6
     own.push_back(o);
   }
   return c;
@@ -93,7 +85,7 @@ SpeedColumn& column_of(int r, std::vector<SpeedColumn>& columns,
 // vO_kr = vO_jr + omega_jr x d_k sums to vO_kr = vO_br + omega_br x (O_k - O_b); its derivative
 // to vO_br' + omega_br' x (O_k - O_b) + omega_br x (vO_k - vO_b) (doc/method.md 5).
 std::vector<SpeedColumn> body_columns(const Model& model, const std::vector<ChainBody>& chain,
-                                      const std::vector<OwnColumn>& own, int p) {
+                                      const std::vector<ChainColumn>& own, int p) {
   const ChainBody& k = chain[p];
   const V rho = k.rotation * model.bodies[k.body].mass_center;  // S0K r_k
   const V omega_rho = k.omega.cross(rho);
@@ -108,7 +100,7 @@ std::vector<SpeedColumn> body_columns(const Model& model, const std::vector<Chai
     const ChainBody& b = chain[*u];
     const V dp = k.origin - b.origin, dv = k.origin_velocity - b.origin_velocity;
     for (int i = b.first; i < b.first + b.count; ++i) {
-      const OwnColumn& o = own[i];
+      const ChainColumn& o = own[i];
       const V vo = o.origin_velocity + o.omega.cross(dp);
       const V vo_dot = o.origin_velocity_dot + o.omega_dot.cross(dp) + o.omega.cross(dv);
       double f = 1.0;
@@ -137,7 +129,7 @@ std::vector<std::vector<SpeedColumn>> chain_partial_velocities(const Model& mode
                                                                const std::vector<int>& bodies) {
   const std::vector<int> union_bodies = chain_union(model, bodies);
   std::vector<ChainBody> chain;
-  std::vector<OwnColumn> own;
+  std::vector<ChainColumn> own;
   chain.reserve(union_bodies.size());
   size_t speeds = 0;
   for (int k : union_bodies) speeds += speed_count(model.bodies[k].joint.type, model.speeds);

@@ -14,13 +14,11 @@ Mat3<double> SignedPermutation::matrix() const {
 }
 
 std::array<int, 3> euler_axes(EulerOrder order) {
-  return kEulerAxes.at(static_cast<size_t>(order));
+  const EulerTurns& o = kEulerOrders.at(static_cast<size_t>(order));
+  return {o.a1, o.a2, o.a3};
 }
 
-bool is_tait_bryan(EulerOrder order) {
-  const std::array<int, 3> a = euler_axes(order);
-  return a[0] != a[2];
-}
+bool is_tait_bryan(EulerOrder order) { return !kEulerOrders.at(static_cast<size_t>(order)).proper; }
 
 std::string to_string(EulerOrder order) {
   std::string s;
@@ -29,8 +27,8 @@ std::string to_string(EulerOrder order) {
 }
 
 EulerOrder euler_order_from_axes(const std::array<int, 3>& axes) {
-  for (size_t i = 0; i < kEulerAxes.size(); ++i)
-    if (kEulerAxes[i] == axes) return static_cast<EulerOrder>(i);
+  for (size_t i = 0; i < kEulerOrders.size(); ++i)
+    if (euler_axes(static_cast<EulerOrder>(i)) == axes) return static_cast<EulerOrder>(i);
   throw std::invalid_argument("not an Euler order: axes " + std::to_string(axes[0]) + ", " +
                               std::to_string(axes[1]) + ", " + std::to_string(axes[2]));
 }
@@ -47,8 +45,8 @@ EulerOrder euler_order_from_string(const std::string& text) {
     else
       ok = false;
   }
-  for (const std::array<int, 3>& a : kEulerAxes)
-    if (ok && a == axes) return euler_order_from_axes(axes);
+  for (int i = 0; ok && i < static_cast<int>(kEulerOrders.size()); ++i)
+    if (euler_axes(static_cast<EulerOrder>(i)) == axes) return static_cast<EulerOrder>(i);
   throw std::invalid_argument("unknown Euler order '" + printable(text) +
                               "' (one of XYZ, XZY, YXZ, YZX, ZXY, ZYX, XYX, XZX, YXY, YZY, ZXZ, "
                               "ZYZ, or the same as digits 123, 313, ...)");

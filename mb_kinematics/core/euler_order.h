@@ -28,19 +28,35 @@ enum class EulerOrder {
   kLast = kZYZ,  // keep equal to the last order
 };
 
-// The axes of the 12 orders, in EulerOrder order.
-inline constexpr std::array<std::array<int, 3>, 12> kEulerAxes{{{0, 1, 2},
-                                                                {0, 2, 1},
-                                                                {1, 0, 2},
-                                                                {1, 2, 0},
-                                                                {2, 0, 1},
-                                                                {2, 1, 0},
-                                                                {0, 1, 0},
-                                                                {0, 2, 0},
-                                                                {1, 0, 1},
-                                                                {1, 2, 1},
-                                                                {2, 0, 2},
-                                                                {2, 1, 2}}};
+// One row of the table below: an order's axes a1, a2, a3 (0 = x, 1 = y, 2 = z), `third` the axis
+// neither a1 nor a2 and sigma the sign of e_a1 x e_a2 = sigma e_third (+1 for the cyclic pairs
+// xy, yz, zx), and whether it is proper Euler (a3 == a1) or Tait-Bryan. The recursion's kernels
+// turn about these axes (fast_kernels.h) and EulerMap below is built from the same row.
+struct EulerTurns {
+  int a1, a2, a3, third, sigma;
+  bool proper;  // a3 == a1
+};
+
+namespace detail {
+
+constexpr EulerTurns make_euler_turns(int a1, int a2, int a3) {
+  return EulerTurns{a1, a2, a3, 3 - a1 - a2, (a2 - a1 + 3) % 3 == 1 ? 1 : -1, a3 == a1};
+}
+
+}  // namespace detail
+
+// The 12 orders, in EulerOrder order: the one table of the orders' axes and signs.
+inline constexpr std::array<EulerTurns, 12> kEulerOrders{
+    detail::make_euler_turns(0, 1, 2), detail::make_euler_turns(0, 2, 1),
+    detail::make_euler_turns(1, 0, 2), detail::make_euler_turns(1, 2, 0),
+    detail::make_euler_turns(2, 0, 1), detail::make_euler_turns(2, 1, 0),
+    detail::make_euler_turns(0, 1, 0), detail::make_euler_turns(0, 2, 0),
+    detail::make_euler_turns(1, 0, 1), detail::make_euler_turns(1, 2, 1),
+    detail::make_euler_turns(2, 0, 2), detail::make_euler_turns(2, 1, 2)};
+
+constexpr EulerTurns euler_turns(EulerOrder order) {
+  return kEulerOrders[static_cast<size_t>(order)];
+}
 
 // The axes of the three rotations in order, 0 = x, 1 = y, 2 = z.
 std::array<int, 3> euler_axes(EulerOrder order);
@@ -57,12 +73,12 @@ EulerOrder euler_order_from_string(const std::string& text);
 EulerOrder euler_order_from_axes(const std::array<int, 3>& axes);
 
 // Every order is the chapter's 1-2-3 rotation between two constant signed axis permutations
-// (the one place that maps the orders; the kernels and joint_motion use it):
+// (each built from the order's row of kEulerOrders; joint_motion and base_joint use them):
 //   R_a1(alpha) R_a2(beta) R_a3(gamma) = P R_123(alpha, beta + shift, sign * gamma) Q.
 // Proof. For a rotation P, P R_u(t) P^T = R_{P u}(t). Take P with columns e_a1, e_a2,
 // e_a1 x e_a2 (a proper rotation): P R_x(t) P^T = R_a1(t), P R_y(t) P^T = R_a2(t).
-// - Tait-Bryan (a3 != a1): e_a1 x e_a2 = sign e_a3, sign = +1 for the cyclic orders XYZ, YZX,
-//   ZXY and -1 for the others, so P R_z(sign t) P^T = R_{sign e_a3}(sign t) = R_a3(t). Then
+// - Tait-Bryan (a3 != a1): e_a1 x e_a2 = sign e_a3, sign = sigma: +1 for the cyclic orders XYZ,
+//   YZX, ZXY and -1 for the others, so P R_z(sign t) P^T = R_{sign e_a3}(sign t) = R_a3(t). Then
 //   R_a1 R_a2 R_a3 = P R_x(alpha) R_y(beta) R_z(sign gamma) P^T: shift 0, Q = P^T.
 // - Proper Euler (a3 = a1): R_y(pi/2) carries e_z to e_x, so R_x(t) = R_y(pi/2) R_z(t) R_y(-pi/2)
 //   and R_a1(gamma) = P R_y(pi/2) R_z(gamma) R_y(-pi/2) P^T; R_y(beta) R_y(pi/2) =
@@ -114,43 +130,26 @@ constexpr SignedPermutation transpose(const SignedPermutation& a) {
   return t;
 }
 
-constexpr EulerMap make_euler_map(const std::array<int, 3>& a) {
-  const int third = 3 - a[0] - a[1];                      // the axis neither a1 nor a2
-  const int cross = (a[1] - a[0] + 3) % 3 == 1 ? 1 : -1;  // e_a1 x e_a2 = cross e_third
-  const SignedPermutation p{{a[0], a[1], third}, {1, 1, cross}};
+constexpr EulerMap make_euler_map(const EulerTurns& o) {
+  const SignedPermutation p{{o.a1, o.a2, o.third}, {1, 1, o.sigma}};
   const SignedPermutation turn{{2, 1, 0}, {1, 1, -1}};  // R_y(-pi/2)
-  const bool proper = a[2] == a[0];
-  return EulerMap{p, proper ? product(turn, transpose(p)) : transpose(p), proper,
-                  proper ? 1 : cross};
+  return EulerMap{p, o.proper ? product(turn, transpose(p)) : transpose(p), o.proper,
+                  o.proper ? 1 : o.sigma};
 }
 
 }  // namespace detail
 
 // The map of each order, in EulerOrder order.
 inline constexpr std::array<EulerMap, 12> kEulerMaps{
-    detail::make_euler_map(kEulerAxes[0]),  detail::make_euler_map(kEulerAxes[1]),
-    detail::make_euler_map(kEulerAxes[2]),  detail::make_euler_map(kEulerAxes[3]),
-    detail::make_euler_map(kEulerAxes[4]),  detail::make_euler_map(kEulerAxes[5]),
-    detail::make_euler_map(kEulerAxes[6]),  detail::make_euler_map(kEulerAxes[7]),
-    detail::make_euler_map(kEulerAxes[8]),  detail::make_euler_map(kEulerAxes[9]),
-    detail::make_euler_map(kEulerAxes[10]), detail::make_euler_map(kEulerAxes[11])};
+    detail::make_euler_map(kEulerOrders[0]),  detail::make_euler_map(kEulerOrders[1]),
+    detail::make_euler_map(kEulerOrders[2]),  detail::make_euler_map(kEulerOrders[3]),
+    detail::make_euler_map(kEulerOrders[4]),  detail::make_euler_map(kEulerOrders[5]),
+    detail::make_euler_map(kEulerOrders[6]),  detail::make_euler_map(kEulerOrders[7]),
+    detail::make_euler_map(kEulerOrders[8]),  detail::make_euler_map(kEulerOrders[9]),
+    detail::make_euler_map(kEulerOrders[10]), detail::make_euler_map(kEulerOrders[11])};
 
 inline const EulerMap& euler_map(EulerOrder order) {
   return kEulerMaps[static_cast<size_t>(order)];
-}
-
-// An order as the recursion's kernels take it (kinematics.h): S0K = M R_a1(alpha) R_a2(beta)
-// R_a3(gamma) is one column turn per angle about the order's own axes, the 1-2-3 turns (eq.
-// 4.4.9-4.4.12) being XYZ's; `third` is the axis neither a1 nor a2, e_a1 x e_a2 = sigma e_third.
-struct EulerTurns {
-  int a1, a2, a3, third, sigma;
-  bool proper;  // a3 == a1
-};
-
-constexpr EulerTurns euler_turns(EulerOrder order) {
-  const std::array<int, 3> a = kEulerAxes[static_cast<size_t>(order)];
-  return EulerTurns{a[0],        a[1], a[2], 3 - a[0] - a[1], (a[1] - a[0] + 3) % 3 == 1 ? 1 : -1,
-                    a[2] == a[0]};
 }
 
 // f(std::integral_constant<EulerOrder, order>{}): a kernel templated on the order, so its maps

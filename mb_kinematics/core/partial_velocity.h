@@ -11,6 +11,7 @@
 #include "mb_kinematics/core/joint_motion.h"
 #include "mb_kinematics/core/kinematics.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/own_column.h"
 #include "mb_kinematics/core/state.h"
 
 namespace mbk {
@@ -155,23 +156,19 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                        pv.omega[bj + i].cross(d_dot);
     }
     const BodyStep& step = model.steps.steps[k];
-    const JointKernel kernel = step.kernel;
-    const bool ball = kernel == JointKernel::kBall123 || kernel == JointKernel::kBallEuler ||
-                      kernel == JointKernel::kFree123 || kernel == JointKernel::kFreeEuler ||
-                      kernel == JointKernel::kBallOrdered || kernel == JointKernel::kFreeOrdered;
+    const bool ball = is_ball_or_free(step.kernel);
     const S* e = state.position.data() + body.q_index + m.linear_speeds;  // Euler parameters
-    for (int c = 0; c < m.speeds; ++c) {                                  // the joint's own columns
+    for (int c = 0; c < m.speeds; ++c) {  // the joint's own columns (own_column.h)
       const int i = bk + nj + c;
-      const bool linear = c < m.linear_speeds;
       // In R as the recursion sums them (ball and free joints: through M = S0J C_k).
-      const Vec3<S> column = ball ? detail::ball_column(step, model.speeds, f, e, c)
-                                  : Vec3<S>(s0j * (linear ? m.linear[c] : m.angular[c]));
-      pv.omega[i] = linear ? Vec3<S>::Zero() : column;
-      pv.origin_velocity[i] = linear ? column : Vec3<S>::Zero();
+      const Vec3<S> column =
+          ball ? detail::ball_column(step, model.speeds, f, e, c) : joint_column(m, c, s0j);
+      const OwnColumn<S> own = own_column(m, c, column, s0j, omega_j);
+      pv.omega[i] = own.omega;
+      pv.origin_velocity[i] = own.origin_velocity;
       if (!accelerations) continue;
-      pv.omega_dot[i] =
-          linear ? Vec3<S>::Zero() : Vec3<S>(omega_j.cross(pv.omega[i]) + s0j * m.angular_dot[c]);
-      pv.origin_velocity_dot[i] = omega_j.cross(pv.origin_velocity[i]);
+      pv.omega_dot[i] = own.omega_dot;
+      pv.origin_velocity_dot[i] = own.origin_velocity_dot;
     }
     Vec3<S> omega = Vec3<S>::Zero(), v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
     for (int i = bk; i < bk + nk; ++i) {
