@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/bvh_bones.h"
 #include "mb_kinematics/io/bvh_model.h"

@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "mb_kinematics/core/independent_speeds.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/system_kinematics.h"
