@@ -8,262 +8,30 @@ Each job runs `mbk bag` on one input as a child process, so that its outputs are
 `mbk bag` run byte for byte, written as atomically, and a crash of one file leaves the others
 going. `mbk bag --summary-json` gives each row of `summary.csv`. A finished job leaves a record
 (under OUT/.mbk-batch/) of its input's size and time, the options and the tool: a later run with
-the same ones skips it.
+the same ones skips it. The inputs: batch_inputs.py; the job and its record: batch_job.py; here
+the runs, the summary and the command line.
 """
 import argparse
 import csv
-import hashlib
 import io
-import json
 import os
-import shutil
 import signal
-import subprocess
 import sys
 import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 
-EXTENSIONS = (".bag", ".csv", ".bvh")
-STATE = ".mbk-batch"  # under --out-dir: the records of finished jobs
-SUMMARY = "summary.csv"
+from mb_kinematics.batch_inputs import EXTENSIONS, SUMMARY, BatchError, find_inputs
+from mb_kinematics.batch_job import (BVH_OPTIONS, COMMON_OPTIONS, STATE, failure, finished,
+                                     locate_mbk_bag, plan, run_job, write_atomically)
+
+__all__ = ["run", "main", "run_job", "plan", "find_inputs", "locate_mbk_bag", "BatchError",
+           "Interrupted", "EXTENSIONS", "STATE", "SUMMARY"]
+
 COLUMNS = ["input", "output", "status", "resumed", "samples_read", "samples_written", "dropped",
            "drops", "unreadable", "estimator", "noise_level", "seconds", "error"]
-# `mbk bag` options every job takes as given; those of a BVH model go to .bvh inputs only.
-COMMON_OPTIONS = {"--estimator": "NAME", "--max-gap": "S", "--joint-states": "TOPIC",
-                  "--joint-accelerations": "TOPIC", "--base-odometry": "TOPIC",
-                  "--frame-prefix": "P", "--start-time": "S", "--threads": "N"}
-BVH_OPTIONS = {"--scale": "M", "--body-mass": "KG", "--sex": "male|female",
-               "--segments": "MAP.yaml"}
 MOST_FAILURES = 100  # the exit status counts failures up to this
 USAGE_STATUS = 125  # a wrong command line: nothing run
-
-
-class BatchError(ValueError):
-    """A wrong command line or input list: nothing is run."""
-
-
-# --- Inputs -----------------------------------------------------------------------------------
-
-def _walk(folder):
-    """The recordings under `folder`, recursively, in sorted order."""
-    found = []
-    for top, dirs, files in os.walk(folder):
-        dirs[:] = sorted(d for d in dirs if d != STATE)
-        found += [os.path.join(top, f) for f in sorted(files) if f.endswith(EXTENSIONS)]
-    return found
-
-
-def _list_file(path, seen):
-    """The entries of a list file: one path a line (relative to the list file's folder), blank
-    lines and lines starting with # skipped."""
-    base = os.path.dirname(os.path.abspath(path))
-    try:
-        with open(path, encoding="utf-8") as f:
-            lines = [line.strip() for line in f]
-    except (OSError, UnicodeDecodeError) as e:
-        raise BatchError("%s: cannot read the list: %s" % (path, e))
-    entries = []
-    for line in lines:
-        if line and not line.startswith("#"):
-            entries += _expand(os.path.join(base, line), seen)
-    return entries
-
-
-def _expand(path, seen):
-    """(input, path of its outputs relative to --out-dir without extension) for an argument."""
-    if os.path.isdir(path):
-        return [(f, os.path.splitext(os.path.relpath(f, path))[0]) for f in _walk(path)]
-    if path.endswith(EXTENSIONS) and os.path.isfile(path):
-        return [(path, os.path.splitext(os.path.basename(path))[0])]
-    if os.path.isfile(path):
-        real = os.path.realpath(path)
-        if real in seen:
-            raise BatchError("%s: a list file that lists itself" % path)
-        return _list_file(path, seen | {real})
-    raise BatchError("%s: no such file or folder" % path)
-
-
-def find_inputs(paths, out_dir):
-    """(input, relative output stem) of every recording the arguments name, in their order; the
-    inputs under `out_dir` are left out. Raises BatchError for a missing path, no recording at
-    all, or two inputs whose outputs would have the same name."""
-    out = os.path.realpath(out_dir)
-    stems, seen, found = {os.path.splitext(SUMMARY)[0]: SUMMARY}, set(), []
-    for path in paths:
-        for item, stem in _expand(path, frozenset()):
-            real = os.path.realpath(item)
-            if real == out or real.startswith(out + os.sep) or real in seen:
-                continue
-            key = os.path.normpath(stem)
-            if key in stems:
-                raise BatchError("%s and %s: both would be written as %s in --out-dir"
-                                 % (stems[key], item, key))
-            stems[key] = item
-            seen.add(real)
-            found.append((item, key))
-    if not found:
-        raise BatchError("no recording (%s) in %s" % (", ".join(EXTENSIONS), " ".join(paths)))
-    return found
-
-
-# --- One job ----------------------------------------------------------------------------------
-
-def locate_mbk_bag():
-    """The mbk_bag executable: $MBK_BAG, else beside the package's compiled part (devel or
-    install space: lib/mb_kinematics/mbk_bag beside lib/python3/dist-packages/)."""
-    if os.environ.get("MBK_BAG"):
-        return os.environ["MBK_BAG"]
-    from mb_kinematics import _core
-    lib = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(_core.__file__))))
-    path = os.path.join(lib, "mb_kinematics", "mbk_bag")
-    if not os.path.isfile(path):
-        raise RuntimeError("mbk_bag not found at %s: set MBK_BAG" % path)
-    return path
-
-
-def _write_atomically(path, text):
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    temporary = "%s.mbk-tmp-%d-%d" % (path, os.getpid(), threading.get_ident())
-    with open(temporary, "w", encoding="utf-8", newline="") as f:
-        f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(temporary, path)
-
-
-def _file_identity(path):
-    st = os.stat(path)
-    return [st.st_size, st.st_mtime_ns]
-
-
-def _failure(job, error):
-    return {"input": job["input"], "outputs": job["outputs"], "status": "failed", "read": 0,
-            "written": 0, "dropped": 0, "drops": {}, "unreadable": 0, "estimator": "",
-            "noise_level": None, "seconds": 0, "error": error}
-
-
-def _last_error_line(stderr):
-    lines = [line for line in stderr.splitlines() if line.strip()]
-    return lines[-1] if lines else ""
-
-
-def _bag_command(job):
-    mbk_bag = job["mbk_bag"] if os.path.isfile(job["mbk_bag"]) else locate_mbk_bag()
-    command = [mbk_bag, "bag", job["input"]] + job["arguments"] + job["output_arguments"]
-    command += ["--threads", str(job["threads"])]
-    command += ["--summary-json", job["run_summary"]]
-    setpriv = shutil.which("setpriv")
-    # The job ends with the process that runs it (a Dask worker killed): its temporaries go.
-    return ([setpriv, "--pdeathsig", "TERM"] if setpriv else []) + command
-
-
-def run_job(job, running=None):
-    """Runs `mbk bag` on one input (`job` from plan()); returns its summary (mbk bag's
-    --summary-json, or a failure naming the error). A finished job (status ok or partial) leaves
-    its record, so that a later run skips it. `running`: a set the child process is kept in while
-    it runs (for an interruption to stop it)."""
-    started = time.monotonic()
-    for path in (job["record"], job["run_summary"]):
-        if os.path.exists(path):
-            os.remove(path)
-    os.makedirs(os.path.dirname(job["record"]), exist_ok=True)
-    for path in job["outputs"]:
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-    child = subprocess.Popen(_bag_command(job), stdin=subprocess.DEVNULL,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    if running is not None:
-        running.add(child)
-    try:
-        _, stderr = child.communicate()
-    finally:
-        if running is not None:
-            running.discard(child)
-    stderr = stderr.decode("utf-8", "replace")
-    if child.returncode < 0:
-        name = signal.Signals(-child.returncode).name
-        return _failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip())
-    try:
-        with open(job["run_summary"], encoding="utf-8") as f:
-            summary = json.load(f)
-        os.remove(job["run_summary"])
-    except (OSError, ValueError):
-        return _failure(job, _last_error_line(stderr) or "mbk bag wrote no summary")
-    summary["input"], summary["outputs"] = job["input"], job["outputs"]
-    summary["seconds"] = time.monotonic() - started
-    if summary["status"] != "failed":
-        record = {"key": job["key"], "summary": summary,
-                  "outputs": [_file_identity(path) for path in job["outputs"]]}
-        _write_atomically(job["record"], json.dumps(record, sort_keys=True))
-    return summary
-
-
-# --- The plan ---------------------------------------------------------------------------------
-
-def _tool_identity(mbk_bag):
-    """What changes when mbk_bag is rebuilt or upgraded: a hash of the executable."""
-    digest = hashlib.sha256()
-    with open(mbk_bag, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
-    return digest.hexdigest()
-
-
-def _arguments(options, is_bvh):
-    """mbk bag's options for an input but --threads (which leaves the outputs as they are)."""
-    arguments = []
-    names = [n for n in COMMON_OPTIONS if n != "--threads"]
-    names += list(BVH_OPTIONS) if is_bvh else ["--model"]
-    for name in names:
-        value = options.get(name)
-        if value is not None:
-            arguments += [name, str(value)]
-    return arguments
-
-
-def _files_of(arguments):
-    """The files options name (--model, --segments): their identity is part of the key."""
-    return {name: _file_identity(value) if os.path.exists(value) else None
-            for name, value in zip(arguments, arguments[1:]) if name in ("--model", "--segments")}
-
-
-def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1):
-    """One job per input (find_inputs' pairs): `mbk bag`'s arguments, the outputs under
-    out_dir (kinds: "csv" and/or "bag"), where its record goes and the key that record must
-    hold for the job to count as done. `threads`: mbk bag's --threads unless options give it."""
-    mbk_bag = os.path.abspath(mbk_bag or locate_mbk_bag())
-    tool = _tool_identity(mbk_bag)
-    state = os.path.join(out_dir, STATE)
-    jobs = []
-    for path, stem in inputs:
-        arguments = _arguments(options, path.endswith(".bvh"))
-        outputs = [os.path.join(out_dir, stem + "." + kind) for kind in kinds]
-        flags = {"bag": "--out", "csv": "--csv"}
-        output_arguments = sum(([flags[k], o] for k, o in zip(kinds, outputs)), [])
-        key = {"input": _file_identity(path), "arguments": arguments, "files": _files_of(arguments),
-               "kinds": list(kinds), "tool": tool}
-        jobs.append({"input": path, "outputs": outputs, "arguments": arguments,
-                     "output_arguments": output_arguments, "mbk_bag": mbk_bag, "key": key,
-                     "threads": options.get("--threads", threads),
-                     "record": os.path.join(state, stem + ".json"),
-                     "run_summary": os.path.join(state, stem + ".run.json"),
-                     "bytes": _file_identity(path)[0]})
-    return jobs
-
-
-def finished(job):
-    """The summary of an earlier run of this job if its record holds the same key and its
-    outputs are still the files it wrote; else None."""
-    try:
-        with open(job["record"], encoding="utf-8") as f:
-            record = json.load(f)
-        if record["key"] != job["key"]:
-            return None
-        if [_file_identity(path) for path in job["outputs"]] != record["outputs"]:
-            return None
-        return record["summary"]
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
 
 
 # --- Progress and summary ---------------------------------------------------------------------
@@ -312,7 +80,7 @@ def write_summary(out_dir, rows):
     writer = csv.DictWriter(text, COLUMNS, lineterminator="\n")
     writer.writeheader()
     writer.writerows(rows)
-    _write_atomically(os.path.join(out_dir, SUMMARY), text.getvalue())
+    write_atomically(os.path.join(out_dir, SUMMARY), text.getvalue())
 
 
 def format_table(rows, seconds, most_listed=20):
@@ -399,7 +167,7 @@ def run_on_client(client, jobs, report, stop):
             try:
                 summary = future.result()
             except Exception as e:  # KilledWorker, a worker that cannot import the package
-                summary = _failure(job, "%s: %s" % (type(e).__name__, e))
+                summary = failure(job, "%s: %s" % (type(e).__name__, e))
             report(job, summary)
     except Interrupted:
         _report_finished(waiting, report)
@@ -487,7 +255,7 @@ def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, pro
                 _run_local(todo, jobs, report, stop)
     finally:
         bar.finish()
-        not_run = lambda job: _row(job, dict(_failure(job, ""), status="not run"), False)
+        not_run = lambda job: _row(job, dict(failure(job, ""), status="not run"), False)
         rows = [results.get(job["record"]) or not_run(job) for job in planned]
         write_summary(out_dir, rows)
     return rows

@@ -166,3 +166,23 @@ def test_table_lists_the_first_failures():
     assert lines[1].split() == ["failed", "25", "0", "0", "0"]
     assert lines[3:] == ["failed f%d.bag: e%d" % (i, i) for i in range(20)] + [
         "... and 5 more in summary.csv"]
+
+
+def test_summary_json_of_a_failure_is_json(tmp_path):
+    """A failed run's --summary-json: the one-line error, the input's name escaped (quotes,
+    a line break, a byte that is not UTF-8)."""
+    import json
+    import subprocess
+    from conftest import mbk_path
+    name = os.path.join(str(tmp_path), 'no "such"\nwalk\udcff.bvh')  # \udcff: byte 0xff
+    summary = str(tmp_path / "s.json")
+    done = subprocess.run([mbk_path(), "bag", name.encode("utf-8", "surrogateescape"), "--csv",
+                           str(tmp_path / "o.csv"), "--summary-json", summary],
+                          capture_output=True)
+    assert done.returncode == 1
+    with open(summary, encoding="utf-8") as f:
+        failed = json.load(f)
+    assert failed["status"] == "failed" and failed["written"] == 0
+    assert failed["input"] == name.replace("\udcff", "\ufffd")
+    assert failed["error"].endswith("cannot open BVH file")
+    assert not os.path.exists(str(tmp_path / "o.csv"))

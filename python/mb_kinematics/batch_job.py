@@ -1,0 +1,174 @@
+"""mbk batch's job (doc/batch.md): `mbk bag` on one input as a child process, here or on a Dask
+worker, and the record a finished job leaves so that a later run with the same input, options
+and tool skips it."""
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import threading
+import time
+
+STATE = ".mbk-batch"  # under --out-dir: the records of finished jobs
+# `mbk bag` options every job takes as given; those of a BVH model go to .bvh inputs only.
+COMMON_OPTIONS = {"--estimator": "NAME", "--max-gap": "S", "--joint-states": "TOPIC",
+                  "--joint-accelerations": "TOPIC", "--base-odometry": "TOPIC",
+                  "--frame-prefix": "P", "--start-time": "S", "--threads": "N"}
+BVH_OPTIONS = {"--scale": "M", "--body-mass": "KG", "--sex": "male|female",
+               "--segments": "MAP.yaml"}
+
+
+def locate_mbk_bag():
+    """The mbk_bag executable: $MBK_BAG, else beside the package's compiled part (devel or
+    install space: lib/mb_kinematics/mbk_bag beside lib/python3/dist-packages/)."""
+    if os.environ.get("MBK_BAG"):
+        return os.environ["MBK_BAG"]
+    from mb_kinematics import _core
+    lib = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(_core.__file__))))
+    path = os.path.join(lib, "mb_kinematics", "mbk_bag")
+    if not os.path.isfile(path):
+        raise RuntimeError("mbk_bag not found at %s: set MBK_BAG" % path)
+    return path
+
+
+def write_atomically(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    temporary = "%s.mbk-tmp-%d-%d" % (path, os.getpid(), threading.get_ident())
+    with open(temporary, "w", encoding="utf-8", newline="") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(temporary, path)
+
+
+def _file_identity(path):
+    st = os.stat(path)
+    return [st.st_size, st.st_mtime_ns]
+
+
+def failure(job, error):
+    return {"input": job["input"], "outputs": job["outputs"], "status": "failed", "read": 0,
+            "written": 0, "dropped": 0, "drops": {}, "unreadable": 0, "estimator": "",
+            "noise_level": None, "seconds": 0, "error": error}
+
+
+def _last_error_line(stderr):
+    lines = [line for line in stderr.splitlines() if line.strip()]
+    return lines[-1] if lines else ""
+
+
+def _bag_command(job):
+    mbk_bag = job["mbk_bag"] if os.path.isfile(job["mbk_bag"]) else locate_mbk_bag()
+    command = [mbk_bag, "bag", job["input"]] + job["arguments"] + job["output_arguments"]
+    command += ["--threads", str(job["threads"])]
+    command += ["--summary-json", job["run_summary"]]
+    setpriv = shutil.which("setpriv")
+    # The job ends with the process that runs it (a Dask worker killed): its temporaries go.
+    return ([setpriv, "--pdeathsig", "TERM"] if setpriv else []) + command
+
+
+def run_job(job, running=None):
+    """Runs `mbk bag` on one input (`job` from plan()); returns its summary (mbk bag's
+    --summary-json, or a failure naming the error). A finished job (status ok or partial) leaves
+    its record, so that a later run skips it. `running`: a set the child process is kept in while
+    it runs (for an interruption to stop it)."""
+    started = time.monotonic()
+    for path in (job["record"], job["run_summary"]):
+        if os.path.exists(path):
+            os.remove(path)
+    os.makedirs(os.path.dirname(job["record"]), exist_ok=True)
+    for path in job["outputs"]:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+    child = subprocess.Popen(_bag_command(job), stdin=subprocess.DEVNULL,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    if running is not None:
+        running.add(child)
+    try:
+        _, stderr = child.communicate()
+    finally:
+        if running is not None:
+            running.discard(child)
+    stderr = stderr.decode("utf-8", "replace")
+    if child.returncode < 0:
+        name = signal.Signals(-child.returncode).name
+        return failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip())
+    try:
+        with open(job["run_summary"], encoding="utf-8") as f:
+            summary = json.load(f)
+        os.remove(job["run_summary"])
+    except (OSError, ValueError):
+        return failure(job, _last_error_line(stderr) or "mbk bag wrote no summary")
+    summary["input"], summary["outputs"] = job["input"], job["outputs"]
+    summary["seconds"] = time.monotonic() - started
+    if summary["status"] != "failed":
+        record = {"key": job["key"], "summary": summary,
+                  "outputs": [_file_identity(path) for path in job["outputs"]]}
+        write_atomically(job["record"], json.dumps(record, sort_keys=True))
+    return summary
+
+
+def _tool_identity(mbk_bag):
+    """What changes when mbk_bag is rebuilt or upgraded: a hash of the executable."""
+    digest = hashlib.sha256()
+    with open(mbk_bag, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def _arguments(options, is_bvh):
+    """mbk bag's options for an input but --threads (which leaves the outputs as they are)."""
+    arguments = []
+    names = [n for n in COMMON_OPTIONS if n != "--threads"]
+    names += list(BVH_OPTIONS) if is_bvh else ["--model"]
+    for name in names:
+        value = options.get(name)
+        if value is not None:
+            arguments += [name, str(value)]
+    return arguments
+
+
+def _files_of(arguments):
+    """The files options name (--model, --segments): their identity is part of the key."""
+    return {name: _file_identity(value) if os.path.exists(value) else None
+            for name, value in zip(arguments, arguments[1:]) if name in ("--model", "--segments")}
+
+
+def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1):
+    """One job per input (find_inputs' pairs): `mbk bag`'s arguments, the outputs under
+    out_dir (kinds: "csv" and/or "bag"), where its record goes and the key that record must
+    hold for the job to count as done. `threads`: mbk bag's --threads unless options give it."""
+    mbk_bag = os.path.abspath(mbk_bag or locate_mbk_bag())
+    tool = _tool_identity(mbk_bag)
+    state = os.path.join(out_dir, STATE)
+    jobs = []
+    for path, stem in inputs:
+        arguments = _arguments(options, path.endswith(".bvh"))
+        outputs = [os.path.join(out_dir, stem + "." + kind) for kind in kinds]
+        flags = {"bag": "--out", "csv": "--csv"}
+        output_arguments = sum(([flags[k], o] for k, o in zip(kinds, outputs)), [])
+        key = {"input": _file_identity(path), "arguments": arguments, "files": _files_of(arguments),
+               "kinds": list(kinds), "tool": tool}
+        jobs.append({"input": path, "outputs": outputs, "arguments": arguments,
+                     "output_arguments": output_arguments, "mbk_bag": mbk_bag, "key": key,
+                     "threads": options.get("--threads", threads),
+                     "record": os.path.join(state, stem + ".json"),
+                     "run_summary": os.path.join(state, stem + ".run.json"),
+                     "bytes": _file_identity(path)[0]})
+    return jobs
+
+
+def finished(job):
+    """The summary of an earlier run of this job if its record holds the same key and its
+    outputs are still the files it wrote; else None."""
+    try:
+        with open(job["record"], encoding="utf-8") as f:
+            record = json.load(f)
+        if record["key"] != job["key"]:
+            return None
+        if [_file_identity(path) for path in job["outputs"]] != record["outputs"]:
+            return None
+        return record["summary"]
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
