@@ -6,10 +6,13 @@
 #include <console_bridge/console.h>
 
 #include <iostream>
+#include <new>
 #include <stdexcept>
+#include <system_error>
 
 #include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/offline/bag_command.h"
+#include "mb_kinematics/offline/memory_cap.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/temporary_files.h"
 
@@ -18,8 +21,11 @@ int main(int argc, char** argv) {
   // would break the one-line format: what it cannot read is counted and named in the summary.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   mbk_offline::remove_temporaries_on_signals();  // an interrupted run leaves no partial file
+  double cap = 0;
   try {
     mbk_offline::BagOptions options = mbk_offline::parse_bag_options(argc, argv);
+    cap = options.max_memory > 0 ? options.max_memory : mbk::default_memory_cap_gib();
+    mbk::cap_memory(cap);
     if (options.help) {
       std::cout << mbk_offline::bag_usage();
       return 0;
@@ -28,6 +34,14 @@ int main(int argc, char** argv) {
     const mbk_offline::BagSummary summary = mbk_offline::run_bag(options);
     std::cerr << mbk_offline::format_summary(summary, options.verbose);
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
+  } catch (const std::bad_alloc&) {            // the cap, not the kernel, ended the run
+    std::cerr << "mbk: error: " << mbk::memory_cap_error(cap) << "\n";
+    return 1;
+  } catch (const std::system_error& e) {  // no room for a thread's stack under the cap
+    const bool cap_reached = e.code() == std::errc::resource_unavailable_try_again;
+    std::cerr << "mbk: error: "
+              << (cap_reached ? mbk::memory_cap_error(cap) : mbk::printable(e.what())) << "\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";
     return 1;
