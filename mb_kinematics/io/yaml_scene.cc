@@ -12,6 +12,7 @@
 #include "mb_kinematics/core/rpy.h"
 #include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/text_file.h"
+#include "mb_kinematics/io/yaml_bare_scene.h"
 
 namespace mbk {
 namespace {
@@ -178,6 +179,8 @@ Model read_scene(const YAML::Node& root) {
 
 Model parse_scene(const std::string& text, const std::string& source) {
   try {
+    Model bare;
+    if (read_bare_scene(text, bare)) return bare;  // without the node tree
     return read_scene(YAML::Load(text));
   } catch (const YAML::DeepRecursion& e) {  // its own message is "bad file"
     throw std::invalid_argument(source + ":" + std::to_string(e.mark.line + 1) +

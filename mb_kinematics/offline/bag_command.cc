@@ -484,6 +484,12 @@ BagOptions parse_bag_options(int argc, char** argv) {
         throw std::invalid_argument("--threads needs a count from 1 to 1024, not '" +
                                     std::string(argv[i]) + "'");
       o.threads = static_cast<int>(n);
+    } else if (arg == "--max-memory" && i + 1 < argc) {
+      char* end = nullptr;
+      o.max_memory = std::strtod(argv[++i], &end);
+      if (*end != '\0' || !(o.max_memory > 0) || !std::isfinite(o.max_memory))
+        throw std::invalid_argument("--max-memory needs GiB > 0, not '" + std::string(argv[i]) +
+                                    "'");
     } else if (arg == "--verbose") {
       o.verbose = true;
     } else if (arg == "--help" || arg == "-h") {
@@ -578,10 +584,11 @@ const char* bag_usage() {
   return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
          "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
          "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
-         "           [--start-time S] [--verbose] [--summary-json FILE]\n"
+         "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"
          "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
          "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml] ...\n"
          "   --verbose: every coordinate's error bars and the times in the summary\n"
+         "   --max-memory: GiB of address space at most (default: 90 % of this machine's memory)\n"
          "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";
 }
 

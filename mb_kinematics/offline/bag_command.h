@@ -29,6 +29,7 @@ struct BagOptions {
   double start_time = 0;  // seconds added to every time of a .csv or .bvh input
   bool progress = false;  // draw a progress bar on stderr
   int threads = 0;        // computing threads; 0: one per CPU (default_thread_count)
+  double max_memory = 0;  // --max-memory GiB of address space (offline/memory_cap.h); 0: default
   bool verbose = false;   // --verbose: the summary with every coordinate's error bars
   bool help = false;      // --help: print the usage, nothing else
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include "mb_kinematics/core/finite_kinematics.h"
 #include "mb_kinematics/core/kinematics_double.h"
@@ -84,6 +85,7 @@ void OfflineBatch::start(int begin, int end, std::vector<OfflineRow>& rows) {
 double OfflineBatch::finish() {
   std::unique_lock<std::mutex> lock(mutex_);
   finished_.wait(lock, [&] { return running_ == 0; });
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
   return seconds_;
 }
 
@@ -99,15 +101,22 @@ void OfflineBatch::work(int worker) {
     // The block's fields stay as start() set them until every worker is done with it.
     const auto t0 = std::chrono::steady_clock::now();
     const int chunks = (rows_in_block_ + chunk_ - 1) / chunk_;
-    for (int c = next_chunk_++; c < chunks; c = next_chunk_++)
-      for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j) {
-        OfflineRow& row = (*out_)[j];
-        compute_row(workers_[worker], begin_ + j, row);
-        if (formatter_ && row.drop_reason.empty()) formatter_(row);
-      }
+    std::exception_ptr error;
+    try {
+      for (int c = next_chunk_++; c < chunks; c = next_chunk_++)
+        for (int j = c * chunk_; j < std::min(rows_in_block_, (c + 1) * chunk_); ++j) {
+          OfflineRow& row = (*out_)[j];
+          compute_row(workers_[worker], begin_ + j, row);
+          if (formatter_ && row.drop_reason.empty()) formatter_(row);
+        }
+    } catch (...) {  // for finish() to rethrow: an uncaught one here would abort the process
+      error = std::current_exception();
+      next_chunk_ = chunks;
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::lock_guard<std::mutex> lock(mutex_);
+    if (error && !error_) error_ = error;
     seconds_ += seconds;
     if (--running_ == 0) finished_.notify_all();
   }

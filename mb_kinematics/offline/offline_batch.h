@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -59,7 +60,7 @@ class OfflineBatch {
   // allocated per row once each worker has computed one (except a dropped row's message); with
   // one thread, once the first block is done.
   void start(int begin, int end, std::vector<OfflineRow>& rows);
-  double finish();
+  double finish();  // rethrows what a worker threw (std::bad_alloc at --max-memory)
   double compute(int begin, int end, std::vector<OfflineRow>& rows) {
     start(begin, end, rows);
     return finish();
@@ -101,6 +102,7 @@ class OfflineBatch {
   int running_ = 0;  // workers still on the block
   bool stop_ = false;
   double seconds_ = 0;  // the workers', on the block, summed
+  std::exception_ptr error_;  // what a worker threw on the block (finish() rethrows it)
   std::vector<std::thread> threads_;
 };
 

@@ -6,11 +6,14 @@
 #include <console_bridge/console.h>
 
 #include <iostream>
+#include <new>
 #include <stdexcept>
+#include <system_error>
 
 #include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/bag_summary_json.h"
+#include "mb_kinematics/offline/memory_cap.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/temporary_files.h"
 
@@ -35,8 +38,11 @@ int main(int argc, char** argv) {
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   mbk_offline::remove_temporaries_on_signals();  // an interrupted run leaves no partial file
   mbk_offline::BagOptions options;
+  double cap = 0;
   try {
     options = mbk_offline::parse_bag_options(argc, argv);
+    cap = options.max_memory > 0 ? options.max_memory : mbk::default_memory_cap_gib();
+    mbk::cap_memory(cap);
     if (options.help) {
       std::cout << mbk_offline::bag_usage();
       return 0;
@@ -48,6 +54,16 @@ int main(int argc, char** argv) {
       mbk_offline::write_summary_json(options.summary_json,
                                       mbk_offline::format_summary_json(options, summary));
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
+  } catch (const std::bad_alloc&) {            // the cap, not the kernel, ended the run
+    record_failure(options, mbk::memory_cap_error(cap));
+    std::cerr << "mbk: error: " << mbk::memory_cap_error(cap) << "\n";
+    return 1;
+  } catch (const std::system_error& e) {  // no room for a thread's stack under the cap
+    const bool cap_reached = e.code() == std::errc::resource_unavailable_try_again;
+    const std::string error = cap_reached ? mbk::memory_cap_error(cap) : e.what();
+    record_failure(options, error);
+    std::cerr << "mbk: error: " << mbk::printable(error) << "\n";
+    return 1;
   } catch (const std::exception& e) {
     record_failure(options, e.what());
     std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";

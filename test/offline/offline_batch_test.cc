@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <new>
 
 #include "test/support/test_models.h"
 
@@ -94,6 +95,27 @@ TEST(OfflineBatchTest, StartReturnsAndFinishWaits) {
   EXPECT_EQ(rows.back().stamp, rec.stamp[199]);
   EXPECT_EQ(rows.back().drop_reason, "");
   EXPECT_EQ(batch.finish(), seconds) << "a second finish() waits for nothing";
+}
+
+// What a worker throws (std::bad_alloc when mbk bag's --max-memory refuses an allocation) comes
+// out of compute() in the caller's thread, once, instead of ending the process; the pool then
+// computes the next block as before.
+TEST(OfflineBatchTest, AWorkersExceptionReachesTheCaller) {
+  const mbk::Model model = mbk_test::random_tree(6, 3);
+  const mbk::Recording rec = recording(model, 100);
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_0.05s_4");
+  for (int threads : {1, 3}) {
+    mbk::OfflineBatch batch(model, rec, e, 0, nullptr, threads);
+    bool refuse = true;
+    batch.set_formatter([&](mbk::OfflineRow&) {
+      if (refuse) throw std::bad_alloc();
+    });
+    std::vector<mbk::OfflineRow> block(64, mbk::OfflineRow(model));
+    EXPECT_THROW(batch.compute(0, 64, block), std::bad_alloc) << threads;
+    refuse = false;
+    EXPECT_NO_THROW(batch.compute(0, 64, block)) << threads;
+    EXPECT_EQ(block[63].drop_reason, "");
+  }
 }
 
 }  // namespace

@@ -1043,6 +1043,25 @@ TEST(MbkCli, NamesWithControlBytesAreEscapedInEveryLine) {
                        ": extra\\x1b[32m\\x0bcolumn)", "    j\\x1b[31m\\x0b: noise"});
 }
 
+// A run that needs more than --max-memory ends with one line naming it, and writes nothing
+// (the kernel's out-of-memory killer would end it mid-write); the option takes GiB > 0.
+TEST(MbkCli, BagRefusesToGrowBeyondMaxMemory) {
+  const std::string out = ::testing::TempDir() + "capped_walk.csv";
+  std::remove(out.c_str());
+  const Output capped = mbk("bag test/mocap/131_01.bvh --csv " + out + " --max-memory 0.05");
+  EXPECT_EQ(capped.status, 1);
+  EXPECT_EQ(capped.err.substr(capped.err.find("mbk: error: ")),
+            "mbk: error: out of memory: the run needs more than --max-memory 0.05 GiB of address "
+            "space (default: 90 % of this machine's memory); give a larger --max-memory or fewer "
+            "--threads\n");
+  EXPECT_FALSE(std::ifstream(out).good());
+  const Output zero = mbk("bag test/mocap/131_01.bvh --csv " + out + " --max-memory 0");
+  EXPECT_EQ(zero.status, 1);
+  EXPECT_EQ(zero.err, "mbk: error: --max-memory needs GiB > 0, not '0'\n");
+  const Output enough = mbk("bag test/mocap/131_01.bvh --csv " + out + " --max-memory 2");
+  EXPECT_EQ(enough.status, 0) << enough.err;
+}
+
 // `--max-gap 0` is refused (it silently meant the default), and so is an option given twice
 // (the last one silently won).
 TEST(MbkCli, BagRefusesAZeroMaxGapAndAnOptionGivenTwice) {
