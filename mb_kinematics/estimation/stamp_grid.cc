@@ -14,8 +14,8 @@ double double_rounding(double largest_stamp) { return 64 * kEpsilon * largest_st
 
 }  // namespace
 
-double stamp_grid_tolerance(double period, double largest_stamp) {
-  return std::max(1e-9, 1e-6 * period) + 4 * kEpsilon * largest_stamp;
+double stamp_grid_tolerance(double period, double largest_stamp, double rounding) {
+  return std::max({1e-9, rounding, 1e-6 * period}) + 4 * kEpsilon * largest_stamp;
 }
 
 double StampGrid::snap(double t) const {
@@ -81,23 +81,24 @@ StampGrid StampGridFit::grid() const {
   g.stamps = n_;
   if (!fitted_ || checked_ != n_) return g;
   g.first_stamp = first_, g.offset = a_, g.period = b_;
-  g.tolerance = stamp_grid_tolerance(static_cast<double>(b_), largest_);
+  g.tolerance = stamp_grid_tolerance(static_cast<double>(b_), largest_, rounding_);
   g.worst = worst_;
   g.found = worst_ <= g.tolerance;
   g.moves = g.found && worst_ > double_rounding(largest_);
   return g;
 }
 
-StampGrid find_stamp_grid(const std::vector<double>& t) {
+StampGrid find_stamp_grid(const std::vector<double>& t, double rounding) {
   StampGridFit fit;
+  fit.set_rounding(rounding);
   for (double x : t) fit.add(x);
   if (fit.fit())
     for (double x : t) fit.check(x);
   return fit.grid();
 }
 
-StampGrid snap_to_stamp_grid(std::vector<double>& t) {
-  const StampGrid grid = find_stamp_grid(t);
+StampGrid snap_to_stamp_grid(std::vector<double>& t, double rounding) {
+  const StampGrid grid = find_stamp_grid(t, rounding);
   if (grid.moves)
     for (double& x : t) x = grid.snap(x);
   return grid;

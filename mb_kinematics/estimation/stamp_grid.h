@@ -28,13 +28,15 @@ struct StampGrid {
   bool holds(double t) const;
 };
 
-// The stamps' distance allowed from the grid: max(1 ns, 1e-6 h) plus 4 ulp of the largest
-// |stamp| (a stamp in double seconds far from 0 is rounded to that).
-double stamp_grid_tolerance(double period, double largest_stamp);
+// The stamps' distance allowed from the grid: max(1 ns, `rounding`, 1e-6 h) plus 4 x 2.2e-16 x
+// the largest |stamp| (a stamp in double seconds far from 0 is rounded to that). rounding: the
+// stamps' own (half a unit of the last decimal a text gives them), 0 for none beyond a bag's ns.
+double stamp_grid_tolerance(double period, double largest_stamp, double rounding = 0);
 
 class StampGridFit {
  public:
   void add(double t);  // first pass: the stamps in increasing order
+  void set_rounding(double rounding) { rounding_ = rounding; }  // as stamp_grid_tolerance's
   // After the first pass: false when the stamps cannot lie on a grid (fewer than 3, or an
   // interval that is not a whole number of periods): no second pass is needed.
   bool fit();
@@ -51,13 +53,13 @@ class StampGridFit {
   long double mean_k_ = 0, mean_u_ = 0, ckk_ = 0, cku_ = 0;
   long double a_ = 0, b_ = 0;  // u = a + b k
   long last_k_ = -1;
-  double worst_ = 0;
+  double worst_ = 0, rounding_ = 0;
   bool fitted_ = false;
 };
 
 // Both passes over a vector of increasing stamps.
-StampGrid find_stamp_grid(const std::vector<double>& t);
+StampGrid find_stamp_grid(const std::vector<double>& t, double rounding = 0);
 // Every stamp moved to its grid time when the grid moves them; returns the grid.
-StampGrid snap_to_stamp_grid(std::vector<double>& t);
+StampGrid snap_to_stamp_grid(std::vector<double>& t, double rounding = 0);
 
 }  // namespace mbk

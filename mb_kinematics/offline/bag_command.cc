@@ -315,10 +315,12 @@ class InputRows {
     read_ = true;
     log_ = builder.log();
     samples_read_ = builder.samples_read();
+    stamp_rounding_ = builder.stamp_rounding();
   }
   // The reading's drops and notes (later passes read the same), and the samples read.
   mbk::DropLog& log() { return log_; }
   long samples_read() const { return samples_read_; }
+  double stamp_rounding() const { return stamp_rounding_; }  // RecordingBuilder's
 
  private:
   void keep(double t, const double* p, const double* v, const std::uint8_t* g) {
@@ -354,6 +356,7 @@ class InputRows {
   bool read_ = false, kept_ = true;
   mbk::DropLog log_;
   long samples_read_ = 0;
+  double stamp_rounding_ = 0;
   std::vector<double> t_, position_, velocity_;  // rows x nq
   std::vector<std::uint8_t> given_;
 };
@@ -379,6 +382,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   if (grid_fit.fit())
     input.pass(
         [&](double t, const double*, const double*, const std::uint8_t*) { grid_fit.check(t); }, s);
+  grid_fit.set_rounding(input.stamp_rounding());
   s.grid = grid_fit.grid();
   const mbk::StampGrid& grid = s.grid;  // every later pass sees the grid's times
   if (grid.moves) {

@@ -23,7 +23,7 @@ std::string join(const std::vector<std::string>& names, size_t max = 8) {
 }  // namespace
 
 void Recording::snap_to_grid() {
-  grid = find_stamp_grid(stamp);
+  grid = find_stamp_grid(stamp, stamp_rounding);
   if (!grid.moves) return;
   recorded_stamp = stamp;
   for (double& t : stamp) t = grid.snap(t);
@@ -302,6 +302,7 @@ Recording RecordingBuilder::finish() {
         out.given[r * nq + i] |= Recording::kAcceleration;
       }
   }
+  out.stamp_rounding = stamp_rounding_;
   out.snap_to_grid();
   return out;
 }

@@ -39,6 +39,7 @@ struct Recording {
   // as recorded (the outputs' times); else recorded_stamp is empty.
   StampGrid grid;
   std::vector<double> recorded_stamp;
+  double stamp_rounding = 0;  // the stamps' own (a CSV's decimals), 0: a bag's nanoseconds
   static constexpr std::uint8_t kPosition = 1, kVelocity = 2, kAcceleration = 4;
   int rows() const { return static_cast<int>(stamp.size()); }
   double recorded(int r) const { return recorded_stamp.empty() ? stamp[r] : recorded_stamp[r]; }
@@ -76,6 +77,12 @@ class RecordingBuilder {
   void stream_to(RowSink sink) { sink_ = std::move(sink); }
   // Every later add() at t + seconds (mbk bag --start-time); set before the first add.
   void offset_times(double seconds) { time_offset_ = seconds; }
+  // A stamp read from text, off its true time by up to about `rounding` seconds (from its last
+  // decimal): the stamps' grid allows the finest such rounding noted (Recording::stamp_rounding).
+  void note_stamp_rounding(double rounding) {
+    if (stamp_rounding_ == 0 || rounding < stamp_rounding_) stamp_rounding_ = rounding;
+  }
+  double stamp_rounding() const { return stamp_rounding_; }
 
   // The table; rows before every coordinate was named are dropped here ("missing joints").
   // Stamps on a uniform grid to within their rounding are moved to the grid's times
@@ -125,6 +132,7 @@ class RecordingBuilder {
   std::deque<PendingRow> pending_;
   bool tested_head_ = false;  // the first rows held have been tested
   std::vector<double> window_;
+  double stamp_rounding_ = 0;  // 0: none noted
 };
 
 }  // namespace mbk

@@ -1,6 +1,7 @@
 #include "mb_kinematics/offline/trajectory_csv.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <istream>
@@ -61,6 +62,17 @@ std::vector<std::string> read_header(std::istream& in, const std::string& path) 
   return header;
 }
 
+// A time written in decimals ("12.345678") is off its true value by up to half a unit of its
+// last decimal: a grid is allowed three quarters of a unit (the half, and the least-squares
+// line's own error), and a stamp a whole unit off is not on it. One in exponent form says
+// nothing here.
+void note_rounding(const std::string& time, RecordingBuilder& builder) {
+  if (time.find_first_of("eE") != std::string::npos) return;
+  const size_t point = time.find('.');
+  const size_t decimals = point == std::string::npos ? 0 : time.size() - point - 1;
+  builder.note_stamp_rounding(0.75 * std::pow(10.0, -static_cast<double>(decimals)));
+}
+
 }  // namespace
 
 void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
@@ -93,6 +105,7 @@ void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
                                     printable(cells[i]) + "' is not a number");
       if (i == 0) {
         t = x;
+        note_rounding(cells[0], builder);
       } else {
         names.push_back(all[i - 1]);
         position.push_back(x);

@@ -82,6 +82,24 @@ TEST(StampGridTest, JitteredStampsAreNotSnapped) {
   }
 }
 
+// Times written with 6 decimals at 120 Hz are up to 0.5 us off their grid: found when the
+// tolerance allows the text's rounding, and a stamp a whole unit of the last decimal off a grid
+// the decimals hold exactly is not on it.
+TEST(StampGridTest, TextRoundingWidensTheTolerance) {
+  std::vector<double> t = grid_times(1.0, 1.0 / 120, 1200);
+  for (double& x : t) x = std::round(x * 1e6) / 1e6;
+  EXPECT_FALSE(mbk::find_stamp_grid(t).found);
+  const mbk::StampGrid grid = mbk::find_stamp_grid(t, 0.75e-6);
+  EXPECT_TRUE(grid.found);
+  EXPECT_TRUE(grid.moves);
+  EXPECT_NEAR(grid.period, 1.0 / 120, 1e-12);
+  std::vector<double> off = grid_times(1.0, 0.01, 1000);
+  for (double& x : off) x = std::round(x * 1e3) / 1e3;
+  EXPECT_TRUE(mbk::find_stamp_grid(off, 0.75e-3).found);
+  off[500] += 1e-3;
+  EXPECT_FALSE(mbk::find_stamp_grid(off, 0.75e-3).found);
+}
+
 TEST(StampGridTest, TooFewOrUnevenStampsHaveNoGrid) {
   EXPECT_FALSE(mbk::find_stamp_grid({}).found);
   EXPECT_FALSE(mbk::find_stamp_grid({1.0, 1.001}).found);

@@ -156,6 +156,34 @@ TEST(BagTest, EverySampleAtItsStampWithPosesAndDerivatives) {
   EXPECT_EQ(first->transforms[0].header.stamp, ros::Time(1.0));
 }
 
+// A 1 kHz grid written as rospy.Time.from_sec writes it (nanoseconds truncated, up to 1 ns
+// early): the summary says the derivatives are taken on the grid, and every output keeps its
+// sample's stamp as recorded.
+TEST(BagTest, StampsOnAGridAreDifferentiatedThereAndKept) {
+  std::vector<ros::Time> stamps;
+  for (int i = 0; i < 1000; ++i) {
+    const double t = 2.0 + i * 1e-3, secs = std::trunc(t);
+    stamps.emplace_back(static_cast<uint32_t>(secs), static_cast<uint32_t>((t - secs) * 1e9));
+  }
+  const std::string in = write_bag("grid.bag", 1000, 1.0, [&](int i, sensor_msgs::JointState& js) {
+    js.header.stamp = stamps[i];
+  });
+  mbk_offline::BagOptions o = options(in, temp("grid_out.bag"));
+  o.out_csv = temp("grid_out.csv");
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+  EXPECT_EQ(s.written, 1000);
+  EXPECT_TRUE(s.grid.moves);
+  EXPECT_NE(mbk_offline::format_summary(s).find("  stamps on a uniform grid of 0.001 s: "),
+            std::string::npos)
+      << mbk_offline::format_summary(s);
+  rosbag::Bag bag(o.out_bag, rosbag::bagmode::Read);
+  int i = 0;
+  for (const rosbag::MessageInstance& m : rosbag::View(bag, rosbag::TopicQuery("/body_kinematics")))
+    ASSERT_EQ(m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>()->header.stamp, stamps[i++])
+        << i;
+  EXPECT_EQ(i, 1000);
+}
+
 TEST(BagTest, CsvInputGivesTheSameKinematics) {
   const std::string in = write_bag("csv_src.bag", 50, 1.0);
   const mbk::Model model = mbk::load_model_file(kModel);

@@ -270,6 +270,62 @@ def test_rounded_stamps_on_their_grid(mbk_kinematics, tmp_path):
                           model.states(recording)["acceleration"][:, columns])
 
 
+def test_csv_times_rounded_to_their_decimals(mbk_kinematics, tmp_path):
+    """The arm at 120 Hz, 1 to 6 rad/s, in a trajectory CSV whose times have 6 decimals (up to
+    0.5 us off the grid): mbk bag and read_recording differentiate on the grid, as accurate as
+    the exact times; the same times given as arrays (no decimals to go by) are not moved."""
+    import subprocess
+    urdf = source("test/robots/panda.urdf")
+    model = mbk_kinematics.load(urdf)
+    mimic = {m["coordinate"] for m in model.mimics}
+    names = [n for n in model.coordinate_names if n not in mimic]
+    columns = [model.coordinate_names.index(n) for n in names]
+    rate = np.linspace(2, 12, len(names))
+    amplitude = np.where([n.startswith("panda_finger") for n in names], 0.01, 0.5)
+    exact = 1 + np.arange(600) / 120
+
+    def motion(d):
+        x = np.outer(exact, rate) + np.arange(len(names))
+        return amplitude * rate ** d * np.sin(x + d * np.pi / 2)
+
+    path = str(tmp_path / "arm.csv")
+    with open(path, "w") as f:
+        f.write(",".join(["time"] + names) + "\n")
+        for t, q in zip(exact, motion(0)):
+            f.write("%.6f," % t + ",".join(repr(float(x)) for x in q) + "\n")
+    recording = model.read_recording(path)
+    assert recording.grid["moves"] and recording.grid["tolerance"] >= 0.75e-6
+    assert np.array_equal(recording.times, np.round(exact, 6))  # as written
+    out = model.recording_kinematics(recording)
+    csv_path = str(tmp_path / "arm_kinematics.csv")
+    done = subprocess.run([mbk_path(), "bag", path, "--model", urdf, "--csv", csv_path],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "stamps on a uniform grid of 0.008333333" in done.stderr, done.stderr
+    expect_same_as_bag(model, out, tidy_csv(csv_path))
+    full = [np.zeros((len(exact), model.nq)) for _ in range(3)]
+    for d in range(3):
+        full[d][:, columns] = motion(d)
+    for m in model.mimics:  # the rule, as the recording applies it
+        for d in range(3):
+            full[d][:, model.coordinate_names.index(m["coordinate"])] = m["multiplier"] * full[d][
+                :, model.coordinate_names.index(m["source"])] + (m["offset"] if d == 0 else 0)
+    truth = model.kinematics(*full)
+
+    def error(result):
+        worst = max(np.abs(result[f] - truth[f]).max() for f in ("alpha", "acceleration"))
+        return worst / max(np.abs(truth[f]).max() for f in ("alpha", "acceleration"))
+
+    on_exact = error(model.recording_kinematics(model.recording(exact, full[0])))
+    as_arrays = model.recording(recording.times, full[0])
+    assert not as_arrays.grid["found"]
+    at_stamps = error(model.recording_kinematics(as_arrays))
+    print("relative body acceleration error: %.2e on the grid, %.2e on exact times, %.2e at the"
+          " 6-decimal times" % (error(out), on_exact, at_stamps))
+    assert error(out) < 2 * on_exact
+    assert at_stamps > 10 * error(out)
+
+
 def test_bad_recordings(mbk_kinematics, tmp_path):
     model = mbk_kinematics.load(source("test/robots/panda.urdf"))
     t = np.array([0.0, 0.1, 0.1, 0.3])
