@@ -200,6 +200,40 @@ TEST(NumberFormatTest, WriteShortestSameAsToCharsOnRandomDoubles) {
   }
 }
 
+// write_general: the bytes an std::ostream writes at that precision (OUT.sample_errors.csv was
+// written so), on random bit patterns (every exponent, subnormals, NaNs, -0), random values of
+// every size and known ones, at 6 significant digits and at 1 and 17.
+TEST(NumberFormatTest, WriteGeneralSameAsAnOstreamAtThatPrecision) {
+  const auto general = [](double x, int precision) {
+    char buf[mbk::kMaxDoubleChars];
+    return std::string(buf, mbk::write_general(buf, x, precision));
+  };
+  const auto streamed = [](double x, int precision) {
+    std::ostringstream s;
+    s.precision(precision);
+    s << x;
+    return s.str();
+  };
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-10, 10);
+  for (int i = 0; i < 200000; ++i) {
+    double x;
+    if (i % 2 == 1) {
+      const uint64_t bits = rng();
+      std::memcpy(&x, &bits, sizeof x);
+    } else {
+      x = std::ldexp(u(rng), static_cast<int>(rng() % 140) - 70);
+    }
+    for (int precision : {6, 1, 17}) ASSERT_EQ(general(x, precision), streamed(x, precision)) << i;
+  }
+  EXPECT_EQ(general(1e-5, 6), "1e-05");
+  EXPECT_EQ(general(123456.7, 6), "123457");
+  EXPECT_EQ(general(1234567.0, 6), "1.23457e+06");
+  EXPECT_EQ(general(0.000123456789, 6), "0.000123457");
+  EXPECT_EQ(general(-0.0, 6), "-0");
+  EXPECT_EQ(general(std::numeric_limits<double>::lowest(), 17), "-1.7976931348623157e+308");
+}
+
 // Known values in a row: the exact bytes of the line and every cell read back exactly.
 TEST(TidyCsvWriterTest, KnownValuesWrittenExactly) {
   const double tiny = std::numeric_limits<double>::denorm_min();
