@@ -20,6 +20,14 @@ char* write_shortest(char* out, double x) {
 #endif
 }
 
+char* write_general(char* out, double x, int precision) {
+#if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
+  return std::to_chars(out, out + kMaxDoubleChars, x, std::chars_format::general, precision).ptr;
+#else
+  return out + std::snprintf(out, kMaxDoubleChars, "%.*g", precision, x);
+#endif
+}
+
 std::string format_double(double x) {
   char text[kMaxDoubleChars];
   return std::string(text, write_shortest(text, x));

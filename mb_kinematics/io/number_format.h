@@ -1,5 +1,6 @@
 // Doubles as text that reads back exactly, as short as that allows: the form of the tidy CSV
-// (doc/recorded_data.md), of the URDF writer and of the reports.
+// (doc/recorded_data.md), of the URDF writer and of the reports; and to a number of significant
+// digits (the error bars' side files).
 #pragma once
 
 #include <string>
@@ -14,6 +15,10 @@ constexpr int kMaxDoubleChars = 32;
 // Returns the end. Where the standard library has no std::to_chars for double (GCC 9, ROS
 // Noetic): the shortest of %.15g, %.16g, %.17g that reads back.
 char* write_shortest(char* out, double x);
+
+// Writes at `out` the text of printf's %.*g (precision significant digits, at most 17), as an
+// ostream at that precision writes it; no allocation. Returns the end.
+char* write_general(char* out, double x, int precision);
 
 // write_shortest's text as a string.
 std::string format_double(double x);

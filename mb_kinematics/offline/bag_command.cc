@@ -17,9 +17,11 @@
 
 #include "mb_kinematics/core/base_joint.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
+#include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/io/number_format.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
@@ -224,8 +226,9 @@ void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model
 
 // OUT.csv's side file of each sample's error bars, OUT.sample_errors.csv ("auto", every
 // coordinate in every sample): stamp, then <coordinate>_velocity_se, <coordinate>_acceleration_se
-// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read;
-// written a piece at a time, under a temporary name until commit().
+// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read,
+// each number to 6 significant digits (%g); written a piece at a time as the CSV is (formatted
+// into one reused buffer, io/block_file.h), under a temporary name until commit().
 class SampleErrorsFile {
  public:
   SampleErrorsFile(std::string path, const mbk::Model& model)
@@ -236,35 +239,45 @@ class SampleErrorsFile {
     if (!file_) open();
     for (int r = begin; r < end; ++r) {
       states.coordinate_errors(r, v_.data(), a_.data());
-      char stamp[64];
-      std::snprintf(stamp, sizeof stamp, "%.9f", rec.recorded(r));
-      f_ << stamp;
-      for (int c = 0; c < model_.nq; ++c) f_ << "," << v_[c] << "," << a_[c];
-      f_ << "\n";
+      char* at = row_.data() + std::snprintf(row_.data(), kStampChars, "%.9f", rec.recorded(r));
+      for (int c = 0; c < model_.nq; ++c) {
+        *at++ = ',';
+        at = mbk::write_general(at, v_[c], 6);
+        *at++ = ',';
+        at = mbk::write_general(at, a_[c], 6);
+      }
+      *at++ = '\n';
+      block_->write(row_.data(), static_cast<std::size_t>(at - row_.data()));
     }
   }
   void commit() {
     if (!file_) return;
-    f_.close();
-    if (!f_) throw std::invalid_argument(path_ + ": cannot write the error bars");
+    try {
+      block_->close();
+    } catch (const std::runtime_error&) {
+      throw std::invalid_argument(path_ + ": cannot write the error bars");
+    }
     file_->commit();
   }
 
  private:
+  static constexpr int kStampChars = 400;  // %.9f of the largest double fits
   void open() {
     file_ = std::make_unique<OutputFile>(path_, false);
-    f_.open(file_->writing());
-    f_ << "stamp";
+    block_ = std::make_unique<mbk::BlockFile>(file_->writing());
+    std::string header = "stamp";
     for (const std::string& name : model_.coordinate_names)
-      f_ << "," << name << "_velocity_se," << name << "_acceleration_se";
-    f_ << "\n";
-    f_.precision(6);
+      header += "," + name + "_velocity_se," + name + "_acceleration_se";
+    block_->write(header + "\n");
+    row_.resize(kStampChars + 2 * static_cast<std::size_t>(model_.nq) * (1 + mbk::kMaxDoubleChars) +
+                1);
   }
   std::string path_;
   const mbk::Model& model_;
   std::vector<double> v_, a_;
   std::unique_ptr<OutputFile> file_;
-  std::ofstream f_;
+  std::unique_ptr<mbk::BlockFile> block_;
+  std::vector<char> row_;  // one row's text
 };
 
 // One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples, to

@@ -174,30 +174,64 @@ TEST(NumberFormatTest, WriteShortestKnownBytes) {
   EXPECT_EQ(shortest(std::nan("")), "nan");
 }
 
+// Draw i of a mix: a random bit pattern (every exponent, subnormals, NaNs, -0), a short decimal
+// around the fixed/scientific bounds, or a random value of any size.
+double random_double(std::mt19937_64& rng, int i) {
+  double x;
+  if (i % 3 == 1) {
+    const uint64_t bits = rng();
+    std::memcpy(&x, &bits, sizeof x);
+  } else if (i % 3 == 2) {
+    x = std::strtod(
+        (std::to_string(rng() % 100000) + "e" + std::to_string(int(rng() % 51) - 25)).c_str(),
+        nullptr);
+  } else {
+    x = std::ldexp(std::uniform_real_distribution<double>(-10, 10)(rng),
+                   static_cast<int>(rng() % 140) - 70);
+  }
+  return x;
+}
+
 // Random bit patterns (every exponent, subnormals, NaNs), random values of every size and short
 // decimals around the fixed/scientific bounds: the same bytes as std::to_chars, and every finite
 // one reads back exactly.
 TEST(NumberFormatTest, WriteShortestSameAsToCharsOnRandomDoubles) {
   std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-10, 10);
   for (int i = 0; i < 400000; ++i) {
-    double x;
-    if (i % 3 == 1) {
-      const uint64_t bits = rng();
-      std::memcpy(&x, &bits, sizeof x);
-    } else if (i % 3 == 2) {
-      x = std::strtod(
-          (std::to_string(rng() % 100000) + "e" + std::to_string(int(rng() % 51) - 25)).c_str(),
-          nullptr);
-    } else {
-      x = std::ldexp(u(rng), static_cast<int>(rng() % 140) - 70);
-    }
+    const double x = random_double(rng, i);
     const std::string s = shortest(x);
     ASSERT_EQ(s, cell(x)) << i;
     if (std::isfinite(x)) {
       ASSERT_EQ(std::strtod(s.c_str(), nullptr), x + 0.0) << s;
     }
   }
+}
+
+// write_general: the bytes an std::ostream writes at that precision (OUT.sample_errors.csv was
+// written so), on random doubles of every kind (random_double) and known ones, at 6 significant
+// digits and at 1 and 17.
+TEST(NumberFormatTest, WriteGeneralSameAsAnOstreamAtThatPrecision) {
+  const auto general = [](double x, int precision) {
+    char buf[mbk::kMaxDoubleChars];
+    return std::string(buf, mbk::write_general(buf, x, precision));
+  };
+  const auto streamed = [](double x, int precision) {
+    std::ostringstream s;
+    s.precision(precision);
+    s << x;
+    return s.str();
+  };
+  std::mt19937_64 rng(12);
+  for (int i = 0; i < 200000; ++i) {
+    const double x = random_double(rng, i);
+    for (int precision : {6, 1, 17}) ASSERT_EQ(general(x, precision), streamed(x, precision)) << i;
+  }
+  EXPECT_EQ(general(1e-5, 6), "1e-05");
+  EXPECT_EQ(general(123456.7, 6), "123457");
+  EXPECT_EQ(general(1234567.0, 6), "1.23457e+06");
+  EXPECT_EQ(general(0.000123456789, 6), "0.000123457");
+  EXPECT_EQ(general(-0.0, 6), "-0");
+  EXPECT_EQ(general(std::numeric_limits<double>::lowest(), 17), "-1.7976931348623157e+308");
 }
 
 // Known values in a row: the exact bytes of the line and every cell read back exactly.
