@@ -14,6 +14,9 @@ sanitize=${1:-}
 source "$(dirname "$0")/common.sh"
 build_args=()
 skip=()
+# ctest's slots: four on two cores (test/schedule.cmake: most tests wait, and a busy one takes
+# two); two under the sanitizers, whose instrumented processes keep the cores busier.
+jobs=4
 if [ -n "$sanitize" ]; then
   MBK_WS=$MBK_WS-sanitize
   flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
@@ -21,6 +24,7 @@ if [ -n "$sanitize" ]; then
     -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_CXX_FLAGS_RELEASE="-O1 -g -DNDEBUG"
     -DMBK_BENCHMARKS=OFF -DCMAKE_DISABLE_FIND_PACKAGE_rviz=ON)
   skip=(-E 'screenshot|fuzz_smoke|heap_trim')
+  jobs=2
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
   export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -41,6 +45,6 @@ echo "== building tests"
 [ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 cd "$MBK_WS/build"
 set +e
-ctest --output-on-failure -j2 "${skip[@]}" 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'
+ctest --output-on-failure -j"$jobs" "${skip[@]}" 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'
 status=${PIPESTATUS[0]}
 exit "$status"

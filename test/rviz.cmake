@@ -1,10 +1,10 @@
 # The rviz display on the running demo, headless (test/rviz/screenshot_test.sh): rviz under Xvfb
-# with config/mb_kinematics.rviz; the screenshot goes to the test results folder. Serial: rviz's
-# software rendering takes both cores, and the node's rate tests must not share them.
+# with config/mb_kinematics.rviz; the screenshot goes to the test results folder. Each takes two
+# of ctest's slots and none runs beside the node's rate tests (test/schedule.cmake).
 add_test(NAME rviz_screenshot
   COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-set_tests_properties(rviz_screenshot PROPERTIES RUN_SERIAL TRUE TIMEOUT 150)
+set_tests_properties(rviz_screenshot PROPERTIES TIMEOUT 150)
 
 # The same on real robots (test/robots/, no meshes): config/mb_kinematics.rviz says Fixed Frame
 # `world`, which these robots have not; the display must set it to the model's root link and frame
@@ -18,7 +18,7 @@ foreach(robot_frame panda:panda_link0 anymal_c:base)
   add_test(NAME rviz_robot_${robot}
     COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
       ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-  set_tests_properties(rviz_robot_${robot} PROPERTIES RUN_SERIAL TRUE TIMEOUT 60 ENVIRONMENT
+  set_tests_properties(rviz_robot_${robot} PROPERTIES TIMEOUT 60 ENVIRONMENT
     "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};REGION=520,200,1080,700;CENTER=814,432,120;SHOT_NAME=rviz_${robot};TIMEOUT=20")
 endforeach()
 
@@ -26,7 +26,7 @@ endforeach()
 add_test(NAME rviz_screenshot_bvh
   COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/bvh)
-set_tests_properties(rviz_screenshot_bvh PROPERTIES RUN_SERIAL TRUE TIMEOUT 150 ENVIRONMENT
+set_tests_properties(rviz_screenshot_bvh PROPERTIES TIMEOUT 150 ENVIRONMENT
   "LAUNCH=bvh.launch;RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz;DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")
 
 # Hostile input (test/rviz/hostile_bodies.launch, no node): a robot at UTM coordinates (x 500000,
@@ -34,11 +34,11 @@ set_tests_properties(rviz_screenshot_bvh PROPERTIES RUN_SERIAL TRUE TIMEOUT 150 
 # (it aborted in Ogre on arrows whose ends a float could not tell apart, and overflowed the
 # stack in the body filter's regex). Then 10,000 bodies at 5 Hz: at most Max Bodies drawn, rviz
 # under 700 MB and out within 10 s of SIGINT (rviz's own teardown
-# under software rendering takes about 5 s on the 2-core machine).
+# under software rendering takes about 5 s on the 2-core machine): that one runs alone.
 add_test(NAME rviz_hostile_far
   COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-set_tests_properties(rviz_hostile_far PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+set_tests_properties(rviz_hostile_far PROPERTIES TIMEOUT 90 ENVIRONMENT
   "LAUNCH=hostile_bodies.launch;READY=hostile bodies: publishing;SHOT_NAME=rviz_hostile_far;TIMEOUT=30;HOLD=5")
 add_test(NAME rviz_hostile_many
   COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
@@ -53,7 +53,7 @@ function(mbk_rviz_moving_test name)
   add_test(NAME ${name}
     COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
       ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-  set_tests_properties(${name} PROPERTIES RUN_SERIAL TRUE TIMEOUT 90 ENVIRONMENT
+  set_tests_properties(${name} PROPERTIES TIMEOUT 90 ENVIRONMENT
     "${ARGN};REGION=444,142,1184,722;CENTER=814,432,150;SHOT_NAME=${name};SETTLE=20;TIMEOUT=40")
 endfunction()
 mbk_rviz_moving_test(rviz_moving_panda

@@ -58,6 +58,10 @@ set_tests_properties(doc_check PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TI
 # The layers of mb_kinematics/ (doc/architecture.md): no #include from a lower layer to a higher
 # one, no ROS in core/ or estimation/ (scripts/check_layers.py, tested on planted includes).
 add_test(NAME layer_includes COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/layers_test.py)
+# The update in double compiled in core/kinematics_double.cc's object alone, no other object of the
+# build holding a copy of its own (test/update_once_test.py, nm on every object; doc/building.md).
+add_test(NAME update_once COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/update_once_test.py
+  ${CMAKE_BINARY_DIR})
 # scripts/plot_kinematics.py (its overview and --walk figures, its refusals) on a CSV of its own.
 add_test(NAME plot_kinematics COMMAND /usr/bin/python3
   ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py)

@@ -1,0 +1,58 @@
+# ctest's schedule (doc/building.md). On a clean clone ctest has no timings of a previous run and
+# starts the tests in decreasing COST, then in the order they were added: the long ones are given
+# their seconds here (a clean clone's run on the 2-core machine), so that they start first and
+# none is left running alone at the end. Include it after every test is added.
+#
+# scripts/test.sh runs `ctest -j4`, four slots on two cores: most tests wait (on a ROS master, on
+# messages, on a timer) and take one slot (the 28 rostests and node_load_smoke: 54 CPU seconds in
+# 139 s at -j4 on the busy machine); a test that keeps a core busy takes two (PROCESSORS), so that
+# at most two cores' worth of them run at once. rviz under Xvfb renders in software: about 0.6 of
+# a core (rviz_moving_walk: 14.8 CPU seconds in its 25 s): two slots, never beside the node's rate
+# tests (hztest at 50 Hz, node_load_smoke's every sample counted, /tf's longest gap during a heavy
+# call in deep_partials), two rviz tests at once allowed. rviz_hostile_many runs alone
+# (test/rviz.cmake).
+
+# mbk_tests_matching(REGEX OUT): the names of this directory's tests that match REGEX.
+function(mbk_tests_matching regex out)
+  get_property(tests DIRECTORY PROPERTY TESTS)
+  list(FILTER tests INCLUDE REGEX "${regex}")
+  set(${out} ${tests} PARENT_SCOPE)
+endfunction()
+
+# mbk_test_cost(REGEX SECONDS)
+function(mbk_test_cost regex seconds)
+  mbk_tests_matching("${regex}" tests)
+  if(tests)
+    set_tests_properties(${tests} PROPERTIES COST ${seconds})
+  endif()
+endfunction()
+
+mbk_test_cost("^fuzz_smoke$" 46)
+mbk_test_cost("^rviz_moving_" 25)
+mbk_test_cost("rostest_test_ros_hostile\\.test$" 24)
+mbk_test_cost("rostest_test_ros_missing\\.test$" 21)
+mbk_test_cost("rostest_test_ros_base_odometry\\.test$" 20)
+mbk_test_cost("rostest_test_ros_node\\.test$" 18)
+mbk_test_cost("^node_load_smoke$" 17)
+mbk_test_cost("rostest_test_ros_nodelet\\.test$" 12)
+mbk_test_cost("^rviz_hostile_far$" 10)
+mbk_test_cost("^doc_check$|^update_once$" 8)
+mbk_test_cost("tf_duplicate" 7)
+mbk_test_cost("gtest_offline_stream_test$|^plot_kinematics$|rostest_test_ros_reload\\.test$" 7)
+mbk_test_cost("^gui_launch$|rostest_test_ros_hz\\.test$|^rviz_robot_panda$" 6)
+mbk_test_cost("^rviz_screenshot|^rviz_robot_anymal_c$" 5)
+
+# Busy tests: two slots each.
+mbk_tests_matching("^fuzz_smoke$|^node_load_smoke$|^memcheck_|^python_module$|^rviz_" busy)
+set_tests_properties(${busy} PROPERTIES PROCESSORS 2)
+
+# Each rviz test locks a resource of its own name, which every rate test takes too: no rviz test
+# beside a rate test (nor two rate tests together), rviz tests beside each other.
+mbk_tests_matching("^rviz_" rviz)
+mbk_tests_matching("rostest_test_ros_(hz|nodelet|deep_partials|deep_partials_nodelet)\\.test$"
+  rate)
+list(APPEND rate node_load_smoke)
+foreach(test IN LISTS rviz)
+  set_property(TEST ${test} APPEND PROPERTY RESOURCE_LOCK ${test})
+  set_property(TEST ${rate} APPEND PROPERTY RESOURCE_LOCK ${test})
+endforeach()

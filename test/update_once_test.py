@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""ctest update_once: the update in double (forward_kinematics<double>) is compiled in one object
+of the build, core/kinematics_double.cc's, and in no other (doc/building.md): a file that includes
+core/kinematics.h rather than core/kinematics_double.h and runs the update compiles its own copy,
+about 27 CPU seconds at -O3 each. Fails naming every other object that defines it.
+
+  update_once_test.py BUILD_DIR
+"""
+import os
+import subprocess
+import sys
+
+# The instantiation itself, or, where the compiler inlined it whole, the run-time CPU check that
+# only the update's dispatch uses.
+SIGNS = ("mbk::forward_kinematics<double>(", "guard variable for mbk::detail::has_avx2()")
+HOME = "kinematics_double.cc.o"
+
+
+def objects(build_dir):
+    for folder, _, files in os.walk(build_dir):
+        for name in files:
+            if name.endswith(".o"):
+                yield os.path.join(folder, name)
+
+
+def defines_update(path):
+    """Whether the object holds the update's code, not only a call to mbk_core's."""
+    symbols = subprocess.run(["nm", "-C", "--defined-only", path], capture_output=True,
+                             text=True, check=True).stdout
+    return any(sign in line for line in symbols.splitlines() for sign in SIGNS)
+
+
+def main():
+    build_dir = sys.argv[1]
+    found = [path for path in objects(build_dir) if defines_update(path)]
+    home = [path for path in found if os.path.basename(path) == HOME]
+    others = sorted(os.path.relpath(path, build_dir) for path in found if path not in home)
+    if not home:
+        print(f"no {HOME} defining forward_kinematics<double> under {build_dir}")
+        return 1
+    if others:
+        print("forward_kinematics<double> compiled again (include core/kinematics_double.h):")
+        print("\n".join("  " + path for path in others))
+        return 1
+    print(f"forward_kinematics<double> compiled once, in {os.path.relpath(home[0], build_dir)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
