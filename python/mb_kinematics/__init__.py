@@ -132,9 +132,9 @@ class Model:
         accelerations from the offline estimator where not recorded (`estimator` as
         `mbk bag --estimator`; `max_gap` seconds, default 5 x the median interval). A dict:
         `time`, `position`, `velocity`, `acceleration` (rows, nq), with "auto" `velocity_se`
-        and `acceleration_se` (standard errors, 0 where recorded; absent when some coordinate
-        is not in every row), and `valid` (rows,): False where mbk bag drops the row (too few
-        samples around it), whose `drop_reason` says why."""
+        and `acceleration_se` (standard errors, 0 where recorded; a coordinate missing from a
+        row has its last sample's), and `valid` (rows,): False where mbk bag drops the row (too
+        few samples around it), whose `drop_reason` says why."""
         if not isinstance(recording, Recording):
             raise TypeError("recording: a Recording (read_recording or recording), not %s"
                             % type(recording).__name__)
