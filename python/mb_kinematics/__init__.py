@@ -148,9 +148,9 @@ class Model:
         accelerations from the offline estimator where not recorded (`estimator` as
         `mbk bag --estimator`; `max_gap` seconds, default 5 x the median interval). A dict:
         `time`, `position`, `velocity`, `acceleration` (rows, nq), with "auto" `velocity_se`
-        and `acceleration_se` (standard errors, 0 where recorded; absent when some coordinate
-        is not in every row), and `valid` (rows,): False where mbk bag drops the row (too few
-        samples around it), whose `drop_reason` says why."""
+        and `acceleration_se` (standard errors, 0 where recorded; a coordinate missing from a
+        row has its last sample's), and `valid` (rows,): False where mbk bag drops the row (too
+        few samples around it), whose `drop_reason` says why."""
         gap = _estimator_arguments(recording, estimator, max_gap)
         out = _core.recording_states(self._core, recording, estimator, gap)
         out["time"] = recording.times
