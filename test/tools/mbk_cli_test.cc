@@ -1049,12 +1049,17 @@ TEST(MbkCli, BagRefusesToGrowBeyondMaxMemory) {
   const std::string out = ::testing::TempDir() + "capped_walk.csv";
   std::remove(out.c_str());
   const Output capped = mbk("bag test/mocap/131_01.bvh --csv " + out + " --max-memory 0.05");
+#if defined(__SANITIZE_ADDRESS__)  // AddressSanitizer's shadow rules out the cap (memory_cap.cc)
+  EXPECT_EQ(capped.status, 0) << capped.err;
+  std::remove(out.c_str());
+#else
   EXPECT_EQ(capped.status, 1);
   EXPECT_EQ(capped.err.substr(capped.err.find("mbk: error: ")),
             "mbk: error: out of memory: the run needs more than --max-memory 0.05 GiB of address "
             "space (default: 90 % of this machine's memory); give a larger --max-memory or fewer "
             "--threads\n");
   EXPECT_FALSE(std::ifstream(out).good());
+#endif
   const Output zero = mbk("bag test/mocap/131_01.bvh --csv " + out + " --max-memory 0");
   EXPECT_EQ(zero.status, 1);
   EXPECT_EQ(zero.err, "mbk: error: --max-memory needs GiB > 0, not '0'\n");
