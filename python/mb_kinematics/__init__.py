@@ -75,15 +75,14 @@ class Model:
         self.mass_centers = np.array([b["mass_center"] for b in self._bodies],
                                      dtype=np.float64).reshape(-1, 3)
         self.lower = np.array(core.lower, dtype=np.int64)
-        self.lower_table = np.array(core.lower_table, dtype=np.int64).reshape(-1, len(self.lower))
+        self._lower_table = None  # on first use: (depth + 1) x N entries, N^2 on a chain
         self.mimics = tuple(core.mimics)
         self.warnings = tuple(core.warnings)
         self.neutral_position = np.array(core.neutral_position, dtype=np.float64)
         self._body_index = {name: k for k, name in enumerate(self.body_names, 1)}
         self._coordinate_index = {n: i for i, n in enumerate(self.coordinate_names)}
         self._speed_index = {n: i for i, n in enumerate(self.speed_names)}
-        for array in (self.masses, self.mass_centers, self.lower, self.lower_table,
-                      self.neutral_position):
+        for array in (self.masses, self.mass_centers, self.lower, self.neutral_position):
             array.setflags(write=False)
 
     @property
@@ -95,6 +94,16 @@ class Model:
     def root(self):
         """bodies[0], R: a URDF's root link (its mass counts in the system quantities)."""
         return dict(self._root)
+
+    @property
+    def lower_table(self):
+        """The lower body arrays L^t(k) (Table 4.2.1), (rows, N), made on first use: a chain of
+        N bodies has N + 1 rows, so a model loaded only to compute never pays for them."""
+        if self._lower_table is None:
+            table = np.array(self._core.lower_table, dtype=np.int64).reshape(-1, len(self.lower))
+            table.setflags(write=False)
+            self._lower_table = table
+        return self._lower_table
 
     def tables(self):
         """The lower body arrays table (Table 4.2.1) as `mbk tables` prints it."""
