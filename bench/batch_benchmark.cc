@@ -10,6 +10,10 @@
 //                                       (the bytes of the outputs written per second)
 //   copy/<model>/full/threads:T         memcpy of the same bytes between two such arrays (the
 //                                       physical limit of writing the outputs), split the same way
+//   compute/<model>/full                the same states' recursion and system kinematics on one
+//                                       thread into one Data, no output written: the batch less
+//                                       its state check, its copy out of Data and the outputs'
+//                                       memory traffic
 //
 // Models: human = config/human_body.urdf (37 bodies), panda = test/robots/panda.urdf (7-joint
 // arm, hand and fingers: 12 bodies). Arguments: --benchmark_format=json for bench/python_batch.py.
@@ -21,6 +25,9 @@
 #include <thread>
 #include <vector>
 
+#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/state.h"
+#include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
 
@@ -84,6 +91,27 @@ void batch(benchmark::State& state, const std::string& name, bool full) {
   set_counters(state, model, b.bytes);
 }
 
+// What batch_kinematics computes for the full outputs, without writing them (as its
+// compute_sample with every output in Data and SystemKinematics only).
+void compute(benchmark::State& state, const std::string& name) {
+  const mbk::Model& model = model_of(name);
+  const Batch b(model, false);  // for its states
+  mbk::JointState<double> joints(model);
+  mbk::Data<double> data(model);
+  mbk::SystemKinematics<double> system;
+  for (auto _ : state)
+    for (std::size_t s = 0; s < kSamples; ++s) {
+      joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
+      joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
+      joints.acceleration = Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
+      mbk::apply_mimics(model, joints);
+      mbk::forward_kinematics(model, joints, data, mbk::Level::kAcceleration);
+      mbk::system_kinematics(model, data, system, mbk::Level::kAcceleration);
+      benchmark::DoNotOptimize(system);
+    }
+  set_counters(state, model, 0);
+}
+
 // The same bytes copied between two arrays of that size, on `threads` threads.
 void copy(benchmark::State& state, const std::string& name) {
   const mbk::Model& model = model_of(name);
@@ -114,6 +142,10 @@ void register_all() {
           ->Arg(2)
           ->UseRealTime()
           ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("compute/" + std::string(name) + "/full").c_str(),
+                                 [name](benchmark::State& s) { compute(s, name); })
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("copy/" + std::string(name) + "/full").c_str(),
                                  [name](benchmark::State& s) { copy(s, name); })
         ->ArgName("threads")

@@ -78,6 +78,7 @@ void put_or_nan(T* out, const Vec3<double>& v, bool known) {
     out[i] = known ? static_cast<T>(v[i]) : std::numeric_limits<T>::quiet_NaN();
 }
 
+// Copied from Data: in place saves 12-16 % at most but needs a ground row (doc/speed.md#python).
 template <typename T>
 void write_bodies(const Data<double>& data, std::size_t s, const BatchOutput<T>& out) {
   const std::size_t nb = out.bodies.size();
