@@ -25,7 +25,7 @@
 #include <thread>
 #include <vector>
 
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
