@@ -13,6 +13,14 @@ namespace mbk {
 
 namespace {
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+
+// AddressSanitizer reserves terabytes of address space for its shadow before main: an address
+// space cap would fail its own mappings (scripts/test.sh --sanitize), so none is set there.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
 }  // namespace
 
 double default_memory_cap_gib() {
@@ -22,13 +30,7 @@ double default_memory_cap_gib() {
 }
 
 void cap_memory(double gib) {
-#if defined(__SANITIZE_ADDRESS__)
-  // AddressSanitizer reserves terabytes of address space for its shadow before main: an address
-  // space cap would fail its own mappings (scripts/test.sh --sanitize), so none is set there.
-  (void)gib;
-  return;
-#endif
-  if (!(gib > 0) || !std::isfinite(gib)) return;  // the machine's size unknown: no cap
+  if (kAddressSanitizer || !(gib > 0) || !std::isfinite(gib)) return;  // size unknown: no cap
   rlimit limit{};
   if (getrlimit(RLIMIT_AS, &limit) != 0) return;
   const double bytes = gib * kGiB;

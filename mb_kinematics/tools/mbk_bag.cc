@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/bag_summary_json.h"
 #include "mb_kinematics/offline/memory_cap.h"
@@ -19,15 +19,18 @@
 
 namespace {
 
-// --summary-json's record of a run that stopped with `error` (nothing when that cannot be
-// written either: the error line on stderr still says what happened).
-void record_failure(const mbk_offline::BagOptions& options, const std::string& error) {
-  if (options.summary_json.empty()) return;
-  try {
-    mbk_offline::write_summary_json(options.summary_json,
-                                    mbk_offline::format_failure_json(options, error));
-  } catch (const std::exception&) {
+// A run that stopped with `error`: its one line on stderr, and --summary-json's record of it
+// (nothing when that cannot be written either: the line still says what happened). Exit 1.
+int fail(const mbk_offline::BagOptions& options, const std::string& error) {
+  if (!options.summary_json.empty()) {
+    try {
+      mbk_offline::write_summary_json(options.summary_json,
+                                      mbk_offline::format_failure_json(options, error));
+    } catch (const std::exception&) {
+    }
   }
+  std::cerr << "mbk: error: " << mbk::printable(error) << "\n";
+  return 1;
 }
 
 }  // namespace
@@ -55,18 +58,11 @@ int main(int argc, char** argv) {
                                       mbk_offline::format_summary_json(options, summary));
     return mbk_offline::exit_status(summary);  // 2: partial (README "Recorded data")
   } catch (const std::bad_alloc&) {            // the cap, not the kernel, ended the run
-    record_failure(options, mbk::memory_cap_error(cap));
-    std::cerr << "mbk: error: " << mbk::memory_cap_error(cap) << "\n";
-    return 1;
+    return fail(options, mbk::memory_cap_error(cap));
   } catch (const std::system_error& e) {  // no room for a thread's stack under the cap
     const bool cap_reached = e.code() == std::errc::resource_unavailable_try_again;
-    const std::string error = cap_reached ? mbk::memory_cap_error(cap) : e.what();
-    record_failure(options, error);
-    std::cerr << "mbk: error: " << mbk::printable(error) << "\n";
-    return 1;
+    return fail(options, cap_reached ? mbk::memory_cap_error(cap) : e.what());
   } catch (const std::exception& e) {
-    record_failure(options, e.what());
-    std::cerr << "mbk: error: " << mbk::printable(e.what()) << "\n";
-    return 1;
+    return fail(options, e.what());
   }
 }
