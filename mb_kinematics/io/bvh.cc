@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/number_format.h"
-#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/text_file.h"
 
 namespace mbk {

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/bvh_bones.h"
 #include "mb_kinematics/io/name_list.h"
-#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {

@@ -10,12 +10,12 @@
 #include <unordered_map>
 #include <utility>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/bvh_anthropometry.h"
 #include "mb_kinematics/io/bvh_bones.h"
 #include "mb_kinematics/io/bvh_motion_check.h"
 #include "mb_kinematics/io/name_list.h"
 #include "mb_kinematics/io/number_format.h"
-#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {

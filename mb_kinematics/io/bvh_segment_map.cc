@@ -6,8 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/name_list.h"
-#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {

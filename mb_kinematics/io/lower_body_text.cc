@@ -3,7 +3,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk {
 

@@ -8,9 +8,9 @@
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/core/utf8.h"
 #include "mb_kinematics/io/number_format.h"
-#include "mb_kinematics/io/printable.h"
-#include "mb_kinematics/io/utf8.h"
 
 namespace mbk {
 namespace {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/text_file.h"
 
 namespace mbk {

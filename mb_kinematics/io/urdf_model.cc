@@ -12,7 +12,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/inertia.h"
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/urdf_writer.h"
 

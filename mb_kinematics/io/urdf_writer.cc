@@ -6,9 +6,9 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/core/utf8.h"
 #include "mb_kinematics/io/number_format.h"
-#include "mb_kinematics/io/printable.h"
-#include "mb_kinematics/io/utf8.h"
 
 namespace mbk {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "mb_kinematics/core/inertia.h"
 #include "mb_kinematics/core/lower_body_array.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/rpy.h"
-#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/yaml_bare_scene.h"
 

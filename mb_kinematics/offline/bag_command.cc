@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "mb_kinematics/core/base_joint.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/number_format.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"

@@ -18,8 +18,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/quaternion_scale.h"
-#include "mb_kinematics/io/printable.h"
 
 namespace mbk_offline {
 namespace {

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/offline/temporary_files.h"
 
 namespace mbk_offline {

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/estimation/outliers.h"
-#include "mb_kinematics/io/printable.h"
 
 namespace mbk {
 namespace {

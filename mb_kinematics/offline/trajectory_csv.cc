@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk_ros {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "mb_kinematics/core/finite_kinematics.h"
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/system_kinematics.h"
-#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/ros/heap_trim.h"
 #include "mb_kinematics/ros/outputs/output_table.h"

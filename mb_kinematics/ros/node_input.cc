@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
-#include "mb_kinematics/io/printable.h"
 #include "mb_kinematics/messages/frames.h"
 
 namespace mbk_ros {

@@ -856,7 +856,7 @@ TEST(MbkCli, EvalWithoutAStateAppliesTheMimicRules) {
   EXPECT_EQ(mbk::read_state_file(model, state).position[1], 0.5);
 }
 
-// mbk bag's error lines escape control bytes as mbk eval's do (io/printable.h): an ANSI escape in
+// mbk bag's error lines escape control bytes as mbk eval's do (core/printable.h): an ANSI escape in
 // a CSV cell and a newline in a path are written as \x1b and \n, one line of text.
 TEST(MbkCli, BagErrorLinesEscapeControlBytes) {
   const std::string dir = ::testing::TempDir();
@@ -992,7 +992,7 @@ void expect_escaped(const Output& run, const std::vector<std::string>& shown) {
 }
 
 // Names with a NUL, \v and an ANSI escape in a BVH joint and a URDF link and joint: every error,
-// drop, note and summary line of mbk eval and mbk bag shows them escaped (io/printable.h), and
+// drop, note and summary line of mbk eval and mbk bag shows them escaped (core/printable.h), and
 // whole (before: a NUL in a BVH name or a YAML body name cut the error there; mbk bag's summary
 // wrote the bytes raw).
 TEST(MbkCli, NamesWithControlBytesAreEscapedInEveryLine) {

@@ -3,7 +3,7 @@
 #include <ros/console.h>
 #include <ros/this_node.h>
 
-#include "mb_kinematics/io/printable.h"
+#include "mb_kinematics/core/printable.h"
 
 namespace mbk_ros {
 namespace {
