@@ -65,6 +65,11 @@ add_test(NAME update_once COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/up
 # scripts/plot_kinematics.py (its overview and --walk figures, its refusals) on a CSV of its own.
 add_test(NAME plot_kinematics COMMAND /usr/bin/python3
   ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py)
+# doc/recorded_data.md's table of the right hand's angular velocity spikes: each figure is
+# test/mocap/euler_spikes.py's on the shipped CMU recordings, the spikes are the same samples
+# from the Euler angles and from the orientations, and a representation flip is told apart.
+add_test(NAME euler_spikes COMMAND /usr/bin/python3
+  ${PROJECT_SOURCE_DIR}/test/mocap/euler_spikes_test.py)
 # plot_kinematics.py --bvh: from a BVH file to the CSV and the figure with the workspace's mbk.
 add_test(NAME plot_kinematics_bvh COMMAND /usr/bin/python3
   ${PROJECT_SOURCE_DIR}/test/scripts/plot_kinematics_test.py --bvh)

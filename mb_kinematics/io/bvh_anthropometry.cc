@@ -32,9 +32,9 @@ constexpr double kPercent = 0.01;
 constexpr double kTrunkPartLength[2][3] = {{170.7, 215.5, 145.7}, {142.5, 205.3, 181.5}};
 const char* const kTrunkKeys[3] = {"upper_trunk", "middle_trunk", "lower_trunk"};
 const char kIncomplete[] =
-    "whole-body outputs incomplete (system_incomplete in the CSV, \"incomplete\" in mbk eval's "
-    "JSON; --segments FILE maps joints to segments): segments not found, their mass spread over "
-    "the others: ";
+    "whole-body outputs incomplete (system_incomplete in the CSV, system.missing_segments in the "
+    "bag, \"incomplete\" in mbk eval's JSON; --segments FILE maps joints to segments): segments "
+    "not found, their mass spread over the others: ";
 
 // A segment on one side of the body: 0 none (head, trunk), 1 left, 2 right.
 struct Found {

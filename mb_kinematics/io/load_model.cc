@@ -30,10 +30,6 @@ std::vector<std::string> missing_segments_of(const std::string& path, const BvhM
   return bvh_missing_segments(read_bvh(path), bvh);
 }
 
-std::string system_row_name(const std::string& path, const BvhModelOptions& bvh) {
-  return missing_segments_of(path, bvh).empty() ? "system" : "system_incomplete";
-}
-
 Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
   if (is_bvh_file(path)) return model_from_bvh(read_bvh(path), bvh);
   if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);

@@ -13,13 +13,10 @@ namespace mbk {
 // Throws std::invalid_argument naming the file and what is wrong. `bvh` applies to BVH files.
 Model load_model_file(const std::string& path, const BvhModelOptions& bvh = {});
 
-// The name of the whole-body rows of `mbk bag`'s CSV for the model file at `path`: "system", or
-// "system_incomplete" for a BVH skeleton lacking segments of the anthropometric table
-// (bvh_missing_segments).
-std::string system_row_name(const std::string& path, const BvhModelOptions& bvh = {});
-
 // The segments missing from the model file at `path` (bvh_missing_segments; empty for any file
-// but a BVH skeleton with a body mass).
+// but a BVH skeleton with a body mass): mbk bag's CSV names its whole-body rows
+// "system_incomplete" then, the bag's and the node's body_kinematics list them in
+// system.missing_segments, mbk eval's JSON in "incomplete".
 std::vector<std::string> missing_segments_of(const std::string& path,
                                              const BvhModelOptions& bvh = {});
 

@@ -16,10 +16,14 @@
 
 namespace mbk_messages {
 
-// Names, indices and lower bodies of `msg`, once: the per-sample fill leaves them.
+// Names, indices and lower bodies of `msg`, once, and system.missing_segments: the segments of
+// the body that the model lacks (mbk::missing_segments_of: a BVH skeleton's, e.g. "left hand";
+// none for a URDF or YAML model). The per-sample fill leaves them.
 inline void init_body_kinematics(const mbk::Model& model, const std::string& frame,
-                                 mb_kinematics_msgs::BodyKinematicsArray& msg) {
+                                 mb_kinematics_msgs::BodyKinematicsArray& msg,
+                                 const std::vector<std::string>& missing_segments = {}) {
   msg.header.frame_id = frame;
+  msg.system.missing_segments = missing_segments;
   msg.bodies.resize(model.body_count());
   for (int k = 1; k <= model.body_count(); ++k) {
     auto& b = msg.bodies[k - 1];
@@ -70,7 +74,7 @@ inline void fill_kinematics(const ros::Time& stamp, const mbk::Model& model,
   if (complete)
     fill_system_kinematics(model, data, msg.system);
   else
-    msg.system = mb_kinematics_msgs::SystemKinematics();
+    clear_system_kinematics(msg.system);
 }
 
 }  // namespace mbk_messages

@@ -19,4 +19,11 @@ void fill_system_kinematics(const mbk::Model& model, const mbk::Data<double>& da
   set_vector(s.angular_momentum, msg.angular_momentum);
 }
 
+void clear_system_kinematics(mb_kinematics_msgs::SystemKinematics& msg) {
+  std::vector<std::string> missing_segments;
+  missing_segments.swap(msg.missing_segments);
+  msg = mb_kinematics_msgs::SystemKinematics();
+  msg.missing_segments.swap(missing_segments);
+}
+
 }  // namespace mbk_messages

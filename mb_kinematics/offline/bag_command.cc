@@ -211,15 +211,17 @@ void read_input(const BagOptions& o, const mbk::Model& model, mbk::RecordingBuil
 void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model& base_model,
                   const std::string& base_frame, bool errors, Outputs& out) {
   out.input = o.input;
+  const std::vector<std::string> missing = mbk::missing_segments_of(o.model, o.bvh);
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
     out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
-                                          base_frame, base_model);
+                                          base_frame, base_model, missing);
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
-                                                   mbk::system_row_name(o.model, o.bvh));
+    out.csv =
+        std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
+                                             missing.empty() ? "system" : "system_incomplete");
   }
   out.base_model = &base_model;
 }

@@ -9,7 +9,8 @@
 
 namespace mbk_offline {
 BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
-                     const std::string& base_frame, const mbk::Model& kinematics_model)
+                     const std::string& base_frame, const mbk::Model& kinematics_model,
+                     const std::vector<std::string>& missing_segments)
     : model_(model),
       kinematics_model_(kinematics_model),
       path_(path),
@@ -22,7 +23,8 @@ BagOutput::BagOutput(const std::string& path, const mbk::Model& model, const std
     throw std::invalid_argument(path + ": cannot write the bag (" + e.what() + ")");
   }
   mbk_messages::init_body_kinematics(kinematics_model,
-                                     base_frame.empty() ? names_.root() : base_frame, kinematics_);
+                                     base_frame.empty() ? names_.root() : base_frame, kinematics_,
+                                     missing_segments);
   mbk_messages::init_transforms(model, names_, mbk_messages::moving_bodies(model), moving_,
                                 tf_.transforms, base_frame);
 }

@@ -121,4 +121,9 @@ mbk::Model load_node_model(const NodeParams& p) {
   return model;
 }
 
+std::vector<std::string> node_missing_segments(const NodeParams& p) {
+  if (!p.lower_body_array.empty()) return {};
+  return mbk::missing_segments_of(p.model, p.bvh);
+}
+
 }  // namespace mbk_ros

@@ -60,4 +60,8 @@ void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, No
 // Euler-parameter joints get coordinate-derivative speeds. Throws std::invalid_argument.
 mbk::Model load_node_model(const NodeParams& params);
 
+// The segments of the body that the model load_node_model reads lacks (mbk::missing_segments_of:
+// a .bvh ~model's, with ~body_mass; empty for any other source).
+std::vector<std::string> node_missing_segments(const NodeParams& params);
+
 }  // namespace mbk_ros

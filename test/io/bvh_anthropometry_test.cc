@@ -18,6 +18,7 @@
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/bvh_motion_check.h"
+#include "test/support/renamed_bvh.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -87,21 +88,10 @@ TEST(DeLeva, ASegmentsMassCenterAndInertiaAreTheTables) {
       body(model, "Head").mass_center.isApprox(Eigen::Vector3d(0, 0.18 - 0.5002 * 0.28, 0), 1e-12));
 }
 
+using mbk_test::renamed;
+
 // The same skeleton with the bones renamed as Biovision (LeftHip, LeftKnee, LeftAnkle, Chest,
 // LeftCollar, LeftShoulder, LeftElbow, LeftWrist) and Mixamo (mixamorig:...) name them.
-std::string renamed(const std::string& path,
-                    const std::vector<std::pair<std::string, std::string>>& names) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  std::string text = s.str();
-  for (const auto& [from, to] : names)
-    for (size_t at = text.find(" " + from + "\n"); at != std::string::npos;
-         at = text.find(" " + from + "\n", at + 1))
-      text.replace(at + 1, from.size(), to);
-  return text;
-}
-
 TEST(DeLeva, BiovisionAndMixamoNamesMapAsCmus) {
   const std::string path = mbk_test::source_path("test/io/data/cmu_walk.bvh");
   const mbk::Model cmu = mbk::model_from_bvh(cmu_walk(), {0.01, kMass, "female"});
@@ -251,10 +241,10 @@ TEST(DeLeva, AStaticRootCarriesNoMovingSegment) {
   EXPECT_NEAR(total_mass(model), kMass, 1e-12 * kMass);
   // The thighs, shanks and feet are not found: one line says the whole body is incomplete.
   const std::string incomplete =
-      "bandai.bvh: whole-body outputs incomplete (system_incomplete in the CSV, \"incomplete\" in "
-      "mbk eval's JSON; --segments FILE maps joints to segments): segments not found, their mass "
-      "spread over the others: left thigh, right thigh, left shank, right shank, left foot, right "
-      "foot";
+      "bandai.bvh: whole-body outputs incomplete (system_incomplete in the CSV, "
+      "system.missing_segments in the bag, \"incomplete\" in mbk eval's JSON; --segments FILE maps "
+      "joints to segments): segments not found, their mass spread over the others: left thigh, "
+      "right thigh, left shank, right shank, left foot, right foot";
   EXPECT_NE(std::find(model.warnings.begin(), model.warnings.end(), incomplete),
             model.warnings.end())
       << model.warnings.front();
@@ -305,9 +295,10 @@ TEST(DeLeva, WhatIsNotMappedIsMasslessAndNamedInOneNote) {
             "cat.bvh: segment parameters (de Leva 1996): massless, in no table segment: LeftPaw, "
             "LeftFingerBase, LThumb, RightPaw, RightFingerBase, RThumb");
   EXPECT_EQ(model.warnings[1],
-            "cat.bvh: whole-body outputs incomplete (system_incomplete in the CSV, \"incomplete\" "
-            "in mbk eval's JSON; --segments FILE maps joints to segments): segments not found, "
-            "their mass spread over the others: left hand, right hand");
+            "cat.bvh: whole-body outputs incomplete (system_incomplete in the CSV, "
+            "system.missing_segments in the bag, \"incomplete\" in mbk eval's JSON; --segments "
+            "FILE maps joints to segments): segments not found, their mass spread over the "
+            "others: left hand, right hand");
   EXPECT_EQ(body(model, "LeftPaw").mass, 0.0);
   EXPECT_NEAR(body(model, "LeftUpLeg").mass, kMass * 0.1416 / (1 - 2 * 0.0061), 1e-12);
   // With no hand the forearm ends at its own tip, the paw's joint (25 cm along +x): its mass

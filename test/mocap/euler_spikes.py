@@ -15,7 +15,7 @@ usage: euler_spikes.py FILE.bvh JOINT [JOINT ...]   (numpy; /usr/bin/python3)
 """
 import numpy as np, sys
 def parse(path):
-    txt=open(path).read().split()
+    with open(path) as f: txt=f.read().split()
     i=0; segs=[]; stack=[]; ch=0
     while txt[i]!='MOTION':
         t=txt[i]
@@ -30,6 +30,7 @@ def parse(path):
             n=int(txt[i+1]); segs[-1]['ch']=txt[i+2:i+2+n]; segs[-1]['col']=ch; ch+=n; i+=2+n; continue
         i+=1
     nf=int(txt[i+2]); dt=float(txt[i+5]); data=np.array(txt[i+6:],float).reshape(nf,ch)
+    for s in segs: s["name"]=s["name"].strip()
     return segs,data,dt
 def R(axis,a):
     c,s=np.cos(a),np.sin(a)
@@ -46,9 +47,8 @@ def logm(M):
     if th<1e-12: return np.zeros(3)
     w=np.array([M[2,1]-M[1,2],M[0,2]-M[2,0],M[1,0]-M[0,1]])/(2*np.sin(th))
     return w*th
-segs,data,dt=parse(sys.argv[1])
-for s in segs: s["name"]=s["name"].strip()
-for name in sys.argv[2:]:
+def speeds(segs,data,dt,name):
+    """The joint's angular speed (rad/s) at frames 1..n-2: (euler-rate, rotation-group)."""
     j=[s['name'] for s in segs].index(name); s=segs[j]
     rot=[(k,c[0]) for k,c in enumerate(s['ch']) if c.endswith('rotation')]
     ang=np.radians(data[:,[s['col']+k for k,_ in rot]])
@@ -65,5 +65,11 @@ for name in sys.argv[2:]:
         we.append(np.linalg.norm(w))
         A=local(s,data[f-1]); B=local(s,data[f+1])
         wr.append(np.linalg.norm(logm(A.T@B))/(2*dt))
-    we=np.array(we); wr=np.array(wr)
-    print("%s %s: euler-rate max %.1f rad/s, >20: %.1f%%; rotation-group max %.1f, >20: %.1f%%; worst frame %d angles %s"%(sys.argv[1].split('/')[-1],name,we.max(),100*np.mean(we>20),wr.max(),100*np.mean(wr>20),we.argmax()+1,np.degrees(ang[we.argmax()+1]).round(1)))
+    return np.array(we),np.array(wr),ang
+def main(argv):
+    segs,data,dt=parse(argv[1])
+    for name in argv[2:]:
+        we,wr,ang=speeds(segs,data,dt,name)
+        print("%s %s: euler-rate max %.1f rad/s, >20: %.1f%%; rotation-group max %.1f, >20: %.1f%%; worst frame %d angles %s"%(argv[1].split('/')[-1],name,we.max(),100*np.mean(we>20),wr.max(),100*np.mean(wr>20),we.argmax()+1,np.degrees(ang[we.argmax()+1]).round(1)))
+if __name__=="__main__":
+    main(sys.argv)

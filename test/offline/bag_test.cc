@@ -32,6 +32,7 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
+#include "test/support/renamed_bvh.h"
 
 namespace {
 
@@ -79,6 +80,17 @@ std::map<std::string, int> count_topics(const std::string& path) {
   std::map<std::string, int> counts;
   for (const rosbag::MessageInstance& m : view) ++counts[m.getTopic()];
   return counts;
+}
+
+// system.missing_segments of every /body_kinematics message of the bag at `path`, in order.
+std::vector<std::vector<std::string>> missing_segments_in(const std::string& path) {
+  rosbag::Bag bag(path, rosbag::bagmode::Read);
+  rosbag::View view(bag, rosbag::TopicQuery("/body_kinematics"));
+  std::vector<std::vector<std::string>> lists;
+  for (const rosbag::MessageInstance& m : view)
+    lists.push_back(
+        m.instantiate<mb_kinematics_msgs::BodyKinematicsArray>()->system.missing_segments);
+  return lists;
 }
 
 std::string error_of(const mbk_offline::BagOptions& o) {
@@ -1035,6 +1047,30 @@ TEST(BagTest, APublishedMimicValueWinsOverItsRule) {
   EXPECT_EQ(i, 50);
 }
 
+// The whole-body quantities of a skeleton lacking segments of the anthropometric table are
+// marked in the CSV (its system rows are system_incomplete) and in every message of the bag
+// (system.missing_segments names them).
+TEST(BagTest, ASkeletonWithoutHandsMarksEveryWholeBodyOutputIncomplete) {
+  std::ofstream(temp("paws.bvh")) << mbk_test::renamed(
+      MBK_SOURCE_DIR "/test/io/data/cmu_walk.bvh",
+      {{"LeftHand", "LeftPaw"}, {"RightHand", "RightPaw"}});
+  const std::string run = std::string(MBK_MBK_PATH) + " bag " + temp("paws.bvh") +
+                          " --scale 0.01 --body-mass 70 --csv " + temp("paws.csv") + " --out " +
+                          temp("paws.bag") + " 2>" + temp("paws.err");
+  ASSERT_EQ(std::system(run.c_str()), 0);
+  const std::vector<std::string> hands = {"left hand", "right hand"};
+  EXPECT_EQ(missing_segments_in(temp("paws.bag")),
+            std::vector<std::vector<std::string>>(40, hands));
+  std::ifstream csv(temp("paws.csv"));
+  std::string line;
+  int incomplete = 0;
+  while (std::getline(csv, line)) {
+    EXPECT_EQ(line.find(",system,"), std::string::npos) << line;
+    incomplete += line.find(",system_incomplete,") != std::string::npos;
+  }
+  EXPECT_EQ(incomplete, 40);
+}
+
 // A BVH file is its own model and recording: every frame written at its time, with the segment
 // parameters of --body-mass in the CSV's system rows; --scale etc. refused for other models.
 TEST(BagTest, ABvhFileIsItsOwnRecording) {
@@ -1058,6 +1094,8 @@ TEST(BagTest, ABvhFileIsItsOwnRecording) {
   EXPECT_EQ(rows, 40 * 30);  // 29 bodies and the system per frame
   EXPECT_EQ(system_rows, 40);
   EXPECT_EQ(count_topics(temp("walk.bag")).at("/body_kinematics"), 40);
+  EXPECT_EQ(missing_segments_in(temp("walk.bag")),
+            std::vector<std::vector<std::string>>(40));  // every segment found
   std::vector<std::string> args = {"mbk",     "bag",  walk,    "--model", kModel,
                                    "--scale", "0.01", "--csv", "x.csv"};
   std::vector<char*> argv;

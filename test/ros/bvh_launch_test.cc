@@ -1,7 +1,7 @@
 // launch/bvh.launch on the real recording (bvh_launch.test: test/mocap/131_01.bvh, CMU trial
 // 131_01): bvh_player's joint_states carry the model's coordinates, the node's /tf carries every
 // segment and body_kinematics every segment, all finite, and the whole-body mass equals the
-// launch's body_mass.
+// launch's body_mass, with the segments the skeleton lacks named in system.missing_segments.
 #include <gtest/gtest.h>
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <ros/ros.h>
@@ -55,7 +55,9 @@ class BvhLaunchTest : public ::testing::Test {
     ASSERT_TRUE(pnh.getParam("bvh", path_) && pnh.getParam("scale", options_.scale) &&
                 pnh.getParam("body_mass", options_.body_mass))
         << "bvh_launch.test sets ~bvh, ~scale and ~body_mass";
-    model_ = mbk::model_from_bvh(mbk::read_bvh(path_), options_);
+    const mbk::BvhFile bvh = mbk::read_bvh(path_);
+    model_ = mbk::model_from_bvh(bvh, options_);
+    missing_ = mbk::bvh_missing_segments(bvh, options_);
     subs_.push_back(nh_.subscribe<sensor_msgs::JointState>(
         "joint_states", 10, [this](const sensor_msgs::JointState::ConstPtr& m) {
           std::lock_guard<std::mutex> lock(heard_.mutex);
@@ -96,6 +98,7 @@ class BvhLaunchTest : public ::testing::Test {
   std::string path_;
   mbk::BvhModelOptions options_;
   mbk::Model model_;
+  std::vector<std::string> missing_;  // the table's segments the skeleton lacks
   Heard heard_;  // before subs_: destroyed after them, so no callback finds it gone
   std::vector<ros::Subscriber> subs_;
 };
@@ -131,6 +134,7 @@ TEST_F(BvhLaunchTest, BodyKinematicsForEverySegmentFiniteWithTheBodyMass) {
     }
     ASSERT_TRUE(msg.system.filled);
     EXPECT_NEAR(msg.system.mass, options_.body_mass, 1e-9 * options_.body_mass);
+    EXPECT_EQ(msg.system.missing_segments, missing_);
     EXPECT_TRUE(finite3(msg.system.mass_center) && finite3(msg.system.velocity) &&
                 finite3(msg.system.acceleration) && finite3(msg.system.angular_momentum));
   }

@@ -1,13 +1,22 @@
 // body_kinematics' system field (doc/node.md, system, messages/system.h) as the core
 // computes it, and what it says when it cannot know the angular momentum: a body with mass but
 // no inertia leaves angular_momentum_known false and angular_momentum zero (nothing invented),
-// and a massless model leaves the field unfilled. No ROS master: the fill function only.
+// and a massless model leaves the field unfilled; missing_segments names the segments of the body
+// that a .bvh ~model lacks, in every message. No ROS master: the fill function only.
 #include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
 
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/messages/body_kinematics.h"
 #include "mb_kinematics/messages/system.h"
+#include "mb_kinematics/ros/node_params.h"
+#include "test/support/renamed_bvh.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -64,6 +73,53 @@ TEST(SystemFields, NotFilledWithoutMass) {
   const mb_kinematics_msgs::SystemKinematics msg = filled(model, 5);
   EXPECT_FALSE(msg.filled);
   EXPECT_FALSE(msg.angular_momentum_known);
+}
+
+// test/io/data/cmu_walk.bvh with paws for hands, written to a file of the test's own.
+std::string skeleton_without_hands() {
+  const std::string path = ::testing::TempDir() + "system_fields_paws.bvh";
+  std::ofstream(path) << mbk_test::renamed(mbk_test::source_path("test/io/data/cmu_walk.bvh"),
+                                           {{"LeftHand", "LeftPaw"}, {"RightHand", "RightPaw"}});
+  return path;
+}
+
+// The node's ~model a skeleton without hands: every body_kinematics message names the segments
+// whose mass the others carry, also those filled over a subset of the bodies and those after.
+TEST(SystemFields, TheSegmentsAModelLacksAreInEveryMessage) {
+  mbk_ros::NodeParams p;
+  p.model = skeleton_without_hands();
+  p.bvh = {0.01, 70, "male", ""};
+  const mbk::Model model = mbk_ros::load_node_model(p);
+  const std::vector<std::string> hands = {"left hand", "right hand"};
+  ASSERT_EQ(mbk_ros::node_missing_segments(p), hands);
+  mb_kinematics_msgs::BodyKinematicsArray msg;
+  mbk_messages::init_body_kinematics(model, "R", msg, mbk_ros::node_missing_segments(p));
+  const mbk_test::Trajectory trajectory(model, 7);
+  mbk::Data<double> data(model);
+  for (const bool complete : {true, false, true}) {
+    mbk::forward_kinematics(model, trajectory.at<double>(0.4), data, mbk::Level::kAcceleration);
+    mbk_messages::fill_kinematics(ros::Time(1), model, data, complete, msg);
+    EXPECT_EQ(msg.system.filled, complete);
+    EXPECT_EQ(msg.system.missing_segments, hands);
+  }
+  EXPECT_NEAR(msg.system.mass, 70, 1e-9);
+}
+
+// Every segment found, or no anthropometric table: none named.
+TEST(SystemFields, NoSegmentMissingFromAWholeSkeletonOrARobot) {
+  mbk_ros::NodeParams p;
+  p.model = mbk_test::source_path("test/io/data/cmu_walk.bvh");
+  p.bvh = {0.01, 70, "male", ""};
+  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  p.model = skeleton_without_hands();
+  p.bvh.body_mass = 0;  // massless segments: no table
+  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  p.bvh.body_mass = 70;
+  p.lower_body_array = {0, 1};  // wins over ~model
+  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  p.lower_body_array.clear();
+  p.model = mbk_test::source_path("config/human_body.urdf");
+  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
 }
 
 }  // namespace
