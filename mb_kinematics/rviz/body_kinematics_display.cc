@@ -3,6 +3,7 @@
 #include <OgreCamera.h>
 #include <OgreSceneNode.h>
 #include <ros/console.h>
+#include <ros/init.h>
 #include <rviz/frame_manager.h>
 #include <rviz/properties/bool_property.h>
 #include <rviz/properties/color_property.h>
@@ -297,7 +298,15 @@ void BodyKinematicsDisplay::updateMasses() {
   }
 }
 
+// Once ROS shuts down (rviz's SIGINT), nothing more is drawn: rviz closes at its next check,
+// after the frames under way, and those are cheap with the glyphs hidden (under software
+// rendering a frame of Max Bodies bodies takes seconds on a loaded machine).
 void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
+  if (!ros::ok()) {
+    scene_node_->setVisible(false);
+    pending_.clear();
+    return;
+  }
   const size_t n = std::min(pending_.size(), visuals_.capacity());
   for (size_t i = pending_.size() - n; i < pending_.size(); ++i) draw(*pending_[i]);
   pending_.clear();

@@ -28,10 +28,12 @@ const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega",
 
 // The default of GlyphStyle::min_mass_fraction (doc/rviz.md: what it leaves out on real robots).
 constexpr double kDefaultMinMassFraction = 0.005;
-// The default of GlyphStyle::max_bodies (doc/rviz.md): a renderer holds some ten objects per body
-// drawn, and rviz takes about 1 s per 100 bodies drawn to close (software rendering, a loaded
-// 2-core machine): a message of 100,000 bodies must not become a million objects.
-constexpr size_t kDefaultMaxBodies = 500;
+// The default of GlyphStyle::max_bodies (doc/rviz.md#limits): more than the robots of
+// test/robots draw (at most 82 links); a renderer holds some ten objects per body drawn, and
+// under software rendering (Mesa's llvmpipe) rviz's frame time, and with it how soon rviz
+// answers SIGINT, grows with them: at 500 bodies a frame took 1.7-2.9 s on a loaded 2-core
+// machine, at 100 rviz is out within a second.
+constexpr size_t kDefaultMaxBodies = 100;
 // Bodies farther than this (m) from R's origin in some coordinate, and arrows longer than it,
 // are not drawn: their squares near the largest float, where a renderer's bounds overflow.
 constexpr double kMaxGlyphDistance = 1e15;
