@@ -49,11 +49,11 @@ visualization_msgs::Marker arrow_marker(const std_msgs::Header& header, const st
 
 double max_norm(const mb_kinematics_msgs::BodyKinematicsArray& msg, const GlyphStyle& style,
                 int q) {
-  return mbk::max_norm(mbk::glyph_bodies(msg), style, q);
+  return mbk::max_norm(mbk::select_bodies(msg, {}, style), q);
 }
 
 Glyphs make_glyphs(const mb_kinematics_msgs::BodyKinematicsArray& msg, const GlyphStyle& style) {
-  return mbk::make_glyphs(mbk::glyph_bodies(msg), style);
+  return mbk::make_glyphs(mbk::select_bodies(msg, {}, style), style);
 }
 
 visualization_msgs::MarkerArray make_marker_array(const Glyphs& glyphs, const GlyphStyle& style,

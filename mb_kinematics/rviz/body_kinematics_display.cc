@@ -3,6 +3,7 @@
 #include <OgreCamera.h>
 #include <OgreSceneNode.h>
 #include <ros/console.h>
+#include <ros/init.h>
 #include <rviz/frame_manager.h>
 #include <rviz/properties/bool_property.h>
 #include <rviz/properties/color_property.h>
@@ -23,8 +24,8 @@
 #include "mb_kinematics/rviz/body_kinematics_visual.h"
 #include "mb_kinematics/rviz/system_kinematics_visual.h"
 #include "mb_kinematics/viz/glyph_bodies.h"
-#include "mb_kinematics/viz/local_glyphs.h"
 #include "mb_kinematics/viz/legend.h"
+#include "mb_kinematics/viz/local_glyphs.h"
 
 namespace mbk_rviz {
 namespace {
@@ -259,13 +260,11 @@ void BodyKinematicsDisplay::adoptFrame(
 
 // The camera looks at the centre of the box around every O_k and G_k drawn (within
 // mbk::kMaxGlyphDistance) from where the box's bounding sphere fills the view's height.
-void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& bodies,
+void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& drawn,
                                         const std_msgs::Header& header) {
   rviz::ViewController* view = context_->getViewManager()->getCurrent();
-  const std::vector<char> drawn = mbk::drawn_bodies(bodies, style_, nullptr);
   Eigen::AlignedBox3d box;
-  for (size_t i = 0; i < bodies.size(); ++i)
-    if (drawn[i]) box.extend(bodies[i].origin).extend(bodies[i].mass_center);
+  for (const mbk::GlyphBody& b : drawn) box.extend(b.origin).extend(b.mass_center);
   Ogre::Vector3 center;
   Ogre::Quaternion orientation;
   if (!view || box.isEmpty() ||
@@ -299,7 +298,15 @@ void BodyKinematicsDisplay::updateMasses() {
   }
 }
 
+// Once ROS shuts down (rviz's SIGINT), nothing more is drawn: rviz closes at its next check,
+// after the frames under way, and those are cheap with the glyphs hidden (under software
+// rendering a frame of Max Bodies bodies takes seconds on a loaded machine).
 void BodyKinematicsDisplay::update(float /*wall_dt*/, float /*ros_dt*/) {
+  if (!ros::ok()) {
+    scene_node_->setVisible(false);
+    pending_.clear();
+    return;
+  }
   const size_t n = std::min(pending_.size(), visuals_.capacity());
   for (size_t i = pending_.size() - n; i < pending_.size(); ++i) draw(*pending_[i]);
   pending_.clear();
@@ -350,11 +357,10 @@ void BodyKinematicsDisplay::updateHistoryLength() {
   visuals_.rset_capacity(history_length_->getInt());
 }
 
-void BodyKinematicsDisplay::autoScale(const std::vector<mbk::GlyphBody>& bodies) {
+void BodyKinematicsDisplay::autoScale(const mbk::BodySelection& drawn) {
   if (!auto_scale_->getBool()) return;
   for (int q = 0; q < mbk::GlyphQuantity::kCount; ++q)
-    style_.scale[q] =
-        auto_scales_[q].update(mbk::max_norm(bodies, style_, q), auto_length_->getFloat());
+    style_.scale[q] = auto_scales_[q].update(mbk::max_norm(drawn, q), auto_length_->getFloat());
 }
 
 namespace {
@@ -424,14 +430,13 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
   deleteStatus("Transform");
   if (!filter_ok_) return;
   if (masses_.empty() && (ros::WallTime::now() - masses_tried_).toSec() > 1) updateMasses();
-  std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
-  mbk::set_masses(masses_, bodies);
+  const mbk::BodySelection drawn = mbk::select_bodies(msg, masses_, style_);
   if (auto_frame_->getBool() && !framed_) {
-    frameCamera(bodies, msg.header);
+    frameCamera(drawn.drawn(), msg.header);
     framed_ = true;
   }
-  autoScale(bodies);
-  const mbk::Glyphs glyphs = mbk::make_glyphs(bodies, style_);
+  autoScale(drawn);
+  const mbk::Glyphs glyphs = mbk::make_glyphs(drawn, style_);
   reportSkipped(glyphs);
   const mbk::Vec3<double> anchor = mbk::glyph_anchor(glyphs);
   Ogre::Vector3 at;

@@ -74,7 +74,7 @@ class BodyKinematicsDisplay
   void processMessage(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) override;
   void draw(const mb_kinematics_msgs::BodyKinematicsArray& msg);
   void makeQuantityProperties(int q, const QColor& color, double scale, const QString& unit);
-  void autoScale(const std::vector<mbk::GlyphBody>& bodies);
+  void autoScale(const mbk::BodySelection& drawn);
   void reportSkipped(const mbk::Glyphs& glyphs);  // bodies left out, a status per reason
   void reportLeftOut(const char* status, size_t count, const QString& what);
   void showLegend();
@@ -84,7 +84,8 @@ class BodyKinematicsDisplay
   // Auto Frame: the Fixed Frame becomes the message's frame when tf does not know it. Every
   // message, before the tf filter (which holds back those it cannot transform to the Fixed Frame).
   void adoptFrame(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg);
-  void frameCamera(const std::vector<mbk::GlyphBody>& bodies, const std_msgs::Header& header);
+  // `drawn`: the bodies drawn (BodySelection::drawn).
+  void frameCamera(const std::vector<mbk::GlyphBody>& drawn, const std_msgs::Header& header);
   // The whole system's visual, placed at G (in double, as the bodies' anchor).
   void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg);
 

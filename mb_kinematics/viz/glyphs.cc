@@ -21,13 +21,6 @@ bool near(const GlyphBody& b) {
          b.mass_center.lpNorm<Eigen::Infinity>() <= kMaxGlyphDistance;
 }
 
-double heaviest(const std::vector<GlyphBody>& bodies) {
-  double m = 0;
-  for (const GlyphBody& b : bodies)
-    if (std::isfinite(b.mass)) m = std::max(m, b.mass);
-  return m;
-}
-
 // A 3/4 arc about the arrow's axis, centred half-way along it, turning the right-hand way.
 GlyphArc make_arc(int q, const Vec3<double>& start, const Vec3<double>& v, double length,
                   const GlyphStyle& style) {
@@ -60,26 +53,11 @@ void add_vectors(const GlyphBody& b, const GlyphStyle& style, Glyphs& out) {
   }
 }
 
-// Lines from each drawn body's joint point O_k to that of its nearest drawn lower body.
-void add_skeleton(const std::vector<GlyphBody>& bodies, const std::vector<char>& selected,
-                  const std::vector<char>& ok, Glyphs& out) {
-  // Body index k -> position in bodies; a map, as k comes from the message (any uint32).
-  std::unordered_map<uint32_t, int> at;
-  for (size_t i = 0; i < bodies.size(); ++i) at[bodies[i].index] = static_cast<int>(i);
-  auto position = [&](uint32_t k) {
-    const auto it = at.find(k);
-    return it == at.end() ? -1 : it->second;
-  };
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!ok[i]) continue;
-    int j = position(bodies[i].lower);
-    for (int steps = 0; j >= 0 && !selected[j] && steps < 1000; ++steps)
-      j = position(bodies[j].lower);
-    if (j < 0 || !ok[j]) continue;
-    const Vec3<double>& a = bodies[j].origin;
-    const Vec3<double>& b = bodies[i].origin;
-    if ((a - b).norm() > 1e-6) out.skeleton.emplace_back(a, b);
-  }
+// Whether `b` (named `name`) is selected: drawn by the filter and not lighter than `min_mass`
+// (an unknown mass, NaN, is kept).
+bool selected(const std::string& name, const GlyphBody& b, const GlyphStyle& style,
+              double min_mass) {
+  return !(b.mass < min_mass) && style.filter.drawn(name);
 }
 
 }  // namespace
@@ -100,47 +78,80 @@ const char* glyph_quantity_name(int q) {
   return "?";
 }
 
-std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
-  const double min_mass = style.min_mass_fraction * heaviest(bodies);
-  std::vector<char> selected(bodies.size(), 0);
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    const GlyphBody& b = bodies[i];
-    selected[i] = !(b.mass < min_mass) && style.filter.drawn(b.name);  // NaN (unknown) is kept
-  }
-  return selected;
+double heaviest(const std::vector<GlyphBody>& bodies) {
+  double m = 0;
+  for (const GlyphBody& b : bodies)
+    if (std::isfinite(b.mass)) m = std::max(m, b.mass);
+  return m;
 }
 
-std::vector<char> drawn_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
-                               Glyphs* report) {
-  const std::vector<char> selected = selected_bodies(bodies, style);
-  std::vector<char> drawn(bodies.size(), 0);
-  Glyphs ignored;
-  Glyphs& out = report ? *report : ignored;
-  size_t count = 0;
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    const GlyphBody& b = bodies[i];
-    if (!finite(b)) {
-      out.skipped.push_back(b.name);
-    } else if (!selected[i]) {
-      if (style.filter.too_long(b.name)) ++out.long_names;
-    } else if (!near(b)) {
-      out.far.push_back(b.name);
-    } else if (count == style.max_bodies) {
-      ++out.over_max_bodies;
-    } else {
-      drawn[i] = 1;
-      ++count;
-    }
+std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
+  const double min_mass = style.min_mass_fraction * heaviest(bodies);
+  std::vector<char> out(bodies.size(), 0);
+  for (size_t i = 0; i < bodies.size(); ++i)
+    out[i] = selected(bodies[i].name, bodies[i], style, min_mass);
+  return out;
+}
+
+BodySelection::BodySelection(const GlyphStyle& style, double heaviest)
+    : style_(style), min_mass_(style.min_mass_fraction * heaviest) {}
+
+void BodySelection::add(const std::string& name, const GlyphBody& body) {
+  const bool chosen = selected(name, body, style_, min_mass_);
+  bool drawn = false;
+  if (!finite(body)) {
+    report_.skipped.push_back(name);
+  } else if (!chosen) {
+    if (style_.filter.too_long(name)) ++report_.long_names;
+  } else if (!near(body)) {
+    report_.far.push_back(name);
+  } else if (drawn_.size() >= style_.max_bodies) {
+    ++report_.over_max_bodies;
+  } else {
+    drawn = true;
+    drawn_.push_back(body);
+    drawn_.back().name = name;
   }
-  return drawn;
+  if (style_.skeleton)
+    links_.push_back({body.index, body.lower, chosen, drawn ? int(drawn_.size()) - 1 : -1});
+}
+
+// Body index k -> position in the message; a map, as k comes from the message (any uint32).
+std::vector<std::pair<Vec3<double>, Vec3<double>>> BodySelection::skeleton() const {
+  std::unordered_map<uint32_t, int> at;
+  for (size_t i = 0; i < links_.size(); ++i) at[links_[i].index] = static_cast<int>(i);
+  auto position = [&](uint32_t k) {
+    const auto it = at.find(k);
+    return it == at.end() ? -1 : it->second;
+  };
+  std::vector<std::pair<Vec3<double>, Vec3<double>>> out;
+  for (const Link& link : links_) {
+    if (link.drawn < 0) continue;
+    int j = position(link.lower);
+    for (int steps = 0; j >= 0 && !links_[j].selected && steps < 1000; ++steps)
+      j = position(links_[j].lower);
+    if (j < 0 || links_[j].drawn < 0) continue;
+    const Vec3<double>& a = drawn_[links_[j].drawn].origin;
+    const Vec3<double>& b = drawn_[link.drawn].origin;
+    if ((a - b).norm() > 1e-6) out.emplace_back(a, b);
+  }
+  return out;
+}
+
+BodySelection select_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
+  BodySelection selection(style, heaviest(bodies));
+  for (const GlyphBody& b : bodies) selection.add(b.name, b);
+  return selection;
+}
+
+double max_norm(const BodySelection& selection, int q) {
+  double m = 0;
+  for (const GlyphBody& b : selection.drawn()) m = std::max(m, b.vectors[q].norm());
+  return m;
 }
 
 double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q) {
-  const std::vector<char> drawn = drawn_bodies(bodies, style, nullptr);
-  double m = 0;
-  for (size_t i = 0; i < bodies.size(); ++i)
-    if (drawn[i]) m = std::max(m, bodies[i].vectors[q].norm());
-  return m;
+  return max_norm(select_bodies(bodies, style), q);
 }
 
 double AutoScale::update(double max, double length, double decay) {
@@ -148,16 +159,18 @@ double AutoScale::update(double max, double length, double decay) {
   return max_ > 0 ? length / max_ : 1.0;
 }
 
-Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
-  Glyphs out;
-  const std::vector<char> drawn = drawn_bodies(bodies, style, &out);
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!drawn[i]) continue;
-    add_vectors(bodies[i], style, out);
-    if (style.mass_centers) out.mass_centers.push_back(bodies[i].mass_center);
+Glyphs make_glyphs(const BodySelection& selection, const GlyphStyle& style) {
+  Glyphs out = selection.report();
+  for (const GlyphBody& b : selection.drawn()) {
+    add_vectors(b, style, out);
+    if (style.mass_centers) out.mass_centers.push_back(b.mass_center);
   }
-  if (style.skeleton) add_skeleton(bodies, selected_bodies(bodies, style), drawn, out);
+  if (style.skeleton) out.skeleton = selection.skeleton();
   return out;
+}
+
+Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style) {
+  return make_glyphs(select_bodies(bodies, style), style);
 }
 
 }  // namespace mbk

@@ -28,10 +28,12 @@ const char* glyph_quantity_name(int q);  // "velocity", "acceleration", "omega",
 
 // The default of GlyphStyle::min_mass_fraction (doc/rviz.md: what it leaves out on real robots).
 constexpr double kDefaultMinMassFraction = 0.005;
-// The default of GlyphStyle::max_bodies (doc/rviz.md): a renderer holds some ten objects per body
-// drawn, and rviz takes about 1 s per 100 bodies drawn to close (software rendering, a loaded
-// 2-core machine): a message of 100,000 bodies must not become a million objects.
-constexpr size_t kDefaultMaxBodies = 500;
+// The default of GlyphStyle::max_bodies (doc/rviz.md#limits): more than the robots of
+// test/robots draw (at most 82 links); a renderer holds some ten objects per body drawn, and
+// under software rendering (Mesa's llvmpipe) rviz's frame time, and with it how soon rviz
+// answers SIGINT, grows with them: at 500 bodies a frame took 1.7-2.9 s on a loaded 2-core
+// machine, at 100 rviz is out within a second.
+constexpr size_t kDefaultMaxBodies = 100;
 // Bodies farther than this (m) from R's origin in some coordinate, and arrows longer than it,
 // are not drawn: their squares near the largest float, where a renderer's bounds overflow.
 constexpr double kMaxGlyphDistance = 1e15;
@@ -100,13 +102,46 @@ struct Glyphs {
   size_t over_max_bodies = 0;        // bodies left out by GlyphStyle::max_bodies
 };
 
-// Whether make_glyphs draws each body: selected, finite, within kMaxGlyphDistance and among the
-// first max_bodies of those; what it leaves out goes to `report`'s skipped, far, long_names and
-// over_max_bodies when given.
-std::vector<char> drawn_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style,
-                               Glyphs* report);
+// The bodies drawn of a message, chosen body after body in the message's order in one pass:
+// selected (selected_bodies), finite, within kMaxGlyphDistance and among the first max_bodies of
+// those. Only the drawn bodies are kept (at most max_bodies), so that everything after the pass
+// (auto-scale, glyphs, camera framing) works on the bodies drawn, not on the message's; what is
+// left out is counted in report()'s skipped, far, long_names and over_max_bodies.
+class BodySelection {
+ public:
+  // `heaviest`: the largest known mass of the message's bodies (0 if none known). `style` must
+  // outlive the selection.
+  BodySelection(const GlyphStyle& style, double heaviest);
+  // The next body: its values in `body` (mass NaN if unknown), its name in `name` (body.name is
+  // not read: a caller can fill one GlyphBody for every body and copy names only of those kept).
+  void add(const std::string& name, const GlyphBody& body);
+  const std::vector<GlyphBody>& drawn() const { return drawn_; }
+  const Glyphs& report() const { return report_; }
+  // Lines from each drawn body's joint point O_k to that of its nearest drawn lower body (through
+  // bodies not selected; GlyphStyle::skeleton must have been set for add() to keep the chain).
+  std::vector<std::pair<Vec3<double>, Vec3<double>>> skeleton() const;
+
+ private:
+  struct Link {  // every body's place in the chain, for the skeleton
+    uint32_t index, lower;
+    bool selected;
+    int drawn;  // its position in drawn_, -1 if not drawn
+  };
+  const GlyphStyle& style_;
+  double min_mass_;
+  std::vector<GlyphBody> drawn_;
+  Glyphs report_;
+  std::vector<Link> links_;
+};
+
+// BodySelection over `bodies`, every one with its name and mass.
+BodySelection select_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style);
+
+// The largest known mass of `bodies` (0 if none known).
+double heaviest(const std::vector<GlyphBody>& bodies);
 
 // The largest |vector| of quantity q over the bodies drawn (as make_glyphs draws them).
+double max_norm(const BodySelection& selection, int q);
 double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q);
 
 // Whether each body is selected: the filter draws its name, and it is not lighter than
@@ -124,6 +159,8 @@ class AutoScale {
   double max_ = 0;
 };
 
+// The glyphs of the bodies drawn, with the selection's report.
+Glyphs make_glyphs(const BodySelection& selection, const GlyphStyle& style);
 Glyphs make_glyphs(const std::vector<GlyphBody>& bodies, const GlyphStyle& style);
 
 }  // namespace mbk

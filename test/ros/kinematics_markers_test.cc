@@ -194,6 +194,35 @@ TEST(KinematicsMarkers, LightBodiesLeftOutByMassFraction) {
   EXPECT_EQ(mbk::make_glyphs(bodies, style).arrows.size(), 16u);
 }
 
+// The display's path: the bodies chosen from the message in one pass (masses by name), only
+// the drawn ones kept; the same picture as from every body converted.
+TEST(KinematicsMarkers, SelectionFromTheMessageKeepsOnlyTheBodiesDrawn) {
+  auto msg = message();
+  msg.bodies = {body("heavy", 1, 0, 0.0),   body("finger", 2, 1, 0.5), body("mount", 3, 2, 1.0),
+                body("unknown", 4, 3, 1.5), body("nan", 5, 4, 2.0),    body("last", 6, 5, 2.5)};
+  msg.bodies[4].twist.linear.x = std::numeric_limits<double>::quiet_NaN();
+  const std::map<std::string, double> masses = {{"heavy", 5.0}, {"finger", 0.015}, {"mount", 0.0}};
+  GlyphStyle style;
+  style.skeleton = true;
+  style.max_bodies = 2;
+  const mbk::BodySelection selection = mbk::select_bodies(msg, masses, style);
+  ASSERT_EQ(selection.drawn().size(), 2u);
+  EXPECT_EQ(selection.drawn()[1].name, "unknown");
+  EXPECT_EQ(selection.report().skipped, std::vector<std::string>({"nan"}));
+  EXPECT_EQ(selection.report().over_max_bodies, 1u);  // "last"
+  std::vector<mbk::GlyphBody> bodies = mbk::glyph_bodies(msg);
+  mbk::set_masses(masses, bodies);
+  const Glyphs from_message = mbk::make_glyphs(selection, style);
+  const Glyphs from_bodies = mbk::make_glyphs(bodies, style);
+  EXPECT_EQ(from_message.mass_centers, from_bodies.mass_centers);
+  EXPECT_EQ(from_message.arrows.size(), from_bodies.arrows.size());
+  EXPECT_EQ(from_message.skeleton, from_bodies.skeleton);
+  ASSERT_EQ(from_message.skeleton.size(), 1u);  // O_heavy to O_unknown, across those left out
+  EXPECT_EQ(from_message.skeleton[0].second, Vec3<double>(0, 0, 1.5));
+  EXPECT_EQ(mbk::max_norm(selection, mbk_ros::GlyphQuantity::kAlpha),
+            mbk::max_norm(bodies, style, mbk_ros::GlyphQuantity::kAlpha));
+}
+
 TEST(KinematicsMarkers, ExcludedNamesLeftOut) {
   const std::vector<mbk::GlyphBody> bodies = weighed_bodies();
   GlyphStyle style;
