@@ -32,13 +32,16 @@ def locate_mbk_bag():
     return path
 
 
-def write_atomically(path, text):
+def write_atomically(path, text, durable=True):
+    """`text` to `path` under a temporary name, renamed into place when whole; `durable`: on the
+    disk (fsync) before the rename."""
     os.makedirs(os.path.dirname(path), exist_ok=True)
     temporary = "%s.mbk-tmp-%d-%d" % (path, os.getpid(), threading.get_ident())
     with open(temporary, "w", encoding="utf-8", newline="") as f:
         f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
+        if durable:
+            f.flush()
+            os.fsync(f.fileno())
     os.replace(temporary, path)
 
 
@@ -104,7 +107,10 @@ def run_job(job, running=None):
     if summary["status"] != "failed":
         record = {"key": job["key"], "summary": summary,
                   "outputs": [_file_identity(path) for path in job["outputs"]]}
-        write_atomically(job["record"], json.dumps(record, sort_keys=True))
+        # Not synced: a record a power cut loses only makes its job run again, and the outputs'
+        # sizes and times it holds catch outputs a power cut cut short (mbk bag does not sync
+        # them either). The sync was an idle wait per file, longer while the disk writes back.
+        write_atomically(job["record"], json.dumps(record, sort_keys=True), durable=False)
     return summary
 
 

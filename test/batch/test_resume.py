@@ -148,3 +148,17 @@ def test_a_crashed_job_fails_alone_and_is_done_again(walks, expected, tmp_path):
     rows = summary_rows(out)
     assert [r["input"] for r in rows if r["resumed"] == "0"] == [failed[0]["input"]]
     assert output_files(out) == expected
+
+
+def test_a_jobs_record_is_renamed_into_place_without_a_sync(walks, tmp_path, monkeypatch):
+    """A finished job's record is whole (renamed into place) and skips the job next time, but is
+    not synced to the disk: losing it to a power cut only runs the job again."""
+    from mb_kinematics import batch_job
+    synced = []
+    monkeypatch.setattr(batch_job.os, "fsync", synced.append)
+    options = {"--scale": CMU_SCALE, "--body-mass": CMU_MASS}
+    job = batch_job.plan([(os.path.join(walks, "a0.bvh"), "a0")], str(tmp_path / "out"),
+                         options)[0]
+    assert batch_job.run_job(job)["status"] == "ok"
+    assert batch_job.finished(job)["written"] == 300
+    assert synced == []
