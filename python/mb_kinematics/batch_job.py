@@ -65,7 +65,8 @@ def _bag_command(job):
     mbk_bag = job["mbk_bag"] if os.path.isfile(job["mbk_bag"]) else locate_mbk_bag()
     command = [mbk_bag, "bag", job["input"]] + job["arguments"] + job["output_arguments"]
     command += ["--threads", str(job["threads"])]
-    command += ["--summary-json", job["run_summary"]]
+    # The summary on the pipe it is read from: no file to write, rename, read and remove per job.
+    command += ["--summary-json", "/dev/stdout"]
     setpriv = shutil.which("setpriv")
     # The job ends with the process that runs it (a Dask worker killed): its temporaries go.
     return ([setpriv, "--pdeathsig", "TERM"] if setpriv else []) + command
@@ -77,18 +78,17 @@ def run_job(job, running=None):
     its record, so that a later run skips it. `running`: a set the child process is kept in while
     it runs (for an interruption to stop it)."""
     started = time.monotonic()
-    for path in (job["record"], job["run_summary"]):
-        if os.path.exists(path):
-            os.remove(path)
+    if os.path.exists(job["record"]):
+        os.remove(job["record"])
     os.makedirs(os.path.dirname(job["record"]), exist_ok=True)
     for path in job["outputs"]:
         os.makedirs(os.path.dirname(path), exist_ok=True)
     child = subprocess.Popen(_bag_command(job), stdin=subprocess.DEVNULL,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     if running is not None:
         running.add(child)
     try:
-        _, stderr = child.communicate()
+        stdout, stderr = child.communicate()
     finally:
         if running is not None:
             running.discard(child)
@@ -97,10 +97,8 @@ def run_job(job, running=None):
         name = signal.Signals(-child.returncode).name
         return failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip())
     try:
-        with open(job["run_summary"], encoding="utf-8") as f:
-            summary = json.load(f)
-        os.remove(job["run_summary"])
-    except (OSError, ValueError):
+        summary = json.loads(stdout.decode("utf-8", "replace"))
+    except ValueError:
         return failure(job, _last_error_line(stderr) or "mbk bag wrote no summary")
     summary["input"], summary["outputs"] = job["input"], job["outputs"]
     summary["seconds"] = time.monotonic() - started
@@ -160,7 +158,6 @@ def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1):
                      "output_arguments": output_arguments, "mbk_bag": mbk_bag, "key": key,
                      "threads": options.get("--threads", threads),
                      "record": os.path.join(state, stem + ".json"),
-                     "run_summary": os.path.join(state, stem + ".run.json"),
                      "bytes": _file_identity(path)[0]})
     return jobs
 
