@@ -156,12 +156,15 @@ def main():
             "%.1f" % cpu[name] if name in cpu else "(workers')",
             "%.2f" % (cpu[name] / s) if name in cpu else ""))
     two = seconds["mbk batch --jobs 2"]
-    busy = cpu["mbk batch --jobs 1"] / one
-    print("\n--jobs 2 / --jobs 1: %.2fx the files/s (wanted: at least 1.8x). One job keeps %.2f "
-          "cores busy (mbk bag's --threads: the cores), so two on %d cores give at most %.2fx "
-          "(cores / %.2f) at the same CPU s per file" % (
-              one / two, busy, len(os.sched_getaffinity(0)),
-              len(os.sched_getaffinity(0)) / busy, busy))
+    busy, cores = cpu["mbk batch --jobs 1"] / one, len(os.sched_getaffinity(0))
+    print("\n--jobs 2 / --jobs 1: %.2fx the files/s (wanted: at least 1.8x)." % (one / two))
+    if busy >= 1:
+        print("One job keeps %.2f cores busy (mbk bag's --threads: the cores), so two on %d cores "
+              "give at most %.2fx (%d / %.2f) at the same CPU s per file" % (
+                  busy, cores, cores / busy, cores, busy))
+    else:
+        print("One job kept %.2f cores busy: the machine's other load took the rest, so the "
+              "speed-ups say little (run it again when `uptime` shows a load under 1)" % busy)
     dask = seconds["Dask LocalCluster, 2 workers"]
     print("Dask / --jobs 2: %.2f (the cluster's start, %.1f s, not counted)" % (dask / two,
                                                                                  cluster_start))
