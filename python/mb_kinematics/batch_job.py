@@ -1,6 +1,7 @@
 """mbk batch's job (doc/batch.md): `mbk bag` on one input as a child process, here or on a Dask
 worker, and the record a finished job leaves so that a later run with the same input, options
 and tool skips it."""
+import glob
 import hashlib
 import json
 import os
@@ -113,11 +114,16 @@ def run_job(job, running=None):
 
 
 def _tool_identity(mbk_bag):
-    """What changes when mbk_bag is rebuilt or upgraded: a hash of the executable."""
+    """What changes when mbk_bag is rebuilt or upgraded: a hash of the executable and of the
+    package's libraries beside it (lib/libmbk_*.so above lib/mb_kinematics/mbk_bag), which hold
+    its code: a rebuilt library changes the outputs as a rebuilt executable does."""
+    lib = os.path.dirname(os.path.dirname(os.path.abspath(mbk_bag)))
     digest = hashlib.sha256()
-    with open(mbk_bag, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
+    for path in [mbk_bag] + sorted(glob.glob(os.path.join(lib, "libmbk_*.so*"))):
+        digest.update(os.path.basename(path).encode() + b"\0")
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                digest.update(block)
     return digest.hexdigest()
 
 

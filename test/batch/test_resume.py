@@ -164,3 +164,22 @@ def test_a_jobs_record_is_renamed_into_place_without_a_sync(walks, tmp_path, mon
     assert batch_job.finished(job)["written"] == 300
     assert synced == [] and removed == []
     assert os.listdir(os.path.join(out, ".mbk-batch")) == ["a0.json"]
+
+
+def test_a_rebuilt_library_of_mbk_bag_makes_the_jobs_run_again(walks, tmp_path):
+    """The key holds the package's libraries beside mbk_bag (its code), not only the executable:
+    a rebuilt libmbk_offline.so changes the outputs as a rebuilt mbk_bag does."""
+    from mb_kinematics import batch_job
+    lib = tmp_path / "lib"
+    (lib / "mb_kinematics").mkdir(parents=True)
+    mbk_bag, library = lib / "mb_kinematics" / "mbk_bag", lib / "libmbk_offline.so"
+    mbk_bag.write_bytes(b"the executable")
+    library.write_bytes(b"the code")
+
+    def key():
+        return batch_job.plan([(os.path.join(walks, "a0.bvh"), "a0")], str(tmp_path / "out"), {},
+                              mbk_bag=str(mbk_bag))[0]["key"]
+    before = key()
+    assert key() == before
+    library.write_bytes(b"the code, rebuilt")
+    assert key() != before
