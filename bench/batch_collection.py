@@ -6,7 +6,7 @@ processes (one thread each), in the same run; files/s, samples/s, and the speed-
 per-file overhead: the start of mbk_bag (`mbk bag --help`), and an `mbk bag` run on a walk of 10
 frames (start, model, reading, writing), the least of --repeats runs. Prints a markdown table
 (CPU s: the CPU time of the processes a run started, which the machine's other load leaves
-about as it is).
+about as it is; cores busy: CPU s / s), the load average before and after, and the speed-ups.
 Not a test: the figures depend on the machine's load.
 
   source devel/setup.bash; cd /tmp; /usr/bin/python3 .../bench/batch_collection.py [--files 200]
@@ -119,6 +119,7 @@ def main():
     p.add_argument("--repeats", type=int, default=5)
     args = p.parse_args()
     from distributed import Client, LocalCluster
+    load = os.getloadavg()
     work = tempfile.mkdtemp(prefix="mbk_batch_bench_")
     try:
         folder = os.path.join(work, "walks")
@@ -143,18 +144,29 @@ def main():
         start, run, python = overhead(work, args.repeats)
     finally:
         shutil.rmtree(work)
-    print("%d walks of %d frames (%d samples), %d cores\n" % (args.files, args.frames, samples,
-                                                               len(os.sched_getaffinity(0))))
-    print("| run | s | files/s | samples/s | vs --jobs 1 | CPU s |")
-    print("|---|---|---|---|---|---|")
+    print("%d walks of %d frames (%d samples), %d cores; load average %.2f before, %.2f after\n"
+          % (args.files, args.frames, samples, len(os.sched_getaffinity(0)), load[0],
+             os.getloadavg()[0]))
+    print("| run | s | files/s | samples/s | vs --jobs 1 | CPU s | cores busy |")
+    print("|---|---|---|---|---|---|---|")
     one = seconds["mbk batch --jobs 1"]
     for name, s in seconds.items():
-        print("| %s | %.1f | %.1f | %.0f | %.2fx | %s |" % (
+        print("| %s | %.1f | %.1f | %.0f | %.2fx | %s | %s |" % (
             name, s, args.files / s, samples / s, one / s,
-            "%.1f" % cpu[name] if name in cpu else "(workers')"))
+            "%.1f" % cpu[name] if name in cpu else "(workers')",
+            "%.2f" % (cpu[name] / s) if name in cpu else ""))
     two = seconds["mbk batch --jobs 2"]
+    busy, cores = cpu["mbk batch --jobs 1"] / one, len(os.sched_getaffinity(0))
+    print("\n--jobs 2 / --jobs 1: %.2fx the files/s (wanted: at least 1.8x)." % (one / two))
+    if busy >= 1:
+        print("One job keeps %.2f cores busy (mbk bag's --threads: the cores), so two on %d cores "
+              "give at most %.2fx (%d / %.2f) at the same CPU s per file" % (
+                  busy, cores, cores / busy, cores, busy))
+    else:
+        print("One job kept %.2f cores busy: the machine's other load took the rest, so the "
+              "speed-ups say little (run it again when `uptime` shows a load under 1)" % busy)
     dask = seconds["Dask LocalCluster, 2 workers"]
-    print("\nDask / --jobs 2: %.2f (the cluster's start, %.1f s, not counted)" % (dask / two,
+    print("Dask / --jobs 2: %.2f (the cluster's start, %.1f s, not counted)" % (dask / two,
                                                                                  cluster_start))
     print("per file: mbk bag's start (--help) %.3f s; a 10-frame walk %.3f s (start, model, "
           "read, write); the batch's Python start %.3f s once; the collection's mean %.3f s "

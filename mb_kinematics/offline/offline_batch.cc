@@ -32,10 +32,10 @@ OfflineBatch::~OfflineBatch() {
   for (std::thread& t : threads_) t.join();
 }
 
-int OfflineBatch::rows_per_block(size_t bytes) const {
+int OfflineBatch::rows_per_block(size_t bytes, size_t text_bytes) const {
   const size_t row = sizeof(OfflineRow) +
                      model_.bodies.size() * (sizeof(Mat3<double>) + 8 * sizeof(Vec3<double>)) +
-                     3 * model_.nq * sizeof(double);
+                     3 * model_.nq * sizeof(double) + text_bytes;
   const int floor = 4 * threads();
   return std::max(floor, static_cast<int>(std::min<size_t>(512, bytes / row)));
 }
@@ -43,7 +43,7 @@ int OfflineBatch::rows_per_block(size_t bytes) const {
 void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) const {
   const double t = rec_.stamp[r];  // on the stamps' grid when they lie on one
   out.stamp = rec_.recorded(r);
-  out.drop_reason.clear();
+  out.drop_reason.clear(), out.drop_detail.clear();  // a reused row keeps no earlier drop's
   const auto drop = [&](const char* reason, const std::string& detail) {
     out.drop_reason = reason;
     out.drop_detail = "sample at t = " + std::to_string(out.stamp) + detail;
@@ -122,25 +122,60 @@ void OfflineBatch::work(int worker) {
   }
 }
 
+namespace {
+
+// The most bytes of text a row holds (OfflineRow::text, the formatter's).
+size_t text_bytes(const std::vector<OfflineRow>& rows) {
+  size_t most = 0;
+  for (const OfflineRow& row : rows) most = std::max(most, row.text.capacity());
+  return most;
+}
+
+// Waits for the block in flight; what its workers threw gives way to the caller's exception.
+void wait_for(OfflineBatch& batch) {
+  try {
+    batch.finish();
+  } catch (...) {
+  }
+}
+
+}  // namespace
+
 RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int end,
                         const std::function<void(const OfflineRow&)>& use,
                         const std::function<void(int)>& progress) {
   using Clock = std::chrono::steady_clock;
   RowSeconds s;
-  const int block = batch.rows_per_block(4 << 20);
-  std::vector<OfflineRow> ready(block, OfflineRow(model)), next = ready;
-  if (begin < end) s.compute += batch.compute(begin, std::min(begin + block, end), ready);
-  for (int first = begin; first < end; first += block) {
-    const int last = std::min(first + block, end);
-    if (last < end) batch.start(last, std::min(last + block, end), next);
+  if (begin >= end) return s;
+  // The rows made are the rows computed (a short recording makes few), and a block's results,
+  // with each row's formatted text (a CSV row of a large model outweighs its kinematics), stay
+  // within 4 MB: the first block is small, and its texts size the others. Rows made and touched
+  // once per call and never reused were most of a short run's page faults.
+  const OfflineRow blank(model);
+  int first = begin, last = std::min(end, begin + batch.rows_per_block(0));
+  std::vector<OfflineRow> ready(last - first, blank), next;
+  s.compute += batch.compute(first, last, ready);
+  const int block = batch.rows_per_block(4 << 20, text_bytes(ready));
+  for (;;) {
+    const int after = std::min(last + block, end);
+    if (last < end) {
+      if (static_cast<int>(next.size()) < after - last) next.resize(after - last, blank);
+      batch.start(last, after, next);
+    }
     const auto t0 = Clock::now();
-    for (int r = first; r < last; ++r) use(ready[r - first]);
+    try {
+      for (int r = first; r < last; ++r) use(ready[r - first]);
+      progress(last);
+    } catch (...) {  // a refused row (a bag's stamp): the block in flight writes into `next`
+      if (last < end) wait_for(batch);
+      throw;
+    }
     s.use += std::chrono::duration<double>(Clock::now() - t0).count();
-    progress(last);
-    if (last < end) s.compute += batch.finish();
+    if (last == end) return s;
+    s.compute += batch.finish();
     std::swap(ready, next);
+    first = last, last = after;
   }
-  return s;
 }
 
 }  // namespace mbk

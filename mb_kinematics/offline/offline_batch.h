@@ -78,8 +78,9 @@ class OfflineBatch {
   int threads() const { return static_cast<int>(workers_.size()); }
   std::vector<CoordinateError> error_summary() const { return workers_.front().error_summary(); }
   const OfflineStates& states() const { return workers_.front(); }  // not while computing
-  // Rows per block that keep one block's results within `bytes` (at least 4 per thread).
-  int rows_per_block(size_t bytes) const;
+  // Rows per block that keep one block's results, with `text_bytes` of formatted text per row,
+  // within `bytes` (at least 4 per thread).
+  int rows_per_block(size_t bytes, size_t text_bytes = 0) const;
 
  private:
   void compute_row(OfflineStates& states, int r, OfflineRow& out) const;
@@ -109,8 +110,9 @@ class OfflineBatch {
 // std::thread::hardware_concurrency(), at least 1.
 int default_thread_count();
 
-// Rows [begin, end) of `batch`, a block at a time (rows_per_block(4 MB)), each handed to `use` in
-// order while the workers compute the next block; progress(rows done) after each block.
+// Rows [begin, end) of `batch`, a block at a time (rows_per_block(4 MB) with the first block's
+// formatted text; the first block the least), each handed to `use` in order while the workers
+// compute the next block; progress(rows done) after each block.
 // Returns the seconds the workers spent (summed) and the seconds spent in `use`.
 struct RowSeconds {
   double compute = 0, use = 0;

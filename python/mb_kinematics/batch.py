@@ -149,8 +149,7 @@ def _absolute(job):
                     outputs=[os.path.abspath(o) for o in job["outputs"]])
     absolute["output_arguments"] = [os.path.abspath(a) if a in job["outputs"] else a
                                     for a in job["output_arguments"]]
-    for name in ("record", "run_summary"):
-        absolute[name] = os.path.abspath(job[name])
+    absolute["record"] = os.path.abspath(job["record"])
     return absolute
 
 

@@ -1,6 +1,7 @@
 """mbk batch's job (doc/batch.md): `mbk bag` on one input as a child process, here or on a Dask
 worker, and the record a finished job leaves so that a later run with the same input, options
 and tool skips it."""
+import glob
 import hashlib
 import json
 import os
@@ -32,13 +33,16 @@ def locate_mbk_bag():
     return path
 
 
-def write_atomically(path, text):
+def write_atomically(path, text, durable=True):
+    """`text` to `path` under a temporary name, renamed into place when whole; `durable`: on the
+    disk (fsync) before the rename."""
     os.makedirs(os.path.dirname(path), exist_ok=True)
     temporary = "%s.mbk-tmp-%d-%d" % (path, os.getpid(), threading.get_ident())
     with open(temporary, "w", encoding="utf-8", newline="") as f:
         f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
+        if durable:
+            f.flush()
+            os.fsync(f.fileno())
     os.replace(temporary, path)
 
 
@@ -62,7 +66,8 @@ def _bag_command(job):
     mbk_bag = job["mbk_bag"] if os.path.isfile(job["mbk_bag"]) else locate_mbk_bag()
     command = [mbk_bag, "bag", job["input"]] + job["arguments"] + job["output_arguments"]
     command += ["--threads", str(job["threads"])]
-    command += ["--summary-json", job["run_summary"]]
+    # The summary on the pipe it is read from: no file to write, rename, read and remove per job.
+    command += ["--summary-json", "/dev/stdout"]
     setpriv = shutil.which("setpriv")
     # The job ends with the process that runs it (a Dask worker killed): its temporaries go.
     return ([setpriv, "--pdeathsig", "TERM"] if setpriv else []) + command
@@ -74,18 +79,17 @@ def run_job(job, running=None):
     its record, so that a later run skips it. `running`: a set the child process is kept in while
     it runs (for an interruption to stop it)."""
     started = time.monotonic()
-    for path in (job["record"], job["run_summary"]):
-        if os.path.exists(path):
-            os.remove(path)
+    if os.path.exists(job["record"]):
+        os.remove(job["record"])
     os.makedirs(os.path.dirname(job["record"]), exist_ok=True)
     for path in job["outputs"]:
         os.makedirs(os.path.dirname(path), exist_ok=True)
     child = subprocess.Popen(_bag_command(job), stdin=subprocess.DEVNULL,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     if running is not None:
         running.add(child)
     try:
-        _, stderr = child.communicate()
+        stdout, stderr = child.communicate()
     finally:
         if running is not None:
             running.discard(child)
@@ -94,26 +98,32 @@ def run_job(job, running=None):
         name = signal.Signals(-child.returncode).name
         return failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip())
     try:
-        with open(job["run_summary"], encoding="utf-8") as f:
-            summary = json.load(f)
-        os.remove(job["run_summary"])
-    except (OSError, ValueError):
+        summary = json.loads(stdout.decode("utf-8", "replace"))
+    except ValueError:
         return failure(job, _last_error_line(stderr) or "mbk bag wrote no summary")
     summary["input"], summary["outputs"] = job["input"], job["outputs"]
     summary["seconds"] = time.monotonic() - started
     if summary["status"] != "failed":
         record = {"key": job["key"], "summary": summary,
                   "outputs": [_file_identity(path) for path in job["outputs"]]}
-        write_atomically(job["record"], json.dumps(record, sort_keys=True))
+        # Not synced: a record a power cut loses only makes its job run again, and the outputs'
+        # sizes and times it holds catch outputs a power cut cut short (mbk bag does not sync
+        # them either). The sync was an idle wait per file, longer while the disk writes back.
+        write_atomically(job["record"], json.dumps(record, sort_keys=True), durable=False)
     return summary
 
 
 def _tool_identity(mbk_bag):
-    """What changes when mbk_bag is rebuilt or upgraded: a hash of the executable."""
+    """What changes when mbk_bag is rebuilt or upgraded: a hash of the executable and of the
+    package's libraries beside it (lib/libmbk_*.so above lib/mb_kinematics/mbk_bag), which hold
+    its code: a rebuilt library changes the outputs as a rebuilt executable does."""
+    lib = os.path.dirname(os.path.dirname(os.path.abspath(mbk_bag)))
     digest = hashlib.sha256()
-    with open(mbk_bag, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            digest.update(block)
+    for path in [mbk_bag] + sorted(glob.glob(os.path.join(lib, "libmbk_*.so*"))):
+        digest.update(os.path.basename(path).encode() + b"\0")
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                digest.update(block)
     return digest.hexdigest()
 
 
@@ -154,7 +164,6 @@ def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1):
                      "output_arguments": output_arguments, "mbk_bag": mbk_bag, "key": key,
                      "threads": options.get("--threads", threads),
                      "record": os.path.join(state, stem + ".json"),
-                     "run_summary": os.path.join(state, stem + ".run.json"),
                      "bytes": _file_identity(path)[0]})
     return jobs
 

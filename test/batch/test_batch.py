@@ -3,8 +3,8 @@ them, the outputs of one job and of two byte for byte those of direct `mbk bag` 
 summary from mbk bag's own --summary-json, the exit status counting the failure."""
 import os
 
-from conftest import (DAMAGED, PANDA, batch, batch_arguments, output_files, recordings,
-                      summary_rows)
+from conftest import (CMU_MASS, CMU_SCALE, DAMAGED, PANDA, batch, batch_arguments, output_files,
+                      recordings, summary_rows)
 
 
 def test_one_job_two_jobs_and_direct_runs_agree(collection, direct_runs, tmp_path):
@@ -186,3 +186,26 @@ def test_summary_json_of_a_failure_is_json(tmp_path):
     assert failed["input"] == name.replace("\udcff", "\ufffd")
     assert failed["error"].endswith("cannot open BVH file")
     assert not os.path.exists(str(tmp_path / "o.csv"))
+
+
+def test_the_jobs_share_the_cores(walk_template, tmp_path, monkeypatch):
+    """--jobs N on C cores: each mbk bag runs on C // N threads (at least 1), so that N jobs
+    keep the cores busy without contending for them; a given --threads is passed as given."""
+    from mb_kinematics import batch, batch_job
+    threads, command = [], batch_job._bag_command
+
+    def spy(job):
+        line = command(job)
+        threads.append(int(line[line.index("--threads") + 1]))
+        return line
+    monkeypatch.setattr(batch_job, "_bag_command", spy)
+    monkeypatch.setattr(batch.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3})
+    walk = os.path.join(walk_template[0], "a0.bvh")
+    for jobs, given, expected in ((1, None, 4), (2, None, 2), (3, None, 1), (8, None, 1),
+                                  (2, 3, 3)):
+        del threads[:]
+        options = {"threads": given} if given else {}
+        rows = batch.run([walk], str(tmp_path / ("%d-%s" % (jobs, given))), jobs=jobs,
+                         scale=CMU_SCALE, body_mass=CMU_MASS, **options)
+        assert [r["status"] for r in rows] == ["ok"]
+        assert threads == [expected], (jobs, given)

@@ -30,8 +30,7 @@ def arguments(walks, out, *more):
 
 
 def records(out):
-    return [p for p in glob.glob(os.path.join(out, ".mbk-batch", "**", "*.json"), recursive=True)
-            if not p.endswith(".run.json")]
+    return glob.glob(os.path.join(out, ".mbk-batch", "**", "*.json"), recursive=True)
 
 
 def running_mbk_bag(batch_process):
@@ -148,3 +147,39 @@ def test_a_crashed_job_fails_alone_and_is_done_again(walks, expected, tmp_path):
     rows = summary_rows(out)
     assert [r["input"] for r in rows if r["resumed"] == "0"] == [failed[0]["input"]]
     assert output_files(out) == expected
+
+
+def test_a_jobs_record_is_renamed_into_place_without_a_sync(walks, tmp_path, monkeypatch):
+    """A finished job's record is whole (renamed into place) and skips the job next time, but is
+    not synced to the disk: losing it to a power cut only runs the job again. It is the job's
+    only file besides the outputs: mbk bag's summary comes on its stdout, no file to remove."""
+    from mb_kinematics import batch_job
+    synced, removed = [], []
+    monkeypatch.setattr(batch_job.os, "fsync", synced.append)
+    monkeypatch.setattr(batch_job.os, "remove", removed.append)
+    options = {"--scale": CMU_SCALE, "--body-mass": CMU_MASS}
+    out = str(tmp_path / "out")
+    job = batch_job.plan([(os.path.join(walks, "a0.bvh"), "a0")], out, options)[0]
+    assert batch_job.run_job(job)["status"] == "ok"
+    assert batch_job.finished(job)["written"] == 300
+    assert synced == [] and removed == []
+    assert os.listdir(os.path.join(out, ".mbk-batch")) == ["a0.json"]
+
+
+def test_a_rebuilt_library_of_mbk_bag_makes_the_jobs_run_again(walks, tmp_path):
+    """The key holds the package's libraries beside mbk_bag (its code), not only the executable:
+    a rebuilt libmbk_offline.so changes the outputs as a rebuilt mbk_bag does."""
+    from mb_kinematics import batch_job
+    lib = tmp_path / "lib"
+    (lib / "mb_kinematics").mkdir(parents=True)
+    mbk_bag, library = lib / "mb_kinematics" / "mbk_bag", lib / "libmbk_offline.so"
+    mbk_bag.write_bytes(b"the executable")
+    library.write_bytes(b"the code")
+
+    def key():
+        return batch_job.plan([(os.path.join(walks, "a0.bvh"), "a0")], str(tmp_path / "out"), {},
+                              mbk_bag=str(mbk_bag))[0]["key"]
+    before = key()
+    assert key() == before
+    library.write_bytes(b"the code, rebuilt")
+    assert key() != before

@@ -54,6 +54,31 @@ TEST_P(OfflineAllocation, NoneWhileComputingRowsAfterTheFirstBlock) {
   EXPECT_EQ(rows.back().stamp, rec.stamp[399]);
 }
 
+// compute_rows makes the rows it computes, not a whole block's: 8 rows of a recording make about
+// 8 rows (a run of whole blocks made and never touched was most of a short recording's page
+// faults in mbk bag).
+TEST(OfflineAllocation, ComputeRowsMakesTheRowsItComputes) {
+  const mbk::Model model = mbk_test::random_tree(30, 1);
+  const mbk::Recording rec = recording(model, 600);
+  mbk::OfflineBatch batch(model, rec, mbk::make_offline_estimator("centered_0.1s_4"), 0, nullptr,
+                          1);
+  const auto rows = [&](int begin, int end) {
+    mbk::compute_rows(
+        batch, model, begin, end, [](const mbk::OfflineRow&) {}, [](int) {});
+  };
+  rows(0, 8);  // the worker's first rows size its scratch
+  const mbk::OfflineRow blank(model);
+  long before = mbk_test::allocation_counts().news;
+  { const mbk::OfflineRow copy = blank; }
+  const long per_row = mbk_test::allocation_counts().news - before;
+  before = mbk_test::allocation_counts().news;
+  rows(8, 16);
+  const long made = mbk_test::allocation_counts().news - before;
+  ASSERT_GT(per_row, 0);
+  EXPECT_LE(made, 2 * 8 * per_row) << "about " << made / per_row << " rows made for 8";
+  EXPECT_GT(batch.rows_per_block(4 << 20), 2 * 8) << "a block holds more rows than this test's";
+}
+
 INSTANTIATE_TEST_SUITE_P(Threads, OfflineAllocation, ::testing::Values(1));
 
 }  // namespace

@@ -5,9 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <new>
+#include <set>
+#include <stdexcept>
+#include <thread>
 
 #include "test/support/test_models.h"
 
@@ -116,6 +122,56 @@ TEST(OfflineBatchTest, AWorkersExceptionReachesTheCaller) {
     EXPECT_NO_THROW(batch.compute(0, 64, block)) << threads;
     EXPECT_EQ(block[63].drop_reason, "");
   }
+}
+
+// compute_rows hands every row over once, in order, and keeps the formatted texts of the rows it
+// holds at once (two blocks) within twice its 4 MB budget, counting the first block's texts: the
+// texts of 600 rows of 64 KiB each (38 MiB) are not all alive at once.
+TEST(OfflineBatchTest, ComputeRowsKeepsTheRowsTextsWithinItsBudget) {
+  const mbk::Model model = mbk_test::random_tree(12, 3);
+  const int rows = 600;
+  const std::size_t text = std::size_t{64} << 10;
+  const mbk::Recording rec = recording(model, rows);
+  mbk::OfflineBatch batch(model, rec, mbk::make_offline_estimator("centered_0.05s_4"), 0, nullptr,
+                          2);
+  std::mutex mutex;
+  std::set<const char*> texts;  // the distinct buffers the formatter filled
+  batch.set_formatter([&](mbk::OfflineRow& row) {
+    row.text.assign(text, 'x');
+    std::lock_guard<std::mutex> lock(mutex);
+    texts.insert(row.text.data());
+  });
+  std::vector<double> stamps;
+  mbk::compute_rows(
+      batch, model, 0, rows, [&](const mbk::OfflineRow& row) { stamps.push_back(row.stamp); },
+      [](int) {});
+  ASSERT_EQ(stamps, rec.stamp);
+  const std::size_t first_block = batch.rows_per_block(0);
+  EXPECT_LE(texts.size() * text, 2 * (std::size_t{4} << 20) + first_block * text)
+      << texts.size() << " texts";
+}
+
+// What `use` throws (mbk bag refusing a row's stamp) leaves compute_rows only once the block in
+// flight is done: its workers write into compute_rows' rows, which the exception frees.
+TEST(OfflineBatchTest, ComputeRowsWaitsForTheBlockInFlightWhenUseThrows) {
+  const mbk::Model model = mbk_test::random_tree(12, 3);
+  const mbk::Recording rec = recording(model, 400);
+  mbk::OfflineBatch batch(model, rec, mbk::make_offline_estimator("centered_0.05s_4"), 0, nullptr,
+                          2);
+  std::atomic<bool> left{false};
+  std::atomic<int> after{0};  // rows formatted once compute_rows had thrown
+  batch.set_formatter([&](mbk::OfflineRow&) {
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    if (left) ++after;
+  });
+  EXPECT_THROW(
+      mbk::compute_rows(
+          batch, model, 0, 400,
+          [](const mbk::OfflineRow&) { throw std::invalid_argument("refused"); }, [](int) {}),
+      std::invalid_argument);
+  left = true;
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_EQ(after, 0) << "rows computed into freed rows";
 }
 
 }  // namespace
