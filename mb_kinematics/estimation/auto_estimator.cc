@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 namespace mbk {
 
@@ -15,6 +16,8 @@ constexpr double kLepski = 2.0;
 constexpr int kEndOrder = 4;
 // The choice looks at every stride-th sample: n / kSelectionSamples, within [1, kMaxStride].
 constexpr int kSelectionSamples = 1000, kMaxStride = 8;
+// The estimating pass takes a thread more per this many samples at least (fewer: not worth one).
+constexpr size_t kRowsPerThread = 1024;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -175,20 +178,14 @@ void final_estimate(const SampleWeights& s, const double* x, int ld, int c, doub
   se = std::max(se, sigma * s.end_norm);
 }
 
-// Every sample's estimates of both derivatives with the chosen windows: the weights of each
-// window in use once per sample, for every series that uses it.
-void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Segments& segments,
-                const double* x, int ld, int m, AutoEstimate& out) {
-  const size_t n = t.size(), size = n * m;
-  out.first.assign(size, 0.0), out.second.assign(size, 0.0);
-  out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
+// Samples [begin, end)'s estimates of both derivatives with the chosen windows (in_use: their
+// indices): the weights of each window in use once per sample, for every series that uses it.
+void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
+                const std::vector<double>& t, const Segments& segments, const double* x, int ld,
+                int m, size_t begin, size_t end, AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
-  std::vector<int> in_use = choice[0];
-  in_use.insert(in_use.end(), choice[1].begin(), choice[1].end());
-  std::sort(in_use.begin(), in_use.end());
-  in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
   SampleWeights w;
-  for (size_t i = 0; i < n; ++i)
+  for (size_t i = begin; i < end; ++i)
     for (int k : in_use) {
       w.load(chosen.candidates, t, segments, static_cast<int>(i), k);
       for (int c = 0; c < m; ++c) {
@@ -204,6 +201,27 @@ void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Se
                          out.second_se[at]);
       }
     }
+}
+
+// Every sample's estimates (final_rows), the samples shared out in runs among `threads` threads:
+// each sample's own sums, the same bits on any count.
+void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Segments& segments,
+                const double* x, int ld, int m, int threads, AutoEstimate& out) {
+  const size_t n = t.size(), size = n * m;
+  out.first.assign(size, 0.0), out.second.assign(size, 0.0);
+  out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
+  std::vector<int> in_use = chosen.choice[0];
+  in_use.insert(in_use.end(), chosen.choice[1].begin(), chosen.choice[1].end());
+  std::sort(in_use.begin(), in_use.end());
+  in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
+  const size_t runs = std::clamp<size_t>(threads, 1, std::max<size_t>(1, n / kRowsPerThread));
+  const auto run = [&](size_t i) {
+    final_rows(chosen, in_use, t, segments, x, ld, m, n * i / runs, n * (i + 1) / runs, out);
+  };
+  std::vector<std::thread> helpers;
+  for (size_t i = 1; i < runs; ++i) helpers.emplace_back(run, i);
+  run(0);
+  for (std::thread& h : helpers) h.join();
 }
 
 }  // namespace
@@ -272,19 +290,19 @@ int AutoChoice::longest() const {
 }
 
 void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
-                     int ld, double max_gap, AutoEstimate& out) {
+                     int ld, double max_gap, AutoEstimate& out, int threads) {
   const int m = static_cast<int>(choice.noise.size());
   out.series = m;
   out.noise = choice.noise;
   out.choice = choice.choice[1];
-  final_pass(choice, t, find_segments(t, max_gap), x, ld, m, out);
+  final_pass(choice, t, find_segments(t, max_gap), x, ld, m, threads, out);
 }
 
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
-                   AutoEstimate& out) {
+                   AutoEstimate& out, int threads) {
   AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m);
   chooser.add(t, find_segments(t, max_gap), x, ld, 0, 0, static_cast<int>(t.size()));
-  estimate_chosen(chooser.choice(), t, x, ld, max_gap, out);
+  estimate_chosen(chooser.choice(), t, x, ld, max_gap, out, threads);
 }
 
 }  // namespace mbk

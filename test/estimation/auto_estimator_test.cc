@@ -142,3 +142,26 @@ TEST(AutoEstimatorTest, TheDefaultAndTheOldOneByName) {
 }
 
 }  // namespace
+
+// The estimating pass's samples shared out among threads: every estimate, error bar and validity
+// the same bits as on one thread, for series of different noise (different windows) and stamps
+// with a gap (shifted windows at its ends), on thread counts that split the samples unevenly.
+TEST(AutoEstimatorTest, SameBitsOnAnyThreadCount) {
+  Stream s = stream(1000, 5, 1e-4, 7);
+  const Stream noisier = stream(1000, 5, 1e-2, 8);
+  for (size_t i = 2500; i < s.t.size(); ++i) s.t[i] += 0.05;  // a gap of 50 ms
+  std::vector<double> x;                                      // two series, x[r * 2 + c]
+  for (size_t i = 0; i < s.t.size(); ++i) x.push_back(s.x[i]), x.push_back(noisier.x[i]);
+  mbk::AutoEstimate one;
+  mbk::estimate_auto(s.t, x.data(), 2, 2, 0.005, one, 1);
+  ASSERT_NE(one.choice[0], one.choice[1]);
+  for (int threads : {2, 3, 7}) {
+    mbk::AutoEstimate many;
+    mbk::estimate_auto(s.t, x.data(), 2, 2, 0.005, many, threads);
+    EXPECT_EQ(many.first, one.first) << threads;
+    EXPECT_EQ(many.second, one.second) << threads;
+    EXPECT_EQ(many.first_se, one.first_se) << threads;
+    EXPECT_EQ(many.second_se, one.second_se) << threads;
+    EXPECT_EQ(many.valid, one.valid) << threads;
+  }
+}
