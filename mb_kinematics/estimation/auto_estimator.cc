@@ -47,22 +47,28 @@ bool centred_window(const std::vector<double>& t, int i, const DerivativeWeights
   return std::abs(before - after) <= 0.25 * (before + after);
 }
 
+// The series [begin, end) of a choice pass's share of them, and whether it also takes the sums
+// every series shares (the trace, the weights' changes, the samples counted).
+struct SeriesShare {
+  int begin, end;
+  bool shared;
+};
+
 // Selection sample i's share of each series' noise level from the shortest window's residuals,
 // sigma^2 = RSS / (n - tr H): rss per series, the trace and the samples counted.
 using Residuals = AutoChooser::Residuals;
 
 void add_residuals(const OfflineEstimator& e, const std::vector<double>& t,
-                   const Segments& segments, const double* x, int ld, int i, DerivativeWeights& w,
-                   Residuals& res) {
-  const int m = static_cast<int>(res.rss.size());
+                   const Segments& segments, const double* x, int ld, int i, SeriesShare share,
+                   DerivativeWeights& w, Residuals& res) {
   derivative_weights(e, t, segments, i, w);
-  res.count += 1;
+  if (share.shared) res.count += 1;
   if (w.valid < 2) {  // an unsmoothed sample: interpolated, h_ii = 1
-    res.trace += 1;
+    if (share.shared) res.trace += 1;
     return;
   }
-  res.trace += w.value[(i - w.begin) / w.stride];
-  for (int c = 0; c < m; ++c) {
+  if (share.shared) res.trace += w.value[(i - w.begin) / w.stride];
+  for (int c = share.begin; c < share.end; ++c) {
     double fit = 0;
     for (int j = 0; j < w.count; ++j) fit += w.value[j] * x[w.row(j) * ld + c];
     const double r = x[i * ld + c] - fit;
@@ -85,7 +91,7 @@ using Statistics = AutoChooser::Statistics;
 
 // Selection sample i's share of Lepski's statistics; w, estimate: scratch.
 void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-                const Segments& segments, const double* x, int ld, int m, int i,
+                const Segments& segments, const double* x, int ld, int m, int i, SeriesShare share,
                 DerivativeWeights (&w)[2], std::vector<double> (&estimate)[2],
                 Statistics (&stats)[2]) {
   const int kc = static_cast<int>(candidates.size());
@@ -96,16 +102,15 @@ void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vect
     std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
     for (int d = 1; d <= 2; ++d) {
       const std::vector<double>& weights = weights_of(cur, d);
-      for (int c = 0; c < m; ++c) {
+      for (int c = share.begin; c < share.end; ++c) {
         double sum = 0;
         for (int j = 0; j < cur.count; ++j) sum += weights[j] * x[cur.row(j) * ld + c];
         now[(d - 1) * m + c] = sum;
       }
       if (k == 0) continue;
       Statistics& s = stats[d - 1];
-      s.change[k] += difference2(cur, prev, d);
-      s.count[k] += 1;
-      for (int c = 0; c < m; ++c) {
+      if (share.shared) s.change[k] += difference2(cur, prev, d), s.count[k] += 1;
+      for (int c = share.begin; c < share.end; ++c) {
         const double step = now[(d - 1) * m + c] - before[(d - 1) * m + c];
         if (std::isfinite(step)) s.moved[k * m + c] += step * step;
       }
@@ -247,12 +252,12 @@ std::vector<OfflineEstimator> auto_candidates(double dt) {
   return out;
 }
 
-AutoChooser::AutoChooser(double median_interval, long rows, int m)
+AutoChooser::AutoChooser(double median_interval, long rows, int m, int threads)
     : candidates_(auto_candidates(median_interval)),
       stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
       m_(m),
-      residuals_{std::vector<double>(m, 0.0)},
-      estimate_{std::vector<double>(2 * m), std::vector<double>(2 * m)} {
+      threads_(std::clamp(threads, 1, std::max(1, m))),
+      residuals_{std::vector<double>(m, 0.0)} {
   const size_t kc = candidates_.size();
   for (Statistics& s : stats_)
     s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
@@ -266,11 +271,20 @@ OfflineReach AutoChooser::reach() const {
 
 void AutoChooser::add(const std::vector<double>& t, const Segments& segments, const double* x,
                       int ld, long first, int from, int to) {
-  for (int i = from; i < to; ++i) {
-    if ((first + i) % stride_ != 0) continue;
-    add_residuals(candidates_.front(), t, segments, x, ld, i, w_[0], residuals_);
-    add_lepski(candidates_, t, segments, x, ld, m_, i, w_, estimate_, stats_);
-  }
+  const auto run = [&](int part) {  // the series of one part, every selection sample
+    const SeriesShare share{m_ * part / threads_, m_ * (part + 1) / threads_, part == 0};
+    DerivativeWeights w[2];
+    std::vector<double> estimate[2] = {std::vector<double>(2 * m_), std::vector<double>(2 * m_)};
+    for (int i = from; i < to; ++i) {
+      if ((first + i) % stride_ != 0) continue;
+      add_residuals(candidates_.front(), t, segments, x, ld, i, share, w[0], residuals_);
+      add_lepski(candidates_, t, segments, x, ld, m_, i, share, w, estimate, stats_);
+    }
+  };
+  std::vector<std::thread> helpers;
+  for (int part = 1; part < threads_; ++part) helpers.emplace_back(run, part);
+  run(0);
+  for (std::thread& h : helpers) h.join();
 }
 
 AutoChoice AutoChooser::choice() const {
@@ -300,7 +314,7 @@ void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, con
 
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
                    AutoEstimate& out, int threads) {
-  AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m);
+  AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m, threads);
   chooser.add(t, find_segments(t, max_gap), x, ld, 0, 0, static_cast<int>(t.size()));
   estimate_chosen(chooser.choice(), t, x, ld, max_gap, out, threads);
 }

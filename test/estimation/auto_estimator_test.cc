@@ -143,9 +143,10 @@ TEST(AutoEstimatorTest, TheDefaultAndTheOldOneByName) {
 
 }  // namespace
 
-// The estimating pass's samples shared out among threads: every estimate, error bar and validity
-// the same bits as on one thread, for series of different noise (different windows) and stamps
-// with a gap (shifted windows at its ends), on thread counts that split the samples unevenly.
+// The choice pass's series and the estimating pass's samples shared out among threads: every
+// estimate, error bar and validity the same bits as on one thread, for series of different noise
+// (different windows) and stamps with a gap (shifted windows at its ends), on thread counts that
+// split the samples unevenly and exceed the series.
 TEST(AutoEstimatorTest, SameBitsOnAnyThreadCount) {
   Stream s = stream(1000, 5, 1e-4, 7);
   const Stream noisier = stream(1000, 5, 1e-2, 8);
