@@ -16,8 +16,10 @@ constexpr double kLepski = 2.0;
 constexpr int kEndOrder = 4;
 // The choice looks at every stride-th sample: n / kSelectionSamples, within [1, kMaxStride].
 constexpr int kSelectionSamples = 1000, kMaxStride = 8;
-// The estimating pass takes a thread more per this many samples at least (fewer: not worth one).
+// The estimating pass takes a thread more per this many samples at least, the choice pass per
+// this many series (each of its threads computes every window's weights): fewer are not worth one.
 constexpr size_t kRowsPerThread = 1024;
+constexpr int kSeriesPerThread = 8;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -256,7 +258,7 @@ AutoChooser::AutoChooser(double median_interval, long rows, int m, int threads)
     : candidates_(auto_candidates(median_interval)),
       stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
       m_(m),
-      threads_(std::clamp(threads, 1, std::max(1, m))),
+      threads_(std::clamp(threads, 1, std::max(1, m / kSeriesPerThread))),
       residuals_{std::vector<double>(m, 0.0)} {
   const size_t kc = candidates_.size();
   for (Statistics& s : stats_)

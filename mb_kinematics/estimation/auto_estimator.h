@@ -45,8 +45,9 @@ struct AutoChoice {
 // given a piece at a time (offline/offline_stream.h) or whole: the same sums in the same order.
 class AutoChooser {
  public:
-  // threads: the series shared out among up to that many (each series' sums its own, in the same
-  // order: the same bits on any count; each thread computes the windows' weights itself).
+  // threads: the series shared out among up to that many, 8 series each at least (each series'
+  // sums its own, in the same order: the same bits on any count; each thread computes the windows'
+  // weights itself).
   AutoChooser(double dt, long rows, int m, int threads = 1);
   // How far a selection sample's sums reach (the longest candidate's).
   OfflineReach reach() const;

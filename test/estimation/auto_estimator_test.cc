@@ -144,21 +144,23 @@ TEST(AutoEstimatorTest, TheDefaultAndTheOldOneByName) {
 }  // namespace
 
 // The choice pass's series and the estimating pass's samples shared out among threads: every
-// estimate, error bar and validity the same bits as on one thread, for series of different noise
-// (different windows) and stamps with a gap (shifted windows at its ends), on thread counts that
-// split the samples unevenly and exceed the series.
+// estimate, error bar and validity the same bits as on one thread, for 24 series of different
+// noise (different windows) and stamps with a gap (shifted windows at its ends), on thread
+// counts that split the series (8 at least each) and the samples unevenly.
 TEST(AutoEstimatorTest, SameBitsOnAnyThreadCount) {
-  Stream s = stream(1000, 5, 1e-4, 7);
-  const Stream noisier = stream(1000, 5, 1e-2, 8);
-  for (size_t i = 2500; i < s.t.size(); ++i) s.t[i] += 0.05;  // a gap of 50 ms
-  std::vector<double> x;                                      // two series, x[r * 2 + c]
-  for (size_t i = 0; i < s.t.size(); ++i) x.push_back(s.x[i]), x.push_back(noisier.x[i]);
+  constexpr int m = 24;
+  std::vector<Stream> series;
+  for (int c = 0; c < m; ++c) series.push_back(stream(1000, 3, c % 2 ? 1e-2 : 1e-4, 7 + c));
+  std::vector<double> t = series[0].t, x;                 // x[r * m + c]
+  for (size_t i = 1500; i < t.size(); ++i) t[i] += 0.05;  // a gap of 50 ms
+  for (size_t i = 0; i < t.size(); ++i)
+    for (const Stream& s : series) x.push_back(s.x[i]);
   mbk::AutoEstimate one;
-  mbk::estimate_auto(s.t, x.data(), 2, 2, 0.005, one, 1);
+  mbk::estimate_auto(t, x.data(), m, m, 0.005, one, 1);
   ASSERT_NE(one.choice[0], one.choice[1]);
   for (int threads : {2, 3, 7}) {
     mbk::AutoEstimate many;
-    mbk::estimate_auto(s.t, x.data(), 2, 2, 0.005, many, threads);
+    mbk::estimate_auto(t, x.data(), m, m, 0.005, many, threads);
     EXPECT_EQ(many.first, one.first) << threads;
     EXPECT_EQ(many.second, one.second) << threads;
     EXPECT_EQ(many.first_se, one.first_se) << threads;
