@@ -15,7 +15,7 @@ namespace {
 
 // A decimal d1d2...dn 10^(exponent - n + 1): n = count digits, the first at 10^exponent.
 struct Decimal {
-  uint64_t digits;
+  uint32_t digits;
   int count, exponent;
 };
 
@@ -27,35 +27,17 @@ constexpr std::array<T, N> powers(T base) {
   return p;
 }
 constexpr std::array<double, 23> kExactPowers = powers<double, 23>(10);  // 5^22 < 2^53: exact
-constexpr std::array<uint64_t, 20> kPow10 = powers<uint64_t, 20>(10);
 constexpr char kPairs[] =
     "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
-// n < 10^8 as 8 digits at out: n / 10^6 in 57-bit fixed point, two digits per product (exact for
-// every n < 10^8: the rounding error stays below 1/100 after three products by 100).
-void write8(char* out, uint32_t n) {
-  constexpr uint64_t kScale = ((uint64_t{1} << 57) + 999999) / 1000000;  // ceil(2^57 / 10^6)
-  constexpr uint64_t kMask = (uint64_t{1} << 57) - 1;
-  uint64_t f = n * kScale;
-  std::memcpy(out, kPairs + 2 * (f >> 57), 2);
-  f = (f & kMask) * 100;
-  std::memcpy(out + 2, kPairs + 2 * (f >> 57), 2);
-  f = (f & kMask) * 100;
-  std::memcpy(out + 4, kPairs + 2 * (f >> 57), 2);
-  f = (f & kMask) * 100;
-  std::memcpy(out + 6, kPairs + 2 * (f >> 57), 2);
-}
-
-// The digits of n, count of them (leading zeros if n has fewer), at out: eight at a time from the
-// last, then two at a time (each written once: no copy of digits just written).
-char* write_uint(char* out, uint64_t n, int count) {
+// The digits of n, count of them (leading zeros if n has fewer), at out, two at a time from the
+// last.
+char* write_uint(char* out, uint32_t n, int count) {
   char* at = out + count;
-  for (; at - out >= 8; n /= 100000000) at -= 8, write8(at, static_cast<uint32_t>(n % 100000000));
-  auto rest = static_cast<uint32_t>(n);
-  for (; at - out >= 2; rest /= 100) at -= 2, std::memcpy(at, kPairs + 2 * (rest % 100), 2);
-  if (at > out) *out = static_cast<char>('0' + rest % 10);
+  for (; at - out >= 2; n /= 100) at -= 2, std::memcpy(at, kPairs + 2 * (n % 100), 2);
+  if (at > out) *out = static_cast<char>('0' + n % 10);
   return out + count;
 }
 
@@ -69,7 +51,7 @@ char* write_exponent(char* out, int e) {
 }
 
 // v without its trailing zeros (%g without '#', and std::to_chars, write none).
-Decimal trimmed(uint64_t digits, int count, int exponent) {
+Decimal trimmed(uint32_t digits, int count, int exponent) {
   while (count > 1 && digits % 10 == 0) digits /= 10, --count;
   return {digits, count, exponent};
 }
@@ -117,8 +99,8 @@ bool rounded_decimal(double x, int p, Decimal& out) {
   if (y < low || y >= high) return false;
   const double whole = std::floor(y), fraction = y - whole;
   if (std::abs(fraction - 0.5) < 1e-6) return false;  // too near a half to round here
-  uint64_t digits = static_cast<uint64_t>(whole) + (fraction > 0.5);
-  if (digits == kPow10[p]) digits /= 10, ++e;
+  uint32_t digits = static_cast<uint32_t>(whole) + (fraction > 0.5);
+  if (digits == static_cast<uint32_t>(high)) digits /= 10, ++e;
   out = trimmed(digits, p, e);
   return true;
 }
