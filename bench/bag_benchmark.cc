@@ -25,6 +25,9 @@
 //                                     counter rows/s
 //   csv_rows/human/dev_null           the same to /dev/null: the formatting without the kernel's
 //                                     copy of the 7.6 MB into the page cache
+//   csv_format/human_urdf             the text alone of bag/human_urdf/6000/csv_out's CSV, error
+//                                     bars' columns included, 1000 samples on one thread (no file):
+//                                     the digits' bound per core; counter samples_per_s
 //   large_csv/human/<fwrite_64k|block_file>/GB:<3|16>   3 or 16 GB of the tidy CSV's text
 //                                     (1000 samples' rows, formatted once, written again and
 //                                     again) to a file in /tmp until it is on the disk (fsync;
@@ -257,6 +260,32 @@ void csv_rows(benchmark::State& state, const mbk::Model& model, const char* path
   state.counters["rows_per_s"] = benchmark::Counter(rows, benchmark::Counter::kIsRate);
 }
 
+// The CSV's text of bag_to_csv's samples alone (TidyCsvWriter::format with the error bars'
+// columns, into a reused string) on one thread: what the digits cost per sample and core.
+void csv_format(benchmark::State& state) {
+  const mbk::Model model = mbk::load_model_file(kHumanUrdf);
+  const mbk::Recording rec = recording(model, 1000, 1, true);
+  const std::vector<mbk::Data<double>> data = kinematics_of(model, rec);
+  std::vector<mbk::Vec3<double>> alpha_se(model.bodies.size()),
+      acceleration_se(model.bodies.size());
+  for (size_t k = 0; k < alpha_se.size(); ++k) {
+    alpha_se[k] = mbk::Vec3<double>(1, 2, 3) * 1e-10 * (k + 1.0);
+    acceleration_se[k] = 3 * alpha_se[k];
+  }
+  mbk::TidyCsvWriter w("/dev/null", model, true);
+  std::string text;
+  long samples = 0;
+  for (auto _ : state) {
+    for (int r = 0; r < rec.rows(); ++r) {
+      text.clear();
+      w.format(rec.stamp[r], data[r], text, &alpha_se, &acceleration_se);
+    }
+    benchmark::DoNotOptimize(text.data());
+    samples += rec.rows();
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
+}
+
 // The text of csv_rows's 1000 samples.
 std::string csv_text(const mbk::Model& model) {
   const mbk::Recording rec = recording(model, 1000, 1, true);
@@ -349,6 +378,7 @@ BENCHMARK_CAPTURE(estimates, human / old_default, human(), "centered_0.4s_4")
 BENCHMARK_CAPTURE(csv_rows, human, human(), "/tmp/mbk_bag_benchmark_rows.csv")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(csv_rows, human / dev_null, human(), "/dev/null")->Unit(benchmark::kMillisecond);
+BENCHMARK(csv_format)->Name("csv_format/human_urdf")->Unit(benchmark::kMillisecond);
 // large_csv's sizes (GB), one iteration each (16 GB takes seconds), in real time.
 void large_csv_runs(benchmark::internal::Benchmark* b) {
   b->ArgName("GB")->Arg(3)->Arg(16)->Iterations(1)->Unit(benchmark::kMillisecond)->UseRealTime();

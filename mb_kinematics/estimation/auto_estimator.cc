@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 namespace mbk {
 
@@ -15,6 +16,10 @@ constexpr double kLepski = 2.0;
 constexpr int kEndOrder = 4;
 // The choice looks at every stride-th sample: n / kSelectionSamples, within [1, kMaxStride].
 constexpr int kSelectionSamples = 1000, kMaxStride = 8;
+// The estimating pass takes a thread more per this many samples at least, the choice pass per
+// this many series (each of its threads computes every window's weights): fewer are not worth one.
+constexpr size_t kRowsPerThread = 1024;
+constexpr int kSeriesPerThread = 8;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -44,22 +49,28 @@ bool centred_window(const std::vector<double>& t, int i, const DerivativeWeights
   return std::abs(before - after) <= 0.25 * (before + after);
 }
 
+// The series [begin, end) of a choice pass's share of them, and whether it also takes the sums
+// every series shares (the trace, the weights' changes, the samples counted).
+struct SeriesShare {
+  int begin, end;
+  bool shared;
+};
+
 // Selection sample i's share of each series' noise level from the shortest window's residuals,
 // sigma^2 = RSS / (n - tr H): rss per series, the trace and the samples counted.
 using Residuals = AutoChooser::Residuals;
 
 void add_residuals(const OfflineEstimator& e, const std::vector<double>& t,
-                   const Segments& segments, const double* x, int ld, int i, DerivativeWeights& w,
-                   Residuals& res) {
-  const int m = static_cast<int>(res.rss.size());
+                   const Segments& segments, const double* x, int ld, int i, SeriesShare share,
+                   DerivativeWeights& w, Residuals& res) {
   derivative_weights(e, t, segments, i, w);
-  res.count += 1;
+  if (share.shared) res.count += 1;
   if (w.valid < 2) {  // an unsmoothed sample: interpolated, h_ii = 1
-    res.trace += 1;
+    if (share.shared) res.trace += 1;
     return;
   }
-  res.trace += w.value[(i - w.begin) / w.stride];
-  for (int c = 0; c < m; ++c) {
+  if (share.shared) res.trace += w.value[(i - w.begin) / w.stride];
+  for (int c = share.begin; c < share.end; ++c) {
     double fit = 0;
     for (int j = 0; j < w.count; ++j) fit += w.value[j] * x[w.row(j) * ld + c];
     const double r = x[i * ld + c] - fit;
@@ -82,7 +93,7 @@ using Statistics = AutoChooser::Statistics;
 
 // Selection sample i's share of Lepski's statistics; w, estimate: scratch.
 void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-                const Segments& segments, const double* x, int ld, int m, int i,
+                const Segments& segments, const double* x, int ld, int m, int i, SeriesShare share,
                 DerivativeWeights (&w)[2], std::vector<double> (&estimate)[2],
                 Statistics (&stats)[2]) {
   const int kc = static_cast<int>(candidates.size());
@@ -93,16 +104,15 @@ void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vect
     std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
     for (int d = 1; d <= 2; ++d) {
       const std::vector<double>& weights = weights_of(cur, d);
-      for (int c = 0; c < m; ++c) {
+      for (int c = share.begin; c < share.end; ++c) {
         double sum = 0;
         for (int j = 0; j < cur.count; ++j) sum += weights[j] * x[cur.row(j) * ld + c];
         now[(d - 1) * m + c] = sum;
       }
       if (k == 0) continue;
       Statistics& s = stats[d - 1];
-      s.change[k] += difference2(cur, prev, d);
-      s.count[k] += 1;
-      for (int c = 0; c < m; ++c) {
+      if (share.shared) s.change[k] += difference2(cur, prev, d), s.count[k] += 1;
+      for (int c = share.begin; c < share.end; ++c) {
         const double step = now[(d - 1) * m + c] - before[(d - 1) * m + c];
         if (std::isfinite(step)) s.moved[k * m + c] += step * step;
       }
@@ -175,20 +185,14 @@ void final_estimate(const SampleWeights& s, const double* x, int ld, int c, doub
   se = std::max(se, sigma * s.end_norm);
 }
 
-// Every sample's estimates of both derivatives with the chosen windows: the weights of each
-// window in use once per sample, for every series that uses it.
-void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Segments& segments,
-                const double* x, int ld, int m, AutoEstimate& out) {
-  const size_t n = t.size(), size = n * m;
-  out.first.assign(size, 0.0), out.second.assign(size, 0.0);
-  out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
+// Samples [begin, end)'s estimates of both derivatives with the chosen windows (in_use: their
+// indices): the weights of each window in use once per sample, for every series that uses it.
+void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
+                const std::vector<double>& t, const Segments& segments, const double* x, int ld,
+                int m, size_t begin, size_t end, AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
-  std::vector<int> in_use = choice[0];
-  in_use.insert(in_use.end(), choice[1].begin(), choice[1].end());
-  std::sort(in_use.begin(), in_use.end());
-  in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
   SampleWeights w;
-  for (size_t i = 0; i < n; ++i)
+  for (size_t i = begin; i < end; ++i)
     for (int k : in_use) {
       w.load(chosen.candidates, t, segments, static_cast<int>(i), k);
       for (int c = 0; c < m; ++c) {
@@ -204,6 +208,27 @@ void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Se
                          out.second_se[at]);
       }
     }
+}
+
+// Every sample's estimates (final_rows), the samples shared out in runs among `threads` threads:
+// each sample's own sums, the same bits on any count.
+void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Segments& segments,
+                const double* x, int ld, int m, int threads, AutoEstimate& out) {
+  const size_t n = t.size(), size = n * m;
+  out.first.assign(size, 0.0), out.second.assign(size, 0.0);
+  out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
+  std::vector<int> in_use = chosen.choice[0];
+  in_use.insert(in_use.end(), chosen.choice[1].begin(), chosen.choice[1].end());
+  std::sort(in_use.begin(), in_use.end());
+  in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
+  const size_t runs = std::clamp<size_t>(threads, 1, std::max<size_t>(1, n / kRowsPerThread));
+  const auto run = [&](size_t i) {
+    final_rows(chosen, in_use, t, segments, x, ld, m, n * i / runs, n * (i + 1) / runs, out);
+  };
+  std::vector<std::thread> helpers;
+  for (size_t i = 1; i < runs; ++i) helpers.emplace_back(run, i);
+  run(0);
+  for (std::thread& h : helpers) h.join();
 }
 
 }  // namespace
@@ -229,12 +254,12 @@ std::vector<OfflineEstimator> auto_candidates(double dt) {
   return out;
 }
 
-AutoChooser::AutoChooser(double median_interval, long rows, int m)
+AutoChooser::AutoChooser(double median_interval, long rows, int m, int threads)
     : candidates_(auto_candidates(median_interval)),
       stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
       m_(m),
-      residuals_{std::vector<double>(m, 0.0)},
-      estimate_{std::vector<double>(2 * m), std::vector<double>(2 * m)} {
+      threads_(std::clamp(threads, 1, std::max(1, m / kSeriesPerThread))),
+      residuals_{std::vector<double>(m, 0.0)} {
   const size_t kc = candidates_.size();
   for (Statistics& s : stats_)
     s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
@@ -248,11 +273,20 @@ OfflineReach AutoChooser::reach() const {
 
 void AutoChooser::add(const std::vector<double>& t, const Segments& segments, const double* x,
                       int ld, long first, int from, int to) {
-  for (int i = from; i < to; ++i) {
-    if ((first + i) % stride_ != 0) continue;
-    add_residuals(candidates_.front(), t, segments, x, ld, i, w_[0], residuals_);
-    add_lepski(candidates_, t, segments, x, ld, m_, i, w_, estimate_, stats_);
-  }
+  const auto run = [&](int part) {  // the series of one part, every selection sample
+    const SeriesShare share{m_ * part / threads_, m_ * (part + 1) / threads_, part == 0};
+    DerivativeWeights w[2];
+    std::vector<double> estimate[2] = {std::vector<double>(2 * m_), std::vector<double>(2 * m_)};
+    for (int i = from; i < to; ++i) {
+      if ((first + i) % stride_ != 0) continue;
+      add_residuals(candidates_.front(), t, segments, x, ld, i, share, w[0], residuals_);
+      add_lepski(candidates_, t, segments, x, ld, m_, i, share, w, estimate, stats_);
+    }
+  };
+  std::vector<std::thread> helpers;
+  for (int part = 1; part < threads_; ++part) helpers.emplace_back(run, part);
+  run(0);
+  for (std::thread& h : helpers) h.join();
 }
 
 AutoChoice AutoChooser::choice() const {
@@ -272,19 +306,19 @@ int AutoChoice::longest() const {
 }
 
 void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
-                     int ld, double max_gap, AutoEstimate& out) {
+                     int ld, double max_gap, AutoEstimate& out, int threads) {
   const int m = static_cast<int>(choice.noise.size());
   out.series = m;
   out.noise = choice.noise;
   out.choice = choice.choice[1];
-  final_pass(choice, t, find_segments(t, max_gap), x, ld, m, out);
+  final_pass(choice, t, find_segments(t, max_gap), x, ld, m, threads, out);
 }
 
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
-                   AutoEstimate& out) {
-  AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m);
+                   AutoEstimate& out, int threads) {
+  AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m, threads);
   chooser.add(t, find_segments(t, max_gap), x, ld, 0, 0, static_cast<int>(t.size()));
-  estimate_chosen(chooser.choice(), t, x, ld, max_gap, out);
+  estimate_chosen(chooser.choice(), t, x, ld, max_gap, out, threads);
 }
 
 }  // namespace mbk

@@ -45,7 +45,10 @@ struct AutoChoice {
 // given a piece at a time (offline/offline_stream.h) or whole: the same sums in the same order.
 class AutoChooser {
  public:
-  AutoChooser(double dt, long rows, int m);
+  // threads: the series shared out among up to that many, 8 series each at least (each series'
+  // sums its own, in the same order: the same bits on any count; each thread computes the windows'
+  // weights itself).
+  AutoChooser(double dt, long rows, int m, int threads = 1);
   // How far a selection sample's sums reach (the longest candidate's).
   OfflineReach reach() const;
   // Rows [from, to) of a piece of the recording whose row 0 is the recording's row `first`:
@@ -68,11 +71,9 @@ class AutoChooser {
 
  private:
   std::vector<OfflineEstimator> candidates_;
-  int stride_, m_;
+  int stride_, m_, threads_;
   Residuals residuals_;
   Statistics stats_[2];  // per derivative d at [d - 1]
-  DerivativeWeights w_[2];
-  std::vector<double> estimate_[2];
 };
 
 struct AutoEstimate {
@@ -86,12 +87,14 @@ struct AutoEstimate {
 
 // m series sampled together at the increasing stamps t, stored x[r * ld + c]; each chooses its
 // own windows (one for the velocities, one for the accelerations); choice: the latter.
+// threads: the choice's and the estimating pass's (AutoChooser, estimate_chosen).
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
-                   AutoEstimate& out);
+                   AutoEstimate& out, int threads = 1);
 // The estimating pass with a choice made before (AutoChooser), on the whole recording or a piece
 // of it (each row's estimate is the whole recording's where the longest chosen window's reach lies
-// in the piece as in the recording).
+// in the piece as in the recording). Its samples shared out among up to `threads` threads (a
+// sample's estimates are its own: the same bits on any count).
 void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
-                     int ld, double max_gap, AutoEstimate& out);
+                     int ld, double max_gap, AutoEstimate& out, int threads = 1);
 
 }  // namespace mbk

@@ -7,7 +7,7 @@
 
 namespace mbk {
 
-// The room write_shortest needs at `out` (it writes at most 24 characters).
+// The room write_shortest and write_general need at `out` (they write at most 24 characters).
 constexpr int kMaxDoubleChars = 32;
 
 // Writes at `out` the shortest text that reads back as the same double, as std::to_chars(first,

@@ -411,10 +411,11 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
                    const std::uint8_t*) { survey.add_stamp(grid.snap(t)); },
                s);
   s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
+  const int threads = o.threads > 0 ? o.threads : mbk::default_thread_count();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
   if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
-    mbk::AutoChoosePass choose(survey, s.max_gap, kStreamChunkRows);
+    mbk::AutoChoosePass choose(survey, s.max_gap, kStreamChunkRows, threads);
     input.pass([&](double t, const double* p, const double* v,
                    const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
                s);
@@ -423,8 +424,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
   Outputs out;
   open_outputs(o, model, model, "", estimator.automatic, out);
   mbk::OfflineStream stream(
-      model, estimator, reach, s.max_gap, std::move(whole),
-      o.threads > 0 ? o.threads : mbk::default_thread_count(), kStreamChunkRows,
+      model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
   stream.set_stamp_grid(grid);
   stream.set_formatter(out.formatter());

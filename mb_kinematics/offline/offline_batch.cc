@@ -17,7 +17,7 @@ OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
                            const FloatingBaseTrack* base, int threads, const WholeRecording* whole)
     : model_(model), rec_(recording), base_(base) {
   workers_.reserve(std::max(1, threads));
-  workers_.emplace_back(model, recording, estimator, max_gap, whole);
+  workers_.emplace_back(model, recording, estimator, max_gap, whole, threads);
   while (static_cast<int>(workers_.size()) < threads)
     workers_.push_back(workers_.front());  // a copy: no second scan of the rows
   for (int i = 0; i < this->threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);

@@ -8,7 +8,7 @@ namespace mbk {
 
 OfflineStates::OfflineStates(const Model& model, const Recording& recording,
                              const OfflineEstimator& estimator, double max_gap,
-                             const WholeRecording* whole)
+                             const WholeRecording* whole, int threads)
     : model_(model),
       rec_(recording),
       estimator_(estimator),
@@ -60,19 +60,19 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       positions_only_[r] = positions_only_[r] && g == 0;
       derivatives_given_[r] = derivatives_given_[r] && g == kBoth;
     }
-  if (estimator_.automatic) fit_automatic();
+  if (estimator_.automatic) fit_automatic(threads);
 }
 
 // "auto": every row's estimates at once, each coordinate choosing its own smoothing (of its
 // given velocities too where it has them everywhere); a partial coordinate over its own samples.
-void OfflineStates::fit_automatic() {
+void OfflineStates::fit_automatic(int threads) {
   const int nq = rec_.nq;
   auto fit = [&](const std::vector<double>& x, const AutoChoice* choice) {
     auto a = std::make_shared<AutoEstimate>();
     if (choice)
-      estimate_chosen(*choice, rec_.stamp, x.data(), nq, max_gap_, *a);
+      estimate_chosen(*choice, rec_.stamp, x.data(), nq, max_gap_, *a, threads);
     else
-      estimate_auto(rec_.stamp, x.data(), nq, nq, max_gap_, *a);
+      estimate_auto(rec_.stamp, x.data(), nq, nq, max_gap_, *a, threads);
     return a;
   };
   if (!full_.empty()) positions_fit_ = fit(rec_.position, positions_choice_.get());

@@ -46,9 +46,10 @@ class OfflineStates {
  public:
   // `model` (coordinate-derivative speeds) and `recording` must outlive this object. max_gap:
   // seconds; 0 means default_max_gap of the stamps. When `recording` is a piece of a longer one
-  // (offline/offline_stream.h), `whole` says what it takes from the whole recording.
+  // (offline/offline_stream.h), `whole` says what it takes from the whole recording. threads:
+  // "auto"'s estimating pass's (estimate_chosen).
   OfflineStates(const Model& model, const Recording& recording, const OfflineEstimator& estimator,
-                double max_gap, const WholeRecording* whole = nullptr);
+                double max_gap, const WholeRecording* whole = nullptr, int threads = 1);
 
   // Fills `state` for row r; returns "" or why the row cannot be computed (too few samples
   // around it for the derivatives). Rows in increasing order, each at most once; rows may be
@@ -84,7 +85,7 @@ class OfflineStates {
     int valid = 0;
     std::shared_ptr<const AutoEstimate> fit;  // "auto": per sample, of positions then velocities
   };
-  void fit_automatic();
+  void fit_automatic(int threads);
   void load_automatic(int r);
   void estimate_series(size_t i, size_t entry);
   void series_errors(size_t i, int r, double& velocity_se, double& acceleration_se) const;

@@ -133,16 +133,18 @@ void OfflineStream::finish() {
   if (next_ < buffer_.rows()) compute(buffer_.rows(), true);
 }
 
-AutoChoosePass::AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows)
+AutoChoosePass::AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows,
+                               int threads)
     : nq_(survey.nq),
       max_gap_(max_gap),
       chunk_rows_(std::max(1, chunk_rows)),
       velocity_everywhere_(survey.velocity_everywhere),
-      positions_(survey.default_max_gap() / 5, survey.rows, survey.nq),
+      positions_(survey.default_max_gap() / 5, survey.rows, survey.nq, threads),
       reach_(positions_.reach()) {
   for (int c = 0; c < nq_; ++c)
     if (survey.rows > 0 && survey.position_everywhere[c] && survey.velocity_everywhere[c])
-      velocities_ = std::make_unique<AutoChooser>(survey.default_max_gap() / 5, survey.rows, nq_);
+      velocities_ =
+          std::make_unique<AutoChooser>(survey.default_max_gap() / 5, survey.rows, nq_, threads);
 }
 
 void AutoChoosePass::add(double t, const double* position, const double* velocity) {

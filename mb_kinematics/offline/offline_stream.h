@@ -112,7 +112,8 @@ class OfflineStream {
 // its given velocities, the same as estimate_auto's on the whole recording.
 class AutoChoosePass {
  public:
-  AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows);
+  // threads: AutoChooser's.
+  AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows, int threads = 1);
   void add(double t, const double* position, const double* velocity);
   // The choices (with the survey's velocity_everywhere), and the estimating pass's reach: the
   // longest window chosen.

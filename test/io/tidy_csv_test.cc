@@ -226,6 +226,18 @@ TEST(NumberFormatTest, WriteGeneralSameAsAnOstreamAtThatPrecision) {
     const double x = random_double(rng, i);
     for (int precision : {6, 1, 17}) ASSERT_EQ(general(x, precision), streamed(x, precision)) << i;
   }
+  // Halves at the digit rounded away, and nines rounded up to the next power of ten: x's digits
+  // one past the precision, ending in 5 (a tie in decimal, a little above or below it in binary).
+  for (int i = 0; i < 200000; ++i) {
+    const int precision = i % 2 == 0 ? 6 : 9;
+    const uint64_t digits = i % 10 == 1 ? 9999995 : rng() % 1000000000;
+    const double x = std::strtod((std::to_string(digits % (uint64_t{1} << 63)) + "5e" +
+                                  std::to_string(int(rng() % 61) - 30))
+                                     .c_str(),
+                                 nullptr);
+    ASSERT_EQ(general(x, precision), streamed(x, precision)) << i;
+    ASSERT_EQ(general(-x, precision), streamed(-x, precision)) << i;
+  }
   EXPECT_EQ(general(1e-5, 6), "1e-05");
   EXPECT_EQ(general(123456.7, 6), "123457");
   EXPECT_EQ(general(1234567.0, 6), "1.23457e+06");
