@@ -12,7 +12,8 @@ export PYTHONNOUSERSITE=1
 
 # What scripts/demo.sh needs: the packages' build dependencies (every find_package of the
 # CMakeLists, so that the workspace configures) and what the demo and the README's quick start
-# run (roslaunch, rosrun, rostopic). Nothing that only the tests, benchmarks or fuzzers use.
+# run (roslaunch, rosrun, rostopic, the Python module with numpy). Nothing that only the tests,
+# benchmarks, fuzzers or an optional launch argument use.
 MBK_DEMO_PACKAGES=(
   build-essential cmake catkin libroscpp-dev libtf2-ros-dev ros-sensor-msgs ros-geometry-msgs
   ros-std-msgs ros-visualization-msgs ros-message-generation ros-message-runtime liburdf-dev
@@ -20,10 +21,8 @@ MBK_DEMO_PACKAGES=(
   libdiagnostic-updater-dev libsensor-msgs-dev libvisualization-msgs-dev librosbag-dev
   libtf2-msgs-dev libnav-msgs-dev libstd-srvs-dev libnodelet-dev libnodeletlib-dev
   libtopic-tools-dev pluginlib-dev
-  pybind11-dev python3-pybind11 python3-dev python3-numpy  # the Python module (doc/python.md)
+  pybind11-dev python3-dev python3-numpy  # the Python module (doc/python.md)
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
-  python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
-  joint-state-publisher-gui  # mb_kinematics.launch gui:=true
 )
 # rviz and what the display plugin builds against: scripts/demo.sh --rviz, and the tests.
 MBK_RVIZ_PACKAGES=(librviz-dev rviz qtbase5-dev libogre-1.12-dev)
@@ -42,6 +41,8 @@ MBK_TEST_PACKAGES=(
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
   python3-dask python3-distributed python3-psutil  # mbk batch --scheduler's tests (Dask)
+  python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
+  joint-state-publisher-gui  # mb_kinematics.launch gui:=true (Qt: 106 packages; gui_launch)
 )
 # What mbk_install_deps installs: scripts/test.sh adds MBK_TEST_PACKAGES.
 MBK_PACKAGES=("${MBK_DEMO_PACKAGES[@]}")

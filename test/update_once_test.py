@@ -11,8 +11,10 @@ import subprocess
 import sys
 
 # The instantiation itself, or, where the compiler inlined it whole, the run-time CPU check that
-# only the update's dispatch uses.
-SIGNS = ("mbk::forward_kinematics<double>(", "guard variable for mbk::detail::has_avx2()")
+# only the update's dispatch uses; or its portable copy alone (forward_kinematics_at<LEVEL,
+# double, false>), which kinematics_double.h also declares extern.
+SIGNS = ("mbk::forward_kinematics<double>(", "guard variable for mbk::detail::has_avx2()",
+         ", double, false>(mbk::Model const&")
 HOME = "kinematics_double.cc.o"
 
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cassert>
+#include <limits>
 #include <type_traits>
 
 #include "mb_kinematics/core/body_step.h"
@@ -148,16 +149,30 @@ template <Level L, bool kAvx2, typename S>
 void kernel_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                  const DataView<S>& data);
 
-// kAvx2: the AVX2 copy's (forward_kinematics_avx2), double only.
+// The loop over bodies. kAvx2: the AVX2 copy's (forward_kinematics_avx2), double only.
 template <Level L, typename S, bool kAvx2 = false>
-MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& joint_state,
-                                       Data<S>& all) {
+void kinematics_loop(const Model& model, const JointState<S>& joint_state, Data<S>& all) {
   const StateView<S> state(joint_state);
   angle_sines(model, state.q, all);
   const DataView<S> data(all);
   const int n = model.body_count();
   const BodyStep* steps = model.steps.steps.data();
   for (int k = 1; k <= n; ++k) kernel_step<L, kAvx2>(model, steps[k], k, state, data);
+}
+
+// Whether the loop gets every step inlined into it (MBK_FLATTEN): in double and float, not in the
+// wider types of the references (analysis/reference_kinematics.h). There the arithmetic is the
+// time (x87 in long double, a libquadmath call per operation in quad precision): flattened, the
+// long double loop ran as fast (0.87 s for 40,000 updates of a 50-body tree either way), and GCC
+// at -O3 took 35 CPU s for its file against 6.5, 73 for the quad one against 7.4.
+template <typename S>
+constexpr bool kFlattened = std::numeric_limits<S>::digits <= std::numeric_limits<double>::digits;
+
+// The loop with every step inlined into it.
+template <Level L, typename S, bool kAvx2 = false>
+MBK_FLATTEN void forward_kinematics_at(const Model& model, const JointState<S>& state,
+                                       Data<S>& data) {
+  kinematics_loop<L, S, kAvx2>(model, state, data);
 }
 
 #ifdef MBK_AVX2_DISPATCH
@@ -173,14 +188,19 @@ inline bool has_avx2() {
 }
 #endif
 
-// forward_kinematics_at, for AVX2 where it pays (MBK_AVX2_DISPATCH).
+// forward_kinematics_at, for AVX2 where it pays (MBK_AVX2_DISPATCH); the loop alone in long
+// double and quad precision (kFlattened).
 template <Level L, typename S>
 void forward_kinematics_on_cpu(const Model& model, const JointState<S>& state, Data<S>& data) {
+  if constexpr (!kFlattened<S>) {
+    kinematics_loop<L>(model, state, data);
+  } else {
 #ifdef MBK_AVX2_DISPATCH
-  if constexpr (std::is_same_v<S, double>)
-    if (has_avx2()) return forward_kinematics_avx2<L>(model, state, data);
+    if constexpr (std::is_same_v<S, double>)
+      if (has_avx2()) return forward_kinematics_avx2<L>(model, state, data);
 #endif
-  forward_kinematics_at<L>(model, state, data);
+    forward_kinematics_at<L>(model, state, data);
+  }
 }
 
 }  // namespace detail

@@ -12,4 +12,18 @@ namespace mbk {
 extern template void forward_kinematics<double>(const Model&, const JointState<double>&,
                                                 Data<double>&, Level);
 
+namespace detail {
+
+// The portable copy at each level, which a test runs beside the update chosen for the CPU
+// (test/core/finite_difference_test.cc): compiled here too, not again there (11 CPU s).
+extern template void forward_kinematics_at<Level::kPose, double, false>(const Model&,
+                                                                        const JointState<double>&,
+                                                                        Data<double>&);
+extern template void forward_kinematics_at<Level::kVelocity, double, false>(
+    const Model&, const JointState<double>&, Data<double>&);
+extern template void forward_kinematics_at<Level::kAcceleration, double, false>(
+    const Model&, const JointState<double>&, Data<double>&);
+
+}  // namespace detail
+
 }  // namespace mbk
