@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """mbk batch's speed (doc/speed.md#a-collection-mbk-batch): a collection of --files BVH walks
 (the CMU trials of test/mocap, their first --frames frames, copied in turn) through a shell loop
-of `mbk bag`, `mbk batch --jobs 1` and `--jobs 2`, and a Dask LocalCluster of two worker
+of `mbk bag`, `mbk batch --jobs 1`, `--jobs 2` and `--jobs 1 --threads 1` (one core), and a Dask LocalCluster of two worker
 processes (one thread each), in the same run; files/s, samples/s, and the speed-ups. Then the
 per-file overhead: the start of mbk_bag (`mbk bag --help`), and an `mbk bag` run on a walk of 10
 frames (start, model, reading, writing), the least of --repeats runs. Prints a markdown table
@@ -73,9 +73,12 @@ def shell_loop(folder, out):
     subprocess.run(["bash", "-c", script, "loop", folder, out, mbk()], check=True)
 
 
-def mbk_batch(folder, out, jobs):
+ONE_CORE = "mbk batch --jobs 1 --threads 1"
+
+
+def mbk_batch(folder, out, jobs, extra=()):
     done = subprocess.run([mbk(), "batch", folder, "--out-dir", out, "--jobs", str(jobs),
-                           "--scale", SCALE, "--body-mass", MASS], capture_output=True)
+                           "--scale", SCALE, "--body-mass", MASS, *extra], capture_output=True)
     assert done.returncode == 0, done.stderr
 
 
@@ -131,6 +134,9 @@ def main():
         for jobs, out in ((1, "/one"), (2, "/two")):
             name = "mbk batch --jobs %d" % jobs
             seconds[name], cpu[name] = timed_with_cpu(lambda: mbk_batch(folder, work + out, jobs))
+        # One core: the speed-up of the jobs alone, without mbk bag's own threads.
+        seconds[ONE_CORE], cpu[ONE_CORE] = timed_with_cpu(
+            lambda: mbk_batch(folder, work + "/core", 1, ("--threads", "1")))
         started = time.perf_counter()
         cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                host="127.0.0.1", dashboard_address=None)
@@ -139,7 +145,7 @@ def main():
             seconds["Dask LocalCluster, 2 workers"] = timed(
                 lambda: dask_run(folder, work + "/dask", client))
         cluster.close()
-        for out in ("one", "two", "dask"):
+        for out in ("one", "two", "core", "dask"):
             assert same_outputs(os.path.join(work, "loop"), os.path.join(work, out)), out
         start, run, python = overhead(work, args.repeats)
     finally:
@@ -158,6 +164,8 @@ def main():
     two = seconds["mbk batch --jobs 2"]
     busy, cores = cpu["mbk batch --jobs 1"] / one, len(os.sched_getaffinity(0))
     print("\n--jobs 2 / --jobs 1: %.2fx the files/s (wanted: at least 1.8x)." % (one / two))
+    print("--jobs 2 / one job on one core (--threads 1): %.2fx the files/s" % (
+        seconds[ONE_CORE] / two))
     if busy >= 1:
         print("One job keeps %.2f cores busy (mbk bag's --threads: the cores), so two on %d cores "
               "give at most %.2fx (%d / %.2f) at the same CPU s per file" % (
@@ -171,7 +179,8 @@ def main():
     print("per file: mbk bag's start (--help) %.3f s; a 10-frame walk %.3f s (start, model, "
           "read, write); the batch's Python start %.3f s once; the collection's mean %.3f s "
           "per file with one job" % (start, run, python, one / args.files))
-    print("outputs: the loop's, --jobs 1's, --jobs 2's and Dask's byte for byte the same")
+    print("outputs: the loop's, --jobs 1's (either --threads), --jobs 2's and Dask's byte for "
+          "byte the same")
 
 
 if __name__ == "__main__":
