@@ -40,7 +40,7 @@ constexpr double kReducedBound = 823549.6;
 // sin and cos of |x| < kReducedBound without a branch (a loop over angles vectorizes; other x
 // give some number). x = n pi/2
 // + (y0 + y1): pi/2 = pio2_1 + pio2_2 + pio2_2t, the first two of 33 bits (fdlibm
-// __ieee754_rem_pio2, its second round); y0 + y1 within 1e-20 of the remainder.
+// __ieee754_rem_pio2, its second reduction step); y0 + y1 within 1e-20 of the remainder.
 inline void sin_cos_reduced(double x, double& s, double& c) {
   constexpr double invpio2 = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
                    pio2_2 = 6.07710050630396597660e-11, pio2_2t = 2.02226624879595063154e-21;

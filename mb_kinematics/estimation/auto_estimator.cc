@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <thread>
+
+#include "mb_kinematics/core/split_runs.h"
 
 namespace mbk {
 
@@ -222,13 +223,9 @@ void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Se
   std::sort(in_use.begin(), in_use.end());
   in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
   const size_t runs = std::clamp<size_t>(threads, 1, std::max<size_t>(1, n / kRowsPerThread));
-  const auto run = [&](size_t i) {
-    final_rows(chosen, in_use, t, segments, x, ld, m, n * i / runs, n * (i + 1) / runs, out);
-  };
-  std::vector<std::thread> helpers;
-  for (size_t i = 1; i < runs; ++i) helpers.emplace_back(run, i);
-  run(0);
-  for (std::thread& h : helpers) h.join();
+  split_runs(n, static_cast<int>(runs), [&](size_t, size_t begin, size_t end) {
+    final_rows(chosen, in_use, t, segments, x, ld, m, begin, end, out);
+  });
 }
 
 }  // namespace
@@ -273,8 +270,9 @@ OfflineReach AutoChooser::reach() const {
 
 void AutoChooser::add(const std::vector<double>& t, const Segments& segments, const double* x,
                       int ld, long first, int from, int to) {
-  const auto run = [&](int part) {  // the series of one part, every selection sample
-    const SeriesShare share{m_ * part / threads_, m_ * (part + 1) / threads_, part == 0};
+  // Each part: its series, every selection sample.
+  split_runs(m_, threads_, [&](size_t part, size_t begin, size_t end) {
+    const SeriesShare share{static_cast<int>(begin), static_cast<int>(end), part == 0};
     DerivativeWeights w[2];
     std::vector<double> estimate[2] = {std::vector<double>(2 * m_), std::vector<double>(2 * m_)};
     for (int i = from; i < to; ++i) {
@@ -282,11 +280,7 @@ void AutoChooser::add(const std::vector<double>& t, const Segments& segments, co
       add_residuals(candidates_.front(), t, segments, x, ld, i, share, w[0], residuals_);
       add_lepski(candidates_, t, segments, x, ld, m_, i, share, w, estimate, stats_);
     }
-  };
-  std::vector<std::thread> helpers;
-  for (int part = 1; part < threads_; ++part) helpers.emplace_back(run, part);
-  run(0);
-  for (std::thread& h : helpers) h.join();
+  });
 }
 
 AutoChoice AutoChooser::choice() const {

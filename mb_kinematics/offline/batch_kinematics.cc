@@ -1,7 +1,6 @@
 #include "mb_kinematics/offline/batch_kinematics.h"
 
 #include <algorithm>
-#include <exception>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -10,6 +9,7 @@
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
@@ -178,27 +178,6 @@ std::size_t first_bad_sample(const Model& model, const BatchInput& in, std::size
   return end;
 }
 
-// Runs job(t, begin, end) on `threads` contiguous runs of [0, samples), the last on this
-// thread; an exception of a run (std::bad_alloc) is rethrown here after every run has ended.
-template <typename Job>
-void split(std::size_t samples, int threads, const Job& job) {
-  const std::size_t n = static_cast<std::size_t>(threads);
-  std::vector<std::exception_ptr> errors(n);
-  const auto run = [&](std::size_t t) {
-    try {
-      job(t, samples * t / n, samples * (t + 1) / n);
-    } catch (...) {
-      errors[t] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t + 1 < n; ++t) pool.emplace_back(run, t);
-  run(n - 1);
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
-}
-
 template <typename T>
 void check_request(const Model& model, const BatchInput& in, const BatchOutput<T>& out) {
   for (int k : out.bodies)
@@ -254,14 +233,14 @@ void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutpu
   threads = static_cast<int>(std::min<std::size_t>(threads, in.samples));
   std::vector<std::size_t> bad(threads);
   std::vector<std::string> problems(threads);
-  split(in.samples, threads, [&](std::size_t t, std::size_t begin, std::size_t end) {
+  split_runs(in.samples, threads, [&](std::size_t t, std::size_t begin, std::size_t end) {
     bad[t] = first_bad_sample(model, in, begin, end, problems[t]);
   });
   for (int t = 0; t < threads; ++t)  // runs in sample order: the first bad sample overall
     if (bad[t] < in.samples * (t + 1) / threads)
       throw std::invalid_argument("sample " + std::to_string(bad[t]) + ": " + problems[t]);
   const Level level = batch_level(out);
-  split(in.samples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+  split_runs(in.samples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
     compute_range(model, in, begin, end, level, out);
   });
 }
