@@ -16,6 +16,18 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
+// The model of a file that is not BVH: a URDF or a YAML scene.
+Model load_robot_file(const std::string& path) {
+  if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);
+  if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
+  if (ends_with(path, ".xacro"))
+    throw std::invalid_argument(path + ": a xacro file: expand it first (xacro " + path +
+                                " > robot.urdf, from ROS's xacro package) and give the .urdf, or "
+                                "load robot_description yourself and give no model");
+  throw std::invalid_argument(path +
+                              ": unknown model file type (expected .urdf, .xml, .yaml, .bvh)");
+}
+
 }  // namespace
 
 bool is_bvh_file(const std::string& path) {
@@ -25,21 +37,20 @@ bool is_bvh_file(const std::string& path) {
   return tail == ".bvh";
 }
 
-std::vector<std::string> missing_segments_of(const std::string& path, const BvhModelOptions& bvh) {
-  if (!is_bvh_file(path) || !(bvh.body_mass > 0)) return {};
-  return bvh_missing_segments(read_bvh(path), bvh);
+ModelFile read_model_file(const std::string& path, const BvhModelOptions& bvh) {
+  ModelFile file;
+  if (!is_bvh_file(path)) {
+    file.model = load_robot_file(path);
+    return file;
+  }
+  file.bvh = read_bvh(path);
+  file.model = model_from_bvh(*file.bvh, bvh);
+  file.missing_segments = bvh_missing_segments(*file.bvh, bvh);
+  return file;
 }
 
 Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
-  if (is_bvh_file(path)) return model_from_bvh(read_bvh(path), bvh);
-  if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);
-  if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
-  if (ends_with(path, ".xacro"))
-    throw std::invalid_argument(path + ": a xacro file: expand it first (xacro " + path +
-                                " > robot.urdf, from ROS's xacro package) and give the .urdf, or "
-                                "load robot_description yourself and give no model");
-  throw std::invalid_argument(path +
-                              ": unknown model file type (expected .urdf, .xml, .yaml, .bvh)");
+  return read_model_file(path, bvh).model;
 }
 
 bool is_model_text(const std::string& path_or_text) {

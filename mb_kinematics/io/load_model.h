@@ -2,6 +2,7 @@
 // motion capture (its skeleton; bvh_model.h).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,15 +11,22 @@
 
 namespace mbk {
 
-// Throws std::invalid_argument naming the file and what is wrong. `bvh` applies to BVH files.
-Model load_model_file(const std::string& path, const BvhModelOptions& bvh = {});
+// A model file read once, with what else its text gives.
+struct ModelFile {
+  Model model;
+  // The segments of the body the model lacks (bvh_missing_segments; empty for any file but a BVH
+  // skeleton with a body mass): mbk bag's CSV names its whole-body rows "system_incomplete" then,
+  // the bag's and the node's body_kinematics list them in system.missing_segments, mbk eval's
+  // JSON in "incomplete".
+  std::vector<std::string> missing_segments;
+  std::optional<BvhFile> bvh;  // a BVH file as parsed, its motion included; empty for the others
+};
 
-// The segments missing from the model file at `path` (bvh_missing_segments; empty for any file
-// but a BVH skeleton with a body mass): mbk bag's CSV names its whole-body rows
-// "system_incomplete" then, the bag's and the node's body_kinematics list them in
-// system.missing_segments, mbk eval's JSON in "incomplete".
-std::vector<std::string> missing_segments_of(const std::string& path,
-                                             const BvhModelOptions& bvh = {});
+// Throws std::invalid_argument naming the file and what is wrong. `bvh` applies to BVH files.
+ModelFile read_model_file(const std::string& path, const BvhModelOptions& bvh = {});
+
+// read_model_file's model.
+Model load_model_file(const std::string& path, const BvhModelOptions& bvh = {});
 
 // True for a file name load_model_file reads as BVH (`.bvh`, any case).
 bool is_bvh_file(const std::string& path);

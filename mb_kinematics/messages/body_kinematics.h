@@ -17,8 +17,8 @@
 namespace mbk_messages {
 
 // Names, indices and lower bodies of `msg`, once, and system.missing_segments: the segments of
-// the body that the model lacks (mbk::missing_segments_of: a BVH skeleton's, e.g. "left hand";
-// none for a URDF or YAML model). The per-sample fill leaves them.
+// the body that the model lacks (mbk::ModelFile::missing_segments: a BVH skeleton's, e.g. "left
+// hand"; none for a URDF or YAML model). The per-sample fill leaves them.
 inline void init_body_kinematics(const mbk::Model& model, const std::string& frame,
                                  mb_kinematics_msgs::BodyKinematicsArray& msg,
                                  const std::vector<std::string>& missing_segments = {}) {

@@ -47,16 +47,18 @@ bool ends_with(const std::string& s, const std::string& end) {
   return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
 }
 
-// The node's model rules: coordinate-derivative speeds (JointState velocities are q').
-mbk::Model load(const std::string& path, const mbk::BvhModelOptions& bvh) {
-  mbk::Model model = mbk::load_model_file(path, bvh);
+// The --model file, read once; the node's model rules: coordinate-derivative speeds (JointState
+// velocities are q').
+mbk::ModelFile load(const std::string& path, const mbk::BvhModelOptions& bvh) {
+  mbk::ModelFile file = mbk::read_model_file(path, bvh);
+  mbk::Model& model = file.model;
   for (const std::string& warning : model.warnings)
     std::cerr << "mbk: warning: " << mbk::printable(warning) << "\n";
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {
     model.speeds = mbk::SpeedKind::kCoordinateDerivatives;
     mbk::finalize_model(model);
   }
-  return model;
+  return file;
 }
 
 // True if paths a and b name one file: the same device and inode (symlinks and hard links
@@ -189,14 +191,17 @@ void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int ro
   s.write_seconds += since(t_close);
 }
 
-// Every sample of the input into `builder` (a trajectory CSV or a bag); `checked`: the bag was
-// read safely before (read_bag).
-void read_input(const BagOptions& o, const mbk::Model& model, mbk::RecordingBuilder& builder,
+// Every sample of the input into `builder` (a trajectory CSV, a BVH file or a bag) for the model
+// of `file`; `checked`: the bag was read safely before (read_bag). A BVH input that is the model
+// file (the default) is not read again: its motion is in `file`.
+void read_input(const BagOptions& o, const mbk::ModelFile& file, mbk::RecordingBuilder& builder,
                 BaseOdometry& base, BagSummary& s, bool checked) {
   mbk::Progress bar("reading  ", o.progress);
   builder.offset_times(o.start_time);
+  if (file.bvh && o.input == o.model)
+    return mbk::add_bvh_frames(*file.bvh, file.model, o.bvh.scale, builder);
   if (mbk::is_bvh_file(o.input))
-    return mbk::add_bvh_frames(mbk::read_bvh(o.input), model, o.bvh.scale, builder);
+    return mbk::add_bvh_frames(mbk::read_bvh(o.input), file.model, o.bvh.scale, builder);
   if (ends_with(o.input, ".csv")) return mbk::read_trajectory_csv(o.input, builder);
   Unreadable unreadable;
   read_bag(
@@ -206,15 +211,15 @@ void read_input(const BagOptions& o, const mbk::Model& model, mbk::RecordingBuil
   s.unreadable_example = unreadable.first;
 }
 
-// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies; errors: the
-// CSV has the error bars' columns.
-void open_outputs(const BagOptions& o, const mbk::Model& model, const mbk::Model& base_model,
+// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies (the model of
+// `file`, with or without a base); errors: the CSV has the error bars' columns.
+void open_outputs(const BagOptions& o, const mbk::ModelFile& file, const mbk::Model& base_model,
                   const std::string& base_frame, bool errors, Outputs& out) {
   out.input = o.input;
-  const std::vector<std::string> missing = mbk::missing_segments_of(o.model, o.bvh);
+  const std::vector<std::string>& missing = file.missing_segments;
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
-    out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), model, o.frame_prefix,
+    out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), file.model, o.frame_prefix,
                                           base_frame, base_model, missing);
   }
   if (!o.out_csv.empty()) {
@@ -309,11 +314,13 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 // replay them, or read the input again when it was longer. Reads of a bag: two when its rows fit
 // (read_bag's check in a child process, then the first pass), else one more per later pass (the
 // passes: the survey; the stamps' grid check, and the survey again when they are moved onto the
-// grid; with jittered stamps, the stamps once more; "auto"'s choice; the computing).
+// grid; with jittered stamps, the stamps once more; "auto"'s choice; the computing); of a CSV or
+// BVH file, one when its rows fit (a BVH input that is the model file: none, read_input).
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
-  InputRows(const BagOptions& o, const mbk::Model& model) : o_(o), model_(model) {}
+  InputRows(const BagOptions& o, const mbk::ModelFile& file)
+      : o_(o), file_(file), model_(file.model) {}
   // Every row to `sink`; the first pass's unreadable messages go to `s`.
   void pass(const Sink& sink, BagSummary& s) {
     if (read_ && kept_) return replay(sink);
@@ -324,7 +331,7 @@ class InputRows {
       sink(t, p, v, g);
     });
     BaseOdometry unused;
-    read_input(o_, model_, builder, unused, s, read_);
+    read_input(o_, file_, builder, unused, s, read_);
     builder.finish();  // every coordinate named, or the error
     if (!first) return;
     read_ = true;
@@ -367,7 +374,8 @@ class InputRows {
   }
 
   const BagOptions& o_;
-  const mbk::Model& model_;
+  const mbk::ModelFile& file_;
+  const mbk::Model& model_;  // file_'s
   bool read_ = false, kept_ = true;
   mbk::DropLog log_;
   long samples_read_ = 0;
@@ -380,10 +388,11 @@ class InputRows {
 // chooses its windows in a second, the last computes and writes the rows (InputRows: the input
 // read once when its rows fit in kKeptRowBytes). False, with nothing written, when the
 // recording needs the whole-recording path (a coordinate in some samples only).
-bool run_streamed(const BagOptions& o, const mbk::Model& model,
+bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
                   const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
-  InputRows input(o, model);
+  const mbk::Model& model = file.model;
+  InputRows input(o, file);
   const bool intervals = o.max_gap <= 0 || estimator.automatic;
   mbk::RecordingSurvey survey(model.nq, intervals);
   mbk::StampGridFit grid_fit;
@@ -422,7 +431,7 @@ bool run_streamed(const BagOptions& o, const mbk::Model& model,
     whole = choose.finish(reach);
   }
   Outputs out;
-  open_outputs(o, model, model, "", estimator.automatic, out);
+  open_outputs(o, file, model, "", estimator.automatic, out);
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
@@ -540,7 +549,8 @@ BagSummary run_bag(const BagOptions& o) {
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
   refuse_same_files(o, estimator.automatic);
   BagSummary s;
-  const mbk::Model model = load(o.model, o.bvh);
+  const mbk::ModelFile file = load(o.model, o.bvh);
+  const mbk::Model& model = file.model;
   s.estimator = estimator.name;
   if (!o.base_odometry.empty() && (ends_with(o.input, ".csv") || mbk::is_bvh_file(o.input)))
     throw std::invalid_argument("--base-odometry needs a bag input");
@@ -549,13 +559,13 @@ BagSummary run_bag(const BagOptions& o) {
   mbk::OfflineReach reach;
   const bool may_stream = o.base_odometry.empty() && o.joint_accelerations.empty() &&
                           (estimator.automatic || mbk::offline_reach(estimator, reach));
-  if (may_stream && run_streamed(o, model, estimator, reach, s)) {
+  if (may_stream && run_streamed(o, file, estimator, reach, s)) {
     s.wall_seconds = since(wall);
     return s;
   }
   mbk::RecordingBuilder builder(model);
   BaseOdometry base;
-  read_input(o, model, builder, base, s, may_stream);
+  read_input(o, file, builder, base, s, may_stream);
   const mbk::Recording rec = builder.finish();
   s.grid = rec.grid;
   s.read = builder.samples_read();
@@ -580,7 +590,7 @@ BagSummary run_bag(const BagOptions& o) {
         mbk::with_floating_base(model, base.frame, "base_odometry"));
   const mbk::Model& base_model = floating ? *with_base : model;
   // The error bars' columns with auto (in the model's frame: not with a base).
-  open_outputs(o, model, base_model, base.frame, estimator.automatic && !floating, out);
+  open_outputs(o, file, base_model, base.frame, estimator.automatic && !floating, out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());

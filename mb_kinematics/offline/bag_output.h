@@ -23,7 +23,7 @@ class BagOutput {
   // taken from the model. With a floating base, `base_frame` names R (the odometry's frame) and
   // each write gets the root frame's pose in it. body_kinematics lists the bodies of
   // `kinematics_model` (with a base: with_floating_base(model), as the node), `data` is of it;
-  // its system.missing_segments are `missing_segments` (mbk::missing_segments_of the model file).
+  // its system.missing_segments are `missing_segments` (the model file's: mbk::ModelFile).
   BagOutput(const std::string& path, const mbk::Model& model, const std::string& prefix,
             const std::string& base_frame, const mbk::Model& kinematics_model,
             const std::vector<std::string>& missing_segments = {});

@@ -62,7 +62,8 @@ KinematicsNode::KinematicsNode(ros::NodeHandle nh, ros::NodeHandle pnh)
       pnh_(pnh),
       input_(params_, params_.base_odometry.empty() ? "" : nh.resolveName(params_.base_odometry)),
       data_(input_.model()) {
-  start(load_node_model(params_));
+  const mbk::ModelFile loaded = load_node_model(params_);
+  start(loaded.model, loaded.missing_segments);
   joint_states_sub_ = subscribe("joint_states", &KinematicsNode::on_joint_states);
   accelerations_sub_ = subscribe("joint_accelerations", &KinematicsNode::on_joint_accelerations);
   pairing_timer_ = nh_.createWallTimer(
@@ -94,9 +95,11 @@ ros::Subscriber KinematicsNode::subscribe(
 
 // Everything that depends on the model, made anew (at start and by ~reload); the outputs that
 // need no R (/diagnostics) first.
-void KinematicsNode::start(const mbk::Model& loaded) {
+void KinematicsNode::start(const mbk::Model& loaded,
+                           const std::vector<std::string>& missing_segments) {
   outputs_.clear();
   input_.load(loaded);
+  missing_segments_ = missing_segments;
   data_ = mbk::Data<double>(input_.model());
   rate_ = PublishRate(params_.publish_frequency);
   outputs_ = make_outputs(setup(), false);
@@ -109,6 +112,7 @@ OutputSetup KinematicsNode::setup() {
           pnh_,
           params_,
           input_.model(),
+          missing_segments_,
           input_.frame(),
           input_.tally(),
           input_.coverage(),
@@ -134,16 +138,18 @@ bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::R
   std::lock_guard<std::mutex> lock(queue_.mutex());
   const NodeParams running_params = params_;
   const mbk::Model running = input_.loaded();
+  const std::vector<std::string> running_missing = missing_segments_;
   Outputs retired;
   for (auto& o : outputs_)
     if (!o->is_service()) retired.push_back(std::move(o));
   outputs_.clear();
   try {
     read_model_source(nh_, pnh_, params_);
-    start(load_node_model(params_));
+    const mbk::ModelFile loaded = load_node_model(params_);
+    start(loaded.model, loaded.missing_segments);
   } catch (const std::exception& e) {
     params_ = running_params;
-    start(running);
+    start(running, running_missing);
     response.success = false;
     response.message = e.what();
     ROS_WARN_STREAM("~reload refused, the running model stays: " << mbk::printable(e.what()));

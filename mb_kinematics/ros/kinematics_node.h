@@ -45,8 +45,9 @@ class KinematicsNode {
   // ~reload: the model source read again; on success everything that depends on the model
   // (input, estimators, pairing, outputs, latched topics) is made anew.
   bool on_reload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
-  void start(const mbk::Model& loaded);  // makes everything that depends on the model
-  void make_outputs_in_r();              // the outputs, once R is known
+  // Makes everything that depends on the model (and the segments of the body it lacks).
+  void start(const mbk::Model& loaded, const std::vector<std::string>& missing_segments);
+  void make_outputs_in_r();  // the outputs, once R is known
   OutputSetup setup();
   void process(const std::vector<NodeInput::Ready>& ready);
   void process(const NodeInput::Ready& ready);  // one sample: merge, compute, publish
@@ -62,7 +63,8 @@ class KinematicsNode {
   NodeParams params_;
   ros::NodeHandle nh_, pnh_;
   NodeInput input_;
-  mbk::Data<double> data_;  // of input_.model()
+  mbk::Data<double> data_;                     // of input_.model()
+  std::vector<std::string> missing_segments_;  // of the loaded model's body (load_node_model)
   Outputs outputs_;
   std::vector<char> active_;      // per output: listened to for the current sample
   PublishRate rate_;              // ~publish_frequency

@@ -101,12 +101,13 @@ void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, No
   get(pnh, "joint_type", p.joint_type, "a string");
 }
 
-mbk::Model load_node_model(const NodeParams& p) {
-  mbk::Model model;
+mbk::ModelFile load_node_model(const NodeParams& p) {
+  mbk::ModelFile loaded;
+  mbk::Model& model = loaded.model;
   if (!p.lower_body_array.empty()) {
     model = mbk::make_bare_model(p.lower_body_array, mbk::joint_type_from_string(p.joint_type));
   } else if (!p.model.empty()) {
-    model = mbk::load_model_file(p.model, p.bvh);
+    loaded = mbk::read_model_file(p.model, p.bvh);
   } else if (!p.robot_description.empty()) {
     model = mbk::load_urdf_string(p.robot_description, "robot_description");
   } else {
@@ -118,12 +119,7 @@ mbk::Model load_node_model(const NodeParams& p) {
     model.speeds = mbk::SpeedKind::kCoordinateDerivatives;
     mbk::finalize_model(model);
   }
-  return model;
-}
-
-std::vector<std::string> node_missing_segments(const NodeParams& p) {
-  if (!p.lower_body_array.empty()) return {};
-  return mbk::missing_segments_of(p.model, p.bvh);
+  return loaded;
 }
 
 }  // namespace mbk_ros

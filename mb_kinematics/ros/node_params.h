@@ -10,6 +10,7 @@
 
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/io/bvh_model.h"
+#include "mb_kinematics/io/load_model.h"
 
 namespace mbk_ros {
 
@@ -56,12 +57,10 @@ NodeParams read_node_params(const ros::NodeHandle& nh, const ros::NodeHandle& pn
 // ~joint_type), for ~reload; throws like read_node_params.
 void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, NodeParams& p);
 
-// The model the parameters name: ~lower_body_array, else ~model, else robot_description (URDF).
-// Euler-parameter joints get coordinate-derivative speeds. Throws std::invalid_argument.
-mbk::Model load_node_model(const NodeParams& params);
-
-// The segments of the body that the model load_node_model reads lacks (mbk::missing_segments_of:
-// a .bvh ~model's, with ~body_mass; empty for any other source).
-std::vector<std::string> node_missing_segments(const NodeParams& params);
+// The model the parameters name: ~lower_body_array, else ~model, else robot_description (URDF),
+// each source read once, with the segments of the body the model lacks (mbk::ModelFile's: a .bvh
+// ~model's, with ~body_mass; empty for any other source). Euler-parameter joints get
+// coordinate-derivative speeds. Throws std::invalid_argument.
+mbk::ModelFile load_node_model(const NodeParams& params);
 
 }  // namespace mbk_ros

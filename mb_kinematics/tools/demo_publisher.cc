@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh, pnh("~");
   mbk::Model model;
   try {
-    model = mbk_ros::load_node_model(mbk_ros::read_node_params(nh, pnh));
+    model = mbk_ros::load_node_model(mbk_ros::read_node_params(nh, pnh)).model;
   } catch (const std::exception& e) {
     ROS_FATAL_STREAM("demo_publisher: " << e.what());
     return 1;

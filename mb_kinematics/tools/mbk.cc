@@ -123,25 +123,25 @@ void print_warnings(const mbk::Model& model) {
     std::cerr << "mbk: warning: " << mbk::printable(warning) << "\n";
 }
 
-// The model of FILE; what the loader let through (e.g. inertias that are not physical) is
-// printed once on stderr.
-mbk::Model load(const std::map<std::string, std::string>& options) {
+// FILE, read once; what the loader let through (e.g. inertias that are not physical) is printed
+// once on stderr.
+mbk::ModelFile load(const std::map<std::string, std::string>& options) {
   const std::string path = options.at("--model");
-  mbk::Model model = mbk::load_model_file(path, bvh_options(options, path));
-  print_warnings(model);
-  return model;
+  mbk::ModelFile file = mbk::read_model_file(path, bvh_options(options, path));
+  print_warnings(file.model);
+  return file;
 }
 
 // Frame N of the BVH model file as the state: its coordinates, velocities and accelerations
 // from the offline zero-phase estimator over the whole motion (mbk bag's, for that frame).
 mbk::JointState<double> frame_state(const std::map<std::string, std::string>& options,
-                                    const mbk::Model& model) {
+                                    const mbk::ModelFile& file) {
   const std::string path = options.at("--model"), text = options.at("--frame");
   char* end = nullptr;
   const long frame = std::strtol(text.c_str(), &end, 10);
   if (*end != '\0' || text.empty() || frame < 0 || frame > (1L << 30))
     throw UsageError("--frame needs a frame number from 0, not '" + text + "'");
-  return mbk::bvh_frame_state(mbk::read_bvh(path), model, bvh_options(options, path).scale,
+  return mbk::bvh_frame_state(*file.bvh, file.model, bvh_options(options, path).scale,
                               static_cast<int>(frame), mbk::default_offline_estimator());
 }
 
@@ -154,7 +154,7 @@ int tables(const std::map<std::string, std::string>& options) {
     lower = mbk::parse_lower_body_array(options.at("--lower"));
     mbk::validate_lower_body_array(lower);
   } else {
-    const mbk::Model model = load(options);
+    const mbk::Model model = load(options).model;
     lower = model.lower_body_array();
     for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
   }
@@ -175,10 +175,11 @@ int eval(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("eval needs --model FILE");
   if (options.count("--state") && options.count("--frame"))
     throw UsageError("eval takes --state or --frame, not both");
-  const mbk::Model model = load(options);
+  const mbk::ModelFile file = load(options);  // --frame: a .bvh file (bvh_options)
+  const mbk::Model& model = file.model;
   const mbk::JointState<double> state = options.count("--state")
                                             ? mbk::read_state_file(model, options.at("--state"))
-                                        : options.count("--frame") ? frame_state(options, model)
+                                        : options.count("--frame") ? frame_state(options, file)
                                                                    : mbk::default_state(model);
   const std::string problem = mbk::check_state(model, state);  // NaN/Inf, |e| ~ 0, overflow
   if (!problem.empty()) throw std::invalid_argument(state_source(options) + ": " + problem);
@@ -196,15 +197,14 @@ int eval(const std::map<std::string, std::string>& options) {
   if (method == "recursive") mbk::forward_kinematics(model, state, data);
   mbk::SystemKinematics<double> system;
   mbk::system_kinematics(model, data, system);
-  const std::string path = options.at("--model");
   std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr,
-                                     mbk::missing_segments_of(path, bvh_options(options, path)));
+                                     file.missing_segments);
   return 0;
 }
 
 int urdf(const std::map<std::string, std::string>& options) {
   if (!options.count("--model")) throw UsageError("urdf needs --model FILE");
-  const mbk::Model model = load(options);
+  const mbk::Model model = load(options).model;
   std::cout << mbk::write_urdf(
       model, options.count("--name") ? options.at("--name") : "scene",
       options.count("--display") ? mbk::UrdfStyle::kDisplay : mbk::UrdfStyle::kEquivalent);

@@ -89,11 +89,12 @@ TEST(SystemFields, TheSegmentsAModelLacksAreInEveryMessage) {
   mbk_ros::NodeParams p;
   p.model = skeleton_without_hands();
   p.bvh = {0.01, 70, "male", ""};
-  const mbk::Model model = mbk_ros::load_node_model(p);
+  const mbk::ModelFile loaded = mbk_ros::load_node_model(p);
+  const mbk::Model& model = loaded.model;
   const std::vector<std::string> hands = {"left hand", "right hand"};
-  ASSERT_EQ(mbk_ros::node_missing_segments(p), hands);
+  ASSERT_EQ(loaded.missing_segments, hands);
   mb_kinematics_msgs::BodyKinematicsArray msg;
-  mbk_messages::init_body_kinematics(model, "R", msg, mbk_ros::node_missing_segments(p));
+  mbk_messages::init_body_kinematics(model, "R", msg, loaded.missing_segments);
   const mbk_test::Trajectory trajectory(model, 7);
   mbk::Data<double> data(model);
   for (const bool complete : {true, false, true}) {
@@ -110,16 +111,16 @@ TEST(SystemFields, NoSegmentMissingFromAWholeSkeletonOrARobot) {
   mbk_ros::NodeParams p;
   p.model = mbk_test::source_path("test/io/data/cmu_walk.bvh");
   p.bvh = {0.01, 70, "male", ""};
-  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  EXPECT_TRUE(mbk_ros::load_node_model(p).missing_segments.empty());
   p.model = skeleton_without_hands();
   p.bvh.body_mass = 0;  // massless segments: no table
-  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  EXPECT_TRUE(mbk_ros::load_node_model(p).missing_segments.empty());
   p.bvh.body_mass = 70;
   p.lower_body_array = {0, 1};  // wins over ~model
-  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  EXPECT_TRUE(mbk_ros::load_node_model(p).missing_segments.empty());
   p.lower_body_array.clear();
   p.model = mbk_test::source_path("config/human_body.urdf");
-  EXPECT_TRUE(mbk_ros::node_missing_segments(p).empty());
+  EXPECT_TRUE(mbk_ros::load_node_model(p).missing_segments.empty());
 }
 
 }  // namespace

@@ -8,8 +8,7 @@ BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
     : publisher_(setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics",
                                                                              kSampleQueueSize)),
       shown_(setup.model.body_count() + 1, 1) {
-  mbk_messages::init_body_kinematics(setup.model, setup.frame, msg_.next(),
-                                     node_missing_segments(setup.params));
+  mbk_messages::init_body_kinematics(setup.model, setup.frame, msg_.next(), setup.missing_segments);
 }
 
 void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample) {

@@ -32,6 +32,7 @@ struct OutputSetup {
   ros::NodeHandle& pnh;  // the node's private handle
   const NodeParams& params;
   const mbk::Model& model;
+  const std::vector<std::string>& missing_segments;  // of the model's body (load_node_model)
   const std::string& frame;  // R (with ~frame_prefix when it is the model's own); "" before it
   // The input's fate and what is missing (node_input.h), for /diagnostics.
   InputTally& tally;
