@@ -1,7 +1,7 @@
-// Counting replacements of global operator new / new[] (calls and bytes) and, on glibc, of malloc (Eigen's
-// dynamic storage and other C code allocate with malloc), for the "no allocation per sample"
-// tests. Include it in exactly one source file of a test executable: it defines the
-// replaceable functions.
+// Counting replacements of global operator new / new[] (calls and bytes) and, on glibc, of
+// malloc (Eigen's dynamic storage and other C code allocate with malloc), for the "no allocation
+// per sample" tests and a memory bound. Include it in exactly one source file of a test
+// executable: it defines the replaceable functions.
 #pragma once
 
 #include <atomic>
