@@ -33,7 +33,7 @@ struct BvhModelOptions {
   double scale = 1.0;        // metres per file unit (0.01 for centimetres, 0.0254 for inches)
   double body_mass = 0.0;    // kg; 0 = massless segments
   std::string sex = "male";  // "male" or "female": the anthropometric table's column
-  std::string segments;      // a YAML map joint name -> segment (bvh_segment_map.h); "" none
+  std::string segments{};    // a YAML map joint name -> segment (bvh_segment_map.h); "" none
 };
 
 // The options from their command-line texts (--scale, --body-mass, --sex, --segments; "" keeps

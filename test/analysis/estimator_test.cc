@@ -67,8 +67,8 @@ struct TextbookKalman {
   using Vec = Eigen::Matrix<long double, 3, 1>;
   using Mat = Eigen::Matrix<long double, 3, 3>;
   long double q, r, t = 0;
-  Vec s;
-  Mat p;
+  Vec s = Vec::Zero();
+  Mat p = Mat::Zero();
   void start(long double t0, long double x) {
     t = t0;
     s << x, 0, 0;

@@ -8,36 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
-#include <cstdlib>
-#include <new>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/partial_velocity.h"
-
-// Bytes asked of operator new, for the memory bound below (Eigen's fixed-size vectors and the
-// std containers allocate through it).
-namespace {
-std::atomic<long> g_bytes{0};
-}  // namespace
-// The nothrow form too (std::stable_sort's buffer): memory it gives is freed by the plain delete,
-// so every form that pairs with these deletes must come from malloc (AddressSanitizer checks).
-void* operator new(std::size_t size) {
-  g_bytes += static_cast<long>(size);
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  g_bytes += static_cast<long>(size);
-  return std::malloc(size ? size : 1);
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+#include "test/support/allocation_counter.h"
 
 namespace {
 
@@ -111,12 +89,12 @@ TEST(ChainPartialVelocities, TipOfADeepChainCostsItsChainOnly) {
   const mbk::Model model = mbk::make_chain(kLinks, mbk::JointType::kRevolute);
   std::mt19937 rng(5);
   const mbk::JointState<double> state = mbk::random_state(model, rng);
-  const long before = g_bytes;
+  const long before = mbk_test::allocation_counts().new_bytes;
   const auto start = std::chrono::steady_clock::now();
   const auto got = mbk::chain_partial_velocities(model, state, {kLinks});
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const long bytes = g_bytes - before;
+  const long bytes = mbk_test::allocation_counts().new_bytes - before;
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(static_cast<long>(got[0].size()), mbk::chain_speed_counts(model)[kLinks]);
   EXPECT_EQ(got[0].size(), static_cast<size_t>(kLinks));

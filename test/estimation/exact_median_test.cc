@@ -61,7 +61,9 @@ TEST(ExactMedianTest, EqualsNthElementBitForBit) {
       const double m = passes_median(v, bins, &passes);
       EXPECT_EQ(m, exact) << n << " values, " << bins << " bins, " << passes << " passes";
       EXPECT_FALSE(std::signbit(m) && m == 0);  // -0 as 0
-      if (static_cast<std::size_t>(n) > bins) EXPECT_GT(passes, 1);
+      if (static_cast<std::size_t>(n) > bins) {
+        EXPECT_GT(passes, 1);
+      }
     }
   }
   EXPECT_EQ(passes_median({}, 4), 0.0);

@@ -1,7 +1,7 @@
-// Counting replacements of global operator new / new[] and, on glibc, of malloc (Eigen's
-// dynamic storage and other C code allocate with malloc), for the "no allocation per sample"
-// tests. Include it in exactly one source file of a test executable: it defines the
-// replaceable functions.
+// Counting replacements of global operator new / new[] (calls and bytes) and, on glibc, of
+// malloc (Eigen's dynamic storage and other C code allocate with malloc), for the "no allocation
+// per sample" tests and a memory bound. Include it in exactly one source file of a test
+// executable: it defines the replaceable functions.
 #pragma once
 
 #include <atomic>
@@ -11,16 +11,19 @@
 namespace {
 
 std::atomic<long> g_news{0};
+std::atomic<long> g_new_bytes{0};
 std::atomic<long> g_mallocs{0};
 
 void* counted_new(std::size_t size) {
   ++g_news;
+  g_new_bytes += static_cast<long>(size);
   if (void* p = std::malloc(size ? size : 1)) return p;
   throw std::bad_alloc();
 }
 
 void* counted_aligned_new(std::size_t size, std::align_val_t align) {
   ++g_news;
+  g_new_bytes += static_cast<long>(size);
   const std::size_t a = static_cast<std::size_t>(align);
   if (void* p = std::aligned_alloc(a, (size + a - 1) / a * a)) return p;
   throw std::bad_alloc();
@@ -85,7 +88,10 @@ namespace mbk_test {
 
 struct AllocationCounts {
   long news, mallocs;
+  long new_bytes;  // asked of operator new and new[]
 };
-inline AllocationCounts allocation_counts() { return {g_news.load(), g_mallocs.load()}; }
+inline AllocationCounts allocation_counts() {
+  return {g_news.load(), g_mallocs.load(), g_new_bytes.load()};
+}
 
 }  // namespace mbk_test

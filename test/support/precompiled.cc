@@ -1,0 +1,1 @@
+// Empty: the owner of a precompiled header for the tests (test/test_build.cmake).
