@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """mbk batch's speed (doc/speed.md#a-collection-mbk-batch): a collection of --files BVH walks
 (the CMU trials of test/mocap, their first --frames frames, copied in turn) through a shell loop
-of `mbk bag`, `mbk batch --jobs 1`, `--jobs 2` and `--jobs 1 --threads 1` (one core), and a Dask LocalCluster of two worker
-processes (one thread each), in the same run; files/s, samples/s, and the speed-ups. Then the
+of `mbk bag`, two such loops at once (each over half the files), `mbk batch --jobs 1`, `--jobs 2`
+and `--jobs 1 --threads 1` (one core), and a Dask LocalCluster of two worker processes (one
+thread each), in the same run, each run's outputs checked against the loop's and removed; files/s,
+samples/s, and the speed-ups. Then the
 per-file overhead: the start of mbk_bag (`mbk bag --help`), and an `mbk bag` run on a walk of 10
 frames (start, model, reading, writing), the least of --repeats runs. Prints a markdown table
 (CPU s: the CPU time of the processes a run started, which the machine's other load leaves
@@ -66,14 +68,20 @@ def timed_with_cpu(f):
     return timed(f), children_cpu() - cpu
 
 
-def shell_loop(folder, out):
-    script = ('for f in $(find "$1" -name "*.bvh" | sort); do r=${f#$1/}; mkdir -p "$2/$(dirname '
-              '"$r")"; "$3" bag "$f" --scale %s --body-mass %s --csv "$2/${r%%.bvh}.csv" '
-              '2>/dev/null; done' % (SCALE, MASS))
-    subprocess.run(["bash", "-c", script, "loop", folder, out, mbk()], check=True)
+def shell_loop(folder, out, parts=1, threads=()):
+    """A shell loop of `mbk bag` over the collection; `parts` loops at once, each over every
+    parts-th file (the most two independent processes give, without mbk batch)."""
+    script = ('for f in $(find "$1" -name "*.bvh" | sort | awk "NR %% $4 == $5"); do r=${f#$1/}; '
+              'mkdir -p "$2/$(dirname "$r")"; "$3" bag "$f" --scale %s --body-mass %s '
+              '--csv "$2/${r%%.bvh}.csv" %s 2>/dev/null; done' % (SCALE, MASS, " ".join(threads)))
+    loops = [subprocess.Popen(["bash", "-c", script, "loop", folder, out, mbk(), str(parts),
+                               str(k)]) for k in range(parts)]
+    assert all(loop.wait() == 0 for loop in loops)
 
 
 ONE_CORE = "mbk batch --jobs 1 --threads 1"
+TWO_LOOPS = "two shell loops at once (--threads 1)"
+DASK = "Dask LocalCluster, 2 workers"
 
 
 def mbk_batch(folder, out, jobs, extra=()):
@@ -129,24 +137,32 @@ def main():
         collection(folder, args.files, args.frames)
         samples = args.files * args.frames
         seconds, cpu = {}, {}
+        reference = os.path.join(work, "loop")
         seconds["shell loop of mbk bag"], cpu["shell loop of mbk bag"] = timed_with_cpu(
-            lambda: shell_loop(folder, work + "/loop"))
-        for jobs, out in ((1, "/one"), (2, "/two")):
-            name = "mbk batch --jobs %d" % jobs
-            seconds[name], cpu[name] = timed_with_cpu(lambda: mbk_batch(folder, work + out, jobs))
+            lambda: shell_loop(folder, reference))
+
+        def measure(name, run):
+            """Times run(out), checks its outputs against the loop's and removes them (kept, the
+            runs' gigabytes would leave the later runs writing beside the earlier ones' writeback)."""
+            out = os.path.join(work, "out")
+            subprocess.run(["sync"], check=True)
+            seconds[name], cpu[name] = timed_with_cpu(lambda: run(out))
+            assert same_outputs(reference, out), name
+            shutil.rmtree(out)
+
+        measure(TWO_LOOPS, lambda out: shell_loop(folder, out, 2, ("--threads", "1")))
+        for jobs in (1, 2):
+            measure("mbk batch --jobs %d" % jobs, lambda out: mbk_batch(folder, out, jobs))
         # One core: the speed-up of the jobs alone, without mbk bag's own threads.
-        seconds[ONE_CORE], cpu[ONE_CORE] = timed_with_cpu(
-            lambda: mbk_batch(folder, work + "/core", 1, ("--threads", "1")))
+        measure(ONE_CORE, lambda out: mbk_batch(folder, out, 1, ("--threads", "1")))
         started = time.perf_counter()
         cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                host="127.0.0.1", dashboard_address=None)
         with Client(cluster) as client:
             cluster_start = time.perf_counter() - started
-            seconds["Dask LocalCluster, 2 workers"] = timed(
-                lambda: dask_run(folder, work + "/dask", client))
+            measure(DASK, lambda out: dask_run(folder, out, client))
         cluster.close()
-        for out in ("one", "two", "core", "dask"):
-            assert same_outputs(os.path.join(work, "loop"), os.path.join(work, out)), out
+        cpu.pop(DASK)  # its workers' processes are not this one's children
         start, run, python = overhead(work, args.repeats)
     finally:
         shutil.rmtree(work)
@@ -173,14 +189,14 @@ def main():
     else:
         print("One job kept %.2f cores busy: the machine's other load took the rest, so the "
               "speed-ups say little (run it again when `uptime` shows a load under 1)" % busy)
-    dask = seconds["Dask LocalCluster, 2 workers"]
+    print("--jobs 2 / two shell loops at once: %.2f of their time" % (two / seconds[TWO_LOOPS]))
+    dask = seconds[DASK]
     print("Dask / --jobs 2: %.2f (the cluster's start, %.1f s, not counted)" % (dask / two,
                                                                                  cluster_start))
     print("per file: mbk bag's start (--help) %.3f s; a 10-frame walk %.3f s (start, model, "
           "read, write); the batch's Python start %.3f s once; the collection's mean %.3f s "
           "per file with one job" % (start, run, python, one / args.files))
-    print("outputs: the loop's, --jobs 1's (either --threads), --jobs 2's and Dask's byte for "
-          "byte the same")
+    print("outputs: every run's byte for byte the loop's")
 
 
 if __name__ == "__main__":

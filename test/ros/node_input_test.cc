@@ -42,7 +42,7 @@ TEST(NodeParams, ABvhModelTakesItsScaleAndBodyMass) {
   mbk_ros::NodeParams params;
   params.model = mbk_test::source_path("test/io/data/cmu_walk.bvh");
   params.bvh = {0.01, 70.0, "female"};
-  const mbk::Model model = mbk_ros::load_node_model(params);
+  const mbk::Model model = mbk_ros::load_node_model(params).model;
   EXPECT_EQ(model.body_count(), 29);
   double mass = 0;
   for (const mbk::Body& body : model.bodies) mass += body.mass;
