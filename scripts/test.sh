@@ -35,14 +35,15 @@ fi
 MBK_PACKAGES+=("${MBK_TEST_PACKAGES[@]}")
 mbk_install_deps
 mbk_build -DCATKIN_ENABLE_TESTING=ON "${build_args[@]}"
-echo "== building tests"
+echo "== building tests (${SECONDS} s in)"
 (cd "$MBK_WS/build" && make -j2 tests >>"$MBK_WS/build.log" 2>&1) || {
   tail -n 60 "$MBK_WS/build.log"
   echo "test build failed: full log in $MBK_WS/build.log" >&2
   exit 1
 }
-[ -n "$sanitize" ] || { echo "== building the fuzz harnesses" && "$MBK_SRC/scripts/fuzz.sh" --build; }
+[ -n "$sanitize" ] || { echo "== building the fuzz harnesses (${SECONDS} s in)" && "$MBK_SRC/scripts/fuzz.sh" --build; }
 [ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
+echo "== ctest (${SECONDS} s in)"
 cd "$MBK_WS/build"
 set +e
 ctest --output-on-failure -j"$jobs" "${skip[@]}" 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'
