@@ -24,6 +24,9 @@ target_precompile_headers(mbk_ros_test_headers PRIVATE ${MBK_TEST_HEADERS} <ros/
 add_dependencies(mbk_ros_test_headers mb_kinematics_msgs_generate_messages_cpp)
 foreach(owner mbk_test_headers mbk_ros_test_headers)
   target_compile_options(${owner} PRIVATE -O1)
+  # GoogleTest's include folder: /usr/include with libgtest-dev, else the sources catkin builds
+  # it from (Debian's googletest package alone, as on a fresh machine).
+  target_link_libraries(${owner} GTest::gtest)
 endforeach()
 
 # mbk_test_compile(HEADERS TARGET...): the test executables' own files at -O1, each with the
