@@ -37,6 +37,7 @@ MBK_TEST_PACKAGES=(
   python3-matplotlib catkin-lint
   libnodeletlib-tools  # the nodelet manager (the nodelet's tests; load_monitor)
   clang-14 libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer, ASan, UBSan
+  llvm-14  # llvm-symbolizer: a fuzz finding's stack with function names
   valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers

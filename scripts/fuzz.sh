@@ -60,6 +60,10 @@ seeds() {  # the shipped files each harness starts from
 }
 
 export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1
+# clang-14's runtime names functions only through llvm-symbolizer, which is not on PATH under
+# that name without Debian's unversioned llvm package.
+symbolizer=/usr/lib/llvm-14/bin/llvm-symbolizer
+[ -x "$symbolizer" ] && export ASAN_SYMBOLIZER_PATH=$symbolizer
 export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 set +e
