@@ -319,13 +319,12 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
-  InputRows(const BagOptions& o, const mbk::ModelFile& file)
-      : o_(o), file_(file), model_(file.model) {}
+  InputRows(const BagOptions& o, const mbk::ModelFile& file) : o_(o), file_(file) {}
   // Every row to `sink`; the first pass's unreadable messages go to `s`.
   void pass(const Sink& sink, BagSummary& s) {
     if (read_ && kept_) return replay(sink);
     const bool first = !read_;
-    mbk::RecordingBuilder builder(model_);
+    mbk::RecordingBuilder builder(file_.model);
     builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
       if (first) keep(t, p, v, g);
       sink(t, p, v, g);
@@ -346,7 +345,7 @@ class InputRows {
 
  private:
   void keep(double t, const double* p, const double* v, const std::uint8_t* g) {
-    const std::size_t nq = model_.nq, rows = t_.size();
+    const std::size_t nq = file_.model.nq, rows = t_.size();
     const std::size_t most = kKeptRowBytes / (sizeof(double) * (1 + 2 * nq) + nq);
     if (!kept_) return;
     if (rows == most) {
@@ -364,7 +363,7 @@ class InputRows {
     given_.insert(given_.end(), g, g + nq);
   }
   void replay(const Sink& sink) const {
-    const std::size_t nq = model_.nq, rows = t_.size();
+    const std::size_t nq = file_.model.nq, rows = t_.size();
     mbk::Progress bar("computing", o_.progress);
     for (std::size_t r = 0; r < rows; ++r) {
       if (r % 1024 == 0) bar.update(static_cast<long>(r), static_cast<long>(rows));
@@ -375,7 +374,6 @@ class InputRows {
 
   const BagOptions& o_;
   const mbk::ModelFile& file_;
-  const mbk::Model& model_;  // file_'s
   bool read_ = false, kept_ = true;
   mbk::DropLog log_;
   long samples_read_ = 0;
