@@ -22,7 +22,6 @@
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/number_format.h"
-#include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
@@ -547,7 +546,6 @@ BagSummary run_bag(const BagOptions& o) {
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
   refuse_same_files(o, estimator.automatic);
-  mbk::check_regular_file(o.input, "the recording");  // not a pipe, /dev/zero or a folder
   BagSummary s;
   const mbk::ModelFile file = load(o.model, o.bvh);
   const mbk::Model& model = file.model;
