@@ -5,13 +5,16 @@
 
 #include <cstddef>
 #include <exception>
+#include <system_error>
 #include <thread>
 #include <vector>
 
 namespace mbk {
 
 // Runs job(t, begin, end) on `threads` contiguous runs of [0, items), the last on this thread;
-// an exception of a run (std::bad_alloc) is rethrown here after every run has ended.
+// an exception of a run (std::bad_alloc) is rethrown here after every run has ended. A thread
+// that cannot start (no address space for its stack, a process limit) shrinks the pool: its run
+// and the later ones go on this thread, with the same results.
 template <typename Job>
 void split_runs(std::size_t items, int threads, const Job& job) {
   const std::size_t n = static_cast<std::size_t>(threads);
@@ -24,8 +27,13 @@ void split_runs(std::size_t items, int threads, const Job& job) {
     }
   };
   std::vector<std::thread> pool;
-  for (std::size_t t = 0; t + 1 < n; ++t) pool.emplace_back(run, t);
-  run(n - 1);
+  std::size_t started = 0;
+  try {
+    pool.reserve(n - 1);
+    for (; started + 1 < n; ++started) pool.emplace_back(run, started);
+  } catch (const std::exception&) {  // std::system_error, or bad_alloc in reserve
+  }
+  for (std::size_t t = started; t < n; ++t) run(t);
   for (std::thread& thread : pool) thread.join();
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);

@@ -2,12 +2,11 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/name_list.h"
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -62,11 +61,7 @@ SegmentMap parse_segment_map(const std::string& text, const std::string& path) {
 }
 
 SegmentMap read_segment_map(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw std::invalid_argument(path + ": cannot open");
-  std::stringstream text;
-  text << file.rdbuf();
-  return parse_segment_map(text.str(), path);
+  return parse_segment_map(read_text_file(path, "segment map"), path);
 }
 
 }  // namespace mbk

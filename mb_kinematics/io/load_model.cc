@@ -65,8 +65,10 @@ Model load_model(const std::string& path_or_text, const BvhModelOptions* bvh,
   if (bvh && (text || !is_bvh_file(path_or_text)))
     throw std::invalid_argument("scale, body mass and sex apply to a .bvh model file only");
   if (!text) return load_model_file(path_or_text, bvh ? *bvh : BvhModelOptions());
-  if (path_or_text[path_or_text.find_first_not_of(" \t\r\n")] == '<')
-    return load_urdf_string(path_or_text, source);
+  const std::size_t first = path_or_text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos)
+    throw std::invalid_argument(source + ": an empty model text (only blanks and line ends)");
+  if (path_or_text[first] == '<') return load_urdf_string(path_or_text, source);
   return load_yaml_scene_string(path_or_text, source);
 }
 

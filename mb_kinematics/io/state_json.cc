@@ -102,10 +102,20 @@ JointState<double> read_state_string(const Model& model, const std::string& text
   }
 }
 
-// "-" is standard input, as for other command-line tools.
+std::size_t state_text_bound(const Model& model) {
+  std::size_t most = 1 << 20;
+  for (const auto* names : {&model.coordinate_names, &model.speed_names, &model.speed_names})
+    for (const std::string& name : *names) most += 6 * name.size() + 64;
+  return most;
+}
+
+// "-" is standard input, as for other command-line tools; either is read up to the bound only.
 JointState<double> read_state_file(const Model& model, const std::string& path) {
-  if (path == "-") return read_state_string(model, read_text_stream(std::cin), "standard input");
-  return read_state_string(model, read_text_file(path, "state file"), path);
+  const std::size_t most = state_text_bound(model);
+  if (path == "-")
+    return read_state_string(model, read_text_stream(std::cin, "standard input", most),
+                             "standard input");
+  return read_state_string(model, read_text_file(path, "state file", most), path);
 }
 
 }  // namespace mbk

@@ -20,6 +20,7 @@
 
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/quaternion_scale.h"
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk_offline {
 namespace {
@@ -278,6 +279,7 @@ void survive_or_refuse(const std::string& path) {
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress, bool checked) {
+  mbk::check_regular_file(path, "the recording");  // a pipe or /dev/zero: read without end
   if (!checked) check_record_lengths(path), survive_or_refuse(path);
   rosbag::Bag bag;
   try {

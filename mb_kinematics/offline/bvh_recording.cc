@@ -1,5 +1,6 @@
 #include "mb_kinematics/offline/bvh_recording.h"
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -15,6 +16,8 @@ constexpr double kFinestFrameTime = 1e-9;
 
 void add_bvh_frames(const BvhFile& bvh, const Model& model, double scale,
                     RecordingBuilder& builder) {
+  if (!(scale > 0) || !std::isfinite(scale))  // as model_from_bvh's
+    throw std::invalid_argument("scale: must be a positive number of metres per file unit");
   if (bvh.frame_time < kFinestFrameTime) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", bvh.frame_time);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "mb_kinematics/core/finite_kinematics.h"
@@ -20,7 +22,20 @@ OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
   workers_.emplace_back(model, recording, estimator, max_gap, whole, threads);
   while (static_cast<int>(workers_.size()) < threads)
     workers_.push_back(workers_.front());  // a copy: no second scan of the rows
-  for (int i = 0; i < this->threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);
+  start_threads();
+}
+
+// A thread that cannot start (no address space for its stack, a process limit) shrinks the
+// pool to those that did; none at all is an error.
+void OfflineBatch::start_threads() {
+  try {
+    threads_.reserve(workers_.size());
+    for (int i = 0; i < threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);
+  } catch (const std::exception& e) {
+    if (threads_.empty())
+      throw std::runtime_error(std::string("cannot start a computing thread: ") + e.what());
+  }
+  while (workers_.size() > threads_.size()) workers_.pop_back();  // no block started yet
 }
 
 OfflineBatch::~OfflineBatch() {

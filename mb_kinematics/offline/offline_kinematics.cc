@@ -18,6 +18,9 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       first_(Eigen::VectorXd::Zero(model.nq)),
       second_(Eigen::VectorXd::Zero(model.nq)),
       velocity_first_(Eigen::VectorXd::Zero(model.nq)) {
+  if (recording.nq != model.nq || recording.given.size() != recording.stamp.size() * model.nq)
+    throw std::invalid_argument("a recording of another model: " + std::to_string(recording.nq) +
+                                " coordinates, the model has " + std::to_string(model.nq));
   std::vector<char> everywhere(model.nq, 1);
   const int nq = model.nq;
   for (int r = 0; r < rec_.rows(); ++r)

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/offline/bvh_recording.h"
@@ -57,7 +58,12 @@ RecordingStates recording_states(const Model& model, const Recording& recording,
   bool errors = rows > 0;
   JointState<double> state(model);
   for (std::size_t r = 0; r < rows; ++r) {
-    out.drop_reason[r] = states.state_at(static_cast<int>(r), state);
+    std::string& reason = out.drop_reason[r];
+    reason = states.state_at(static_cast<int>(r), state);
+    if (reason.empty()) {  // NaN from a denormal time step, as mbk bag drops the row
+      const std::string problem = check_state(model, state);
+      if (!problem.empty()) reason = "state rejected (mbk::check_state): " + problem;
+    }
     std::copy(state.position.data(), state.position.data() + nq, &out.position[r * nq]);
     std::copy(state.velocity.data(), state.velocity.data() + nq, &out.velocity[r * nq]);
     std::copy(state.acceleration.data(), state.acceleration.data() + nq, &out.acceleration[r * nq]);

@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/io/text_file.h"
 
 namespace mbk {
 namespace {
@@ -76,6 +77,7 @@ void note_rounding(const std::string& time, RecordingBuilder& builder) {
 }  // namespace
 
 void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
+  check_regular_file(path, "the recording");  // a pipe or /dev/zero would be read without end
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::invalid_argument(path + ": cannot open");
   const std::vector<std::string> header = read_header(in, path);

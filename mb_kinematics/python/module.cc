@@ -130,8 +130,17 @@ struct Recorded {
   mbk::Recording recording;
   mbk_offline::BaseOdometry base;
   mbk::DropLog log;
+  std::vector<std::string> coordinates;  // of the model it was read for
 };
 using RecordedPtr = std::shared_ptr<Recorded>;
+
+// A recording's columns are its model's coordinates: another model's would be read as its own.
+void check_same_model(const mbk::Model& model, const Recorded& recorded) {
+  if (recorded.coordinates != model.coordinate_names)
+    throw std::invalid_argument(
+        "recording: read for another model (its coordinates differ from this model's); read it "
+        "with this model's read_recording or recording");
+}
 
 py::array_t<double> matrix(const std::vector<double>& values, std::size_t rows, std::size_t cols) {
   py::array_t<double> out({rows, cols});
@@ -153,6 +162,7 @@ RecordedPtr read_recording(const ModelPtr& model, const std::string& path, doubl
                            const std::string& joint_states, const std::string& joint_accelerations,
                            const std::string& base_odometry) {
   auto out = std::make_shared<Recorded>();
+  out->coordinates = model->coordinate_names;
   py::gil_scoped_release release;
   mbk_offline::RecordingInput in = mbk_offline::read_recording_input(
       *model, path, scale, {joint_states, joint_accelerations, base_odometry}, out->log);
@@ -202,6 +212,7 @@ py::array_t<double> body_vectors(const std::vector<mbk::Data<double>>& data, Fie
 // layout, under the names of Model.kinematics, with the body names and the drops.
 py::dict floating_base_kinematics(const ModelPtr& model, const RecordedPtr& recorded,
                                   const std::string& estimator, double max_gap, int threads) {
+  check_same_model(*model, *recorded);
   mbk::DropLog log = recorded->log;
   mbk::BaseRows rows;
   {
@@ -250,6 +261,7 @@ RecordedPtr recording_of_positions(const ModelPtr& model, const InputArray& time
       position.shape(1) != model->nq)
     throw std::invalid_argument("times, positions: wrong shapes");
   auto out = std::make_shared<Recorded>();
+  out->coordinates = model->coordinate_names;
   out->recording =
       mbk::recording_of_positions(model->nq, time.shape(0), time.data(), position.data());
   return out;
@@ -257,6 +269,7 @@ RecordedPtr recording_of_positions(const ModelPtr& model, const InputArray& time
 
 py::dict recording_states(const ModelPtr& model, const RecordedPtr& recorded,
                           const std::string& estimator, double max_gap) {
+  check_same_model(*model, *recorded);
   mbk::RecordingStates s;
   {
     py::gil_scoped_release release;

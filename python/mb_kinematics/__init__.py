@@ -35,6 +35,7 @@ _POSE, _VELOCITY, _ACCELERATION = 0, 1, 2
 #: Every output `Model.kinematics` can write, in its order.
 OUTPUTS = tuple(_TRAITS)
 _PARTIALS = tuple(name for name in OUTPUTS if name.startswith("partial_"))
+MOST_THREADS = 1024  # as mbk bag --threads
 
 
 def load(path_or_text, scale=None, body_mass=None, sex=None):
@@ -47,9 +48,7 @@ def load(path_or_text, scale=None, body_mass=None, sex=None):
     if not isinstance(path_or_text, str):
         raise TypeError("path_or_text: a file name or a model text (str), not %s"
                         % type(path_or_text).__name__)
-    for name, value in (("scale", scale), ("body_mass", body_mass)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
-            raise TypeError("%s: a number, not %s" % (name, type(value).__name__))
+    scale, body_mass = _number(scale, "scale"), _number(body_mass, "body_mass")
     if sex is not None and not isinstance(sex, str):
         raise TypeError("sex: 'male' or 'female', not %s" % type(sex).__name__)
     return Model(_core.load(path_or_text, scale, body_mass, sex))
@@ -82,8 +81,9 @@ class Model:
         self._body_index = {name: k for k, name in enumerate(self.body_names, 1)}
         self._coordinate_index = {n: i for i, n in enumerate(self.coordinate_names)}
         self._speed_index = {n: i for i, n in enumerate(self.speed_names)}
-        for array in (self.masses, self.mass_centers, self.lower, self.neutral_position):
-            array.setflags(write=False)
+        self.masses, self.mass_centers, self.lower, self.neutral_position = (
+            _frozen(a) for a in (self.masses, self.mass_centers, self.lower,
+                                 self.neutral_position))
 
     @property
     def body_count(self):
@@ -100,9 +100,8 @@ class Model:
         """The lower body arrays L^t(k) (Table 4.2.1), (rows, N), made on first use: a chain of
         N bodies has N + 1 rows, so a model loaded only to compute never pays for them."""
         if self._lower_table is None:
-            table = np.array(self._core.lower_table, dtype=np.int64).reshape(-1, len(self.lower))
-            table.setflags(write=False)
-            self._lower_table = table
+            table = np.array(self._core.lower_table, dtype=np.int64)
+            self._lower_table = _frozen(table.reshape(-1, len(self.lower)))
         return self._lower_table
 
     def tables(self):
@@ -136,7 +135,8 @@ class Model:
         for name, topic in topics.items():
             if not isinstance(topic, str):
                 raise TypeError("%s: a topic name (str), not %s" % (name, type(topic).__name__))
-        return _core.read_recording(self._core, path, float(scale), topics["joint_states"],
+        return _core.read_recording(self._core, path, _number(scale, "scale"),
+                                    topics["joint_states"],
                                     topics["joint_accelerations"], topics["base_odometry"])
 
     def recording(self, times, positions):
@@ -223,12 +223,23 @@ class Model:
             arrays[name] = (np.empty(shape, dtype=dtype) if given is None
                             else _out_array(given, name, shape[1:] if single else shape, dtype,
                                             shape))
+        q, velocity, acceleration = _apart(arrays, q, velocity, acceleration)
         _core.batch_kinematics(self._core, q, velocity, acceleration, arrays, list(chosen),
                                _threads(threads), dtype == np.float32)
         if single:
             return {name: (out[name] if out is not None and name in out else a[0])
                     for name, a in arrays.items()}
         return arrays
+
+
+def _frozen(array):
+    """A read-only view of a read-only array: setflags(write=True) cannot undo it (numpy refuses
+    to make a view writeable over a base that is not)."""
+    array = np.array(array)  # owns its data: no writeable base behind it
+    array.setflags(write=False)
+    view = array.view()
+    view.setflags(write=False)
+    return view
 
 
 def _estimator_arguments(recording, estimator, max_gap):
@@ -238,10 +249,23 @@ def _estimator_arguments(recording, estimator, max_gap):
                         % type(recording).__name__)
     if not isinstance(estimator, str):
         raise TypeError("estimator: a name such as 'auto', not %s" % type(estimator).__name__)
-    gap = 0.0 if max_gap is None else float(max_gap)
-    if gap < 0 or not np.isfinite(gap):
+    gap = 0.0 if max_gap is None else _number(max_gap, "max_gap")
+    if max_gap is not None and not (gap > 0 and np.isfinite(gap)):
         raise ValueError("max_gap: %r, expected seconds above 0" % (max_gap,))
     return gap
+
+
+def _number(value, name):
+    """A real number as a float (None stays None); TypeError for another type, ValueError for
+    one a double cannot hold."""
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.number)):
+        raise TypeError("%s: a number, not %s" % (name, type(value).__name__))
+    try:
+        return float(value)
+    except OverflowError:
+        raise ValueError("%s: %r is beyond a double's range" % (name, value)) from None
 
 
 def _real(value, name):
@@ -257,7 +281,8 @@ def _positions(model, q):
     a = _real(q, "q")
     if a.ndim not in (1, 2) or a.shape[-1] != model.nq:
         raise ValueError("q: shape %s, expected (%d,) or (N, %d)" % (a.shape, model.nq, model.nq))
-    return a.ndim == 1, np.ascontiguousarray(a.reshape(-1, model.nq), dtype=np.float64)
+    rows = a.reshape(1 if a.ndim == 1 else len(a), model.nq)  # -1 is unknown when nq is 0
+    return a.ndim == 1, np.ascontiguousarray(rows, dtype=np.float64)
 
 
 def _from_dict(model, values, name, index, neutral):
@@ -310,6 +335,8 @@ def _dtype(dtype):
 def _bodies(model, bodies):
     if bodies is None:
         return range(1, model.body_count + 1)
+    if isinstance(bodies, (bool, np.bool_)):
+        raise TypeError("bodies: body names or indices, not bool")
     if isinstance(bodies, (str, int, np.integer)):
         bodies = [bodies]
     chosen = []
@@ -320,6 +347,8 @@ def _bodies(model, bodies):
             chosen.append(model._body_index[b])
             continue
         try:
+            if isinstance(b, (bool, np.bool_)):
+                raise TypeError
             k = operator.index(b)
         except TypeError:
             raise TypeError("bodies: a body name or index, not %s" % type(b).__name__) from None
@@ -377,13 +406,29 @@ def _out_array(a, name, shape, dtype, full):
     return a.reshape(full)
 
 
+def _apart(arrays, *inputs):
+    """The inputs, each copied where an output array overlaps it (numpy's ufuncs do the same);
+    ValueError for two outputs that overlap (each would be written over the other's values).
+    Every array here is C-contiguous: overlapping bounds are overlapping elements."""
+    names = list(arrays)
+    for i, name in enumerate(names):
+        for other in names[i + 1:]:
+            if np.may_share_memory(arrays[name], arrays[other]):
+                raise ValueError("out[%r] and out[%r]: overlap in memory" % (name, other))
+    return [None if a is None else
+            a.copy() if any(np.may_share_memory(a, o) for o in arrays.values()) else a
+            for a in inputs]
+
+
 def _threads(threads):
     if threads is None:
         return 0
     try:
+        if isinstance(threads, (bool, np.bool_)):
+            raise TypeError
         n = operator.index(threads)
     except TypeError:
         raise TypeError("threads: an integer, not %s" % type(threads).__name__) from None
-    if n < 1:
-        raise ValueError("threads: %d, expected at least 1" % n)
+    if not 1 <= n <= MOST_THREADS:
+        raise ValueError("threads: %d, expected 1 to %d" % (n, MOST_THREADS))
     return n

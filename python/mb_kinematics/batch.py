@@ -14,6 +14,7 @@ the runs, the summary and the command line.
 import argparse
 import csv
 import io
+import logging
 import os
 import signal
 import sys
@@ -31,7 +32,9 @@ __all__ = ["run", "main", "run_job", "plan", "find_inputs", "locate_mbk_bag", "B
 COLUMNS = ["input", "output", "status", "resumed", "samples_read", "samples_written", "dropped",
            "drops", "unreadable", "estimator", "noise_level", "seconds", "error"]
 MOST_FAILURES = 100  # the exit status counts failures up to this
+NO_CLUSTER_SECONDS = 60  # on Dask: how long the batch waits for a worker (or scheduler) to return
 USAGE_STATUS = 125  # a wrong command line: nothing run
+WRITE_STATUS = 124  # the summary (or a folder) could not be written
 
 
 # --- Progress and summary ---------------------------------------------------------------------
@@ -118,7 +121,7 @@ def _report_finished(waiting, report):
     for future, job in waiting.items():
         if future.done() and not future.cancelled() and future.exception() is None:
             summary = future.result()
-            if summary["status"] != "failed":
+            if summary is not None and summary["status"] != "failed":
                 report(job, summary)
 
 
@@ -126,13 +129,13 @@ def _run_local(jobs, count, report, stop):
     """Runs `jobs` on `count` concurrent child processes; report(job, summary) as each ends."""
     running = set()
     with ThreadPoolExecutor(max_workers=count) as pool:
-        waiting = {pool.submit(run_job, job, running): job for job in jobs}
+        waiting = {pool.submit(run_job, job, running, stop.event): job for job in jobs}
         try:
             while waiting:
                 done, _ = wait(list(waiting), timeout=0.2, return_when=FIRST_COMPLETED)
+                stop.check()  # first: a job the signal ended is not run, not failed
                 for future in done:
                     report(waiting.pop(future), future.result())
-                stop.check()
         except Interrupted:
             for future in waiting:
                 future.cancel()
@@ -153,32 +156,59 @@ def _absolute(job):
     return absolute
 
 
-def run_on_client(client, jobs, report, stop):
+def _cluster_gone(client):
+    """Why the cluster can run nothing now ("" while it can): no worker, or no scheduler."""
+    if client.status != "running":
+        return "the scheduler is lost (client %s)" % client.status
+    if not client.scheduler_info().get("workers"):
+        return "no worker alive"
+    return ""
+
+
+def run_on_client(client, jobs, report, stop, patience=None):
     """Runs `jobs` on a Dask cluster (a dask.distributed.Client): one task per job, retried on
-    another worker when its worker dies; a job whose task fails anyway is reported failed."""
-    from distributed import as_completed
+    another worker when its worker dies; a job whose task fails anyway is reported failed (but
+    one that left its record, e.g. before its scheduler was lost, as it finished). When the
+    cluster has had no worker or no scheduler for `patience` seconds (default
+    NO_CLUSTER_SECONDS), the jobs left are reported failed, saying so."""
+    patience = NO_CLUSTER_SECONDS if patience is None else patience
     futures = client.map(run_job, [_absolute(job) for job in jobs], pure=False)
     waiting = dict(zip(futures, jobs))
+    gone_since = None
     try:
-        for future in as_completed(futures):
+        while waiting:
             stop.check()
-            job = waiting.pop(future)
-            try:
-                summary = future.result()
-            except Exception as e:  # KilledWorker, a worker that cannot import the package
-                summary = failure(job, "%s: %s" % (type(e).__name__, e))
-            report(job, summary)
+            for future in [f for f in waiting if f.done()]:
+                job = waiting.pop(future)
+                try:
+                    summary = future.result()
+                except Exception as e:  # KilledWorker, CancelledError, an import error
+                    summary = finished(job) or failure(job, "%s: %s" % (type(e).__name__, e))
+                report(job, summary)
+            why = _cluster_gone(client) if waiting else ""
+            gone_since = (time.monotonic() if gone_since is None else gone_since) if why else None
+            if why and time.monotonic() - gone_since >= patience:
+                if client.status == "running":
+                    client.cancel(list(waiting))
+                for job in waiting.values():
+                    report(job, failure(job, "Dask: %s for %g s; run again to resume" %
+                                        (why, patience)))
+                waiting.clear()
+            stop.sleep(0.2)
     except Interrupted:
         _report_finished(waiting, report)
-        client.cancel(list(waiting))
+        if client.status == "running":
+            client.cancel(list(waiting))
         raise
 
 
 class _Stop:
-    """SIGINT and SIGTERM turned into Interrupted in the main thread."""
+    """SIGINT and SIGTERM turned into Interrupted in the main thread; `event` is set at once (for
+    the jobs' threads: none starts after it)."""
 
     def __init__(self):
         self.signum = None
+        self.event = threading.Event()
 
     def __enter__(self):
         self.previous = {}
@@ -189,10 +219,16 @@ class _Stop:
 
     def _note(self, signum, frame):
         self.signum = signum
+        self.event.set()
 
     def check(self):
         if self.signum is not None:
             raise Interrupted(self.signum)
+
+    def sleep(self, seconds):
+        """Waits `seconds` or until a signal, then check()s."""
+        self.event.wait(seconds)
+        self.check()
 
     def __exit__(self, *exc):
         for s, handler in self.previous.items():
@@ -227,6 +263,7 @@ def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, pro
     if isinstance(inputs, (str, os.PathLike)):
         inputs = [inputs]
     inputs, out_dir = [os.fspath(i) for i in inputs], os.fspath(out_dir)
+    _check_out_dir(out_dir)
     cores = len(os.sched_getaffinity(0))
     jobs = jobs or cores
     # Locally the cores are shared by the jobs; a Dask worker runs one job per thread.
@@ -258,6 +295,16 @@ def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, pro
         rows = [results.get(job["record"]) or not_run(job) for job in planned]
         write_summary(out_dir, rows)
     return rows
+
+
+def _check_out_dir(out_dir):
+    """BatchError unless out_dir, its summary and its records' folder are (or can be) a folder,
+    a file and a folder."""
+    for path, folder in ((out_dir, True), (os.path.join(out_dir, SUMMARY), False),
+                         (os.path.join(out_dir, STATE), True)):
+        if os.path.lexists(path) and (os.path.isdir(path) != folder or not os.path.exists(path)):
+            raise BatchError("--out-dir: %s is not a %s" % (path, "folder" if folder else
+                                                            "regular file"))
 
 
 def exit_status(rows):
@@ -300,10 +347,13 @@ def _connect(address):
         from distributed import Client
     except ImportError:
         raise BatchError("--scheduler needs Dask's distributed (Debian: python3-distributed)")
+    # Dask logs a lost connection as tracebacks on stderr; mbk batch's rows and lines say it.
+    logging.disable(logging.CRITICAL)
     try:
         return Client(address)
-    except (OSError, ValueError) as e:  # TimeoutError is an OSError
-        raise BatchError("cannot reach the Dask scheduler %s: %s" % (address, e))
+    except Exception as e:  # TimeoutError, an unknown protocol, tls:// without its certificates
+        raise BatchError("cannot reach the Dask scheduler %s: %s: %s"
+                         % (address, type(e).__name__, e))
 
 
 def main(argv=None):
@@ -325,6 +375,10 @@ def main(argv=None):
     except BatchError as e:
         sys.stderr.write("mbk: error: %s\n" % e)
         return USAGE_STATUS
+    except OSError as e:  # the summary or a folder could not be written (a full disk)
+        sys.stderr.write("mbk: error: %s: %s\n" % (e.filename or arguments.out_dir,
+                                                    e.strerror or e))
+        return WRITE_STATUS
     except Interrupted as e:
         sys.stderr.write("mbk batch: interrupted (%s): finished files are kept, run again to "
                          "resume\n" % e)
@@ -332,7 +386,9 @@ def main(argv=None):
     finally:
         if client is not None:
             client.close()
-    sys.stdout.write(format_table(rows, time.monotonic() - started))
+    table = format_table(rows, time.monotonic() - started)  # names as their bytes, UTF-8 or not
+    sys.stdout.buffer.write(table.encode("utf-8", "surrogateescape"))
+    sys.stdout.flush()
     return exit_status(rows)
 
 

@@ -6,6 +6,7 @@ from mb_kinematics.batch_job import STATE
 
 EXTENSIONS = (".bag", ".csv", ".bvh")
 SUMMARY = "summary.csv"  # beside the outputs: no input may be written over it
+SIDE_FILES = (".errors", ".sample_errors")  # OUT.csv's side files: OUT.errors.csv, ...
 
 
 class BatchError(ValueError):
@@ -59,14 +60,20 @@ def find_inputs(paths, out_dir):
     stems, seen, found = {os.path.splitext(SUMMARY)[0]: SUMMARY}, set(), []
     for path in paths:
         for item, stem in _expand(path, frozenset()):
+            try:
+                os.stat(item)
+            except OSError as e:  # a dangling link, a link loop
+                raise BatchError("%s: %s" % (item, e.strerror))
             real = os.path.realpath(item)
             if real == out or real.startswith(out + os.sep) or real in seen:
                 continue
             key = os.path.normpath(stem)
-            if key in stems:
-                raise BatchError("%s and %s: both would be written as %s in --out-dir"
-                                 % (stems[key], item, key))
-            stems[key] = item
+            for name in [key] + [key + side for side in SIDE_FILES]:  # mbk bag --csv's too
+                if name in stems:
+                    raise BatchError("%s and %s: both would be written as %s in --out-dir"
+                                     % (stems[name], item, name))
+            for name in [key] + [key + side for side in SIDE_FILES]:
+                stems[name] = item
             seen.add(real)
             found.append((item, key))
     if not found:

@@ -38,12 +38,19 @@ def write_atomically(path, text, durable=True):
     disk (fsync) before the rename."""
     os.makedirs(os.path.dirname(path), exist_ok=True)
     temporary = "%s.mbk-tmp-%d-%d" % (path, os.getpid(), threading.get_ident())
-    with open(temporary, "w", encoding="utf-8", newline="") as f:
-        f.write(text)
-        if durable:
-            f.flush()
-            os.fsync(f.fileno())
-    os.replace(temporary, path)
+    try:  # names not in UTF-8 (surrogate escapes) are written as the bytes they were
+        with open(temporary, "w", encoding="utf-8", errors="surrogateescape", newline="") as f:
+            f.write(text)
+            if durable:
+                f.flush()
+                os.fsync(f.fileno())
+        os.replace(temporary, path)
+    except BaseException as e:  # a full disk, a folder at `path`: no temporary left
+        if os.path.lexists(temporary):
+            os.remove(temporary)
+        if isinstance(e, OSError) and not e.filename:
+            e.filename = path
+        raise
 
 
 def _file_identity(path):
@@ -73,14 +80,27 @@ def _bag_command(job):
     return ([setpriv, "--pdeathsig", "TERM"] if setpriv else []) + command
 
 
-def run_job(job, running=None):
+def run_job(job, running=None, stop=None):
     """Runs `mbk bag` on one input (`job` from plan()); returns its summary (mbk bag's
     --summary-json, or a failure naming the error). A finished job (status ok or partial) leaves
     its record, so that a later run skips it. `running`: a set the child process is kept in while
-    it runs (for an interruption to stop it)."""
+    it runs (for an interruption to stop it); `stop`: a threading.Event set on an interruption,
+    after which no job starts (None is returned) and a child just started is ended."""
+    try:
+        return _run_job(job, running, stop)
+    except OSError as e:  # the records' folder or an output's folder of the wrong kind, a full disk
+        return failure(job, "%s: %s" % (e.filename or job["record"], e.strerror or e))
+
+
+def _run_job(job, running, stop):
     started = time.monotonic()
-    if os.path.exists(job["record"]):
-        os.remove(job["record"])
+    if stop is not None and stop.is_set():
+        return None
+    try:
+        if os.path.lexists(job["record"]):
+            os.remove(job["record"])
+    except FileNotFoundError:  # another run on this --out-dir removed it first
+        pass
     os.makedirs(os.path.dirname(job["record"]), exist_ok=True)
     for path in job["outputs"]:
         os.makedirs(os.path.dirname(path), exist_ok=True)
@@ -88,6 +108,8 @@ def run_job(job, running=None):
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     if running is not None:
         running.add(child)
+    if stop is not None and stop.is_set():  # the interruption's loop over `running` came first
+        child.terminate()
     try:
         stdout, stderr = child.communicate()
     finally:

@@ -1,0 +1,276 @@
+"""Hostile input to the Python module and to `mbk bag` / `mbk eval` (doc/reliability.md): threads
+that cannot start, a recording given to another model, out= arrays that overlap the inputs or
+each other, arguments of the wrong kind or beyond a double, inputs that are not regular files,
+states without end. Each must end in one clear error or the right numbers, never an abort, a
+hang or a wrong array."""
+import os
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+from conftest import mbk_path, random_states, source
+
+PANDA = source("test/robots/panda.urdf")
+HUMAN = source("config/human_body.urdf")
+
+
+def run_python(code, timeout=120):
+    """`code` in a fresh interpreter with this one's path (the devel space's package)."""
+    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True,
+                          text=True, timeout=timeout, env=dict(os.environ))
+
+
+def run_mbk(*args, stdin=None, timeout=60):
+    return subprocess.run([mbk_path()] + list(args), capture_output=True, text=True,
+                          stdin=stdin, timeout=timeout)
+
+
+def arm_csv(path, rows=200, start=1.0):
+    model_names = ["panda_joint%d" % j for j in range(1, 8)] + ["panda_finger_joint1"]
+    t = start + np.arange(rows) * 0.01
+    with open(path, "w") as f:
+        f.write(",".join(["time"] + model_names) + "\n")
+        for ti in t:
+            f.write("%.9f," % ti + ",".join("%.12f" % (0.3 * np.sin((1 + 0.2 * j) * ti))
+                                            for j in range(8)) + "\n")
+    return path
+
+
+@pytest.fixture(scope="module")
+def panda(mbk_kinematics):
+    return mbk_kinematics.load(PANDA)
+
+
+@pytest.fixture(scope="module")
+def human(mbk_kinematics):
+    return mbk_kinematics.load(HUMAN)
+
+
+# --- Threads that cannot start ----------------------------------------------------------------
+
+@pytest.mark.skipif("asan" in os.environ.get("LD_PRELOAD", ""),
+                    reason="AddressSanitizer's shadow rules out an address space cap")
+def test_threads_that_cannot_start_shrink_the_pool():
+    """1,000 threads under an address space 512 MB above what the process holds (their 8 MB
+    stacks do not fit): the same arrays as on one thread, no abort."""
+    done = run_python("""
+        import resource, numpy as np, mb_kinematics
+        model = mb_kinematics.load(%r)
+        q = np.random.default_rng(1).uniform(-1, 1, (1000, model.nq))
+        one = model.kinematics(q, threads=1)
+        size = int(open("/proc/self/statm").read().split()[0]) * resource.getpagesize()
+        resource.setrlimit(resource.RLIMIT_AS, (size + (512 << 20), resource.RLIM_INFINITY))
+        many = model.kinematics(q, threads=1000)
+        assert all(np.array_equal(one[k], many[k]) for k in one), "other numbers"
+        print("same")
+        """ % HUMAN)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == "same\n"
+
+
+def test_mbk_bag_threads_beyond_the_address_space(tmp_path):
+    """mbk bag --threads 1024 under --max-memory 2, 4 and 8 GiB (the stacks alone take 8): the
+    run completes on the threads that started, as on one thread, or stops with the one line of
+    --max-memory; never an abort, and no temporary is left."""
+    csv = arm_csv(str(tmp_path / "t.csv"))
+    one = str(tmp_path / "one.csv")
+    first = run_mbk("bag", csv, "--model", PANDA, "--csv", one, "--threads", "1")
+    assert first.returncode == 0, first.stderr
+    completed = 0
+    for gib in ("2", "4", "8"):
+        many = str(tmp_path / ("many%s.csv" % gib))
+        run = run_mbk("bag", csv, "--model", PANDA, "--csv", many, "--threads", "1024",
+                      "--max-memory", gib)
+        assert run.returncode in (0, 1), run.stderr
+        if run.returncode == 0:
+            completed += 1
+            assert open(one).read() == open(many).read()
+        else:
+            assert run.stderr == ("mbk: error: out of memory: the run needs more than "
+                                  "--max-memory %s GiB of address space (default: 90 %% of this "
+                                  "machine's memory); give a larger --max-memory or fewer "
+                                  "--threads\n" % gib)
+        assert not [f for f in os.listdir(str(tmp_path)) if "mbk-tmp" in f]
+    assert completed >= 1
+
+
+# --- Recordings and models --------------------------------------------------------------------
+
+def test_a_recording_of_another_model_is_refused(panda, human, tmp_path):
+    recording = panda.read_recording(arm_csv(str(tmp_path / "arm.csv")))
+    for call in (lambda: human.states(recording), lambda: human.recording_kinematics(recording)):
+        with pytest.raises(ValueError, match="read for another model"):
+            call()
+    twin = human.recording(np.arange(5.0), np.tile(human.neutral_position, (5, 1)))
+    with pytest.raises(ValueError, match="read for another model"):
+        panda.states(twin)
+    again = type(panda)(panda._core)  # the same model: accepted
+    assert again.states(recording)["valid"].any()
+
+
+def test_an_empty_model_text_is_refused(mbk_kinematics):
+    for text in ("\n" * 100, " \t\r\n"):
+        with pytest.raises(ValueError, match="an empty model text"):
+            mbk_kinematics.load(text)
+
+
+# --- out= arrays that overlap -----------------------------------------------------------------
+
+def test_out_overlapping_an_input_gives_the_right_numbers(human):
+    q, v, a = random_states(human, 20, seed=4)
+    expected = human.kinematics(q, v, a, outputs=["origin", "mass_center"])
+    n, b = len(q), human.body_count
+    buffer = np.zeros(n * b * 3 + 10)
+    shared_q = buffer[:q.size].reshape(q.shape)  # origin's first elements are q's
+    shared_q[:] = q
+    origin = buffer[:n * b * 3].reshape(n, b, 3)
+    human.kinematics(shared_q, v, a, outputs=["origin"], out={"origin": origin})
+    assert np.array_equal(origin, expected["origin"])
+    buffer = np.zeros(n * b * 3 + 10)
+    shared_v = buffer[5:5 + v.size].reshape(v.shape)
+    shared_v[:] = v
+    center = buffer[:n * b * 3].reshape(n, b, 3)
+    human.kinematics(q, shared_v, a, outputs=["mass_center"], out={"mass_center": center})
+    assert np.array_equal(center, expected["mass_center"])
+
+
+def test_out_arrays_overlapping_each_other_are_refused(human):
+    q, _, _ = random_states(human, 3, seed=5)
+    n, b = len(q), human.body_count
+    buffer = np.full(2 * n * b * 3, 7.0)
+    out = {"origin": buffer[:n * b * 3].reshape(n, b, 3),
+           "mass_center": buffer[3:3 + n * b * 3].reshape(n, b, 3)}
+    with pytest.raises(ValueError, match=r"out\['origin'\] and out\['mass_center'\]: overlap"):
+        human.kinematics(q, out=out)
+    assert (buffer == 7.0).all()
+
+
+# --- Arguments of the wrong kind --------------------------------------------------------------
+
+def test_a_nul_in_a_path_is_refused(mbk_kinematics, panda, tmp_path):
+    with pytest.raises(ValueError, match="NUL"):
+        mbk_kinematics.load(PANDA + "\0.yaml")
+    csv = arm_csv(str(tmp_path / "arm.csv"))
+    with pytest.raises(ValueError, match="NUL"):
+        panda.read_recording(csv + "\0.csv")
+
+
+def test_scales_and_numbers_out_of_range(mbk_kinematics):
+    walk = source("test/mocap/131_01.bvh")
+    model = mbk_kinematics.load(walk, scale=0.056444)
+    for scale in (0, -1, float("inf")):
+        with pytest.raises(ValueError, match="scale"):
+            model.read_recording(walk, scale=scale)
+    for call in (lambda: mbk_kinematics.load(walk, scale=10 ** 400),
+                 lambda: model.read_recording(walk, scale=10 ** 400)):
+        with pytest.raises(ValueError, match=r"scale: .* beyond a double's range"):
+            call()
+    with pytest.raises(TypeError, match="scale: a number, not bool"):
+        model.read_recording(walk, scale=True)
+
+
+def test_denormal_time_steps_are_not_valid_rows(panda):
+    t = np.arange(40) * 5e-324  # subnormal steps: 1/dt overflows
+    q = np.tile(panda.neutral_position, (40, 1)) + 0.01 * np.arange(40)[:, None]
+    states = panda.states(panda.recording(t, q), estimator="centered_5_2")
+    assert not states["valid"].any()
+    for r in np.flatnonzero(states["valid"]):
+        assert np.isfinite(states["velocity"][r]).all()
+
+
+def test_max_gap_zero_and_bools(panda):
+    recording = panda.recording(np.arange(10.0), np.tile(panda.neutral_position, (10, 1)))
+    for gap in (0, -1, float("nan")):
+        with pytest.raises(ValueError, match="max_gap: .*expected seconds above 0"):
+            panda.states(recording, max_gap=gap)
+    q = np.zeros((2, panda.nq))
+    with pytest.raises(TypeError, match="bodies: body names or indices, not bool"):
+        panda.kinematics(q, bodies=True)
+    with pytest.raises(TypeError, match="bodies: a body name or index, not bool"):
+        panda.kinematics(q, bodies=[True])
+    with pytest.raises(TypeError, match="threads: an integer, not bool"):
+        panda.kinematics(q, threads=True)
+    with pytest.raises(ValueError, match="threads: 2147483648, expected 1 to 1024"):
+        panda.kinematics(q, threads=2 ** 31)
+
+
+def test_a_model_without_coordinates(mbk_kinematics):
+    model = mbk_kinematics.load("frame: R\nbodies:\n  - {name: box, lower: 0, joint: {name: j, "
+                                "type: fixed, origin: [0, 0, 1]}, mass_center: [0, 0, 0], "
+                                "mass: 1}\n")
+    assert model.nq == 0
+    one = model.kinematics(np.zeros(0))
+    assert one["origin"].shape == (model.body_count, 3)
+    many = model.kinematics(np.zeros((4, 0)))
+    assert many["origin"].shape == (4, model.body_count, 3)
+
+
+def test_read_only_attributes_stay_read_only(panda):
+    for name in ("masses", "mass_centers", "lower", "neutral_position", "lower_table"):
+        array = getattr(panda, name)
+        with pytest.raises(ValueError):
+            array.setflags(write=True)
+        with pytest.raises(ValueError):
+            array[...] = 0
+
+
+# --- Inputs that are not regular files, states without end ------------------------------------
+
+def not_regular_files(tmp_path):
+    """A FIFO and a link to /dev/zero, each named as a CSV recording and as a segment map."""
+    fifo, zero = str(tmp_path / "fifo.csv"), str(tmp_path / "zero.csv")
+    os.mkfifo(fifo)
+    os.symlink("/dev/zero", zero)
+    return [fifo, zero]
+
+
+def test_read_recording_refuses_what_is_not_a_regular_file(tmp_path):
+    for path in not_regular_files(tmp_path):
+        done = run_python("""
+            import mb_kinematics
+            model = mb_kinematics.load(%r)
+            try:
+                model.read_recording(%r)
+            except ValueError as e:
+                print(e)
+            """ % (PANDA, path), timeout=30)
+        assert done.stdout == "%s: cannot read the recording: not a regular file (a device, a " \
+                              "pipe or a folder)\n" % path, done.stderr
+
+
+def test_mbk_bag_refuses_what_is_not_a_regular_file(tmp_path):
+    out = str(tmp_path / "out.csv")
+    for path in not_regular_files(tmp_path):
+        run = run_mbk("bag", path, "--model", PANDA, "--csv", out, timeout=30)
+        assert run.returncode == 1
+        assert run.stderr.endswith("%s: cannot read the recording: not a regular file (a "
+                                   "device, a pipe or a folder)\n" % path), run.stderr
+        segments = path[:-4] + ".yaml"
+        os.rename(path, segments)
+        run = run_mbk("bag", source("test/mocap/131_01.bvh"), "--scale", "0.056444",
+                      "--body-mass", "68.5", "--segments", segments, "--csv", out, timeout=30)
+        assert run.returncode == 1
+        assert "%s: cannot read segment map: not a regular file" % segments in run.stderr
+        assert not os.path.exists(out)
+
+
+def test_mbk_eval_state_is_bounded(tmp_path):
+    """`--state -` fed without end and a state file of 10 MB: refused at the bound, which the
+    message names."""
+    with open("/dev/zero") as zero:
+        run = run_mbk("eval", "--model", HUMAN, "--state", "-", stdin=zero)
+    assert run.returncode == 1
+    assert "standard input: a text of more than" in run.stderr, run.stderr
+    big = str(tmp_path / "big.json")
+    with open(big, "w") as f:
+        f.write('{"position": {' + ", ".join('"c%d": 0' % i for i in range(10 ** 6)) + "}}")
+    run = run_mbk("eval", "--model", HUMAN, "--state", big)
+    assert run.returncode == 1
+    assert "%s: state file of more than" % big in run.stderr, run.stderr
+    small = str(tmp_path / "small.json")
+    with open(small, "w") as f:
+        f.write('{"position": {}}' + " " * 100000)  # blanks below the bound: read
+    assert run_mbk("eval", "--model", HUMAN, "--state", small).returncode == 0
