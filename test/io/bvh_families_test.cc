@@ -1,8 +1,9 @@
 // BVH recordings of several families read as their exporters mean them: CMU's real walk
 // (test/mocap) and synthetic walks in the exact layouts of Bandai Namco's dataset, LAFAN1 and
 // Mixamo (test/mocap/synthetic: 6 channels per joint, _L/_R and mixamorig: names, a static
-// root). Each has every mass-carrying segment, and a standing height, a whole-body mass center
-// height and a walking speed in a human's ranges, the mass center keeping up with the pelvis.
+// root metres from the walker). Each has every mass-carrying segment, and a standing height
+// (along y, up), a whole-body mass center height and a walking speed in a human's ranges, the
+// mass center keeping up with the pelvis: the motion check says nothing.
 #include <gtest/gtest.h>
 
 #include <string>
