@@ -145,6 +145,11 @@ class Skeleton {
     }
     return best;
   }
+  // A body without children whose End Site is at OFFSET 0 0 0: its tip is its own origin.
+  bool zero_end_site(int i) const {
+    const BvhSegment& b = bvh_.segments[i];
+    return children_[i].empty() && b.has_end_site && b.end_site.isZero();
+  }
   bool in_subtree(int j, int root) const {
     while (j > root) j = parent(j);
     return j == root;
@@ -340,6 +345,28 @@ std::vector<std::string> missing_rows(const std::vector<Found>& found) {
   return names;
 }
 
+// "" or one note: the segments that end at a tip (hand, foot, head's vertex) which is an End
+// Site at OFFSET 0 0 0 (Bandai Namco's hands, head and toes), so end at that joint: shorter
+// than the body, the mass center on the joint (a hand) or below the vertex (a head).
+std::string zero_end_site_note(const Skeleton& s, const std::vector<Found>& found) {
+  static const char* const kSide[] = {"", "left ", "right "};
+  std::vector<std::string> segments, joints;
+  for (const Found& f : found) {
+    if (f.row != kHand && f.row != kFoot && f.row != kHead) continue;
+    const Vec3<double>& tip = f.row == kHead ? f.proximal : f.distal;
+    for (int j = f.body; j < s.size(); ++j) {
+      if (!s.in_subtree(j, f.body) || !s.zero_end_site(j) || s.origin(j) != tip) continue;
+      segments.push_back(kSide[f.side] + std::string(de_leva_table()[f.row].name));
+      joints.push_back(s.name(j));
+      break;
+    }
+  }
+  if (segments.empty()) return "";
+  return "End Sites at OFFSET 0 0 0 (" + name_list(joints) + "): " + name_list(segments) +
+         " end at that joint, not at the body's tip, so their mass centers lie on the joint or "
+         "short of the tip (--segments FILE gives other ends, doc/anthropometry.md)";
+}
+
 // Mass, mass center (in R, rest pose) and central inertia gathered on one body.
 struct Lumped {
   double mass = 0;
@@ -490,6 +517,8 @@ std::vector<std::string> set_segment_parameters(const BvhFile& bvh, double scale
   if (!massless.empty())
     notes.push_back(bvh.path + ": segment parameters (de Leva 1996): massless, in no table " +
                     "segment: " + name_list(massless));
+  const std::string zero_ends = zero_end_site_note(s, found);
+  if (!zero_ends.empty()) notes.push_back(bvh.path + ": " + zero_ends);
   const std::vector<std::string> missing = missing_rows(found);
   if (!missing.empty()) notes.push_back(bvh.path + ": " + kIncomplete + name_list(missing));
   return notes;
