@@ -37,11 +37,12 @@ OUTPUTS = tuple(_TRAITS)
 _PARTIALS = tuple(name for name in OUTPUTS if name.startswith("partial_"))
 
 
-def load(path_or_text, scale=None, body_mass=None, sex=None):
+def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None):
     """The model of a file (.urdf, .xml, .yaml, .bvh) or of a text (URDF XML, e.g.
     rospy.get_param("robot_description"), or a YAML scene). scale (metres per file unit),
-    body_mass (kg) and sex ("male"/"female") apply to a .bvh file only. Raises ValueError with
-    the loader's one-line message."""
+    body_mass (kg), sex ("male"/"female") and segments (a YAML map of joints to segments, with
+    body_mass) apply to a .bvh file only. Raises ValueError with the loader's one-line
+    message."""
     if isinstance(path_or_text, os.PathLike):
         path_or_text = os.fspath(path_or_text)
     if not isinstance(path_or_text, str):
@@ -52,7 +53,11 @@ def load(path_or_text, scale=None, body_mass=None, sex=None):
             raise TypeError("%s: a number, not %s" % (name, type(value).__name__))
     if sex is not None and not isinstance(sex, str):
         raise TypeError("sex: 'male' or 'female', not %s" % type(sex).__name__)
-    return Model(_core.load(path_or_text, scale, body_mass, sex))
+    if isinstance(segments, os.PathLike):
+        segments = os.fspath(segments)
+    if segments is not None and not isinstance(segments, str):
+        raise TypeError("segments: a file name (str), not %s" % type(segments).__name__)
+    return Model(_core.load(path_or_text, scale, body_mass, sex, segments))
 
 
 class Model:
