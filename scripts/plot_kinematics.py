@@ -16,8 +16,9 @@ With --bvh, one command from a motion capture file to the CSV and the --walk fig
 `mbk bag WALK.bvh --csv OUT.csv` (the installed mbk: beside this script, else found in the
 sourced workspaces as rosrun finds it) with --scale, --body-mass (default 70) and --sex, writes
 the CSV beside the PNG (OUT.png -> OUT.csv, or --csv), then draws --walk with --up y; without
---bodies, the left thigh, shank and foot (the body named Left...Foot or Left...Ankle and its two
-lower bodies).
+--bodies, the left thigh, shank and foot: those the --segments map names (left_thigh,
+left_shank, left_foot), else the body named Left...Foot or Left...Ankle and its two lower
+bodies; with --segments and no left foot either way, the whole-body mass center alone.
 """
 import argparse
 import csv
@@ -118,7 +119,7 @@ def walk(plt, series, bodies, t0, up, path):
                     linewidth=1.2)
         ax.set_title("segment angular velocity omega, %s (rad/s)" % c, fontsize=9)
         ax.set_xlabel("time (s) from %.3f" % t0)
-        if col == 0:
+        if col == 0 and bodies:
             ax.legend(fontsize=8)
     for ax in fig.axes:
         ax.grid(True, alpha=0.3)
@@ -182,9 +183,28 @@ def run_mbk_bag(args):
         fail("%s: mbk bag failed (its error above)" % args.bvh)
 
 
-def default_leg(path):
+def mapped_leg(path):
+    """The joints a --segments map (doc/anthropometry.md) gives the left thigh, shank and foot,
+    those of them it names, in that order."""
+    import yaml
+    try:
+        with open(path) as f:
+            entries = yaml.safe_load(f)
+    except (OSError, yaml.YAMLError):
+        return []  # mbk bag has read it: it said what is wrong
+    joints = {}
+    for key, value in (entries if isinstance(entries, dict) else {}).items():
+        if isinstance(value, dict) and "joint" in value:
+            joints[key] = value["joint"]
+        elif isinstance(value, str):
+            joints[value] = key
+    return [str(joints[s]) for s in ("left_thigh", "left_shank", "left_foot") if s in joints]
+
+
+def default_leg(path, required=True):
     """The left thigh, shank and foot of a tidy CSV: the first body named Left...Foot or
-    Left...Ankle (any case, as CMU, Biovision and Mixamo name them) and its two lower bodies."""
+    Left...Ankle (any case, as CMU, Biovision and Mixamo name them) and its two lower bodies;
+    without one, an error, or "" when not `required`."""
     names, lower = {}, {}
     with open(path) as f:
         for row in csv.DictReader(f):
@@ -199,6 +219,10 @@ def default_leg(path):
                  ("foot" in b.lower() or "ankle" in b.lower())), None)
     shank = names.get(lower.get(foot))
     thigh = names.get(lower.get(shank))
+    if not thigh and not required:
+        print("plot_kinematics.py: %s: no left foot (named or in the --segments map): the "
+              "whole-body mass center alone" % path, file=sys.stderr)
+        return ""
     if not thigh:
         fail("%s: no left foot (a body named Left...Foot or Left...Ankle under a shank and a "
              "thigh): name the bodies to plot with --bodies" % path)
@@ -215,7 +239,8 @@ def bvh_defaults(parser, args):
     run_mbk_bag(args)
     args.walk = True
     args.up = args.up or "y"
-    args.bodies = args.bodies or default_leg(args.csv)
+    leg = mapped_leg(args.segments) if args.segments and not args.bodies else []
+    args.bodies = args.bodies or ",".join(leg) or default_leg(args.csv, not args.segments)
     print("plot_kinematics.py %s --walk --up %s --bodies %s" % (args.csv, args.up, args.bodies),
           file=sys.stderr)
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -94,18 +95,25 @@ class Skeleton {
       if (parent >= 0) children_[parent].push_back(static_cast<int>(i));
       index_[bvh.segments[i].name] = static_cast<int>(i);
     }
-    for (const auto& [joint, segment] : map.segment_of) {
-      const auto it = index_.find(joint);
-      if (it == index_.end())
-        throw std::invalid_argument(
-            printable(map.path + ": joint " + joint + " is not in " + bvh.path));
-      mapped_[segment] = it->second;
-    }
+    for (const auto& [segment, entry] : map.segment) mapped_[segment] = resolve(map, entry);
   }
   // The segment the user's map gives `key` (bvh_segment_map.h), or -1.
   int mapped(const std::string& key) const {
     const auto it = mapped_.find(key);
-    return it == mapped_.end() ? -1 : it->second;
+    return it == mapped_.end() ? -1 : it->second.body;
+  }
+  // The map's proximal (or `distal`) end of `key`, else `rule`.
+  Vec3<double> end(const std::string& key, bool distal, const Vec3<double>& rule) const {
+    const auto it = mapped_.find(key);
+    if (it == mapped_.end()) return rule;
+    const std::optional<Vec3<double>>& p = distal ? it->second.distal : it->second.proximal;
+    return p ? *p : rule;
+  }
+  // The joint whose origin the map gives as that end, or -1 (no such end, a mean, an End Site).
+  int end_joint(const std::string& key, bool distal) const {
+    const auto it = mapped_.find(key);
+    if (it == mapped_.end()) return -1;
+    return distal ? it->second.distal_joint : it->second.proximal_joint;
   }
   int size() const { return static_cast<int>(origin_.size()); }
   int parent(int i) const { return bvh_.segments[i].parent; }
@@ -145,6 +153,11 @@ class Skeleton {
     }
     return best;
   }
+  // A body without children whose End Site is at OFFSET 0 0 0: its tip is its own origin.
+  bool zero_end_site(int i) const {
+    const BvhSegment& b = bvh_.segments[i];
+    return children_[i].empty() && b.has_end_site && b.end_site.isZero();
+  }
   bool in_subtree(int j, int root) const {
     while (j > root) j = parent(j);
     return j == root;
@@ -156,8 +169,51 @@ class Skeleton {
   std::vector<bool> fixed_;
   std::vector<Vec3<double>> origin_;
   std::vector<std::vector<int>> children_;
-  std::unordered_map<std::string, int> index_;   // name -> segment
-  std::unordered_map<std::string, int> mapped_;  // segment key -> segment
+  // A segment of the user's map, its names resolved: the body that carries it (-1: the
+  // rules'), its ends in the rest pose, and the joints that are those ends (-1: none).
+  struct Mapped {
+    int body = -1;
+    std::optional<Vec3<double>> proximal, distal;
+    int proximal_joint = -1, distal_joint = -1;
+  };
+  int joint_index(const SegmentMap& map, const std::string& joint) const {
+    const auto it = index_.find(joint);
+    if (it == index_.end())
+      throw std::invalid_argument(
+          printable(map.path + ": joint " + joint + " is not in " + bvh_.path));
+    return it->second;
+  }
+  Vec3<double> point(const SegmentMap& map, const MapPoint& p, int line) const {
+    Vec3<double> sum = Vec3<double>::Zero();
+    for (const std::string& joint : p.joints) {
+      const int i = joint_index(map, joint);
+      if (p.end_site && !bvh_.segments[i].has_end_site)
+        throw std::invalid_argument(printable(map.path + ":" + std::to_string(line) + ": " + joint +
+                                              " has no End Site in " + bvh_.path));
+      sum +=
+          p.end_site ? Vec3<double>(origin_[i] + scale_ * bvh_.segments[i].end_site) : origin_[i];
+    }
+    return sum / static_cast<double>(p.joints.size());
+  }
+  Mapped resolve(const SegmentMap& map, const MappedSegment& entry) const {
+    Mapped m;
+    if (!entry.joint.empty()) m.body = joint_index(map, entry.joint);
+    auto single = [&](const MapPoint& p) {
+      return p.joints.size() == 1 && !p.end_site ? joint_index(map, p.joints[0]) : -1;
+    };
+    if (entry.proximal) {
+      m.proximal = point(map, *entry.proximal, entry.line);
+      m.proximal_joint = single(*entry.proximal);
+    }
+    if (entry.distal) {
+      m.distal = point(map, *entry.distal, entry.line);
+      m.distal_joint = single(*entry.distal);
+    }
+    return m;
+  }
+
+  std::unordered_map<std::string, int> index_;      // name -> segment
+  std::unordered_map<std::string, Mapped> mapped_;  // segment key -> its map entry
 };
 
 // The parent of `child` in a limb; -1 if `child` is missing or the root.
@@ -182,18 +238,21 @@ void find_limbs(const Skeleton& s, int side, std::vector<Found>& found) {
       "shank", foot > 0 ? limb_parent(s, foot) : s.find(side, {"leg", "lowerleg", "shin", "knee"}));
   const int thigh = pick("thigh", limb_parent(s, shank));
   // A segment ends at the next one's joint; without one (a hand or foot the tables do not name),
-  // at its own tip.
-  auto add = [&](int row, int body, int next) {
-    const Vec3<double> distal = next > 0 ? s.origin(next) : s.tip(body);
-    if (body > 0) found.push_back({row, side, body, s.origin(body), distal});
+  // at its own tip; the map's ends where it gives them.
+  auto add = [&](int row, const char* part, int body, int next) {
+    if (body <= 0) return;
+    const std::string key = prefix + part;
+    const Vec3<double> proximal = s.end(key, false, s.origin(body));
+    Vec3<double> distal = next > 0 ? s.origin(next) : s.tip(body);
+    if (row == kFoot) distal = s.farthest(body, proximal);
+    found.push_back({row, side, body, proximal, s.end(key, true, distal)});
   };
-  if (upper_arm > 0) add(kUpperArm, upper_arm, forearm);
-  if (forearm > 0) add(kForearm, forearm, hand);
-  if (hand > 0) found.push_back({kHand, side, hand, s.origin(hand), s.tip(hand)});
-  if (thigh > 0) add(kThigh, thigh, shank);
-  if (shank > 0) add(kShank, shank, foot);
-  if (foot > 0)
-    found.push_back({kFoot, side, foot, s.origin(foot), s.farthest(foot, s.origin(foot))});
+  add(kUpperArm, "upper_arm", upper_arm, forearm);
+  add(kForearm, "forearm", forearm, hand);
+  add(kHand, "hand", hand, -1);
+  add(kThigh, "thigh", thigh, shank);
+  add(kShank, "shank", shank, foot);
+  add(kFoot, "foot", foot, -1);
 }
 
 const Found* find_row(const std::vector<Found>& found, int row, int side) {
@@ -217,9 +276,13 @@ int cervical(const Skeleton& s, int head) {
 void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) {
   const int head = s.mapped("head") > 0 ? s.mapped("head") : s.find(0, {"head"});
   if (head <= 0) return;
-  const int neck = cervical(s, head);
-  const Vec3<double> cerv = s.origin(neck);
-  found.push_back({kHead, 0, head, s.farthest(head, cerv), cerv});
+  // CERV: the map's head distal end, else its upper trunk's proximal one (SUPR, which the
+  // rules take at CERV), else the lowest neck joint.
+  int neck = s.end_joint("head", true);
+  if (neck < 0) neck = s.end_joint("upper_trunk", false);
+  if (neck < 0) neck = cervical(s, head);
+  const Vec3<double> cerv = s.end("head", true, s.end("upper_trunk", false, s.origin(neck)));
+  found.push_back({kHead, 0, head, s.end("head", false, s.farthest(head, cerv)), cerv});
   // The root up to the neck's parent, without the bodies fixed in space while others move (a
   // static ROOT under the pelvis): a static body never carries a moving segment.
   std::vector<int> spine, moving;
@@ -230,14 +293,16 @@ void find_head_and_trunk(const Skeleton& s, Sex sex, std::vector<Found>& found) 
   if (spine.empty()) return;  // the neck is the root: no trunk below it
   const Found* left = find_row(found, kThigh, 1);
   const Found* right = find_row(found, kThigh, 2);
-  const Vec3<double> midh =
-      left && right ? Vec3<double>((left->proximal + right->proximal) / 2) : s.origin(spine[0]);
-  const Vec3<double> line = cerv - midh;
+  const Vec3<double> midh = s.end(
+      "lower_trunk", true,
+      left && right ? Vec3<double>((left->proximal + right->proximal) / 2) : s.origin(spine[0]));
+  const Vec3<double> supr = s.end("upper_trunk", false, cerv);
+  const Vec3<double> line = supr - midh;
   const double* part = kTrunkPartLength[static_cast<int>(sex)];
   const double total = part[0] + part[1] + part[2];
-  const Vec3<double> xyph = cerv - line * (part[0] / total);
+  const Vec3<double> xyph = supr - line * (part[0] / total);
   const Vec3<double> omph = midh + line * (part[2] / total);
-  const Vec3<double> ends[3][2] = {{cerv, xyph}, {xyph, omph}, {omph, midh}};
+  const Vec3<double> ends[3][2] = {{supr, xyph}, {xyph, omph}, {omph, midh}};
   for (int i = 0; i < 3; ++i) {
     const SegmentRow& row = de_leva_table()[kUpperTrunk + i];
     const Vec3<double> c =
@@ -338,6 +403,28 @@ std::vector<std::string> missing_rows(const std::vector<Found>& found) {
         names.push_back(kSide[side] + std::string(de_leva_table()[row].name));
   }
   return names;
+}
+
+// "" or one note: the segments that end at a tip (hand, foot, head's vertex) which is an End
+// Site at OFFSET 0 0 0 (Bandai Namco's hands, head and toes), so end at that joint: shorter
+// than the body, the mass center on the joint (a hand) or below the vertex (a head).
+std::string zero_end_site_note(const Skeleton& s, const std::vector<Found>& found) {
+  static const char* const kSide[] = {"", "left ", "right "};
+  std::vector<std::string> segments, joints;
+  for (const Found& f : found) {
+    if (f.row != kHand && f.row != kFoot && f.row != kHead) continue;
+    const Vec3<double>& tip = f.row == kHead ? f.proximal : f.distal;
+    for (int j = f.body; j < s.size(); ++j) {
+      if (!s.in_subtree(j, f.body) || !s.zero_end_site(j) || s.origin(j) != tip) continue;
+      segments.push_back(kSide[f.side] + std::string(de_leva_table()[f.row].name));
+      joints.push_back(s.name(j));
+      break;
+    }
+  }
+  if (segments.empty()) return "";
+  return "End Sites at OFFSET 0 0 0 (" + name_list(joints) + "): " + name_list(segments) +
+         " end at that joint, not at the body's tip, so their mass centers lie on the joint or "
+         "short of the tip (--segments FILE gives other ends, doc/anthropometry.md)";
 }
 
 // Mass, mass center (in R, rest pose) and central inertia gathered on one body.
@@ -490,6 +577,8 @@ std::vector<std::string> set_segment_parameters(const BvhFile& bvh, double scale
   if (!massless.empty())
     notes.push_back(bvh.path + ": segment parameters (de Leva 1996): massless, in no table " +
                     "segment: " + name_list(massless));
+  const std::string zero_ends = zero_end_site_note(s, found);
+  if (!zero_ends.empty()) notes.push_back(bvh.path + ": " + zero_ends);
   const std::vector<std::string> missing = missing_rows(found);
   if (!missing.empty()) notes.push_back(bvh.path + ": " + kIncomplete + name_list(missing));
   return notes;

@@ -32,18 +32,31 @@ struct Frame {
   Vec3<double> mass_center = Vec3<double>::Zero();
 };
 
-Vec3<double> extent(const std::vector<Vec3<double>>& points) {
+// The bodies (1..N) that make the moving skeleton: all but those fixed in space while others
+// move (a static ROOT such as Bandai Namco's joint_Root, metres from the walker): with them the
+// box around the joints would span the floor between the root and the walker.
+std::vector<bool> moving_bodies(const BvhFile& bvh) {
+  const std::vector<bool> fixed = fixed_in_space(bvh);
+  const bool moves = std::find(fixed.begin(), fixed.end(), false) != fixed.end();
+  std::vector<bool> counted(fixed.size() + 1, false);
+  for (size_t i = 0; i < fixed.size(); ++i) counted[i + 1] = !moves || !fixed[i];
+  return counted;
+}
+
+Vec3<double> extent(const std::vector<Vec3<double>>& points, const std::vector<bool>& counted) {
   Vec3<double> low = Vec3<double>::Constant(INFINITY), high = -low;
   for (size_t k = 1; k < points.size(); ++k) {
+    if (!counted[k]) continue;
     low = low.cwiseMin(points[k]);
     high = high.cwiseMax(points[k]);
   }
   return high - low;
 }
 
-double lowest(const std::vector<Vec3<double>>& points, int up) {
+double lowest(const std::vector<Vec3<double>>& points, const std::vector<bool>& counted, int up) {
   double low = INFINITY;
-  for (size_t k = 1; k < points.size(); ++k) low = std::min(low, points[k][up]);
+  for (size_t k = 1; k < points.size(); ++k)
+    if (counted[k]) low = std::min(low, points[k][up]);
   return low;
 }
 
@@ -87,10 +100,11 @@ MotionFigures motion_figures(const BvhFile& bvh, const Model& model, double scal
     frames.push_back({data.origin, system.mass_center});
   }
   m.has_mass = system.mass > 0;
+  const std::vector<bool> counted = moving_bodies(bvh);
   Vec3<double> extents = Vec3<double>::Zero();
   std::vector<double> e[3];
   for (const Frame& f : frames) {
-    const Vec3<double> x = extent(f.origin);
+    const Vec3<double> x = extent(f.origin, counted);
     for (int i = 0; i < 3; ++i) e[i].push_back(x[i]);
   }
   for (int i = 0; i < 3; ++i) extents[i] = median(e[i]);
@@ -98,9 +112,10 @@ MotionFigures motion_figures(const BvhFile& bvh, const Model& model, double scal
   m.height = extents[m.up];
   state.position.setZero();
   forward_kinematics(model, state, data, Level::kPose);
-  m.rest_height = extent(data.origin)[m.up];
+  m.rest_height = extent(data.origin, counted)[m.up];
   std::vector<double> heights;
-  for (const Frame& f : frames) heights.push_back(f.mass_center[m.up] - lowest(f.origin, m.up));
+  for (const Frame& f : frames)
+    heights.push_back(f.mass_center[m.up] - lowest(f.origin, counted, m.up));
   m.mass_center_height = median(heights);
   const double duration = (frames.size() - 1) * stride * bvh.frame_time;
   if (duration <= 0) return m;

@@ -10,6 +10,8 @@
 
 namespace mbk {
 
+// Of the moving skeleton: every body but those fixed in space while others move (a static ROOT
+// such as Bandai Namco's joint_Root, metres from the walker it would otherwise take in).
 struct MotionFigures {
   int up = 1;                     // the axis of R that is up: along which the skeleton is tallest
   double rest_height = 0;         // m, the rest pose's joints' extent along `up`

@@ -33,12 +33,16 @@ using ModelPtr = std::shared_ptr<mbk::Model>;  // never changed after load
 using InputArray = py::array_t<double, py::array::c_style>;
 
 ModelPtr load(const std::string& path_or_text, py::object scale, py::object body_mass,
-              py::object sex, const std::string& source) {
-  const bool bvh = !scale.is_none() || !body_mass.is_none() || !sex.is_none();
+              py::object sex, py::object segments, const std::string& source) {
+  const bool bvh =
+      !scale.is_none() || !body_mass.is_none() || !sex.is_none() || !segments.is_none();
   mbk::BvhModelOptions options;
   if (!scale.is_none()) options.scale = scale.cast<double>();
   if (!body_mass.is_none()) options.body_mass = body_mass.cast<double>();
   if (!sex.is_none()) options.sex = sex.cast<std::string>();
+  if (!segments.is_none()) options.segments = segments.cast<std::string>();
+  if (!options.segments.empty() && !(options.body_mass > 0))
+    throw std::invalid_argument("segments maps joints to masses: it needs body_mass");
   py::gil_scoped_release release;
   return std::make_shared<mbk::Model>(
       mbk::load_model(path_or_text, bvh ? &options : nullptr, source));
@@ -348,7 +352,7 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("neutral_position", &neutral_position);
   m.def("load", &load, py::arg("path_or_text"), py::arg("scale") = py::none(),
         py::arg("body_mass") = py::none(), py::arg("sex") = py::none(),
-        py::arg("source") = "<text>");
+        py::arg("segments") = py::none(), py::arg("source") = "<text>");
   m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));

@@ -38,11 +38,12 @@ _PARTIALS = tuple(name for name in OUTPUTS if name.startswith("partial_"))
 MOST_THREADS = 1024  # as mbk bag --threads
 
 
-def load(path_or_text, scale=None, body_mass=None, sex=None):
+def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None):
     """The model of a file (.urdf, .xml, .yaml, .bvh) or of a text (URDF XML, e.g.
     rospy.get_param("robot_description"), or a YAML scene). scale (metres per file unit),
-    body_mass (kg) and sex ("male"/"female") apply to a .bvh file only. Raises ValueError with
-    the loader's one-line message."""
+    body_mass (kg), sex ("male"/"female") and segments (a YAML map of joints to segments, with
+    body_mass) apply to a .bvh file only. Raises ValueError with the loader's one-line
+    message."""
     if isinstance(path_or_text, os.PathLike):
         path_or_text = os.fspath(path_or_text)
     if not isinstance(path_or_text, str):
@@ -51,15 +52,22 @@ def load(path_or_text, scale=None, body_mass=None, sex=None):
     scale, body_mass = _number(scale, "scale"), _number(body_mass, "body_mass")
     if sex is not None and not isinstance(sex, str):
         raise TypeError("sex: 'male' or 'female', not %s" % type(sex).__name__)
-    return Model(_core.load(path_or_text, scale, body_mass, sex))
+    if isinstance(segments, os.PathLike):
+        segments = os.fspath(segments)
+    if segments is not None and not isinstance(segments, str):
+        raise TypeError("segments: a file name (str), not %s" % type(segments).__name__)
+    return Model(_core.load(path_or_text, scale, body_mass, sex, segments),
+                 1.0 if scale is None else float(scale))
 
 
 class Model:
-    """A loaded model: its bodies k = 1..N (body_names[k - 1]), coordinates and speeds.
+    """A loaded model: its bodies k = 1..N (body_names[k - 1]), coordinates and speeds; `scale`,
+    the metres per file unit it was loaded with (1 but for a .bvh file given another).
     Immutable; safe to share between threads."""
 
-    def __init__(self, core):
+    def __init__(self, core, scale=1.0):
         self._core = core
+        self.scale = scale
         bodies = core.bodies
         self._root = bodies[0]
         self._bodies = bodies[1:]
@@ -119,24 +127,29 @@ class Model:
         return "<mb_kinematics.Model: %d bodies, nq=%d, nv=%d, frame %r>" % (
             self.body_count, self.nq, self.nv, self.frame)
 
-    def read_recording(self, path, scale=1.0, joint_states="/joint_states",
+    def read_recording(self, path, scale=None, joint_states="/joint_states",
                        joint_accelerations=None, base_odometry=None):
         """A rosbag (sensor_msgs/JointState on `joint_states`; with `joint_accelerations`,
         mb_kinematics_msgs/JointAccelerations on that topic; with `base_odometry`, the floating
         base's nav_msgs/Odometry on that topic, as `mbk bag --base-odometry`), a trajectory CSV
-        (`time,<coordinate>,...`) or a BVH file's motion (this model being its skeleton, loaded
-        with the same `scale`) read as `mbk bag` reads it: a Recording."""
+        (`time,<coordinate>,...`) or a BVH file's motion (this model being its skeleton) read as
+        `mbk bag` reads it: a Recording. A BVH file's positions are read with the model's
+        `scale`; a `scale` given and different from it is refused (ValueError)."""
         if isinstance(path, os.PathLike):
             path = os.fspath(path)
         if not isinstance(path, str):
             raise TypeError("path: a file name (str), not %s" % type(path).__name__)
+        scale = _number(scale, "scale")
+        if scale is not None and float(scale) != self.scale:
+            raise ValueError("scale: %r, but the model was loaded with scale %r: a BVH file's "
+                             "positions and its skeleton take one scale (leave scale out)"
+                             % (scale, self.scale))
         topics = {"joint_states": joint_states, "joint_accelerations": joint_accelerations or "",
                   "base_odometry": base_odometry or ""}
         for name, topic in topics.items():
             if not isinstance(topic, str):
                 raise TypeError("%s: a topic name (str), not %s" % (name, type(topic).__name__))
-        return _core.read_recording(self._core, path, _number(scale, "scale"),
-                                    topics["joint_states"],
+        return _core.read_recording(self._core, path, self.scale, topics["joint_states"],
                                     topics["joint_accelerations"], topics["base_odometry"])
 
     def recording(self, times, positions):

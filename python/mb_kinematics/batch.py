@@ -25,12 +25,13 @@ from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from mb_kinematics.batch_inputs import EXTENSIONS, SUMMARY, BatchError, find_inputs
 from mb_kinematics.batch_job import (BVH_OPTIONS, COMMON_OPTIONS, STATE, failure, finished,
                                      locate_mbk_bag, plan, run_job, write_atomically)
+from mb_kinematics.batch_subjects import read_subjects, subject_options
 
 __all__ = ["run", "main", "run_job", "plan", "find_inputs", "locate_mbk_bag", "BatchError",
            "Interrupted", "EXTENSIONS", "STATE", "SUMMARY"]
 
 COLUMNS = ["input", "output", "status", "resumed", "samples_read", "samples_written", "dropped",
-           "drops", "unreadable", "estimator", "noise_level", "seconds", "error"]
+           "drops", "unreadable", "estimator", "noise_level", "seconds", "error", "warnings"]
 MOST_FAILURES = 100  # the exit status counts failures up to this
 NO_CLUSTER_SECONDS = 60  # on Dask: how long the batch waits for a worker (or scheduler) to return
 USAGE_STATUS = 125  # a wrong command line: nothing run
@@ -75,7 +76,8 @@ def _row(job, summary, resumed):
             "samples_written": summary["written"], "dropped": summary["dropped"], "drops": drops,
             "unreadable": summary["unreadable"], "estimator": summary["estimator"],
             "noise_level": "" if noise is None else repr(noise),
-            "seconds": "%.3f" % summary["seconds"], "error": summary["error"]}
+            "seconds": "%.3f" % summary["seconds"], "error": summary["error"],
+            "warnings": " | ".join(summary.get("warnings", []))}
 
 
 def write_summary(out_dir, rows):
@@ -98,12 +100,16 @@ def format_table(rows, seconds, most_listed=20):
                 status, len(some), sum(r["resumed"] for r in some),
                 sum(int(r["samples_read"] or 0) for r in some),
                 sum(int(r["samples_written"] or 0) for r in some)))
-    lines.append("%d files in %.1f s" % (len(rows), seconds))
-    not_ok = [r for r in rows if r["status"] in ("partial", "failed")]
-    for r in not_ok[:most_listed]:
-        lines.append("%s %s: %s" % (r["status"], r["input"], r["error"]))
-    if len(not_ok) > most_listed:
-        lines.append("... and %d more in summary.csv" % (len(not_ok) - most_listed))
+    warned = [r for r in rows if r.get("warnings")]
+    lines.append("%d files in %.1f s%s" % (len(rows), seconds, ", %d with warnings" % len(warned)
+                                           if warned else ""))
+    listed = [(r["status"], r["input"], r["error"]) for r in rows
+              if r["status"] in ("partial", "failed")]
+    listed += [("warning", r["input"], w) for r in warned for w in r["warnings"].split(" | ")]
+    for line in listed[:most_listed]:
+        lines.append("%s %s: %s" % line)
+    if len(listed) > most_listed:
+        lines.append("... and %d more in summary.csv" % (len(listed) - most_listed))
     return "\n".join(lines) + "\n"
 
 
@@ -251,12 +257,13 @@ def _bag_options(model, options):
 
 
 def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, progress=False,
-        mbk_bag=None, **options):
+        mbk_bag=None, subjects=None, **options):
     """Processes the recordings `inputs` (files, folders, list files) into out_dir as
     `mbk batch` does: on `jobs` local processes (default: the cores), or on the Dask cluster of
     `client` (a dask.distributed.Client; inputs and out_dir on a path every worker sees).
     `model`: the model of .bag and .csv inputs; `options`: mbk bag's, by name with underscores
-    (estimator="auto", max_gap=0.1, scale=0.056444, body_mass=68.5, ...). Returns the summary
+    (estimator="auto", max_gap=0.1, scale=0.056444, body_mass=68.5, ...); `subjects`: a CSV of
+    per-recording scale, body_mass and sex (batch_subjects.py). Returns the summary
     rows (also in out_dir/summary.csv). Raises BatchError before running anything for a wrong
     input list or option; Interrupted (after writing the summary of what finished) when SIGINT
     or SIGTERM stops it."""
@@ -268,8 +275,12 @@ def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, pro
     jobs = jobs or cores
     # Locally the cores are shared by the jobs; a Dask worker runs one job per thread.
     threads = 1 if client is not None else max(1, cores // jobs)
-    planned = plan(find_inputs(inputs, out_dir), out_dir, _bag_options(model, options), kinds,
-                   mbk_bag, threads)
+    found, chosen = find_inputs(inputs, out_dir), None
+    if subjects:  # a subjects CSV among the recordings is no trajectory
+        subjects = os.fspath(subjects)
+        found = [f for f in found if os.path.realpath(f[0]) != os.path.realpath(subjects)]
+        chosen = subject_options(read_subjects(subjects), found)
+    planned = plan(found, out_dir, _bag_options(model, options), kinds, mbk_bag, threads, chosen)
     results, todo = {}, []
     for job in planned:
         earlier = finished(job)
@@ -328,6 +339,9 @@ def _parser():
     p.add_argument("--progress", action="store_true", help="the progress line even off a terminal")
     p.add_argument("--model", metavar="FILE",
                    help="the model of .bag and .csv inputs (a .bvh is its own)")
+    p.add_argument("--subjects", metavar="FILE.csv",
+                   help="per .bvh input (columns path or glob, scale, body_mass, sex): its "
+                   "subject's options")
     for name, metavar in list(COMMON_OPTIONS.items()) + list(BVH_OPTIONS.items()):
         p.add_argument(name, metavar=metavar,
                        help="as mbk bag's" + (" (.bvh inputs)" if name in BVH_OPTIONS else ""))
@@ -371,7 +385,8 @@ def main(argv=None):
         if arguments.scheduler:
             client = _connect(arguments.scheduler)
         rows = run(arguments.inputs, arguments.out_dir, arguments.model, kinds, arguments.jobs,
-                   client, arguments.progress or sys.stderr.isatty(), **_options(arguments))
+                   client, arguments.progress or sys.stderr.isatty(),
+                   subjects=arguments.subjects, **_options(arguments))
     except BatchError as e:
         sys.stderr.write("mbk: error: %s\n" % e)
         return USAGE_STATUS

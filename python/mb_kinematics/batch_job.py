@@ -58,10 +58,18 @@ def _file_identity(path):
     return [st.st_size, st.st_mtime_ns]
 
 
-def failure(job, error):
+WARNING = "mbk: warning: "  # how mbk bag starts each warning line on stderr
+
+
+def failure(job, error, warnings=()):
     return {"input": job["input"], "outputs": job["outputs"], "status": "failed", "read": 0,
             "written": 0, "dropped": 0, "drops": {}, "unreadable": 0, "estimator": "",
-            "noise_level": None, "seconds": 0, "error": error}
+            "noise_level": None, "seconds": 0, "error": error, "warnings": list(warnings)}
+
+
+def _warnings(stderr):
+    """The warnings mbk bag printed, each without its "mbk: warning: "."""
+    return [line[len(WARNING):] for line in stderr.splitlines() if line.startswith(WARNING)]
 
 
 def _last_error_line(stderr):
@@ -116,14 +124,17 @@ def _run_job(job, running, stop):
         if running is not None:
             running.discard(child)
     stderr = stderr.decode("utf-8", "replace")
+    warnings = _warnings(stderr)
     if child.returncode < 0:
         name = signal.Signals(-child.returncode).name
-        return failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip())
+        return failure(job, ("mbk bag ended by %s %s" % (name, _last_error_line(stderr))).strip(),
+                       warnings)
     try:
         summary = json.loads(stdout.decode("utf-8", "replace"))
     except ValueError:
-        return failure(job, _last_error_line(stderr) or "mbk bag wrote no summary")
+        return failure(job, _last_error_line(stderr) or "mbk bag wrote no summary", warnings)
     summary["input"], summary["outputs"] = job["input"], job["outputs"]
+    summary["warnings"] = warnings
     summary["seconds"] = time.monotonic() - started
     if summary["status"] != "failed":
         record = {"key": job["key"], "summary": summary,
@@ -167,16 +178,18 @@ def _files_of(arguments):
             for name, value in zip(arguments, arguments[1:]) if name in ("--model", "--segments")}
 
 
-def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1):
+def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1, subjects=None):
     """One job per input (find_inputs' pairs): `mbk bag`'s arguments, the outputs under
     out_dir (kinds: "csv" and/or "bag"), where its record goes and the key that record must
-    hold for the job to count as done. `threads`: mbk bag's --threads unless options give it."""
+    hold for the job to count as done. `threads`: mbk bag's --threads unless options give it;
+    `subjects`: input -> options that replace those of `options` for it (batch_subjects.py)."""
     mbk_bag = os.path.abspath(mbk_bag or locate_mbk_bag())
     tool = _tool_identity(mbk_bag)
     state = os.path.join(out_dir, STATE)
     jobs = []
     for path, stem in inputs:
-        arguments = _arguments(options, path.endswith(".bvh"))
+        arguments = _arguments(dict(options, **(subjects or {}).get(path, {})),
+                               path.endswith(".bvh"))
         outputs = [os.path.join(out_dir, stem + "." + kind) for kind in kinds]
         flags = {"bag": "--out", "csv": "--csv"}
         output_arguments = sum(([flags[k], o] for k, o in zip(kinds, outputs)), [])

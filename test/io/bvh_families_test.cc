@@ -1,8 +1,9 @@
 // BVH recordings of several families read as their exporters mean them: CMU's real walk
 // (test/mocap) and synthetic walks in the exact layouts of Bandai Namco's dataset, LAFAN1 and
 // Mixamo (test/mocap/synthetic: 6 channels per joint, _L/_R and mixamorig: names, a static
-// root). Each has every mass-carrying segment, and a standing height, a whole-body mass center
-// height and a walking speed in a human's ranges, the mass center keeping up with the pelvis.
+// root metres from the walker). Each has every mass-carrying segment, and a standing height
+// (along y, up), a whole-body mass center height and a walking speed in a human's ranges, the
+// mass center keeping up with the pelvis: the motion check says nothing.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -40,6 +41,36 @@ TEST_P(BvhFamilies, WalkAsAHumanWithEverySegmentFound) {
   EXPECT_LT(m.mass_center_speed, 2.5);
   EXPECT_NEAR(m.mass_center_speed / m.root_speed, 1.0, 0.1);
   EXPECT_EQ(mbk::motion_warning(bvh, model, family.scale, ""), "");
+}
+
+// Bandai Namco's End Sites are at OFFSET 0 0 0: its hands, toes and head end at their joints.
+// Said once, naming the joints and the segments; the hand's mass center is on the wrist.
+TEST(BandaiLayout, EndSitesAtTheJointAreSaidOnce) {
+  const mbk::BvhFile bvh =
+      mbk::read_bvh(mbk_test::source_path("test/mocap/synthetic/bandai_layout_walk.bvh"));
+  const mbk::Model model = mbk::model_from_bvh(bvh, {0.01, 70.0, "male"});
+  int said = 0;
+  for (const std::string& warning : model.warnings)
+    if (warning.find("OFFSET 0 0 0") != std::string::npos) {
+      ++said;
+      EXPECT_EQ(warning, bvh.path +
+                             ": End Sites at OFFSET 0 0 0 (Hand_L, Toes_L, Hand_R, Toes_R, Head): "
+                             "left hand, left foot, right hand, right foot, head and neck end at "
+                             "that joint, not at the body's tip, so their mass centers lie on the "
+                             "joint or short of the tip (--segments FILE gives other ends, "
+                             "doc/anthropometry.md)");
+    }
+  EXPECT_EQ(said, 1);
+  const mbk::Body& hand = model.bodies[model.body_index("Hand_L")];
+  EXPECT_GT(hand.mass, 0.0);
+  EXPECT_LT(hand.mass_center.norm(), 1e-12) << hand.mass_center.transpose();
+  // The other families' End Sites reach past their joints: nothing to say.
+  for (const char* path : {"test/mocap/131_01.bvh", "test/mocap/synthetic/lafan1_layout_walk.bvh",
+                           "test/mocap/synthetic/mixamo_layout_walk.bvh"})
+    for (const std::string& warning :
+         mbk::model_from_bvh(mbk::read_bvh(mbk_test::source_path(path)), {0.01, 70.0, "male"})
+             .warnings)
+      EXPECT_EQ(warning.find("OFFSET 0 0 0"), std::string::npos) << warning;
 }
 
 INSTANTIATE_TEST_SUITE_P(

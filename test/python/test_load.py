@@ -107,3 +107,23 @@ def test_a_long_chain_loads_without_its_lower_body_table(tmp_path):
     grown_kb = int(subprocess.run([sys.executable, "-c", script], check=True,
                                   capture_output=True, text=True, timeout=120).stdout)
     assert grown_kb < 100 * 1024  # 18 MB: the model and its Python lists
+
+
+def test_bvh_segments_map(mbk_kinematics, tmp_path):
+    """load(..., segments=MAP): the map gives the segments as mbk's --segments; a map naming
+    the joints the rules find changes nothing; without body_mass it is refused."""
+    bvh = source("test/mocap/131_01.bvh")
+    rules = mbk_kinematics.load(bvh, scale=0.056444, body_mass=68.5)
+    path = tmp_path / "map.yaml"
+    path.write_text("LeftAnkle: left_foot\nhead: {joint: Head, distal: lowerneck}\n")
+    mapped = mbk_kinematics.load(bvh, scale=0.056444, body_mass=68.5, segments=path)
+    assert np.array_equal(mapped.masses, rules.masses)
+    assert np.allclose(mapped.mass_centers, rules.mass_centers, rtol=0, atol=1e-15)
+    path.write_text("LeftWrist: left_foot\n")  # the hand carries the foot's mass now
+    moved = mbk_kinematics.load(bvh, scale=0.056444, body_mass=68.5, segments=str(path))
+    assert moved.masses[moved.body_index("LeftWrist") - 1] > rules.masses[
+        rules.body_index("LeftWrist") - 1]
+    with pytest.raises(ValueError, match="segments maps joints to masses: it needs body_mass"):
+        mbk_kinematics.load(bvh, scale=0.056444, segments=str(path))
+    with pytest.raises(TypeError, match="segments: a file name"):
+        mbk_kinematics.load(bvh, body_mass=68.5, segments=3)

@@ -349,3 +349,18 @@ def test_bad_recordings(mbk_kinematics, tmp_path):
         model.read_recording(str(tmp_path / "run.txt"))
     with pytest.raises(ValueError, match="missing.csv"):
         model.read_recording(str(tmp_path / "missing.csv"))
+
+
+def test_a_bvh_recording_takes_its_models_scale(mbk_kinematics):
+    """read_recording of a BVH file reads its positions with the scale the model was loaded
+    with; another scale would put the pelvis metres off its skeleton: refused."""
+    model = mbk_kinematics.load(BVH, scale=SCALE, body_mass=MASS)
+    assert model.scale == SCALE
+    recording = model.read_recording(BVH)
+    assert np.array_equal(recording.positions, model.read_recording(BVH, scale=SCALE).positions)
+    with open(BVH) as f:  # the first frame's root position, file units
+        first = f.read().split("Frame Time:")[1].split()[1:4]
+    assert np.allclose(recording.positions[0, :3], [SCALE * float(x) for x in first], rtol=1e-12)
+    with pytest.raises(ValueError, match="loaded with scale 0.056444"):
+        model.read_recording(BVH, scale=1.0)
+    assert mbk_kinematics.load(BVH).read_recording(BVH).positions[0, 0] == float(first[0])

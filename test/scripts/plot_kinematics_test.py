@@ -109,6 +109,33 @@ def bvh_cases(tmp, failures):
         failures.append("--bvh beside mbk: exit %d, %s" % (r.returncode, r.stderr))
 
 
+def segments_cases(tmp, failures):
+    """--bvh with --segments on a skeleton whose legs no naming rule finds (femur, tibia, pes):
+    the left leg the map names is plotted; a map without it leaves the mass center alone, no
+    failure."""
+    with open(WALK) as f:
+        text = f.read()
+    for side, letter in (("Left", "A"), ("Right", "B")):
+        for part, bone in (("UpLeg", "Femur"), ("Leg", "Tibia"), ("Foot", "Pes")):
+            text = text.replace(" %s%s\n" % (side, part), " %s_%s\n" % (bone, letter))
+    bvh = os.path.join(tmp, "bones.bvh")
+    with open(bvh, "w") as f:
+        f.write(text)
+    legs = {"A": "left", "B": "right"}
+    both = "".join("%s_%s: %s_%s\n" % (bone, letter, legs[letter], segment)
+                   for letter in "AB" for bone, segment in (("Femur", "thigh"),
+                                                            ("Tibia", "shank"), ("Pes", "foot")))
+    for name, yaml, expected in (
+            ("both", both, "--bodies Femur_A,Tibia_A,Pes_A"),
+            ("right", "right_foot: {joint: Pes_B}\n", "whole-body mass center alone")):
+        path, png = os.path.join(tmp, name + ".yaml"), os.path.join(tmp, name + ".png")
+        with open(path, "w") as f:
+            f.write(yaml)
+        r = run("--bvh", bvh, "--scale", "0.01", "--segments", path, "--png", png)
+        if r.returncode != 0 or expected not in r.stderr or not is_png(png):
+            failures.append("--segments %s: exit %d, %s" % (name, r.returncode, r.stderr))
+
+
 def csv_cases(tmp, failures):
     """The figures from a CSV; its refusals."""
     full, no_system = os.path.join(tmp, "walk.csv"), os.path.join(tmp, "nosys.csv")
@@ -190,6 +217,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         if "--bvh" in sys.argv:
             bvh_cases(tmp, failures)
+            segments_cases(tmp, failures)
         else:
             csv_cases(tmp, failures)
             bad_path_cases(tmp, failures)

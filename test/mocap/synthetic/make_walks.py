@@ -1,16 +1,18 @@
 #!/usr/bin/python3
-"""Writes the synthetic walks of this folder: one walk (2 s at 30 frames/s, 1.3 m/s along +z,
-y up, centimetres) in the exact file layouts of three BVH families whose own files cannot be
-shipped here (their licenses: README.md):
+"""Writes the synthetic walks of this folder: one walk (1.3 m/s along +z, y up, centimetres, 30
+frames/s) in the exact file layouts of three BVH families whose own files cannot be shipped here
+(their licenses: README.md):
 
-  bandai_layout_walk.bvh   Bandai Namco Research's motion dataset: a static joint_Root, every
-                           joint with 6 channels (Xposition Yposition Zposition Zrotation
-                           Xrotation Yrotation) whose positions repeat its OFFSET, _L/_R names
+  bandai_layout_walk.bvh   Bandai Namco Research's motion dataset: a static joint_Root and 21
+                           joints under it (22 in all: no Chest2), every one with 6 channels
+                           (Xposition Yposition Zposition Zrotation Xrotation Yrotation) whose
+                           positions repeat its OFFSET, _L/_R names, every End Site at OFFSET
+                           0 0 0; the walker 4 s from 4.5 m before the root (its OFFSET) to 0.7 m
   lafan1_layout_walk.bvh   Ubisoft LAFAN1: every joint with 6 channels (... Zrotation Yrotation
                            Xrotation), CMU-like names (LeftUpLeg, LeftToe)
   mixamo_layout_walk.bvh   Mixamo: mixamorig: names, a 6-channel root, 3 rotations elsewhere
 
-The body: segment lengths of a 1.75 m adult; hips, knees, shoulders and elbows swing as
+The others walk 2 s from the origin. The body: segment lengths of a 1.75 m adult; hips, knees, shoulders and elbows swing as
 sinusoids of the gait cycle (1 s), the pelvis bobs 2 cm. Run it to write the files again; the
 output is deterministic."""
 import math
@@ -19,6 +21,8 @@ import os
 FPS = 30
 FRAMES = 60
 SPEED = 130.0  # cm/s along +z
+BANDAI_FRAMES = 120
+BANDAI_START = -452.2  # cm along z: at the Hips OFFSET, 4.5 m from the static joint_Root
 PELVIS = 95.0  # cm above the floor
 
 # name per family: (bandai, lafan1, mixamo); parent; offset (cm); swing amplitude (deg) about X
@@ -44,10 +48,26 @@ END_SITES = {"Head": (0, 18, 0), "Hand_L": (0, -18, 0), "Toes_L": (0, 0, 6)}
 BENDS = {"LowerLeg_L": 1, "LowerArm_L": -1}
 
 
-def skeleton():
-    """Every joint with both sides: (names, parent name (bandai), offset, amplitude, phase)."""
+def bandai_joints():
+    """JOINTS without Chest2, as Bandai Namco's skeleton: its children hang from Chest, their
+    OFFSETs lengthened by Chest2's, so that the body keeps its shape."""
+    chest2 = next(j for j in JOINTS if j[0] == "Chest2")
     out = []
     for bandai, lafan, mixamo, parent, offset, amp, phase in JOINTS:
+        if bandai == "Chest2":
+            continue
+        if parent == "Chest2":
+            parent = "Chest"
+            offset = tuple(a + b for a, b in zip(offset, chest2[4]))
+        out.append((bandai, lafan, mixamo, parent, offset, amp, phase))
+    return out
+
+
+def skeleton(bandai_root=False):
+    """Every joint with both sides: (names, parent name (bandai), offset, amplitude, phase)."""
+    out = []
+    for bandai, lafan, mixamo, parent, offset, amp, phase in (bandai_joints() if bandai_root
+                                                               else JOINTS):
         out.append(((bandai, lafan, mixamo), parent, offset, amp, phase))
         if bandai.endswith("_L"):
             names = (bandai[:-2] + "_R", lafan.replace("Left", "Right"),
@@ -68,7 +88,7 @@ def angle(name, amp, phase, t):
 
 
 def write(path, family, channels_of, bandai_root):
-    joints = skeleton()
+    joints = skeleton(bandai_root)
     children = {}
     for j in joints:
         children.setdefault(j[1], []).append(j)
@@ -93,6 +113,8 @@ def write(path, family, channels_of, bandai_root):
             end = END_SITES[names[0].replace("_R", "_L")]
             if names[0].endswith("_R"):
                 end = (-end[0], end[1], end[2])
+            if bandai_root:
+                end = (0, 0, 0)
             lines.append(pad + "  End Site")
             lines.append(pad + "  {")
             lines.append("%s    OFFSET %.4f %.4f %.4f" % ((pad,) + tuple(end)))
@@ -107,14 +129,15 @@ def write(path, family, channels_of, bandai_root):
         lines.append("}")
     else:
         emit(hips, 0, "ROOT")
-    lines += ["MOTION", "Frames: %d" % FRAMES, "Frame Time: %.7f" % (1.0 / FPS)]
-    for f in range(FRAMES):
+    frames, start = (BANDAI_FRAMES, BANDAI_START) if bandai_root else (FRAMES, 0.0)
+    lines += ["MOTION", "Frames: %d" % frames, "Frame Time: %.7f" % (1.0 / FPS)]
+    for f in range(frames):
         t = f / FPS
         row = ["0"] * 6 if bandai_root else []
         for j, channels in columns:
             names, parent, offset, amp, phase = j
             if parent is None:
-                translation = (0.0, PELVIS + 2 * math.cos(4 * math.pi * t), SPEED * t)
+                translation = (0.0, PELVIS + 2 * math.cos(4 * math.pi * t), start + SPEED * t)
             else:
                 translation = offset
             for c in channels:
