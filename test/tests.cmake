@@ -15,6 +15,12 @@ file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/estimation/*
   test/stability/*_test.cc)
 list(FILTER MBK_UNIT_TESTS EXCLUDE REGEX "/test/offline/(bag|output_file)_test\\.cc$")
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
+# test/peers/mujoco_test.cc runs MuJoCo itself (libmujoco-dev), when it is installed.
+find_library(MBK_MUJOCO_LIBRARY mujoco)  # not find_package: Debian's config names a folder
+find_path(MBK_MUJOCO_INCLUDE mujoco/mujoco.h)  # it does not install (/usr/include/libqhull_r)
+if(NOT MBK_MUJOCO_LIBRARY OR NOT MBK_MUJOCO_INCLUDE)
+  list(FILTER MBK_PEER_TESTS EXCLUDE REGEX "/test/peers/mujoco_test\\.cc$")
+endif()
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
   catkin_add_gtest(${name} ${source} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
@@ -28,6 +34,9 @@ foreach(source ${MBK_PEER_TESTS})
     ${kdl_parser_INCLUDE_DIRS})
   target_link_libraries(${name} ${orocos_kdl_LIBRARIES} ${kdl_parser_LIBRARIES})
 endforeach()
+if(TARGET mujoco_test)
+  target_link_libraries(mujoco_test ${MBK_MUJOCO_LIBRARY})
+endif()
 
 # A memcheck of the loaders (doc/reliability.md): the BVH reader, model and anthropometry tests and
 # the URDF/YAML/STATE.json error tests under valgrind, when it is installed (not in a sanitizer

@@ -6,6 +6,8 @@
 
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/bvh_model.h"
+#include "mb_kinematics/io/mjcf_model.h"
+#include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/yaml_scene.h"
 
@@ -16,9 +18,17 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// The model of a file that is not BVH: a URDF or a YAML scene.
+// An `.xml` file by its first element: MJCF (<mujoco>) or URDF (<robot>).
+Model load_xml_file(const std::string& path) {
+  const std::string xml = read_text_file(path, "URDF or MJCF file");
+  if (is_mjcf_text(xml)) return load_mjcf_file(path);
+  return load_urdf_file(path);
+}
+
+// The model of a file that is not BVH: a URDF, an MJCF file or a YAML scene.
 Model load_robot_file(const std::string& path) {
-  if (ends_with(path, ".urdf") || ends_with(path, ".xml")) return load_urdf_file(path);
+  if (ends_with(path, ".urdf")) return load_urdf_file(path);
+  if (ends_with(path, ".xml")) return load_xml_file(path);
   if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
   if (ends_with(path, ".xacro"))
     throw std::invalid_argument(path + ": a xacro file: expand it first (xacro " + path +
@@ -53,6 +63,11 @@ Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
   return read_model_file(path, bvh).model;
 }
 
+Model load_xml_string(const std::string& xml, const std::string& source) {
+  if (is_mjcf_text(xml)) return load_mjcf_string(xml, source);
+  return load_urdf_string(xml, source);
+}
+
 bool is_model_text(const std::string& path_or_text) {
   const std::size_t first = path_or_text.find_first_not_of(" \t\r\n");
   return (first != std::string::npos && path_or_text[first] == '<') ||
@@ -68,7 +83,7 @@ Model load_model(const std::string& path_or_text, const BvhModelOptions* bvh,
   const std::size_t first = path_or_text.find_first_not_of(" \t\r\n");
   if (first == std::string::npos)
     throw std::invalid_argument(source + ": an empty model text (only blanks and line ends)");
-  if (path_or_text[first] == '<') return load_urdf_string(path_or_text, source);
+  if (path_or_text[first] == '<') return load_xml_string(path_or_text, source);
   return load_yaml_scene_string(path_or_text, source);
 }
 

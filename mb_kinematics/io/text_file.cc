@@ -86,4 +86,23 @@ void check_regular_file(const std::string& path, const std::string& what) {
   const Descriptor file{open_regular(path, what, st)};
 }
 
+bool xml_root_is(const std::string& xml, const std::string& element) {
+  std::size_t at = 0;
+  while (true) {  // skip the XML declaration, comments and blanks before the first element
+    at = xml.find('<', at);
+    if (at == std::string::npos) return false;
+    if (xml.compare(at, 4, "<!--") == 0) {
+      at = xml.find("-->", at);
+      if (at == std::string::npos) return false;
+    } else if (xml.compare(at, 2, "<?") != 0 && xml.compare(at, 2, "<!") != 0) {
+      break;
+    }
+    ++at;
+  }
+  const std::string open = "<" + element;
+  if (xml.compare(at, open.size(), open) != 0) return false;
+  const char next = at + open.size() < xml.size() ? xml[at + open.size()] : '\0';
+  return next == '>' || next == '/' || next == ' ' || next == '\t' || next == '\n' || next == '\r';
+}
+
 }  // namespace mbk

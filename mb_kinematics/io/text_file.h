@@ -1,4 +1,4 @@
-// The whole of a text file, for the loaders of scenes, URDF and STATE.json.
+// The whole of a text file, for the loaders of scenes, URDF, MJCF, SDFormat and STATE.json.
 #pragma once
 
 #include <cstddef>
@@ -22,5 +22,9 @@ std::string read_text_file(const std::string& path, const std::string& what,
 // that open it themselves (a trajectory CSV, a bag, a segment map). A name holding a NUL byte is
 // refused (the file named by what comes before it would be read); a pipe is not waited on.
 void check_regular_file(const std::string& path, const std::string& what);
+
+// True when the first element of the XML text is `element` (after the declaration, comments and
+// blanks): tells MJCF (<mujoco>), SDFormat (<sdf>) and URDF (<robot>) apart.
+bool xml_root_is(const std::string& xml, const std::string& element);
 
 }  // namespace mbk

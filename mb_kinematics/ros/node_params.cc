@@ -109,10 +109,10 @@ mbk::ModelFile load_node_model(const NodeParams& p) {
   } else if (!p.model.empty()) {
     loaded = mbk::read_model_file(p.model, p.bvh);
   } else if (!p.robot_description.empty()) {
-    model = mbk::load_urdf_string(p.robot_description, "robot_description");
+    model = mbk::load_xml_string(p.robot_description, "robot_description");
   } else {
     throw std::invalid_argument(
-        "no model: set the robot_description parameter (URDF), ~model (a .urdf, .yaml or "
+        "no model: set the robot_description parameter (URDF), ~model (a .urdf, .xml, .yaml or "
         ".bvh path) or ~lower_body_array");
   }
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {  // the node's speeds: q'

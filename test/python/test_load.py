@@ -20,6 +20,21 @@ def test_urdf_file_and_text_give_the_same_model(mbk_kinematics):
     assert "prismatic" in from_file.joint_types
 
 
+def test_mjcf_file_and_text_give_the_same_model(mbk_kinematics):
+    path = source("test/robots/mjcf/panda.xml")  # MuJoCo compiles it (doc/conventions.md)
+    from_file = mbk_kinematics.load(path)
+    with open(path) as f:
+        from_text = mbk_kinematics.load(f.read())
+    assert from_file.body_names == from_text.body_names
+    assert "link7" in from_file.body_names and "hand" in from_file.body_names
+    assert from_file.coordinate_names == from_text.coordinate_names
+    assert "finger_joint1" in from_file.coordinate_names
+    q = np.linspace(-1, 1, from_file.nq)
+    assert np.array_equal(from_file.kinematics(q)["rotation"], from_text.kinematics(q)["rotation"])
+    with pytest.raises(ValueError, match="<text>: MuJoCo refuses the model: XML parse error"):
+        mbk_kinematics.load("<mujoco><worldbod\n")
+
+
 def test_introspection_against_mbk_tables(mbk_kinematics):
     path = source("config/ten_body.yaml")
     model = mbk_kinematics.load(path)
