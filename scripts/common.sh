@@ -23,6 +23,7 @@ MBK_DEMO_PACKAGES=(
   libtopic-tools-dev pluginlib-dev
   pybind11-dev python3-dev python3-numpy  # the Python module (doc/python.md)
   libmujoco-dev  # MJCF models (doc/conventions.md)
+  libhdf5-dev  # mbk bag --h5 (doc/recorded_data.md)
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
 )
 # rviz and what the display plugin builds against: scripts/demo.sh --rviz, and the tests.
@@ -44,6 +45,7 @@ MBK_TEST_PACKAGES=(
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
   python3-dask python3-distributed python3-psutil  # mbk batch --scheduler's tests (Dask)
   python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
+  python3-h5py  # mbk bag --h5's files read back (test/python/test_h5_output.py)
   joint-state-publisher-gui  # mb_kinematics.launch gui:=true (Qt: 106 packages; gui_launch)
 )
 # What mbk_install_deps installs: scripts/test.sh adds MBK_TEST_PACKAGES.

@@ -25,6 +25,8 @@
 #include "mb_kinematics/offline/bag_output.h"
 #include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/bvh_recording.h"
+#include "mb_kinematics/offline/h5_output.h"
+#include "mb_kinematics/offline/mot_output.h"
 #include "mb_kinematics/offline/offline_batch.h"
 #include "mb_kinematics/offline/offline_stream.h"
 #include "mb_kinematics/offline/output_file.h"
@@ -114,13 +116,16 @@ void refuse_same_files(const std::vector<NamedFile>& inputs,
                                     " are the same file: refused, nothing written");
 }
 
-// OUT.bag and/or OUT.csv, each under a temporary name until both are whole (output_file.h):
-// the writers are destroyed before the files, which remove what was not committed.
+// OUT.bag, OUT.csv, OUT.h5 and/or OUT.mot, each under a temporary name until all are whole
+// (output_file.h): the writers are destroyed before the files, which remove what was not
+// committed.
 struct Outputs {
   std::string input;  // IN, for the stamp error
-  std::unique_ptr<OutputFile> bag_file, csv_file;
+  std::unique_ptr<OutputFile> bag_file, csv_file, h5_file, mot_file;
   std::unique_ptr<BagOutput> bag;
   std::unique_ptr<mbk::TidyCsvWriter> csv;
+  std::unique_ptr<H5Output> h5;
+  std::unique_ptr<MotOutput> mot;
   bool floating = false, formatted = false;
   const mbk::Model* base_model = nullptr;        // with a base: the node's layout
   std::unique_ptr<mbk::Data<double>> base_data;  // of base_model
@@ -136,6 +141,8 @@ struct Outputs {
       csv->write_text(row.text);
     else if (csv)
       csv->write(row.stamp, *data);
+    if (h5) h5->write(row, *data);
+    if (mot) mot->write(row);
   }
   // A bag holds stamps from ros::TIME_MIN (1 ns; 0 means "no stamp") to ros::TIME_MAX only.
   void check_bag_stamp(double t) const {
@@ -162,8 +169,12 @@ struct Outputs {
   void close() {
     if (bag) bag->close();
     if (csv) csv->close();
+    if (h5) h5->close();
+    if (mot) mot->close();
     if (bag_file) bag_file->commit();
     if (csv_file) csv_file->commit();
+    if (h5_file) h5_file->commit();
+    if (mot_file) mot_file->commit();
   }
 };
 
@@ -223,12 +234,19 @@ void read_input(const InputReading& r, mbk::RecordingBuilder& builder, BaseOdome
   s.unreadable_example = unreadable.first;
 }
 
-// OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies (the model of
-// `file`, with or without a base); errors: the CSV has the error bars' columns. `input` names IN
-// in the bag's stamp error.
+// What the HDF5 file says of its run (its frame and system set by open_outputs).
+H5Attributes h5_attributes(const BagOptions& o, const mbk::OfflineEstimator& estimator) {
+  H5Attributes a;
+  a.model_file = o.model, a.input = o.input, a.estimator = estimator.name;
+  return a;
+}
+
+// The outputs opened (under temporary names) for `base_model`'s bodies (the model of `file`,
+// with or without a base); errors: the CSV and the HDF5 file have the error bars. `input` names
+// IN in the bag's stamp error; `about`: the HDF5 file's attributes.
 void open_outputs(const BagOutputs& o, const std::string& input, const mbk::ModelFile& file,
                   const mbk::Model& base_model, const std::string& base_frame, bool errors,
-                  Outputs& out) {
+                  H5Attributes about, Outputs& out) {
   out.input = input;
   const std::vector<std::string>& missing = file.missing_segments;
   if (!o.out_bag.empty()) {
@@ -241,6 +259,18 @@ void open_outputs(const BagOutputs& o, const std::string& input, const mbk::Mode
     out.csv =
         std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
                                              missing.empty() ? "system" : "system_incomplete");
+  }
+  if (!o.out_h5.empty()) {
+    out.h5_file = std::make_unique<OutputFile>(o.out_h5);
+    about.frame = base_frame.empty() ? file.model.frame : base_frame;
+    about.system = missing.empty() ? "system" : "system_incomplete";
+    out.h5 =
+        std::make_unique<H5Output>(out.h5_file->writing(), o.out_h5, base_model,
+                                   file.model.coordinate_names, about, errors, o.h5_compression);
+  }
+  if (!o.out_mot.empty()) {
+    out.mot_file = std::make_unique<OutputFile>(o.out_mot);
+    out.mot = std::make_unique<MotOutput>(out.mot_file->writing(), o.out_mot, file.model);
   }
   out.base_model = &base_model;
 }
@@ -442,13 +472,13 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
     whole = choose.finish(reach);
   }
   Outputs out;
-  open_outputs(o, o.input, file, model, "", estimator.automatic, out);
+  open_outputs(o, o.input, file, model, "", estimator.automatic, h5_attributes(o, estimator), out);
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
   stream.set_stamp_grid(grid);
   stream.set_formatter(out.formatter());
-  stream.set_body_errors(out.csv && estimator.automatic);
+  stream.set_body_errors((out.csv || out.h5) && estimator.automatic);
   std::unique_ptr<SampleErrorsFile> sample_errors;
   const bool sides = estimator.automatic && has_side_files(o.out_csv);
   if (out.csv && sides) {
@@ -484,6 +514,8 @@ std::vector<NamedFile> output_files(const BagOutputs& o) {
   std::vector<NamedFile> files;
   if (!o.out_bag.empty()) files.push_back({"--out", o.out_bag});
   if (!o.out_csv.empty()) files.push_back({"--csv", o.out_csv});
+  if (!o.out_h5.empty()) files.push_back({"--h5", o.out_h5});
+  if (!o.out_mot.empty()) files.push_back({"--mot", o.out_mot});
   return files;
 }
 
@@ -535,11 +567,12 @@ BagSummary run_bag(const BagOptions& o) {
         mbk::with_floating_base(model, base.frame, "base_odometry"));
   const mbk::Model& base_model = floating ? *with_base : model;
   // The error bars' columns with auto (in the model's frame: not with a base).
-  open_outputs(o, o.input, file, base_model, base.frame, estimator.automatic && !floating, out);
+  open_outputs(o, o.input, file, base_model, base.frame, estimator.automatic && !floating,
+               h5_attributes(o, estimator), out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());
-  batch.set_body_errors(out.csv && estimator.automatic && !floating);
+  batch.set_body_errors((out.csv || out.h5) && estimator.automatic && !floating);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
   if (has_side_files(o.out_csv) && !s.errors.empty()) {

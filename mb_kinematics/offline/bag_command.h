@@ -25,9 +25,12 @@ struct BagInput : BagTopics {
   double start_time = 0;  // seconds added to every time of a .csv or .bvh input
 };
 
-// What a run writes: OUT.bag and/or OUT.csv.
+// What a run writes: OUT.bag, OUT.csv, OUT.h5 and/or OUT.mot.
 struct BagOutputs {
   std::string out_bag, out_csv;
+  std::string out_h5;        // --h5 (offline/h5_output.h)
+  std::string out_mot;       // --mot: OpenSim Storage (offline/mot_output.h)
+  int h5_compression = 0;    // --h5-compression: deflate level 0-9
   std::string frame_prefix;  // of the bag's frames (messages/frames.h)
 };
 
@@ -45,7 +48,8 @@ struct BagOptions : BagInput, BagOutputs {
   std::vector<NamedFile> other_outputs;
 };
 
-// The files a run writes (but the error bars' side files): --out, --csv, in that order.
+// The files a run writes (but the error bars' side files): --out, --csv, --h5, --mot, in that
+// order.
 std::vector<NamedFile> output_files(const BagOutputs& o);
 
 struct BagSummary {

@@ -146,14 +146,7 @@ void compute_sample(const Model& model, const BatchInput& in, std::size_t s, Lev
   load_sample(model, in, s, w.state);
   if (w.pv) partial_velocity_kinematics(model, w.state, *w.pv, *w.scratch, level);
   forward_kinematics(model, w.state, w.data, level);
-  write_bodies(w.data, s, out);
-  const bool system = out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
-                      out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
-                      out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum];
-  if (system) {
-    system_kinematics(model, w.data, w.system, level);
-    write_system(w.system, s, out);
-  }
+  write_batch_fields(model, w.data, s, level, out, w.system);
   if (w.pv) write_partials(model, *w.pv, s, out);
 }
 
@@ -198,6 +191,18 @@ void check_request(const Model& model, const BatchInput& in, const BatchOutput<T
 }
 
 }  // namespace
+
+template <typename T>
+void write_batch_fields(const Model& model, const Data<double>& data, std::size_t s, Level level,
+                        const BatchOutput<T>& out, SystemKinematics<double>& system) {
+  write_bodies(data, s, out);
+  if (out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
+      out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
+      out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum]) {
+    system_kinematics(model, data, system, level);
+    write_system(system, s, out);
+  }
+}
 
 const BatchFieldTraits& batch_field_traits(BatchField field) {
   return kTraits[static_cast<int>(field)];
@@ -247,6 +252,8 @@ void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutpu
   });
 }
 
+template void write_batch_fields(const Model&, const Data<double>&, std::size_t, Level,
+                                 const BatchOutput<double>&, SystemKinematics<double>&);
 template Level batch_level(const BatchOutput<double>&);
 template Level batch_level(const BatchOutput<float>&);
 template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<double>&, int);

@@ -11,6 +11,7 @@
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/system_kinematics.h"
 
 namespace mbk {
 
@@ -73,6 +74,13 @@ struct BatchOutput {
   T*& operator[](BatchField f) { return field[static_cast<int>(f)]; }
   T* operator[](BatchField f) const { return field[static_cast<int>(f)]; }
 };
+
+// Sample s of `out`'s per-body and system fields (the partial velocities aside) from `data`,
+// computed at `level` (at least batch_level(out)); `system`: scratch. What batch_kinematics
+// writes for a sample, for writers of other formats (offline/h5_output.h).
+template <typename T>
+void write_batch_fields(const Model& model, const Data<double>& data, std::size_t s, Level level,
+                        const BatchOutput<T>& out, SystemKinematics<double>& system);
 
 // The level the fields asked for need.
 template <typename T>

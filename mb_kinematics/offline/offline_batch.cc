@@ -77,8 +77,13 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
   if (!finite_kinematics(out.data, Level::kAcceleration)) return drop("kinematics not finite", "");
   // The error bars in the model's frame; with a base, R is the odometry's: none.
   if (!body_errors_ || base_ ||
-      !states.body_errors(r, out.state, out.alpha_se, out.acceleration_se))
+      !states.body_errors(r, out.state, out.alpha_se, out.acceleration_se)) {
     out.alpha_se.clear(), out.acceleration_se.clear();
+    out.joint_velocity_se.clear(), out.joint_acceleration_se.clear();
+    return;
+  }
+  out.joint_velocity_se.assign(model_.nq, 0.0), out.joint_acceleration_se.assign(model_.nq, 0.0);
+  states.coordinate_errors(r, out.joint_velocity_se.data(), out.joint_acceleration_se.data());
 }
 
 void OfflineBatch::start(int begin, int end, std::vector<OfflineRow>& rows) {

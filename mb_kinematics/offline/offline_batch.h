@@ -35,6 +35,8 @@ struct OfflineRow {
   // "auto": per body, the standard errors of alpha and of the mass-center acceleration
   // (OfflineStates::body_errors); empty otherwise.
   std::vector<Vec3<double>> alpha_se, acceleration_se;
+  // With them, the coordinates' standard errors (OfflineStates::coordinate_errors; nq each).
+  std::vector<double> joint_velocity_se, joint_acceleration_se;
 };
 
 // The odometry of a floating base (core/floating_base.h) and its accelerations.

@@ -44,6 +44,17 @@ const Option kOptions[] = {
     {"--model", true, [](Reading& r, const std::string& v) { r.line.model = v; }},
     {"--out", true, [](Reading& r, const std::string& v) { r.line.out_bag = v; }},
     {"--csv", true, [](Reading& r, const std::string& v) { r.line.out_csv = v; }},
+    {"--h5", true, [](Reading& r, const std::string& v) { r.line.out_h5 = v; }},
+    {"--h5-compression", true,
+     [](Reading& r, const std::string& v) {
+       char* end = nullptr;
+       const long level = std::strtol(v.c_str(), &end, 10);
+       if (v.empty() || *end != '\0' || level < 0 || level > 9)
+         throw std::invalid_argument("--h5-compression needs a deflate level from 0 to 9, not '" +
+                                     v + "'");
+       r.line.h5_compression = static_cast<int>(level);
+     }},
+    {"--mot", true, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
     {"--summary-json", true, [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
     {"--joint-states", true, [](Reading& r, const std::string& v) { r.line.joint_states = v; }},
     {"--joint-accelerations", true,
@@ -103,8 +114,9 @@ void check(Reading& r) {
     throw std::invalid_argument(
         "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
   o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments);
-  if (o.out_bag.empty() && o.out_csv.empty())
-    throw std::invalid_argument("bag needs --out OUT.bag and/or --csv OUT.csv");
+  if (output_files(o).empty())
+    throw std::invalid_argument(
+        "bag needs at least one of --out OUT.bag, --csv OUT.csv, --h5 OUT.h5, --mot OUT.mot");
   if (o.start_time != 0 && !ends_with(o.input, ".csv") && !mbk::is_bvh_file(o.input))
     throw std::invalid_argument("--start-time applies to a .csv or .bvh input, not a bag");
   if (!o.summary_json.empty()) o.other_outputs.push_back({"--summary-json", o.summary_json});
@@ -135,6 +147,7 @@ BagCommandLine parse_bag_options(int argc, char** argv) {
 
 const char* bag_usage() {
   return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
+         "           [--h5 OUT.h5 [--h5-compression 0-9]] [--mot OUT.mot]\n"
          "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
          "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
          "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"

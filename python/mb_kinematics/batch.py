@@ -336,6 +336,8 @@ def _parser():
                    help="a Dask scheduler to run the jobs on instead")
     p.add_argument("--bag", action="store_true", help="write OUT.bag (--out of mbk bag)")
     p.add_argument("--csv", action="store_true", help="write OUT.csv (the default)")
+    p.add_argument("--h5", action="store_true", help="write OUT.h5 (HDF5)")
+    p.add_argument("--mot", action="store_true", help="write OUT.mot (OpenSim coordinates)")
     p.add_argument("--progress", action="store_true", help="the progress line even off a terminal")
     p.add_argument("--model", metavar="FILE",
                    help="the model of .bag and .csv inputs (a .bvh is its own)")
@@ -379,7 +381,7 @@ def main(argv=None):
     if arguments.jobs is not None and arguments.jobs < 1:
         sys.stderr.write("mbk: error: --jobs needs a count from 1, not %d\n" % arguments.jobs)
         return USAGE_STATUS
-    kinds = [k for k in ("bag", "csv") if getattr(arguments, k)] or ["csv"]
+    kinds = [k for k in ("bag", "csv", "h5", "mot") if getattr(arguments, k)] or ["csv"]
     client, started = None, time.monotonic()
     try:
         if arguments.scheduler:

@@ -15,7 +15,8 @@ STATE = ".mbk-batch"  # under --out-dir: the records of finished jobs
 # `mbk bag` options every job takes as given; those of a BVH model go to .bvh inputs only.
 COMMON_OPTIONS = {"--estimator": "NAME", "--max-gap": "S", "--joint-states": "TOPIC",
                   "--joint-accelerations": "TOPIC", "--base-odometry": "TOPIC",
-                  "--frame-prefix": "P", "--start-time": "S", "--threads": "N"}
+                  "--frame-prefix": "P", "--start-time": "S", "--threads": "N",
+                  "--h5-compression": "0-9"}
 BVH_OPTIONS = {"--scale": "M", "--body-mass": "KG", "--sex": "male|female",
                "--segments": "MAP.yaml"}
 
@@ -180,9 +181,9 @@ def _files_of(arguments):
 
 def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1, subjects=None):
     """One job per input (find_inputs' pairs): `mbk bag`'s arguments, the outputs under
-    out_dir (kinds: "csv" and/or "bag"), where its record goes and the key that record must
-    hold for the job to count as done. `threads`: mbk bag's --threads unless options give it;
-    `subjects`: input -> options that replace those of `options` for it (batch_subjects.py)."""
+    out_dir (kinds: "csv", "bag", "h5", "mot"), where its record goes and the key that record
+    must hold for the job to count as done. `threads`: mbk bag's --threads unless options give
+    it; `subjects`: input -> options that replace those of `options` for it (batch_subjects.py)."""
     mbk_bag = os.path.abspath(mbk_bag or locate_mbk_bag())
     tool = _tool_identity(mbk_bag)
     state = os.path.join(out_dir, STATE)
@@ -191,7 +192,7 @@ def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1, subj
         arguments = _arguments(dict(options, **(subjects or {}).get(path, {})),
                                path.endswith(".bvh"))
         outputs = [os.path.join(out_dir, stem + "." + kind) for kind in kinds]
-        flags = {"bag": "--out", "csv": "--csv"}
+        flags = {"bag": "--out", "csv": "--csv", "h5": "--h5", "mot": "--mot"}
         output_arguments = sum(([flags[k], o] for k, o in zip(kinds, outputs)), [])
         key = {"input": _file_identity(path), "arguments": arguments, "files": _files_of(arguments),
                "kinds": list(kinds), "tool": tool}

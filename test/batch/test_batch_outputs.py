@@ -1,0 +1,30 @@
+"""mbk batch --h5 --mot and batch.run(kinds=...): each job's HDF5 and OpenSim files those of a
+direct `mbk bag` run, byte for byte (an HDF5 file holds no times: the same run, the same
+bytes)."""
+import os
+import subprocess
+
+from conftest import bag_arguments, batch, mbk_path, output_files, recordings
+
+
+def test_h5_and_mot_outputs_as_mbk_bags(walk_template, tmp_path):
+    folder, _ = walk_template
+    alone = str(tmp_path / "alone")
+    for relative in recordings(folder):
+        stem = os.path.join(alone, os.path.splitext(relative)[0])
+        os.makedirs(os.path.dirname(stem), exist_ok=True)
+        subprocess.run([mbk_path(), "bag", os.path.join(folder, relative), "--h5", stem + ".h5",
+                        "--mot", stem + ".mot", "--h5-compression", "1"] +
+                       bag_arguments(relative), check=True, capture_output=True)
+    out = str(tmp_path / "out")
+    batch(folder, "--out-dir", out, "--scale", "0.056444", "--body-mass", "68.5", "--h5",
+          "--mot", "--h5-compression", "1", "--jobs", "2", check=0)
+    produced = {n: b for n, b in output_files(out).items() if n.endswith((".h5", ".mot"))}
+    assert produced == output_files(alone) and len(produced) == 2 * len(recordings(folder))
+
+    from mb_kinematics import batch as python_batch
+    rows = python_batch.run([folder], str(tmp_path / "run"), kinds=("h5",), jobs=1,
+                            scale=0.056444, body_mass=68.5, h5_compression=1)
+    assert all(r["status"] == "ok" for r in rows)
+    by_run = {n: b for n, b in output_files(str(tmp_path / "run")).items() if n.endswith(".h5")}
+    assert by_run == {n: b for n, b in produced.items() if n.endswith(".h5")}
