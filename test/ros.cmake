@@ -118,3 +118,14 @@ set_tests_properties(node_load_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPA
 add_test(NAME gui_launch
   COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/ros/gui_launch_test.sh)
 set_tests_properties(gui_launch PROPERTIES TIMEOUT 90)
+
+# The launch files one after another on one master: each start sets the node's parameters from
+# its own arguments (publish_tf:=false's ~outputs does not linger), and says whether /tf is on.
+add_test(NAME relaunch
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/ros/relaunch_test.py)
+set_tests_properties(relaunch PROPERTIES TIMEOUT 150)
+
+# A xacro model, and a xacro robot_description: both refusals name xacro and its command.
+add_test(NAME xacro_launch
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/ros/xacro_launch_test.py)
+set_tests_properties(xacro_launch PROPERTIES TIMEOUT 120)

@@ -15,6 +15,7 @@
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/urdf_writer.h"
+#include "mb_kinematics/io/xacro_markup.h"
 
 namespace mbk {
 namespace {
@@ -222,6 +223,8 @@ Model parse_urdf(const std::string& xml, const std::string& source) {
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS)
     throw std::invalid_argument(source + ":" + std::to_string(doc.ErrorLineNum()) +
                                 ": URDF does not parse: malformed XML: " + doc.ErrorStr());
+  const std::string xacro = xacro_markup(doc);
+  if (!xacro.empty()) throw std::invalid_argument(xacro_refusal(source, xacro));
   urdf::ModelInterfaceSharedPtr urdf;
   std::string errors;
   {

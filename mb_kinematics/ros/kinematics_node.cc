@@ -25,7 +25,8 @@ constexpr double kPairingPeriod = 0.05;  // seconds between looks for joint_acce
 // many cells (e.g. 100 bodies of depth up to 99), else a summary (doc/node.md).
 constexpr long kMaxLoggedTableCells = 10000;
 
-void log_model(const mbk::Model& model, const std::string& frame) {
+// `tf`: whether ~outputs has tf (publish_tf:=false takes it out), said in the start-up line.
+void log_model(const mbk::Model& model, const std::string& frame, bool tf) {
   for (const std::string& warning : model.warnings)
     ROS_WARN_STREAM("mb_kinematics: " << mbk::printable(warning));
   int depth = 0;
@@ -36,7 +37,9 @@ void log_model(const mbk::Model& model, const std::string& frame) {
                   << model.body_count() << " bodies, " << model.nq << " coordinates, max depth "
                   << depth << ", R = '" << frame
                   << "'; kinematics of every body and the system, angular "
-                  << (no_inertia.empty() ? "momentum included" : "momentum left out (inertias)"));
+                  << (no_inertia.empty() ? "momentum included" : "momentum left out (inertias)")
+                  << (tf ? "; frames on /tf"
+                         : "; no /tf (~outputs without tf: publish_tf:=false)"));
   if (cells <= kMaxLoggedTableCells) {
     std::vector<std::string> names;
     for (int k = 1; k <= model.body_count(); ++k) names.push_back(model.bodies[k].name);
@@ -123,7 +126,7 @@ OutputSetup KinematicsNode::setup() {
 // message.
 void KinematicsNode::make_outputs_in_r() {
   if (!input_.frame().empty()) {
-    log_model(input_.model(), input_.frame());
+    log_model(input_.model(), input_.frame(), params_.tf);
     Outputs outputs = make_outputs(setup(), true);
     outputs_.insert(outputs_.begin(), std::make_move_iterator(outputs.begin()),
                     std::make_move_iterator(outputs.end()));
