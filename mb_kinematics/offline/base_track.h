@@ -4,6 +4,7 @@
 // them and the Python module's recording_kinematics returns them (doc/python.md). ROS-free.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,15 @@ FloatingBaseTrack base_track(std::vector<BaseSample> samples, const OfflineEstim
 // apply_floating_base) as `out` (of with_floating_base(model)): body 1 is the base, the root link
 // on its free joint, with its mass center r_1 (p = O + S0K r, doc/method.md 3), the others follow.
 void with_base_body(const Model& base_model, const Data<double>& data, Data<double>& out);
+
+// mbk bag's rows of a whole recording, in memory: each row computed as mbk bag computes it
+// (OfflineBatch: the estimator's states, mbk::check_state, the kinematics, with a floating base's
+// `base` track or none) and handed to `keep` in order, or its drop counted in `log` as mbk bag
+// counts it. threads: 0 for one per CPU.
+void recording_rows(const Model& model, const Recording& recording,
+                    const OfflineEstimator& estimator, double max_gap,
+                    const FloatingBaseTrack* base, int threads, DropLog& log,
+                    const std::function<void(const OfflineRow&)>& keep);
 
 // Every row of `recording` whose kinematics mbk bag computes with this base (`frame`: the
 // odometry's frame_id, R): the stamps, each row's Data in `layout`'s order, layout being
