@@ -64,15 +64,22 @@ void recording_rows(const Model& model, const Recording& recording,
       [](int) {});
 }
 
+FloatingBase floating_base(const Model& model, std::vector<BaseSample> samples,
+                           const std::string& frame, const OfflineEstimator& estimator,
+                           double max_gap, const StampGrid& joints) {
+  return {base_track(std::move(samples), estimator, max_gap, joints),
+          with_floating_base(model, frame, "base_odometry")};
+}
+
 BaseRows floating_base_rows(const Model& model, const Recording& recording,
                             std::vector<BaseSample> samples, const std::string& frame,
                             const OfflineEstimator& estimator, double max_gap, int threads,
                             DropLog& log) {
-  BaseRows out{with_floating_base(model, frame, "base_odometry"), {}, {}, {}};
-  const FloatingBaseTrack track =
-      base_track(std::move(samples), estimator, max_gap, recording.grid);
+  const FloatingBase base =
+      floating_base(model, std::move(samples), frame, estimator, max_gap, recording.grid);
+  BaseRows out{base.layout, {}, {}, {}};
   recording_rows(
-      model, recording, estimator, max_gap, &track, threads, log, [&](const OfflineRow& row) {
+      model, recording, estimator, max_gap, &base.track, threads, log, [&](const OfflineRow& row) {
         out.stamp.push_back(row.stamp);
         out.data.emplace_back(out.layout);
         with_base_body(out.layout, row.data, out.data.back());

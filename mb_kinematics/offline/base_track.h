@@ -25,6 +25,17 @@ namespace mbk {
 FloatingBaseTrack base_track(std::vector<BaseSample> samples, const OfflineEstimator& estimator,
                              double max_gap, const StampGrid& joints);
 
+// A recording's floating base as mbk bag computes with it: the odometry's track (base_track)
+// and the node's layout, with_floating_base(model, frame, "base_odometry") (`frame`: the
+// odometry's frame_id, R).
+struct FloatingBase {
+  FloatingBaseTrack track;
+  Model layout;
+};
+FloatingBase floating_base(const Model& model, std::vector<BaseSample> samples,
+                           const std::string& frame, const OfflineEstimator& estimator,
+                           double max_gap, const StampGrid& joints);
+
 // The node's layout with ~base_odometry: `data` (of the model, carried into R by
 // apply_floating_base) as `out` (of with_floating_base(model)): body 1 is the base, the root link
 // on its free joint, with its mass center r_1 (p = O + S0K r, doc/method.md 3), the others follow.
