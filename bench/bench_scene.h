@@ -2,11 +2,17 @@
 // can read it) and one way to vary the state between iterations.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/analysis/model_generators.h"
+#include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 
@@ -37,6 +43,36 @@ inline void nudge(double* q, double* v, int n, int64_t i) {
 template <typename A, typename B>
 double disagreement(const A& a, const B& b) {
   return ((a - b).array().abs() / (1.0 + b.array().abs())).maxCoeff();
+}
+
+// One body as a peer computes it, in world components: our body number k, its orientation, and
+// its mass center's position, velocity and acceleration with the body's omega and alpha.
+struct PeerBody {
+  int k;
+  Eigen::Matrix3d rotation;
+  Eigen::Vector3d p, omega, alpha, velocity, acceleration;
+};
+
+// Before a peer is timed: its bodies at random_state(model, 1) against forward_kinematics', all
+// of them (and, with `bodies` >= 0, that many) agreeing to 1e-9 (disagreement); else the run
+// stops (exit 1) naming the scene and the peer.
+inline void check_agreement(const Scene& scene, const char* peer, const std::vector<PeerBody>& got,
+                            int bodies = -1) {
+  mbk::Data<double> data(scene.model);
+  mbk::forward_kinematics(scene.model, random_state(scene.model, 1), data);
+  double e = bodies < 0 || static_cast<int>(got.size()) == bodies ? 0.0 : 1.0;
+  for (const PeerBody& b : got) {
+    e = std::max(e, disagreement(b.rotation, data.rotation[b.k]));
+    e = std::max(e, disagreement(b.p, data.mass_center[b.k]));
+    e = std::max(e, disagreement(b.omega, data.omega[b.k]));
+    e = std::max(e, disagreement(b.alpha, data.alpha[b.k]));
+    e = std::max(e, disagreement(b.velocity, data.mass_center_velocity[b.k]));
+    e = std::max(e, disagreement(b.acceleration, data.mass_center_acceleration[b.k]));
+  }
+  if (!(e < 1e-9)) {
+    std::fprintf(stderr, "%s: %s and ours disagree (%g)\n", scene.name.c_str(), peer, e);
+    std::exit(1);
+  }
 }
 
 }  // namespace mbk_bench

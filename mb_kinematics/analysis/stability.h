@@ -60,11 +60,10 @@ template <typename R>
 StabilityError stability_error(const Model& model, const JointState<double>& state,
                                Level level = Level::kAcceleration);
 
-// One row of the table: case | quantity | measured | bound | before the fix.
+// One row of the table: case | quantity | measured | bound | note.
 struct StabilityRow {
   std::string group, name, quantity;
   double measured = 0, bound = 0;
-  std::string before;  // the measured value before a fix, or ""
   std::string note;
   bool ok() const { return measured <= bound; }
 };
@@ -75,7 +74,7 @@ struct StabilityRow {
 const std::vector<std::string>& stability_groups();
 std::vector<StabilityRow> stability_cases(const std::string& group);
 
-// "| case | quantity | measured | bound | before fix | note |" rows.
+// "| case | quantity | measured | bound | note |" rows.
 std::string format_stability_table(const std::vector<StabilityRow>& rows);
 
 }  // namespace mbk

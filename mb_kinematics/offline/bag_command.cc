@@ -551,21 +551,18 @@ BagSummary run_bag(const BagOptions& o) {
   const bool floating = !o.base_odometry.empty();
   if (floating && base.samples.empty())
     throw std::invalid_argument(o.input + ": no usable message on '" + o.base_odometry + "'");
-  const mbk::FloatingBaseTrack track =
-      floating ? mbk::base_track(std::move(base.samples), estimator, o.max_gap, rec.grid)
-               : mbk::FloatingBaseTrack{};
-  mbk::OfflineBatch batch(model, rec, estimator, o.max_gap, floating ? &track : nullptr,
+  // With a base, body_kinematics and the CSV list the node's layout (the model is not copied
+  // without one).
+  std::unique_ptr<const mbk::FloatingBase> with_base;
+  if (floating)
+    with_base = std::make_unique<const mbk::FloatingBase>(mbk::floating_base(
+        model, std::move(base.samples), base.frame, estimator, o.max_gap, rec.grid));
+  mbk::OfflineBatch batch(model, rec, estimator, o.max_gap, floating ? &with_base->track : nullptr,
                           o.threads > 0 ? o.threads : mbk::default_thread_count());
   s.max_gap = batch.max_gap();
   s.threads = batch.threads();
   Outputs out;
-  // With a base, body_kinematics and the CSV list the node's layout (the model is not copied
-  // without one).
-  std::unique_ptr<const mbk::Model> with_base;
-  if (floating)
-    with_base = std::make_unique<const mbk::Model>(
-        mbk::with_floating_base(model, base.frame, "base_odometry"));
-  const mbk::Model& base_model = floating ? *with_base : model;
+  const mbk::Model& base_model = floating ? with_base->layout : model;
   // The error bars' columns with auto (in the model's frame: not with a base).
   open_outputs(o, o.input, file, base_model, base.frame, estimator.automatic && !floating,
                h5_attributes(o, estimator), out);

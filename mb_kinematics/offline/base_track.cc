@@ -5,6 +5,7 @@
 
 #include "mb_kinematics/core/base_joint.h"
 #include "mb_kinematics/estimation/base_accelerations.h"
+#include "mb_kinematics/offline/recording_states.h"
 
 namespace mbk {
 
@@ -47,26 +48,44 @@ void with_base_body(const Model& base_model, const Data<double>& data, Data<doub
       out.origin_acceleration[1] + alpha.cross(r) + w.cross(w.cross(r));
 }
 
-BaseRows floating_base_rows(const Model& model, const Recording& recording,
-                            std::vector<BaseSample> samples, const std::string& frame,
-                            const OfflineEstimator& estimator, double max_gap, int threads,
-                            DropLog& log) {
-  BaseRows out{with_floating_base(model, frame, "base_odometry"), {}, {}, {}};
-  const FloatingBaseTrack track =
-      base_track(std::move(samples), estimator, max_gap, recording.grid);
-  OfflineBatch batch(model, recording, estimator, max_gap, &track,
+void recording_rows(const Model& model, const Recording& recording,
+                    const OfflineEstimator& estimator, double max_gap,
+                    const FloatingBaseTrack* base, int threads, DropLog& log,
+                    const std::function<void(const OfflineRow&)>& keep) {
+  require_coordinate_rates(model);
+  OfflineBatch batch(model, recording, estimator, max_gap, base,
                      threads > 0 ? threads : default_thread_count());
   compute_rows(
       batch, model, 0, recording.rows(),
       [&](const OfflineRow& row) {
         if (!row.drop_reason.empty()) return log.drop(row.drop_reason, row.drop_detail);
+        keep(row);
+      },
+      [](int) {});
+}
+
+FloatingBase floating_base(const Model& model, std::vector<BaseSample> samples,
+                           const std::string& frame, const OfflineEstimator& estimator,
+                           double max_gap, const StampGrid& joints) {
+  return {base_track(std::move(samples), estimator, max_gap, joints),
+          with_floating_base(model, frame, "base_odometry")};
+}
+
+BaseRows floating_base_rows(const Model& model, const Recording& recording,
+                            std::vector<BaseSample> samples, const std::string& frame,
+                            const OfflineEstimator& estimator, double max_gap, int threads,
+                            DropLog& log) {
+  const FloatingBase base =
+      floating_base(model, std::move(samples), frame, estimator, max_gap, recording.grid);
+  BaseRows out{base.layout, {}, {}, {}};
+  recording_rows(
+      model, recording, estimator, max_gap, &base.track, threads, log, [&](const OfflineRow& row) {
         out.stamp.push_back(row.stamp);
         out.data.emplace_back(out.layout);
         with_base_body(out.layout, row.data, out.data.back());
         out.system.emplace_back();
         system_kinematics(out.layout, out.data.back(), out.system.back(), Level::kAcceleration);
-      },
-      [](int) {});
+      });
   return out;
 }
 

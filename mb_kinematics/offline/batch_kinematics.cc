@@ -217,10 +217,21 @@ BatchField batch_field_from_name(const std::string& name) {
   throw std::invalid_argument("unknown output '" + name + "' (known: " + known + ")");
 }
 
-std::size_t batch_field_size(const Model& model, BatchField field, std::size_t bodies) {
+std::vector<std::size_t> batch_field_shape(const Model& model, BatchField field,
+                                           std::size_t bodies) {
   const BatchFieldTraits& t = batch_field_traits(field);
-  const std::size_t width = t.width ? t.width : static_cast<std::size_t>(model.nv) * 3;
-  return t.per_body ? width * bodies : width;
+  std::vector<std::size_t> shape;
+  if (t.per_body) shape.push_back(bodies);
+  if (t.width == 0) shape.insert(shape.end(), {static_cast<std::size_t>(model.nv), 3});
+  if (t.width == 9) shape.insert(shape.end(), {3, 3});
+  if (t.width != 0 && t.width != 1 && t.width != 9) shape.push_back(t.width);
+  return shape;
+}
+
+std::size_t batch_field_size(const Model& model, BatchField field, std::size_t bodies) {
+  std::size_t size = 1;
+  for (const std::size_t n : batch_field_shape(model, field, bodies)) size *= n;
+  return size;
 }
 
 template <typename T>

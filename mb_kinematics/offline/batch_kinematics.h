@@ -54,7 +54,11 @@ struct BatchFieldTraits {
 const BatchFieldTraits& batch_field_traits(BatchField field);
 // The field of that name; throws std::invalid_argument naming it and the known names.
 BatchField batch_field_from_name(const std::string& name);
-// Numbers per sample of `field` for `bodies` chosen bodies of `model`.
+// The shape of `field`'s numbers per sample for `bodies` chosen bodies of `model`: (bodies,) for
+// a field per body, then (3, 3) for a rotation, (nv, 3) for partial velocities, (3,) for a
+// vector, () for a number; batch_field_size, their count.
+std::vector<std::size_t> batch_field_shape(const Model& model, BatchField field,
+                                           std::size_t bodies);
 std::size_t batch_field_size(const Model& model, BatchField field, std::size_t bodies);
 
 // Row-major inputs: position (N, nq); velocity and acceleration (N, nv) or null (zero). Mimic

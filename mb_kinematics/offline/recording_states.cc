@@ -43,10 +43,14 @@ Recording recording_of_positions(int nq, std::size_t rows, const double* time,
   return r;
 }
 
-RecordingStates recording_states(const Model& model, const Recording& recording,
-                                 const std::string& estimator, double max_gap) {
+void require_coordinate_rates(const Model& model) {
   if (model.speeds != SpeedKind::kCoordinateDerivatives)
     throw std::invalid_argument("a recording's states need speeds that are the coordinates' rates");
+}
+
+RecordingStates recording_states(const Model& model, const Recording& recording,
+                                 const std::string& estimator, double max_gap) {
+  require_coordinate_rates(model);
   OfflineStates states(model, recording, make_offline_estimator(estimator), max_gap);
   const std::size_t rows = recording.rows(), nq = model.nq;
   RecordingStates out;

@@ -34,6 +34,10 @@ struct RecordingStates {
   std::vector<std::string> drop_reason;
 };
 
+// Throws std::invalid_argument unless the model's speeds are its coordinates' rates (a
+// recording's velocities are).
+void require_coordinate_rates(const Model& model);
+
 // `estimator`: as mbk bag --estimator ("auto", "centered_<N>_<order>", ...); max_gap: seconds,
 // 0 for mbk bag's default. Throws std::invalid_argument for an unknown estimator or a model
 // whose speeds are not the coordinates' derivatives.

@@ -259,6 +259,35 @@ py::dict floating_base_kinematics(const ModelPtr& model, const RecordedPtr& reco
   return out;
 }
 
+// mbk bag's rows of a recording without a base (offline/base_track.h recording_rows): the kept
+// rows' times and states, (rows,) and (rows, nq), and the drops, the reading's included.
+py::dict recording_rows(const ModelPtr& model, const RecordedPtr& recorded,
+                        const std::string& estimator, double max_gap, int threads) {
+  mbk::DropLog log = recorded->log;
+  std::vector<double> time, position, velocity, acceleration;
+  {
+    py::gil_scoped_release release;
+    const auto keep = [&](const mbk::OfflineRow& row) {
+      time.push_back(row.stamp);
+      const mbk::JointState<double>& s = row.state;
+      position.insert(position.end(), s.position.data(), s.position.data() + s.position.size());
+      velocity.insert(velocity.end(), s.velocity.data(), s.velocity.data() + s.velocity.size());
+      acceleration.insert(acceleration.end(), s.acceleration.data(),
+                          s.acceleration.data() + s.acceleration.size());
+    };
+    mbk::recording_rows(*model, recorded->recording, mbk::make_offline_estimator(estimator),
+                        max_gap, nullptr, threads, log, keep);
+  }
+  const std::size_t n = time.size(), nq = model->nq;
+  py::dict out;
+  out["time"] = matrix(time, n, 1).attr("ravel")();
+  out["position"] = matrix(position, n, nq);
+  out["velocity"] = matrix(velocity, n, nq);
+  out["acceleration"] = matrix(acceleration, n, nq);
+  out["drops"] = log.drops;
+  return out;
+}
+
 RecordedPtr recording_of_positions(const ModelPtr& model, const InputArray& time,
                                    const InputArray& position) {
   if (time.ndim() != 1 || position.ndim() != 2 || position.shape(0) != time.shape(0) ||
@@ -290,6 +319,15 @@ py::dict recording_states(const ModelPtr& model, const RecordedPtr& recorded,
   }
   out["drop_reason"] = s.drop_reason;
   return out;
+}
+
+// The shape of an output for `samples` samples and `bodies` chosen bodies (batch_field_shape).
+py::tuple field_shape(const ModelPtr& model, const std::string& name, std::size_t samples,
+                      std::size_t bodies) {
+  std::vector<std::size_t> shape =
+      mbk::batch_field_shape(*model, mbk::batch_field_from_name(name), bodies);
+  shape.insert(shape.begin(), samples);
+  return py::tuple(py::cast(shape));
 }
 
 py::dict field_traits() {
@@ -357,6 +395,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
   m.def("field_traits", &field_traits);
+  m.def("field_shape", &field_shape);
   py::class_<Recorded, RecordedPtr>(m, "Recording")
       .def_property_readonly(
           "times",
@@ -397,5 +436,6 @@ PYBIND11_MODULE(_core, m) {
   m.def("read_recording", &read_recording);
   m.def("recording_of_positions", &recording_of_positions);
   m.def("recording_states", &recording_states);
+  m.def("recording_rows", &recording_rows);
   m.def("floating_base_kinematics", &floating_base_kinematics);
 }

@@ -1,6 +1,6 @@
 // mbk_stability_report: the table of the numerical stability suite
 // (doc/stability.md; test/stability/ asserts the same rows). Prints markdown:
-// case | quantity | measured | bound | before fix | note, one section per group.
+// case | quantity | measured | bound | note, one section per group.
 //   mbk_stability_report [GROUP...]   (default: every group)
 #include <cstdio>
 #include <string>

@@ -180,10 +180,12 @@ class Model:
         return out
 
     def recording_kinematics(self, recording, estimator="auto", max_gap=None, **options):
-        """What `mbk bag` does, in memory: states() of the recording, then kinematics() of its
-        valid rows (options as kinematics()). The dict of kinematics() plus `time` and the
-        states' arrays under `joint_position`, `joint_velocity`, `joint_acceleration`, of
-        the valid rows.
+        """What `mbk bag` does, in memory, by its own pipeline: the rows it writes (states() of
+        the recording, less the rows it drops: too few samples around them, a state
+        mbk::check_state refuses, kinematics not finite), then kinematics() of them (options as
+        kinematics()). The dict of kinematics() plus `time`, the rows' states under
+        `joint_position`, `joint_velocity`, `joint_acceleration`, and `drops` (rows dropped
+        by reason, the reading's included).
 
         A recording with base odometry (read_recording's `base_odometry`): every body in R as
         `mbk bag --base-odometry` computes it, in the node's layout (body 1 the base, named
@@ -199,13 +201,15 @@ class Model:
             gap = _estimator_arguments(recording, estimator, max_gap)
             return _core.floating_base_kinematics(self._core, recording, estimator, gap,
                                                   _threads(options.get("threads")))
-        s = self.states(recording, estimator, max_gap)
-        keep = s["valid"]
-        out = self.kinematics(s["position"][keep], s["velocity"][keep],
-                              s["acceleration"][keep], **options)
-        out["time"] = s["time"][keep]
+        gap = _estimator_arguments(recording, estimator, max_gap)
+        rows = _core.recording_rows(self._core, recording, estimator, gap,
+                                    _threads(options.get("threads")))
+        out = self.kinematics(rows["position"], rows["velocity"], rows["acceleration"],
+                              **options)
+        out["time"] = rows["time"]
         for name in ("position", "velocity", "acceleration"):
-            out["joint_" + name] = s[name][keep]
+            out["joint_" + name] = rows[name]
+        out["drops"] = rows["drops"]
         return out
 
     def kinematics(self, q, velocity=None, acceleration=None, outputs=None, bodies=None,
@@ -398,10 +402,7 @@ def _outputs(outputs, out, has_velocity, has_acceleration):
 
 
 def _shape(model, name, samples, bodies):
-    t = _TRAITS[name]
-    block = (3, 3) if name == "rotation" else (model.nv, 3) if t["width"] == 0 else (
-        () if t["width"] == 1 else (3,))
-    return (samples,) + ((bodies,) if t["per_body"] else ()) + block
+    return _core.field_shape(model._core, name, samples, bodies)
 
 
 def _out_array(a, name, shape, dtype, full):

@@ -119,6 +119,46 @@ def test_bag_as_mbk_bag_computes_it(mbk_kinematics, tmp_path):
         model.read_recording(path, joint_states="/other")
 
 
+def test_bad_rows_dropped_as_mbk_bag_drops_them(mbk_kinematics, tmp_path):
+    """A recording with a NaN row (dropped as it is read) and a row whose velocity is beyond
+    mbk::check_state's 1e50 (dropped as mbk bag computes it): recording_kinematics keeps the rows
+    mbk bag writes, number for number, and counts the same drops."""
+    import rosbag
+    import rospy
+    from sensor_msgs.msg import JointState
+    model = mbk_kinematics.load(source("test/robots/panda.urdf"))
+    mimic = {m["coordinate"] for m in model.mimics}
+    names = [n for n in model.coordinate_names if n not in mimic]
+    path = str(tmp_path / "bad_rows.bag")
+    with rosbag.Bag(path, "w") as bag:
+        for i in range(100):
+            t = 1 + 0.01 * i
+            position = [0.3 * np.sin((1 + 0.2 * j) * t) for j in range(len(names))]
+            velocity = [0.3 * (1 + 0.2 * j) * np.cos((1 + 0.2 * j) * t) for j in range(len(names))]
+            if i == 40:
+                position[2] = float("nan")
+            if i == 60:
+                velocity[3] = 1e60
+            msg = JointState(name=names, position=position, velocity=velocity)
+            msg.header.stamp = rospy.Time.from_sec(t)
+            bag.write("/joint_states", msg, msg.header.stamp)
+    recording = model.read_recording(path)
+    out = model.recording_kinematics(recording, estimator="centered_9_4")
+    csv_path = str(tmp_path / "bad_rows.csv")
+    mbk("bag", path, "--model", source("test/robots/panda.urdf"), "--estimator", "centered_9_4",
+        "--csv", csv_path)
+    expect_same_as_bag(model, out, tidy_csv(csv_path))
+    drops = dict(out["drops"])
+    assert drops.pop("bad sample (lengths, duplicates, NaN/Inf)") == 1
+    # the row, and the 8 others whose accelerations (the 9-sample window over the velocities)
+    # take in its 1e60
+    assert drops.pop("state rejected (mbk::check_state)") == 9
+    assert set(drops) <= {"too few samples for derivatives"}  # the 9-sample window's ends
+    assert len(out["time"]) + sum(out["drops"].values()) == 100
+    assert not np.isin(np.round(out["time"], 9), np.round(1.56 + 0.01 * np.arange(9), 9)).any()
+    assert not np.isin(np.round(out["time"], 9), [1.4]).any()
+
+
 def write_arm_bag(model, path, accelerations=False, odometry=False):
     """300 samples of the Panda arm at 100 Hz (positions and velocities) and, at the same stamps,
     its JointAccelerations and a base's nav_msgs/Odometry (driving on and turning)."""
