@@ -60,6 +60,23 @@ double lowest(const std::vector<Vec3<double>>& points, const std::vector<bool>& 
   return low;
 }
 
+// The rest pose (every angle 0) as the file means it: a JOINT's position channels are its
+// translation in place of its OFFSET (bvh_model.h), so they take the OFFSET's values; the ROOT's,
+// added to its OFFSET, stay 0.
+std::vector<double> rest_coordinates(const BvhFile& bvh, const Model& model, double scale) {
+  std::vector<double> q(model.nq, 0.0);
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const BvhSegment& segment = bvh.segments[k - 1];
+    if (segment.parent < 0) continue;
+    for (BvhChannel channel : segment.channels) {
+      if (is_rotation(channel)) continue;
+      const int axis = static_cast<int>(channel) % 3;  // X, Y, Z position: 0, 1, 2
+      q[model.bodies[k].q_index + axis] = scale * segment.offset[axis];
+    }
+  }
+  return q;
+}
+
 // Horizontal path length of `point(frame)` over the frames, taken every `step` of them.
 template <typename Point>
 double path(const std::vector<Frame>& frames, int up, Point point) {
@@ -110,7 +127,8 @@ MotionFigures motion_figures(const BvhFile& bvh, const Model& model, double scal
   for (int i = 0; i < 3; ++i) extents[i] = median(e[i]);
   extents.maxCoeff(&m.up);
   m.height = extents[m.up];
-  state.position.setZero();
+  const std::vector<double> rest = rest_coordinates(bvh, model, scale);
+  state.position = Eigen::Map<const Eigen::VectorXd>(rest.data(), rest.size());
   forward_kinematics(model, state, data, Level::kPose);
   m.rest_height = extent(data.origin, counted)[m.up];
   std::vector<double> heights;

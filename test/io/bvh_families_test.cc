@@ -6,6 +6,8 @@
 // mass center keeping up with the pelvis: the motion check says nothing.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -32,9 +34,10 @@ TEST_P(BvhFamilies, WalkAsAHumanWithEverySegmentFound) {
   for (const std::string& warning : model.warnings)
     EXPECT_EQ(warning.find("incomplete"), std::string::npos) << warning;
   const mbk::MotionFigures m = mbk::motion_figures(bvh, model, family.scale);
-  EXPECT_EQ(m.up, 1);  // y up, as all these files
+  EXPECT_EQ(m.up, 1);        // y up, as all these files
   EXPECT_GT(m.height, 1.2);  // the joints' extent: to the head joint, not its top
   EXPECT_LT(m.height, 2.0);
+  EXPECT_NEAR(m.rest_height / m.height, 1.0, 0.1);  // standing at rest, position channels too
   EXPECT_GT(m.mass_center_height, 0.75);
   EXPECT_LT(m.mass_center_height, 1.2);
   EXPECT_GT(m.mass_center_speed, 0.3);  // walking, over the whole recording
@@ -71,6 +74,34 @@ TEST(BandaiLayout, EndSitesAtTheJointAreSaidOnce) {
          mbk::model_from_bvh(mbk::read_bvh(mbk_test::source_path(path)), {0.01, 70.0, "male"})
              .warnings)
       EXPECT_EQ(warning.find("OFFSET 0 0 0"), std::string::npos) << warning;
+}
+
+// LAFAN1's layout as a reader that adds a JOINT's position channels to its OFFSET writes it
+// back: every JOINT's position channels twice its OFFSET, the skeleton twice as tall in its
+// motion as at rest (the rest pose taking each position channel at its OFFSET, as the file means
+// it). Said, with that likely cause.
+TEST(Lafan1Layout, OffsetsCountedTwiceAreSaid) {
+  std::ifstream file(mbk_test::source_path("test/mocap/synthetic/lafan1_layout_walk.bvh"));
+  std::stringstream in;
+  in << file.rdbuf();
+  std::string text = in.str();
+  const size_t frames = text.find('\n', text.find("Frame Time:")) + 1;
+  std::istringstream rows(text.substr(frames));
+  std::string doubled, row;
+  while (std::getline(rows, row)) {
+    std::istringstream values(row);
+    double x = 0;
+    for (int column = 0; values >> x; ++column)  // 6 channels a joint; the ROOT's first
+      doubled += std::to_string(column >= 6 && column % 6 < 3 ? 2 * x : x) + " ";
+    doubled += "\n";
+  }
+  const mbk::BvhFile bvh = mbk::parse_bvh(text.substr(0, frames) + doubled, "twice.bvh");
+  const mbk::Model model = mbk::model_from_bvh(bvh, {0.01, 70.0, "male"});
+  const mbk::MotionFigures m = mbk::motion_figures(bvh, model, 0.01);
+  EXPECT_NEAR(m.height / m.rest_height, 2.0, 0.2);
+  const std::string warning = mbk::motion_warning(bvh, model, 0.01, "");
+  EXPECT_EQ(warning.rfind("twice.bvh: the skeleton is ", 0), 0u) << warning;
+  EXPECT_NE(warning.find("as when OFFSETs are counted twice"), std::string::npos) << warning;
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -12,9 +12,9 @@ frames/s) in the exact file layouts of three BVH families whose own files cannot
                            Xrotation), CMU-like names (LeftUpLeg, LeftToe)
   mixamo_layout_walk.bvh   Mixamo: mixamorig: names, a 6-channel root, 3 rotations elsewhere
 
-The others walk 2 s from the origin. The body: segment lengths of a 1.75 m adult; hips, knees, shoulders and elbows swing as
-sinusoids of the gait cycle (1 s), the pelvis bobs 2 cm. Run it to write the files again; the
-output is deterministic."""
+The others walk 2 s from the origin. The body: segment lengths of a 1.75 m adult; hips, knees,
+shoulders and elbows swing as sinusoids of the gait cycle (1 s), the pelvis bobs 2 cm. Run it to
+write the files again; the output is deterministic."""
 import math
 import os
 
