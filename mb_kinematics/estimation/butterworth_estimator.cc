@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -282,9 +283,12 @@ void estimate_series(const OfflineEstimator& e, const std::vector<double>& t,
   if (cutoff <= 0) {
     cutoff = residual_cutoff(xs, segments, rate).cutoff;
   } else if (cutoff >= top) {
-    throw std::invalid_argument(e.name + ": the cutoff must be below " + std::to_string(top) +
-                                " Hz (0.802 x the Nyquist frequency of samples at " +
-                                std::to_string(rate) + " Hz)");
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  ": the cutoff must be below %.4g Hz (0.802 x the Nyquist frequency of samples at "
+                  "%.4g Hz)",
+                  top, rate);
+    throw std::invalid_argument(e.name + text);
   }
   out.cutoff[c] = cutoff;
   const double sigma = noise_level(xs, segments, rate, highest);
