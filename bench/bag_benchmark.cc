@@ -16,9 +16,11 @@
 //                                     (centered_0.4s_4) or given; real (wall) time; counter
 //                                     x_real_time = samples/s / 1000
 //   kinematics_only/tree100           forward_kinematics alone on the same states, one thread
-//   estimates/human/<auto|old_default>  the joint derivatives alone as mbk bag estimates them, 10 s
-//                                     at 1 kHz with 1e-4 rad of noise, for the default (auto) and
-//                                     the old default (centered_0.4s_4); counter
+//   estimates/human/<auto|butterworth_6|butterworth_auto|old_default>  the joint derivatives
+//                                     alone as mbk bag estimates them (error bars included), 10 s
+//                                     at 1 kHz with 1e-4 rad of noise, for the default (auto),
+//                                     butterworth:6 and butterworth:auto, and the old default
+//                                     (centered_0.4s_4); counter
 //                                     ns_per_sample_coordinate
 //   csv_rows/human                    TidyCsvWriter alone: 1000 samples of the human model's
 //                                     kinematics (one row per body and the system row) to a file;
@@ -55,6 +57,7 @@
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
+#include "mb_kinematics/estimation/butterworth_estimator.h"
 #include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
@@ -212,9 +215,9 @@ void estimates(benchmark::State& state, const mbk::Model& model, const std::stri
   long values = 0;
   for (auto _ : state) {
     const double max_gap = mbk::default_max_gap(rec.stamp);
-    if (e.automatic) {
+    if (e.whole_series()) {
       mbk::AutoEstimate a;
-      mbk::estimate_auto(rec.stamp, x.data(), nq, nq, max_gap, a);
+      mbk::estimate_with_errors(e, rec.stamp, x.data(), nq, nq, max_gap, a);
       benchmark::DoNotOptimize(a.second.back());
     } else {
       const mbk::Segments segments = mbk::find_segments(rec.stamp, max_gap);
@@ -373,6 +376,10 @@ BENCHMARK_CAPTURE(compute, revolute100 / estimated, revolute100(), false)
     ->UseRealTime();
 BENCHMARK_CAPTURE(kinematics_only, tree100, tree100())->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(estimates, human / auto, human(), "auto") -> Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(estimates, human / butterworth_6, human(), "butterworth:6")
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(estimates, human / butterworth_auto, human(), "butterworth:auto")
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(estimates, human / old_default, human(), "centered_0.4s_4")
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(csv_rows, human, human(), "/tmp/mbk_bag_benchmark_rows.csv")

@@ -43,6 +43,7 @@ MBK_TEST_PACKAGES=(
   valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
+  python3-scipy  # the Butterworth estimator's peer (test/python/test_butterworth.py)
   python3-dask python3-distributed python3-psutil  # mbk batch --scheduler's tests (Dask)
   python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
   python3-h5py  # mbk bag --h5's files read back (test/python/test_h5_output.py)

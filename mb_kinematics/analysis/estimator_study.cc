@@ -8,6 +8,7 @@
 #include <random>
 
 #include "mb_kinematics/estimation/auto_estimator.h"
+#include "mb_kinematics/estimation/butterworth_estimator.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 
@@ -89,7 +90,7 @@ namespace {
 // the fixed estimators' weights once per sample for all coordinates; "auto" per coordinate.
 void offline_derivatives(const OfflineEstimator& e, const std::vector<double>& t,
                          const std::vector<double>& x, int m, AutoEstimate& a) {
-  if (e.automatic) return estimate_auto(t, x.data(), m, m, default_max_gap(t), a);
+  if (e.whole_series()) return estimate_with_errors(e, t, x.data(), m, m, default_max_gap(t), a);
   const int count = static_cast<int>(t.size());
   const Segments segments = find_segments(t, default_max_gap(t));
   DerivativeWeights w;

@@ -83,6 +83,7 @@ struct AutoEstimate {
   std::vector<int> valid;                   // [r * m + c], as DerivativeWeights::valid
   std::vector<double> noise;                // per series: sigma
   std::vector<int> choice;                  // per series: index in auto_candidates(t)
+  std::vector<double> cutoff;  // per series: "butterworth"'s FC, Hz (estimation/butterworth_estimator.h)
 };
 
 // m series sampled together at the increasing stamps t, stored x[r * ld + c]; each chooses its

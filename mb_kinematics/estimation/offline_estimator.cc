@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "mb_kinematics/estimation/auto_estimator.h"
+#include "mb_kinematics/estimation/butterworth_estimator.h"
 
 namespace mbk {
 namespace {
@@ -64,6 +65,16 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
     e.automatic = true;
     return e;
   }
+  if (name.rfind("butterworth:", 0) == 0) {
+    e.butterworth = true;
+    if (name == "butterworth:auto") return e;
+    if (std::sscanf(name.c_str(), "butterworth:%lf%n", &e.cutoff, &used) == 1 &&
+        used == static_cast<int>(name.size()) && std::isfinite(e.cutoff) && e.cutoff > 0)
+      return e;
+    throw std::invalid_argument("offline estimator '" + name +
+                                "': need butterworth:<cutoff in Hz > 0>, e.g. butterworth:6, or "
+                                "butterworth:auto");
+  }
   if (std::sscanf(name.c_str(), "centered_%lfs_%d%n", &seconds, &order, &used) == 2 &&
       used == static_cast<int>(name.size())) {
     e.window_seconds = seconds;
@@ -72,8 +83,9 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
     e.window_samples = samples;
   } else {
     throw std::invalid_argument("unknown offline estimator '" + name +
-                                "' (known: auto, centered_<samples>_<order>, e.g. centered_9_4, or "
-                                "centered_<seconds>s_<order>, e.g. centered_0.1s_3)");
+                                "' (known: auto, centered_<samples>_<order>, e.g. centered_9_4, "
+                                "centered_<seconds>s_<order>, e.g. centered_0.1s_3, "
+                                "butterworth:<cutoff Hz>, e.g. butterworth:6, or butterworth:auto)");
   }
   e.order = order;
   const bool window_ok = e.window_seconds != 0
@@ -90,7 +102,7 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
 // side, then widens by up to order + 3 samples; a sample window reaches its own length each side
 // at most (shifted at an end).
 bool offline_reach(const OfflineEstimator& e, OfflineReach& reach) {
-  if (e.automatic) return false;
+  if (e.whole_series()) return false;
   if (e.window_samples > 0)
     reach = {0.0, e.window_samples};
   else
@@ -240,9 +252,9 @@ void apply_weights(const DerivativeWeights& w, const double* x, int ld, int n, d
 void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,
                       const std::vector<double>& x, double max_gap, std::vector<double>& first,
                       std::vector<double>& second, std::vector<int>& valid) {
-  if (e.automatic) {
+  if (e.whole_series()) {
     AutoEstimate a;
-    estimate_auto(t, x.data(), 1, 1, max_gap, a);
+    estimate_with_errors(e, t, x.data(), 1, 1, max_gap, a);
     first = a.first, second = a.second, valid = a.valid;
     return;
   }

@@ -18,10 +18,14 @@ struct OfflineEstimator {
                               // widened to hold order + 3 samples where the samples are sparse
   int order = 2;              // degree of the polynomial (2..5)
   bool automatic = false;     // "auto": chosen per series (estimation/auto_estimator.h)
+  bool butterworth = false;   // "butterworth:FC" (estimation/butterworth_estimator.h)
+  double cutoff = 0;          // its FC, Hz; 0: "butterworth:auto" (Winter's residual analysis)
+  // Estimated over whole series at once, with error bars: "auto" and "butterworth:...".
+  bool whole_series() const { return automatic || butterworth; }
 };
 
-// "auto", "centered_<N>_<order>" (N samples, odd) or "centered_<seconds>s_<order>"; throws
-// std::invalid_argument naming the known forms.
+// "auto", "centered_<N>_<order>" (N samples, odd), "centered_<seconds>s_<order>",
+// "butterworth:<FC Hz>" or "butterworth:auto"; throws std::invalid_argument naming the known forms.
 OfflineEstimator make_offline_estimator(const std::string& name);
 // The studied ones (work-precision report, doc/error_vs_runtime.md), the default first.
 const std::vector<std::string>& offline_estimator_names();
@@ -73,7 +77,7 @@ void apply_weights(const DerivativeWeights& w, const double* x, int ld, int n, d
 double default_max_gap(const std::vector<double>& t);
 
 // Both derivatives of x at every sample (convenience for studies and tests): `valid` per sample;
-// an automatic e chooses its window for x.
+// an automatic e chooses its window for x, a Butterworth one filters the whole of x.
 void estimate_offline(const OfflineEstimator& e, const std::vector<double>& t,
                       const std::vector<double>& x, double max_gap, std::vector<double>& first,
                       std::vector<double>& second, std::vector<int>& valid);

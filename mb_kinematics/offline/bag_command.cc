@@ -524,7 +524,7 @@ BagSummary run_bag(const BagOptions& o) {
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
   refuse_same_files({{"the input", o.input}, {"--model", o.model}},
-                    written_files(o, estimator.automatic));
+                    written_files(o, estimator.whole_series()));
   BagSummary s;
   const mbk::ModelFile file = load(o.model, o.bvh);
   const mbk::Model& model = file.model;
@@ -564,12 +564,12 @@ BagSummary run_bag(const BagOptions& o) {
   Outputs out;
   const mbk::Model& base_model = floating ? with_base->layout : model;
   // The error bars' columns with auto (in the model's frame: not with a base).
-  open_outputs(o, o.input, file, base_model, base.frame, estimator.automatic && !floating,
+  open_outputs(o, o.input, file, base_model, base.frame, estimator.whole_series() && !floating,
                h5_attributes(o, estimator), out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());
-  batch.set_body_errors((out.csv || out.h5) && estimator.automatic && !floating);
+  batch.set_body_errors((out.csv || out.h5) && estimator.whole_series() && !floating);
   compute_and_write(batch, model, rec.rows(), out, o.progress, s);
   s.errors = batch.error_summary();
   if (has_side_files(o.out_csv) && !s.errors.empty()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "mb_kinematics/core/body_errors.h"
+#include "mb_kinematics/estimation/butterworth_estimator.h"
 
 namespace mbk {
 
@@ -63,7 +64,7 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
       positions_only_[r] = positions_only_[r] && g == 0;
       derivatives_given_[r] = derivatives_given_[r] && g == kBoth;
     }
-  if (estimator_.automatic) fit_automatic(threads);
+  if (estimator_.whole_series()) fit_automatic(threads);
 }
 
 // "auto": every row's estimates at once, each coordinate choosing its own smoothing (of its
@@ -75,7 +76,7 @@ void OfflineStates::fit_automatic(int threads) {
     if (choice)
       estimate_chosen(*choice, rec_.stamp, x.data(), nq, max_gap_, *a, threads);
     else
-      estimate_auto(rec_.stamp, x.data(), nq, nq, max_gap_, *a, threads);
+      estimate_with_errors(estimator_, rec_.stamp, x.data(), nq, nq, max_gap_, *a, threads);
     return a;
   };
   if (!full_.empty()) positions_fit_ = fit(rec_.position, positions_choice_.get());
@@ -88,8 +89,8 @@ void OfflineStates::fit_automatic(int threads) {
     for (size_t k = 0; k < n; ++k)
       x[2 * k] = rec_.position[s.row[k] * nq + c], x[2 * k + 1] = rec_.velocity[s.row[k] * nq + c];
     auto a = std::make_shared<AutoEstimate>();
-    estimate_auto(s.t, x.data(), 2, velocity_everywhere_[c] ? 2 : 1,
-                  max_gap_ > 0 ? max_gap_ : default_max_gap(s.t), *a);
+    estimate_with_errors(estimator_, s.t, x.data(), 2, velocity_everywhere_[c] ? 2 : 1,
+                         max_gap_ > 0 ? max_gap_ : default_max_gap(s.t), *a);
     s.fit = std::move(a);
   }
 }
@@ -150,7 +151,7 @@ std::vector<CoordinateError> OfflineStates::error_summary(const ErrorColumns* wh
 }
 
 bool OfflineStates::coordinate_errors(int r, double* velocity_se, double* acceleration_se) const {
-  if (!estimator_.automatic) return false;
+  if (!estimator_.whole_series()) return false;
   const int nq = rec_.nq;
   for (size_t i = 0; i < partial_.size(); ++i)
     if (r >= rule_until_[partial_[i]])  // else a mimic placed by its rule: exact
@@ -189,7 +190,7 @@ void OfflineStates::series_errors(size_t i, int r, double& velocity_se,
 bool OfflineStates::body_errors(int r, const JointState<double>& state,
                                 std::vector<Vec3<double>>& alpha_se,
                                 std::vector<Vec3<double>>& acceleration_se) {
-  if (!estimator_.automatic || model_.speeds != SpeedKind::kCoordinateDerivatives) return false;
+  if (!estimator_.whole_series() || model_.speeds != SpeedKind::kCoordinateDerivatives) return false;
   if (!scratch_.pv) {
     scratch_.pv = std::make_unique<PartialVelocities<double>>(model_, kStreamed);
     scratch_.data = std::make_unique<Data<double>>(model_);
