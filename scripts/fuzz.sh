@@ -94,5 +94,16 @@ for h in "${harnesses[@]}"; do
     echo "fuzz $h: ${runs:-?} runs, corpus $(ls "$corpus" | wc -l) inputs, no finding"
   fi
 done
-echo "$(( ${#harnesses[@]} - failed )) passed, $failed failed"
+# The Python module's out= arrays (test/fuzz/python_out_fuzz.py): a random search of its own on
+# the workspace's package (the module is not instrumented); the smoke a fixed seed and count.
+python_fuzz=(--seconds "$seconds")
+[ "$mode" = smoke ] && python_fuzz=(--runs 2000 --seed 1)
+if PYTHONPATH="$MBK_WS/devel/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" \
+   /usr/bin/python3 "$MBK_SRC/test/fuzz/python_out_fuzz.py" "${python_fuzz[@]}" >"$dir/python_out.log" 2>&1; then
+  echo "fuzz python_out: $(tail -n 1 "$dir/python_out.log")"
+else
+  failed=$((failed + 1))
+  echo "fuzz python_out: FINDING: $(tail -n 1 "$dir/python_out.log"); log: $dir/python_out.log"
+fi
+echo "$(( ${#harnesses[@]} + 1 - failed )) passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -143,3 +143,20 @@ std::string format_double(double x) {
 }
 
 }  // namespace mbk
+
+namespace mbk {
+
+char* write_stamp(char* out, double origin, double t) {
+  const double whole = std::floor(t);
+  double seconds = origin + whole;                 // whole numbers: exact below 2^53
+  long long ns = std::llround((t - whole) * 1e9);  // t - whole is exact
+  if (ns == 1000000000) seconds += 1, ns = 0;
+  if (!std::isfinite(t) || !(std::abs(seconds) < 9e15))  // beyond whole seconds and nanoseconds
+    return out + std::snprintf(out, kMaxStampChars, "%.9f", origin + t);
+  const bool negative = seconds < 0;
+  if (negative && ns > 0) seconds += 1, ns = 1000000000 - ns;  // -1 + 0.75 is -0.25
+  return out + std::snprintf(out, kMaxStampChars, "%s%lld.%09lld", negative ? "-" : "",
+                             static_cast<long long>(std::abs(seconds)), ns);
+}
+
+}  // namespace mbk

@@ -20,6 +20,15 @@ char* write_shortest(char* out, double x);
 // ostream at that precision writes it; no allocation. Returns the end.
 char* write_general(char* out, double x, int precision);
 
+// The room write_stamp needs at `out`.
+constexpr int kMaxStampChars = 400;
+
+// Writes at `out` the time origin + t in seconds with 9 decimals, rounded to the nanosecond, as
+// %.9f of the exact sum would: `origin` whole seconds (a recording's, offline/recording.h) and t
+// the seconds after it, so that a wall-clock stamp (1.7e9 s) keeps its nanoseconds, which a
+// double of it would not. Returns the end.
+char* write_stamp(char* out, double origin, double t);
+
 // write_shortest's text as a string.
 std::string format_double(double x);
 

@@ -63,8 +63,8 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
                            const std::vector<Vec3<double>>* alpha_se,
                            const std::vector<Vec3<double>>* acceleration_se) const {
   const bool have = errors_ && alpha_se && acceleration_se;
-  char stamp_text[400];  // %.9f of the largest double fits
-  const int stamp_size = std::snprintf(stamp_text, sizeof stamp_text, "%.9f", stamp);
+  char stamp_text[kMaxStampChars];  // %.9f of the largest double fits
+  const int stamp_size = static_cast<int>(write_stamp(stamp_text, origin_, stamp) - stamp_text);
   Cells cells;
   for (int k = 1; k <= model_.body_count(); ++k) {
     text.append(stamp_text, stamp_size).append(body_cells_[k]);

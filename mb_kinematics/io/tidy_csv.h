@@ -41,6 +41,8 @@ class TidyCsvWriter {
               const std::vector<Vec3<double>>* alpha_se = nullptr,
               const std::vector<Vec3<double>>* acceleration_se = nullptr) const;
   void write_text(const std::string& text);
+  // The whole seconds the stamps given are counted from (Recording::origin); set before writing.
+  void set_time_origin(double seconds) { origin_ = seconds; }
   // Writes what is left and closes; throws std::runtime_error if the disk refused the data.
   // Destroyed without close(), the rows still buffered are not written.
   void close() { file_.close(); }
@@ -49,6 +51,7 @@ class TidyCsvWriter {
   const Model& model_;
   BlockFile file_;
   double total_mass_ = 0;
+  double origin_ = 0;
   bool errors_ = false;
   std::vector<std::string> body_cells_;  // per body k: ",name,k,L(k)"
   std::string system_cells_;             // ",system,0,0"

@@ -129,12 +129,19 @@ struct Outputs {
   bool floating = false, formatted = false;
   const mbk::Model* base_model = nullptr;        // with a base: the node's layout
   std::unique_ptr<mbk::Data<double>> base_data;  // of base_model
+  double origin = 0;                             // the stamps' (Recording::origin)
+
+  void set_time_origin(double seconds) {
+    origin = seconds;
+    if (bag) bag->set_time_origin(seconds);
+    if (csv) csv->set_time_origin(seconds);
+  }
 
   void write(const mbk::OfflineRow& row) {
     const mbk::Data<double>* data = &row.data;
     if (floating) mbk::with_base_body(*base_model, row.data, *base_data), data = base_data.get();
     if (bag) {
-      check_bag_stamp(row.stamp);
+      check_bag_stamp(origin + row.stamp);
       bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
     }
     if (csv && formatted)
@@ -290,7 +297,7 @@ class SampleErrorsFile {
     if (!file_) open();
     for (int r = begin; r < end; ++r) {
       states.coordinate_errors(r, v_.data(), a_.data());
-      char* at = row_.data() + std::snprintf(row_.data(), kStampChars, "%.9f", rec.recorded(r));
+      char* at = mbk::write_stamp(row_.data(), rec.origin, rec.recorded(r));
       for (int c = 0; c < model_.nq; ++c) {
         *at++ = ',';
         at = mbk::write_general(at, v_[c], 6);
@@ -381,11 +388,13 @@ class InputRows {
     log_ = builder.log();
     samples_read_ = builder.samples_read();
     stamp_rounding_ = builder.stamp_rounding();
+    time_origin_ = builder.time_origin();
   }
   // The reading's drops and notes (later passes read the same), and the samples read.
   mbk::DropLog& log() { return log_; }
   long samples_read() const { return samples_read_; }
   double stamp_rounding() const { return stamp_rounding_; }  // RecordingBuilder's
+  double time_origin() const { return time_origin_; }        // RecordingBuilder's
 
  private:
   void keep(double t, const double* p, const double* v, const std::uint8_t* g) {
@@ -420,7 +429,7 @@ class InputRows {
   bool read_ = false, kept_ = true;
   mbk::DropLog log_;
   long samples_read_ = 0;
-  double stamp_rounding_ = 0;
+  double stamp_rounding_ = 0, time_origin_ = 0;
   std::vector<double> t_, position_, velocity_;  // rows x nq
   std::vector<std::uint8_t> given_;
 };
@@ -473,10 +482,12 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
   }
   Outputs out;
   open_outputs(o, o.input, file, model, "", estimator.automatic, h5_attributes(o, estimator), out);
+  out.set_time_origin(input.time_origin());
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
   stream.set_stamp_grid(grid);
+  stream.set_time_origin(input.time_origin());
   stream.set_formatter(out.formatter());
   stream.set_body_errors((out.csv || out.h5) && estimator.automatic);
   std::unique_ptr<SampleErrorsFile> sample_errors;
@@ -566,6 +577,7 @@ BagSummary run_bag(const BagOptions& o) {
   // The error bars' columns with auto (in the model's frame: not with a base).
   open_outputs(o, o.input, file, base_model, base.frame, estimator.whole_series() && !floating,
                h5_attributes(o, estimator), out);
+  out.set_time_origin(rec.origin);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());

@@ -1,5 +1,7 @@
 #include "mb_kinematics/offline/bag_output.h"
 
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -56,7 +58,12 @@ void BagOutput::write(double stamp, const mbk::JointState<double>& state,
 
 void BagOutput::write_sample(double stamp, const mbk::JointState<double>& state,
                              const mbk::Data<double>& data, const mbk::BaseMotion* base) {
-  const ros::Time time(stamp);
+  // origin_ + stamp to the nanosecond (the caller checked it is a bag's: TIME_MIN to TIME_MAX).
+  const double whole = std::floor(stamp);
+  const long long ns = std::llround((stamp - whole) * 1e9);
+  const double seconds = origin_ + whole + (ns == 1000000000);
+  const ros::Time time(static_cast<std::uint32_t>(seconds),
+                       static_cast<std::uint32_t>(ns == 1000000000 ? 0 : ns));
   if (!static_written_) {
     tf2_msgs::TFMessage fixed;
     fixed.transforms = mbk_messages::fixed_transforms(model_, names_, time);

@@ -34,6 +34,8 @@ class BagOutput {
   void write(double stamp, const mbk::JointState<double>& state, const mbk::Data<double>& data,
              const mbk::BaseMotion* base = nullptr);
   void close();
+  // The whole seconds the stamps given are counted from (Recording::origin); set before writing.
+  void set_time_origin(double seconds) { origin_ = seconds; }
 
  private:
   void write_sample(double stamp, const mbk::JointState<double>& state,
@@ -50,6 +52,7 @@ class BagOutput {
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;
   tf2_msgs::TFMessage tf_;  // moving_'s transforms, then R -> the root frame with a base
   bool static_written_ = false;
+  double origin_ = 0;
 };
 
 }  // namespace mbk_offline

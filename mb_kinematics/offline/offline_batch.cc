@@ -61,7 +61,7 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
   out.drop_reason.clear(), out.drop_detail.clear();  // a reused row keeps no earlier drop's
   const auto drop = [&](const char* reason, const std::string& detail) {
     out.drop_reason = reason;
-    out.drop_detail = "sample at t = " + std::to_string(out.stamp) + detail;
+    out.drop_detail = "sample at t = " + std::to_string(rec_.origin + out.stamp) + detail;
   };
   std::string problem = states.state_at(r, out.state);
   if (!problem.empty()) return drop("too few samples for derivatives", ": " + problem);

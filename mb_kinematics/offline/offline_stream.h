@@ -62,6 +62,8 @@ class OfflineStream {
   // when it moves them, the rows are differentiated at the grid's times and keep their stamps
   // (Recording::recorded_stamp). Set before the first add.
   void set_stamp_grid(const StampGrid& grid) { grid_ = grid; }
+  // The whole seconds the stamps added are counted from (Recording::origin), for messages.
+  void set_time_origin(double seconds) { buffer_.origin = seconds; }
   // Computes the rows left.
   void finish();
   // Every chunk's OfflineBatch formats its rows with `f` (OfflineBatch::set_formatter).

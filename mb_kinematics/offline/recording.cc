@@ -57,9 +57,9 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
   if (!error.empty())
     return log_.drop("bad sample (lengths, duplicates, NaN/Inf)", where + ": " + error);
   if (has_last_stamp_ && t <= last_stamp_)
-    return log_.drop(
-        t == last_stamp_ ? "repeated stamp" : "stamp goes backwards",
-        where + ": stamp " + std::to_string(t) + " after " + std::to_string(last_stamp_));
+    return log_.drop(t == last_stamp_ ? "repeated stamp" : "stamp goes backwards",
+                     where + ": stamp " + std::to_string(origin_ + t) + " after " +
+                         std::to_string(origin_ + last_stamp_));
   if (!intake_.unknown().empty())
     log_.note("names not in the model ignored", where + ": " + join(intake_.unknown()));
   intake_.take(position);  // the named coordinates' positions, Euler parameters' signs aligned
@@ -78,7 +78,7 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
     const std::vector<std::string> missing = not_named_yet();
     if (!missing.empty())
       return log_.drop("missing joints (not named yet)",
-                       "sample at t = " + std::to_string(t) + ": " + join(missing));
+                       "sample at t = " + std::to_string(origin_ + t) + ": " + join(missing));
   }
   hold({t, std::move(row), std::move(vrow), std::move(given), where});
 }
@@ -136,7 +136,7 @@ void RecordingBuilder::exclude_outlier(int p, int c, double median, double scale
   std::snprintf(numbers, sizeof numbers, "%.6g, %.3g robust scales from its window's median %.6g",
                 outlier, std::abs(outlier - median) / scale, median);
   log_.note("outliers excluded (Hampel's test, doc/recorded_data.md)",
-            r.where + " (t = " + std::to_string(r.t) + "): coordinate '" +
+            r.where + " (t = " + std::to_string(origin_ + r.t) + "): coordinate '" +
                 model_.coordinate_names[c] + "' is " + numbers);
   r.row[c] = median, r.vrow[c] = 0, r.given[c] = 0;
   for (size_t q = p + 1; q < pending_.size(); ++q) {
@@ -197,6 +197,7 @@ Recording RecordingBuilder::finish() {
   if (sink_) {
     Recording empty;
     empty.nq = nq;
+    empty.origin = origin_;
     return empty;
   }
   // The first row from which every coordinate has a value; earlier rows are dropped.
@@ -211,7 +212,7 @@ Recording RecordingBuilder::finish() {
     for (int i = 0; i < nq; ++i)
       if (!mimic_[i] && !named[i]) names.push_back(model_.coordinate_names[i]);
     log_.drop("missing joints (not named yet)",
-              "sample at t = " + std::to_string(rec_.stamp[first]) + ": " + join(names));
+              "sample at t = " + std::to_string(origin_ + rec_.stamp[first]) + ": " + join(names));
   }
   // The builder's arrays move into the table (no copy beside them); the dropped rows go.
   Recording out = std::move(rec_);
@@ -232,6 +233,7 @@ Recording RecordingBuilder::finish() {
       }
   }
   out.stamp_rounding = stamp_rounding_;
+  out.origin = origin_;
   out.snap_to_grid();
   return out;
 }

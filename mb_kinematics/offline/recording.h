@@ -40,6 +40,9 @@ struct Recording {
   StampGrid grid;
   std::vector<double> recorded_stamp;
   double stamp_rounding = 0;  // the stamps' own (a CSV's decimals), 0: a bag's nanoseconds
+  // Whole seconds every stamp above is counted from (a trajectory CSV's first: a wall-clock time
+  // keeps its nanoseconds, which a double of 1.7e9 s does not); the time is origin + stamp.
+  double origin = 0;
   static constexpr std::uint8_t kPosition = 1, kVelocity = 2, kAcceleration = 4;
   int rows() const { return static_cast<int>(stamp.size()); }
   double recorded(int r) const { return recorded_stamp.empty() ? stamp[r] : recorded_stamp[r]; }
@@ -83,6 +86,11 @@ class RecordingBuilder {
     if (stamp_rounding_ == 0 || rounding < stamp_rounding_) stamp_rounding_ = rounding;
   }
   double stamp_rounding() const { return stamp_rounding_; }
+  // The whole seconds the reader counts the stamps it adds from (Recording::origin); set before
+  // the first add.
+  void set_time_origin(double seconds) { origin_ = seconds, has_origin_ = true; }
+  bool has_time_origin() const { return has_origin_; }
+  double time_origin() const { return origin_; }
 
   // The table; rows before every coordinate was named are dropped here ("missing joints").
   // Stamps on a uniform grid to within their rounding are moved to the grid's times
@@ -123,6 +131,8 @@ class RecordingBuilder {
   bool tested_head_ = false;  // the first rows held have been tested
   std::vector<double> window_;
   double stamp_rounding_ = 0;  // 0: none noted
+  double origin_ = 0;
+  bool has_origin_ = false;
 };
 
 }  // namespace mbk

@@ -1,5 +1,6 @@
 #include "mb_kinematics/offline/trajectory_csv.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -74,6 +75,38 @@ void note_rounding(const std::string& time, RecordingBuilder& builder) {
   builder.note_stamp_rounding(0.75 * std::pow(10.0, -static_cast<double>(decimals)));
 }
 
+// A time cell (a number, as strtod read it to `x`) as whole seconds and the fraction after them:
+// for decimal text ("1700000000.004000000") each read from its own digits, so that the fraction
+// keeps the nanoseconds a double of the whole time would lose; else (an exponent) from x.
+struct CellTime {
+  double whole, fraction;  // of the same sign
+};
+
+CellTime cell_time(const std::string& cell, double x) {
+  size_t i = cell[0] == '-' || cell[0] == '+';
+  const size_t digits = i;
+  while (i < cell.size() && std::isdigit(static_cast<unsigned char>(cell[i]))) ++i;
+  const size_t point = i;
+  if (i < cell.size() && cell[i] == '.')
+    while (++i < cell.size() && std::isdigit(static_cast<unsigned char>(cell[i]))) {
+    }
+  if (i != cell.size() || !std::isfinite(x)) {  // an exponent (or inf, nan): x is all there is
+    const double whole = std::trunc(x);
+    return {whole, std::isfinite(x) ? x - whole : 0.0};
+  }
+  const double sign = cell[0] == '-' ? -1 : 1;
+  const double whole =
+      point > digits ? std::strtod(cell.substr(digits, point - digits).c_str(), nullptr) : 0.0;
+  const double fraction =
+      point < cell.size() ? std::strtod(("0" + cell.substr(point)).c_str(), nullptr) : 0.0;
+  return {sign * whole, sign * fraction};
+}
+
+// Times from this many seconds on (a wall clock's 1.7e9 s, where doubles lie 2.4e-7 s apart) are
+// counted from the first one's whole second (Recording::origin); below it a double of the time
+// holds its nanoseconds.
+constexpr double kTimeOriginFrom = 1e6;
+
 }  // namespace
 
 void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
@@ -105,8 +138,12 @@ void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
       if (cells[i].empty() || end != cells[i].c_str() + cells[i].size())  // a NUL inside too
         throw std::invalid_argument(where + ": column '" + header[i] + "': '" +
                                     printable(cells[i]) + "' is not a number");
-      if (i == 0) {
-        t = x;
+      if (i == 0) {  // to the nanosecond, from 1e6 s on after the first whole second
+        const CellTime time = cell_time(cells[0], x);
+        if (!builder.has_time_origin() && std::isfinite(time.whole))
+          builder.set_time_origin(std::abs(time.whole) >= kTimeOriginFrom ? time.whole : 0.0);
+        const double origin = builder.time_origin();
+        t = origin == 0 ? x : (time.whole - origin) + time.fraction;
         note_rounding(cells[0], builder);
       } else {
         names.push_back(all[i - 1]);

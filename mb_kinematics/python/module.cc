@@ -397,14 +397,14 @@ PYBIND11_MODULE(_core, m) {
   m.def("field_traits", &field_traits);
   m.def("field_shape", &field_shape);
   py::class_<Recorded, RecordedPtr>(m, "Recording")
-      .def_property_readonly(
-          "times",
-          [](const Recorded& r) {
-            const mbk::Recording& rec = r.recording;
-            return matrix(rec.recorded_stamp.empty() ? rec.stamp : rec.recorded_stamp, rec.rows(),
-                          1)
-                .attr("ravel")();
-          })
+      .def_property_readonly("times",
+                             [](const Recorded& r) {
+                               const mbk::Recording& rec = r.recording;
+                               std::vector<double> t =
+                                   rec.recorded_stamp.empty() ? rec.stamp : rec.recorded_stamp;
+                               for (double& x : t) x += rec.origin;
+                               return matrix(t, rec.rows(), 1).attr("ravel")();
+                             })
       .def_property_readonly("grid",
                              [](const Recorded& r) {
                                const mbk::StampGrid& g = r.recording.grid;

@@ -274,3 +274,44 @@ def test_mbk_eval_state_is_bounded(tmp_path):
     with open(small, "w") as f:
         f.write('{"position": {}}' + " " * 100000)  # blanks below the bound: read
     assert run_mbk("eval", "--model", HUMAN, "--state", small).returncode == 0
+
+
+# --- Wall-clock CSV stamps --------------------------------------------------------------------
+
+def arm_rows(path, first_second):
+    """3,000 rows of the Panda arm at 250 Hz from `first_second`, stamps written with 9 decimals
+    (the same motion whatever the start): the stamps' texts."""
+    names = ["panda_joint%d" % j for j in range(1, 8)] + ["panda_finger_joint1"]
+    stamps = []
+    with open(path, "w") as f:
+        f.write(",".join(["time"] + names) + "\n")
+        for i in range(3000):
+            stamps.append("%d.%09d" % (first_second + i // 250, (i % 250) * 4000000))
+            t = i / 250
+            f.write(stamps[-1] + "," + ",".join("%.12f" % (0.3 * np.sin((1 + 0.2 * j) * t))
+                                                  for j in range(8)) + "\n")
+    return stamps
+
+
+def test_wall_clock_csv_stamps_are_kept_to_the_nanosecond(panda, tmp_path):
+    """Stamps from 1.7e9 s (where a double is 2.4e-7 s apart) come out as they went in, in the
+    CSV and a bag, and the accelerations are those of the same rows from 1 s."""
+    wall, early = str(tmp_path / "wall.csv"), str(tmp_path / "early.csv")
+    stamps = arm_rows(wall, 1700000000)
+    arm_rows(early, 1)
+    out, bag = str(tmp_path / "out.csv"), str(tmp_path / "out.bag")
+    run = run_mbk("bag", wall, "--model", PANDA, "--csv", out, "--out", bag)
+    assert run.returncode == 0, run.stderr
+    with open(out) as f:
+        written = sorted({line.split(",", 1)[0] for line in f.readlines()[1:]})
+    assert written == stamps
+    import rosbag
+    with rosbag.Bag(bag) as b:
+        times = sorted({"%d.%09d" % (m.header.stamp.secs, m.header.stamp.nsecs)
+                        for _, m, _ in b.read_messages(topics=["/body_kinematics"])})
+    assert times == stamps
+    late = panda.recording_kinematics(panda.read_recording(wall))
+    soon = panda.recording_kinematics(panda.read_recording(early))
+    assert np.abs(late["time"] - 1700000000 + 1 - soon["time"]).max() <= 2.4e-7  # a double's
+    scale = np.abs(soon["acceleration"]).max()
+    assert np.abs(late["acceleration"] - soon["acceleration"]).max() <= 1e-6 * scale
