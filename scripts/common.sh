@@ -22,7 +22,7 @@ MBK_DEMO_PACKAGES=(
   libtf2-msgs-dev libnav-msgs-dev libstd-srvs-dev libnodelet-dev libnodeletlib-dev
   libtopic-tools-dev pluginlib-dev
   pybind11-dev python3-dev python3-numpy  # the Python module (doc/python.md)
-  libmujoco-dev  # MJCF models (doc/conventions.md)
+  libmujoco-dev libsdformat-dev  # MJCF and SDFormat models (doc/conventions.md)
   libhdf5-dev  # mbk bag --h5 (doc/recorded_data.md)
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
 )

@@ -20,7 +20,7 @@ case "${1:-}" in
   "") ;;
   *) echo "usage: scripts/fuzz.sh [seconds | --smoke | --build]" >&2; exit 2 ;;
 esac
-harnesses=(urdf yaml_scene state_json lower joint_state_input bag glyphs mjcf)
+harnesses=(urdf yaml_scene state_json lower joint_state_input bag glyphs mjcf sdf)
 dir=${MBK_FUZZ_DIR:-$MBK_WS/fuzz}
 mkdir -p "$dir/build" "$dir/findings"
 
@@ -45,7 +45,7 @@ smoke_runs() {  # about 5 s each on this project's 2-core CI machines
     lower) echo 100000 ;;
     bag) echo 1500 ;;  # each input is read twice (bag_input.cc: once in a child process)
     glyphs) echo 5000 ;;
-    mjcf) echo 2000 ;;
+    mjcf | sdf) echo 2000 ;;
   esac
 }
 
@@ -58,6 +58,7 @@ seeds() {  # the shipped files each harness starts from
     bag) ls "$MBK_SRC"/test/fuzz/seeds/bag/* ;;
     glyphs) ls "$MBK_SRC"/test/fuzz/seeds/glyphs/* ;;
     mjcf) ls "$MBK_SRC"/test/robots/mjcf/*.xml ;;
+    sdf) ls "$MBK_SRC"/test/robots/sdf/*.sdf ;;
   esac
 }
 

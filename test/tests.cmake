@@ -15,11 +15,16 @@ file(GLOB MBK_UNIT_TESTS CONFIGURE_DEPENDS test/core/*_test.cc test/estimation/*
   test/stability/*_test.cc)
 list(FILTER MBK_UNIT_TESTS EXCLUDE REGEX "/test/offline/(bag|output_file)_test\\.cc$")
 file(GLOB MBK_PEER_TESTS CONFIGURE_DEPENDS test/peers/*_test.cc)
-# test/peers/mujoco_test.cc runs MuJoCo itself (libmujoco-dev), when it is installed.
+# test/peers/mujoco_test.cc runs MuJoCo itself (libmujoco-dev), sdformat_test.cc libsdformat12
+# (libsdformat-dev), when they are installed.
 find_library(MBK_MUJOCO_LIBRARY mujoco)  # not find_package: Debian's config names a folder
 find_path(MBK_MUJOCO_INCLUDE mujoco/mujoco.h)  # it does not install (/usr/include/libqhull_r)
 if(NOT MBK_MUJOCO_LIBRARY OR NOT MBK_MUJOCO_INCLUDE)
   list(FILTER MBK_PEER_TESTS EXCLUDE REGEX "/test/peers/mujoco_test\\.cc$")
+endif()
+if(NOT TARGET mbk_sdformat)
+  list(FILTER MBK_PEER_TESTS EXCLUDE REGEX "/test/peers/sdformat_test\\.cc$")
+  list(FILTER MBK_UNIT_TESTS EXCLUDE REGEX "/test/io/sdf_model_test\\.cc$")
 endif()
 foreach(source ${MBK_UNIT_TESTS} ${MBK_PEER_TESTS})
   get_filename_component(name ${source} NAME_WE)
@@ -36,6 +41,9 @@ foreach(source ${MBK_PEER_TESTS})
 endforeach()
 if(TARGET mujoco_test)
   target_link_libraries(mujoco_test ${MBK_MUJOCO_LIBRARY})
+endif()
+if(TARGET sdformat_test)
+  target_link_libraries(sdformat_test sdformat12::sdformat12)
 endif()
 
 # A memcheck of the loaders (doc/reliability.md): the BVH reader, model and anthropometry tests and

@@ -7,6 +7,7 @@
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/mjcf_model.h"
+#include "mb_kinematics/io/sdf_model.h"
 #include "mb_kinematics/io/text_file.h"
 #include "mb_kinematics/io/urdf_model.h"
 #include "mb_kinematics/io/yaml_scene.h"
@@ -18,24 +19,26 @@ bool ends_with(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-// An `.xml` file by its first element: MJCF (<mujoco>) or URDF (<robot>).
+// An `.xml` file by its first element: MJCF (<mujoco>), SDFormat (<sdf>) or URDF (<robot>).
 Model load_xml_file(const std::string& path) {
-  const std::string xml = read_text_file(path, "URDF or MJCF file");
+  const std::string xml = read_text_file(path, "URDF, MJCF or SDFormat file");
   if (is_mjcf_text(xml)) return load_mjcf_file(path);
+  if (is_sdf_text(xml)) return load_sdf_file(path);
   return load_urdf_file(path);
 }
 
-// The model of a file that is not BVH: a URDF, an MJCF file or a YAML scene.
+// The model of a file that is not BVH: a URDF, an MJCF or SDFormat file or a YAML scene.
 Model load_robot_file(const std::string& path) {
   if (ends_with(path, ".urdf")) return load_urdf_file(path);
   if (ends_with(path, ".xml")) return load_xml_file(path);
+  if (ends_with(path, ".sdf")) return load_sdf_file(path);
   if (ends_with(path, ".yaml") || ends_with(path, ".yml")) return load_yaml_scene_file(path);
   if (ends_with(path, ".xacro"))
     throw std::invalid_argument(path + ": a xacro file: expand it first (xacro " + path +
                                 " > robot.urdf, from ROS's xacro package) and give the .urdf, or "
                                 "load robot_description yourself and give no model");
-  throw std::invalid_argument(path +
-                              ": unknown model file type (expected .urdf, .xml, .yaml, .bvh)");
+  throw std::invalid_argument(
+      path + ": unknown model file type (expected .urdf, .xml, .sdf, .yaml, .bvh)");
 }
 
 }  // namespace
@@ -65,6 +68,7 @@ Model load_model_file(const std::string& path, const BvhModelOptions& bvh) {
 
 Model load_xml_string(const std::string& xml, const std::string& source) {
   if (is_mjcf_text(xml)) return load_mjcf_string(xml, source);
+  if (is_sdf_text(xml)) return load_sdf_string(xml, source);
   return load_urdf_string(xml, source);
 }
 

@@ -1,5 +1,6 @@
-// One entry point for model files: `.urdf` through urdfdom, `.xml` by its first element (MJCF
-// <mujoco> through MuJoCo, mjcf_model.h; else URDF), `.yaml`/`.yml` scenes, `.bvh` motion capture (its skeleton; bvh_model.h).
+// One entry point for model files: `.urdf` through urdfdom, `.sdf` through sdformat (sdf_model.h),
+// `.xml` by its first element (MJCF <mujoco> through MuJoCo, mjcf_model.h; SDFormat <sdf>; else
+// URDF), `.yaml`/`.yml` scenes, `.bvh` motion capture (its skeleton; bvh_model.h).
 #pragma once
 
 #include <optional>
@@ -31,15 +32,15 @@ Model load_model_file(const std::string& path, const BvhModelOptions& bvh = {});
 // True for a file name load_model_file reads as BVH (`.bvh`, any case).
 bool is_bvh_file(const std::string& path);
 
-// A model in XML text by its first element: MJCF (<mujoco>), else URDF.
+// A model in XML text by its first element: MJCF (<mujoco>), SDFormat (<sdf>), else URDF.
 Model load_xml_string(const std::string& xml, const std::string& source);
 
-// A model given as text rather than a file name: its first non-blank character is '<' (URDF or
-// MJCF XML, e.g. the robot_description parameter) or it has a line break (a YAML scene).
+// A model given as text rather than a file name: its first non-blank character is '<' (URDF,
+// MJCF or SDFormat XML, e.g. the robot_description parameter) or it has a line break (a YAML scene).
 bool is_model_text(const std::string& path_or_text);
 
 // The model of a file name (load_model_file) or of a text (is_model_text: load_mjcf_string,
-// load_urdf_string or load_yaml_scene_string, with `source` in the messages). `bvh` applies to a .bvh file only:
+// load_sdf_string, load_urdf_string or load_yaml_scene_string, with `source` in the messages). `bvh` applies to a .bvh file only:
 // given for anything else, std::invalid_argument.
 Model load_model(const std::string& path_or_text, const BvhModelOptions* bvh = nullptr,
                  const std::string& source = "<text>");

@@ -112,7 +112,7 @@ mbk::ModelFile load_node_model(const NodeParams& p) {
     model = mbk::load_xml_string(p.robot_description, "robot_description");
   } else {
     throw std::invalid_argument(
-        "no model: set the robot_description parameter (URDF), ~model (a .urdf, .xml, .yaml or "
+        "no model: set the robot_description parameter (URDF), ~model (a .urdf, .xml, .sdf, .yaml or "
         ".bvh path) or ~lower_body_array");
   }
   if (model.speeds != mbk::SpeedKind::kCoordinateDerivatives) {  // the node's speeds: q'

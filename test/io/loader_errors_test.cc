@@ -429,7 +429,7 @@ TEST(LoadModelFileErrors, ExtensionAndMissingFile) {
   const std::string yaml = mbk_test::source_path("test/io/data/no_such_scene.yml");
   expect_error([&] { mbk::load_model_file(yaml); }, {yaml, "cannot open scene file"});
   const std::string urdf = mbk_test::source_path("test/io/data/no_such_robot.xml");
-  expect_error([&] { mbk::load_model_file(urdf); }, {urdf, "cannot open URDF or MJCF file"});
+  expect_error([&] { mbk::load_model_file(urdf); }, {urdf, "cannot open URDF, MJCF or SDFormat file"});
 }
 
 // A model (or state) path that is not a regular file is refused, naming it: a link to
