@@ -29,6 +29,8 @@ struct BagInput : BagTopics {
 struct BagOutputs {
   std::string out_bag, out_csv;
   std::string frame_prefix;  // of the bag's frames (messages/frames.h)
+  bool body_axes = false;    // --body-axes: the CSV's segment-frame columns (io/tidy_csv.h)
+  std::string angles;        // --angles ORDER|FILE.yaml: the CSV's joint angle columns
 };
 
 // A run of mbk bag (mb_kinematics/tools/bag_cli.h makes it from the command line): its input,

@@ -17,7 +17,7 @@ COMMON_OPTIONS = {"--estimator": "NAME", "--max-gap": "S", "--joint-states": "TO
                   "--joint-accelerations": "TOPIC", "--base-odometry": "TOPIC",
                   "--frame-prefix": "P", "--start-time": "S", "--threads": "N"}
 BVH_OPTIONS = {"--scale": "M", "--body-mass": "KG", "--sex": "male|female",
-               "--segments": "MAP.yaml"}
+               "--segments": "MAP.yaml", "--anthropometry": "de_leva|dempster"}
 
 
 def locate_mbk_bag():
