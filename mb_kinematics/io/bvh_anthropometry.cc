@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <optional>
+#include <limits>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -427,6 +428,105 @@ std::string zero_end_site_note(const Skeleton& s, const std::vector<Found>& foun
          "short of the tip (--segments FILE gives other ends, doc/anthropometry.md)";
 }
 
+// A segment's mass, mass center (rest pose, in R) and central inertia, on the body carrying it.
+struct Part {
+  int body;
+  double mass;
+  Vec3<double> center;
+  Mat3<double> inertia;
+};
+
+// de Leva's segments: each found segment's share of body_mass (the fractions of the segments not
+// found spread over the found ones in proportion), its mass center and central inertia.
+std::vector<Part> de_leva_parts(const std::vector<Found>& found, double body_mass, Sex sex,
+                                const Directions& d) {
+  const int x = static_cast<int>(sex);
+  double fraction_found = 0;
+  for (const Found& f : found) fraction_found += de_leva_table()[f.row].mass[x];
+  std::vector<Part> parts;
+  for (const Found& f : found) {
+    const SegmentRow& row = de_leva_table()[f.row];
+    const double m = body_mass * row.mass[x] / fraction_found;
+    parts.push_back({f.body, m,
+                     f.proximal + row.mass_center[x] * kPercent * (f.distal - f.proximal),
+                     segment_inertia(row, x, m, f, d)});
+  }
+  return parts;
+}
+
+// The row of dempster_table() for a de Leva row: the three trunk parts are Dempster's one trunk.
+const DempsterRow& dempster_row(int row) {
+  static const int kRowOf[kRows] = {0, 1, 1, 1, 2, 3, 4, 5, 6, 7};
+  return dempster_table()[kRowOf[row]];
+}
+
+bool is_trunk(int row) { return row == kUpperTrunk || row == kMiddleTrunk || row == kLowerTrunk; }
+
+// Central inertia `inertia` of mass m at `from` moved to the point `to` (parallel axes).
+Mat3<double> moved(double m, const Mat3<double>& inertia, const Vec3<double>& from,
+                   const Vec3<double>& to) {
+  const Vec3<double> r = from - to;
+  return inertia + m * (r.squaredNorm() * Mat3<double>::Identity() - r * r.transpose());
+}
+
+// Dempster's trunk, from the greater trochanters (MIDH, where the lower trunk part ends) to the
+// glenohumeral joints (the upper arms' origins, else SUPR), its center at `c` on the body
+// carrying the de Leva trunk part nearest it; its central inertia de Leva's parts' about `c`,
+// times the mass ratio. Returns false without a trunk part.
+bool dempster_trunk(const std::vector<Found>& found, const std::vector<Part>& leva, double fraction,
+                    Part& trunk) {
+  const Found *lower = find_row(found, kLowerTrunk, 0), *upper = find_row(found, kUpperTrunk, 0);
+  const Found *left = find_row(found, kUpperArm, 1), *right = find_row(found, kUpperArm, 2);
+  if (!lower || !upper) return false;
+  const Vec3<double> gh =
+      left && right ? Vec3<double>((left->proximal + right->proximal) / 2) : upper->proximal;
+  const DempsterRow& row = dempster_row(kUpperTrunk);
+  trunk = {lower->body, fraction * row.mass, Vec3<double>::Zero(), Mat3<double>::Zero()};
+  trunk.center = lower->distal + row.mass_center * (gh - lower->distal);
+  double leva_mass = 0, nearest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < found.size(); ++i) {
+    if (!is_trunk(found[i].row)) continue;
+    leva_mass += leva[i].mass;
+    trunk.inertia += moved(leva[i].mass, leva[i].inertia, leva[i].center, trunk.center);
+    const double distance = (leva[i].center - trunk.center).norm();
+    if (distance < nearest) nearest = distance, trunk.body = leva[i].body;
+  }
+  trunk.inertia *= trunk.mass / leva_mass;
+  return true;
+}
+
+// Dempster's segments (Winter's Table 4.1) on the bodies de Leva's found: the same joint ends for
+// the limbs but the foot (ankle to the toe joint, the foot's tip, for the head of metatarsal II);
+// the head and neck from CERV to the head joint's origin (for the ear canal, where its center
+// is); one trunk (dempster_trunk). Masses shared as de Leva's; each central inertia de Leva's
+// times the mass ratio.
+std::vector<Part> dempster_parts(const Skeleton& s, const std::vector<Found>& found,
+                                 const std::vector<Part>& leva, double body_mass) {
+  double fraction_found = 0;
+  bool trunk_found = false;
+  for (const Found& f : found) {
+    if (is_trunk(f.row) && trunk_found) continue;
+    trunk_found = trunk_found || is_trunk(f.row);
+    fraction_found += dempster_row(f.row).mass;
+  }
+  const double fraction = body_mass / fraction_found;
+  std::vector<Part> parts;
+  for (size_t i = 0; i < found.size(); ++i) {
+    const Found& f = found[i];
+    if (is_trunk(f.row)) continue;
+    const DempsterRow& row = dempster_row(f.row);
+    Vec3<double> proximal = f.proximal, distal = f.distal;
+    if (f.row == kHead) proximal = f.distal, distal = s.origin(f.body);
+    if (f.row == kFoot) distal = s.tip(f.body);
+    const double m = fraction * row.mass;
+    parts.push_back({f.body, m, proximal + row.mass_center * (distal - proximal),
+                     leva[i].inertia * (m / leva[i].mass)});
+  }
+  Part trunk;
+  if (dempster_trunk(found, leva, fraction, trunk)) parts.push_back(trunk);
+  return parts;
+}
+
 // Mass, mass center (in R, rest pose) and central inertia gathered on one body.
 struct Lumped {
   double mass = 0;
@@ -530,6 +630,36 @@ const std::vector<SegmentRow>& de_leva_table() {
   return table;
 }
 
+SegmentTable segment_table_from_string(const std::string& text) {
+  if (text == "de_leva" || text == "deleva") return SegmentTable::kDeLeva;
+  if (text == "dempster") return SegmentTable::kDempster;
+  throw std::invalid_argument("anthropometry: '" + printable(text) +
+                              "' is neither de_leva nor dempster");
+}
+
+const std::vector<DempsterRow>& dempster_table() {
+  // Winter (2009), Table 4.1, "Segment weight / total body weight" and "center of mass / segment
+  // length, proximal"; the trunk from the greater trochanter to the glenohumeral joint.
+  static const std::vector<DempsterRow> table = {
+      {"head and neck", "C7-T1 and first rib", "ear canal", 0.081, 1.000},
+      {"trunk", "greater trochanter", "glenohumeral joint", 0.497, 0.50},
+      {"upper arm", "glenohumeral axis", "elbow axis", 0.028, 0.436},
+      {"forearm", "elbow axis", "ulnar styloid", 0.016, 0.430},
+      {"hand", "wrist axis", "knuckle II middle finger", 0.006, 0.506},
+      {"thigh", "greater trochanter", "femoral condyles", 0.100, 0.433},
+      {"leg", "femoral condyles", "medial malleolus", 0.0465, 0.433},
+      {"foot", "lateral malleolus", "head metatarsal II", 0.0145, 0.50},
+  };
+  return table;
+}
+
+double dempster_mass_sum() {
+  double sum = 0;
+  for (size_t row = 0; row < dempster_table().size(); ++row)
+    sum += (row >= 2 ? 2 : 1) * dempster_table()[row].mass;
+  return sum;
+}
+
 double de_leva_mass_sum(Sex sex) {
   double sum = 0;
   for (size_t row = 0; row < de_leva_table().size(); ++row)
@@ -538,25 +668,21 @@ double de_leva_mass_sum(Sex sex) {
 }
 
 std::vector<std::string> set_segment_parameters(const BvhFile& bvh, double scale, double body_mass,
-                                                Sex sex, Model& model, const SegmentMap& map) {
+                                                Sex sex, Model& model, const SegmentMap& map,
+                                                SegmentTable table) {
   if (!(body_mass > 0) || !std::isfinite(body_mass))
     throw std::invalid_argument("body mass: must be a positive number of kg");
   const Skeleton s(bvh, scale, map);
   const std::vector<Found> found = find_segments(s, sex);
-  const int x = static_cast<int>(sex);
-  double fraction_found = 0;
-  for (const Found& f : found) fraction_found += de_leva_table()[f.row].mass[x];
-  const Directions d = directions_of(found);
+  std::vector<Part> parts = de_leva_parts(found, body_mass, sex, directions_of(found));
+  if (table == SegmentTable::kDempster) parts = dempster_parts(s, found, parts, body_mass);
   std::vector<Lumped> lumped(s.size());
-  for (const Found& f : found) {
-    const SegmentRow& row = de_leva_table()[f.row];
-    const double m = body_mass * row.mass[x] / fraction_found;
-    const Vec3<double> c = f.proximal + row.mass_center[x] * kPercent * (f.distal - f.proximal);
-    Lumped& l = lumped[f.body];
-    l.mass += m;
-    l.moment += m * c;
-    l.parts.push_back({m, c});
-    l.inertia += segment_inertia(row, x, m, f, d);
+  for (const Part& p : parts) {
+    Lumped& l = lumped[p.body];
+    l.mass += p.mass;
+    l.moment += p.mass * p.center;
+    l.parts.push_back({p.mass, p.center});
+    l.inertia += p.inertia;
   }
   for (int i = 0; i < s.size(); ++i) {
     Lumped& l = lumped[i];
@@ -575,8 +701,10 @@ std::vector<std::string> set_segment_parameters(const BvhFile& bvh, double scale
   std::vector<std::string> notes;
   const std::vector<std::string> massless = uncovered(s, found);
   if (!massless.empty())
-    notes.push_back(bvh.path + ": segment parameters (de Leva 1996): massless, in no table " +
-                    "segment: " + name_list(massless));
+    notes.push_back(
+        bvh.path + ": segment parameters (" +
+        (table == SegmentTable::kDempster ? "Dempster, Winter Table 4.1" : "de Leva 1996") +
+        "): massless, in no table " + "segment: " + name_list(massless));
   const std::string zero_ends = zero_end_site_note(s, found);
   if (!zero_ends.empty()) notes.push_back(bvh.path + ": " + zero_ends);
   const std::vector<std::string> missing = missing_rows(found);

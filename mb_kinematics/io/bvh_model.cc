@@ -182,8 +182,10 @@ double number(const std::string& option, const std::string& text, double fallbac
 }  // namespace
 
 BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
-                                  const std::string& sex, const std::string& segments) {
+                                  const std::string& sex, const std::string& segments,
+                                  const std::string& anthropometry) {
   BvhModelOptions o;
+  if (!anthropometry.empty()) o.anthropometry = anthropometry;
   o.segments = segments;
   o.scale = number("--scale", scale, o.scale);
   o.body_mass = number("--body-mass", body_mass, o.body_mass);
@@ -192,7 +194,11 @@ BvhModelOptions bvh_model_options(const std::string& scale, const std::string& b
   if (!(o.body_mass >= 0)) throw std::invalid_argument("--body-mass needs kg >= 0");
   if (!segments.empty() && o.body_mass == 0)
     throw std::invalid_argument("--segments maps joints to masses: it needs --body-mass KG");
+  if (!anthropometry.empty() && o.body_mass == 0)
+    throw std::invalid_argument(
+        "--anthropometry chooses the masses' table: it needs --body-mass KG");
   sex_from_string(o.sex);
+  segment_table_from_string(o.anthropometry);
   return o;
 }
 
@@ -202,6 +208,7 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
   if (!(options.body_mass >= 0) || !std::isfinite(options.body_mass))
     throw std::invalid_argument("body mass: must be a number of kg >= 0 (0: massless segments)");
   const Sex sex = sex_from_string(options.sex);
+  const SegmentTable table = segment_table_from_string(options.anthropometry);
   refuse_repeated_names(bvh);
   Model model;
   model.bodies.resize(bvh.segments.size() + 1);
@@ -216,7 +223,7 @@ Model model_from_bvh(const BvhFile& bvh, const BvhModelOptions& options) {
                                        changing_bones_warning(bvh, options.scale)};
   if (options.body_mass > 0)
     for (const std::string& note : set_segment_parameters(bvh, options.scale, options.body_mass,
-                                                          sex, model, segment_map(options)))
+                                                          sex, model, segment_map(options), table))
       warnings.push_back(note);
   finalize_model(model);
   warnings.push_back(

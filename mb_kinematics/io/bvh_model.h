@@ -34,13 +34,15 @@ struct BvhModelOptions {
   double body_mass = 0.0;    // kg; 0 = massless segments
   std::string sex = "male";  // "male" or "female": the anthropometric table's column
   std::string segments{};    // a YAML map joint name -> segment (bvh_segment_map.h); "" none
+  std::string anthropometry = "de_leva";  // or "dempster" (bvh_anthropometry.h SegmentTable)
 };
 
-// The options from their command-line texts (--scale, --body-mass, --sex, --segments; "" keeps
-// the default). Throws std::invalid_argument naming the option and the text (--segments without
-// --body-mass too).
+// The options from their command-line texts (--scale, --body-mass, --sex, --segments,
+// --anthropometry; "" keeps the default). Throws std::invalid_argument naming the option and the
+// text (--segments or --anthropometry without --body-mass too).
 BvhModelOptions bvh_model_options(const std::string& scale, const std::string& body_mass,
-                                  const std::string& sex, const std::string& segments = "");
+                                  const std::string& sex, const std::string& segments = "",
+                                  const std::string& anthropometry = "");
 
 // The model of the file's skeleton. Its warnings (Model::warnings) name what the user should
 // know: a standing height outside 0.5-2.5 m (a wrong --scale), bones whose length changes

@@ -9,6 +9,7 @@
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/core/segment_frames.h"
 #include "mb_kinematics/core/utf8.h"
 #include "mb_kinematics/io/number_format.h"
 
@@ -161,12 +162,35 @@ std::string partials_json(const Model& model, const PartialVelocities<double>& p
   return out;
 }
 
+// ", "omega_body": [3], ..." and/or ", "relative_rotation": [[3]x3], ..." for body k.
+std::string segment_frames_json(const Model& model, const Data<double>& data, int k,
+                                const EvalExtras& extra) {
+  std::string out;
+  if (extra.body_axes) {
+    const std::pair<const char*, const Vec3<double>*> fields[] = {
+        {"omega_body", &data.omega[k]},
+        {"alpha_body", &data.alpha[k]},
+        {"velocity_body", &data.mass_center_velocity[k]},
+        {"acceleration_body", &data.mass_center_acceleration[k]}};
+    for (const auto& [name, x] : fields)
+      out +=
+          std::string(", \"") + name + "\": " + json_array(in_body_axes(data, k, *x).transpose());
+  }
+  if (extra.relative) {
+    const RelativeMotion<double> m = relative_motion(model, data, k);
+    out += ", \"relative_rotation\": " + json_array(m.rotation) +
+           ", \"relative_omega\": " + json_array(m.omega.transpose()) +
+           ", \"relative_alpha\": " + json_array(m.alpha.transpose());
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string format_eval_json(const Model& model, const Data<double>& data,
                              const SystemKinematics<double>* system,
                              const PartialVelocities<double>* pv,
-                             const std::vector<std::string>& incomplete) {
+                             const std::vector<std::string>& incomplete, const EvalExtras& extra) {
   std::ostringstream out;
   out << "{\"frame\": " << json_string(model.frame) << ", \"bodies\": [";
   for (int k = 1; k <= model.body_count(); ++k) {
@@ -193,7 +217,8 @@ std::string format_eval_json(const Model& model, const Data<double>& data,
         << ", \"alpha\": " << json_array(data.alpha[k].transpose())
         << ", \"velocity\": " << json_array(data.mass_center_velocity[k].transpose())
         << ", \"acceleration\": " << json_array(data.mass_center_acceleration[k].transpose())
-        << (pv ? partials_json(model, *pv, k) : "") << "}";
+        << (pv ? partials_json(model, *pv, k) : "") << segment_frames_json(model, data, k, extra)
+        << "}";
   }
   out << "\n]";
   if (system) out << ", \"system\": " << system_json(model, *system, incomplete);

@@ -36,9 +36,17 @@ std::string json_string(const std::string& text);
 // "partial_velocity_dot", keyed by independent speed name (core/independent_speeds.h);
 // `incomplete` (segments of the body the model lacks, e.g. a BVH skeleton's "left hand") adds
 // "incomplete": [names] to "system": the whole-body quantities are not the whole body's.
+// `extra.body_axes` adds per body "omega_body", "alpha_body", "velocity_body",
+// "acceleration_body" (in Bk's axes), `extra.relative` "relative_rotation", "relative_omega",
+// "relative_alpha" (relative to L(k), in its axes): core/segment_frames.h.
+struct EvalExtras {
+  bool body_axes = false;
+  bool relative = false;
+};
 std::string format_eval_json(const Model& model, const Data<double>& data,
                              const SystemKinematics<double>* system = nullptr,
                              const PartialVelocities<double>* pv = nullptr,
-                             const std::vector<std::string>& incomplete = {});
+                             const std::vector<std::string>& incomplete = {},
+                             const EvalExtras& extra = {});
 
 }  // namespace mbk

@@ -1,25 +1,36 @@
 #include "mb_kinematics/io/tidy_csv.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
+#include "mb_kinematics/core/euler_angles.h"
+#include "mb_kinematics/core/segment_frames.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/number_format.h"
 
 namespace mbk {
 
 TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model, bool errors,
-                             const std::string& system)
+                             const std::string& system, const TidyCsvExtras& extras)
     : model_(model),
       file_(path),
       errors_(errors),
+      extras_(extras),
+      angles_(model.bodies.size(), Vec3<double>::Zero()),
       body_cells_(model.bodies.size()),
       system_cells_("," + system + ",0,0") {
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
   for (int k = 1; k <= model.body_count(); ++k)
     body_cells_[k] = "," + model.bodies[k].name + "," + std::to_string(k) + "," +
                      std::to_string(model.bodies[k].lower);
-  file_.write(std::string(header()) + (errors ? errors_header() : "") + "\n");
+  if (!extras.angles.empty() && extras.angles.size() != model.bodies.size())
+    throw std::invalid_argument("tidy CSV: " + std::to_string(extras.angles.size()) +
+                                " angle orders for " + std::to_string(model.bodies.size()) +
+                                " bodies and R");
+  file_.write(std::string(header()) + (errors ? errors_header() : "") + extras_header(extras) +
+              "\n");
 }
 
 const char* TidyCsvWriter::header() {
@@ -32,6 +43,22 @@ const char* TidyCsvWriter::errors_header() {
   return ",alpha_se_x,alpha_se_y,alpha_se_z,acceleration_se_x,acceleration_se_y,acceleration_se_z";
 }
 
+std::string TidyCsvWriter::extras_header(const TidyCsvExtras& extras) {
+  std::string out;
+  auto xyz = [&out](const char* name) {
+    for (const char* axis : {"_x", "_y", "_z"}) out += std::string(",") + name + axis;
+  };
+  if (extras.body_axes)
+    for (const char* name : {"omega_body", "alpha_body", "velocity_body", "acceleration_body"})
+      xyz(name);
+  if (!extras.angles.empty()) {
+    out += ",angle_order,angle_1,angle_2,angle_3";
+    xyz("relative_omega");
+    xyz("relative_alpha");
+  }
+  return out;
+}
+
 namespace {
 
 // The cells after a row's body cells, formatted into one buffer and appended at once.
@@ -40,6 +67,10 @@ class Cells {
   void number(double x) {  // ",x"
     *end_++ = ',';
     end_ = write_shortest(end_, x);
+  }
+  void text(const std::string& x) {  // ",x"
+    *end_++ = ',';
+    end_ = std::copy(x.begin(), x.end(), end_);
   }
   void empty(int n) {  // n empty cells
     std::memset(end_, ',', n);
@@ -52,10 +83,32 @@ class Cells {
   }
 
  private:
-  static constexpr int kMaxCells = 28;  // 22 values and 6 error bars
+  // 22 values, 6 error bars, 12 in body axes, an order (3 letters) and 9 of the joint's motion.
+  static constexpr int kMaxCells = 50;
   char cells_[kMaxCells * (1 + kMaxDoubleChars) + 1];
   char* end_ = cells_;
 };
+
+// The extras' cells of body k (TidyCsvExtras); with angles, angles[k] becomes this row's (near
+// the last row's when `continued`).
+void extra_cells(const Model& model, const TidyCsvExtras& extras, const Data<double>& d, int k,
+                 std::vector<Vec3<double>>& angles, bool continued, Cells& cells) {
+  if (extras.body_axes)
+    for (const auto* v :
+         {&d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration}) {
+      const Vec3<double> x = in_body_axes(d, k, (*v)[k]);
+      for (int i = 0; i < 3; ++i) cells.number(x[i]);
+    }
+  if (extras.angles.empty()) return;
+  const EulerOrder order = extras.angles[k];
+  const RelativeMotion<double> m = relative_motion(model, d, k);
+  angles[k] =
+      continued ? euler_angles_near(m.rotation, order, angles[k]) : euler_angles(m.rotation, order);
+  cells.text(to_string(order));
+  const Vec3<double>& x = angles[k];
+  for (const Vec3<double>* v : {&x, &m.omega, &m.alpha})
+    for (int i = 0; i < 3; ++i) cells.number((*v)[i]);
+}
 
 }  // namespace
 
@@ -79,8 +132,10 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
         for (int i = 0; i < 3; ++i) cells.number((*v)[k][i]);
     else if (errors_)
       cells.empty(6);
+    extra_cells(model_, extras_, d, k, angles_, have_angles_, cells);
     cells.end_row(text);
   }
+  have_angles_ = !extras_.angles.empty();
   if (total_mass_ <= 0) return;
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);
@@ -92,6 +147,7 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
   for (const Vec3<double>* x : {&v, &a})
     for (int i = 0; i < 3; ++i) cells.number((*x)[i]);
   if (errors_) cells.empty(6);
+  cells.empty((extras_.body_axes ? 12 : 0) + (extras_.angles.empty() ? 0 : 10));
   cells.end_row(text);
 }
 

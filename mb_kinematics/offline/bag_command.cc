@@ -16,6 +16,7 @@
 #include "mb_kinematics/core/base_joint.h"
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
+#include "mb_kinematics/io/angle_orders.h"
 #include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
@@ -144,10 +145,12 @@ struct Outputs {
       check_bag_stamp(origin + row.stamp);
       bag->write(row.stamp, row.state, *data, floating ? &row.base : nullptr);
     }
+    const bool errors = !row.alpha_se.empty();
     if (csv && formatted)
       csv->write_text(row.text);
     else if (csv)
-      csv->write(row.stamp, *data);
+      csv->write(row.stamp, *data, errors ? &row.alpha_se : nullptr,
+                 errors ? &row.acceleration_se : nullptr);
     if (h5) h5->write(row, *data);
     if (mot) mot->write(row);
   }
@@ -162,9 +165,10 @@ struct Outputs {
         "--start-time S to add S seconds to every time (e.g. --start-time 1); nothing written");
   }
   // The CSV's text formatted by the computing threads, beside the writing (without a base:
-  // with one, the rows are carried into the base's layout here first).
+  // with one, the rows are carried into the base's layout here first; with --angles, each row's
+  // angles continue the row before: formatted here, in order).
   mbk::OfflineBatch::Formatter formatter() {
-    if (!csv || floating) return nullptr;
+    if (!csv || floating || csv->sequential()) return nullptr;
     formatted = true;
     return [csv = csv.get()](mbk::OfflineRow& row) {
       row.text.clear();
@@ -263,9 +267,12 @@ void open_outputs(const BagOutputs& o, const std::string& input, const mbk::Mode
   }
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
-    out.csv =
-        std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
-                                             missing.empty() ? "system" : "system_incomplete");
+    mbk::TidyCsvExtras extras;
+    extras.body_axes = o.body_axes;
+    if (!o.angles.empty()) extras.angles = mbk::angle_orders(base_model, o.angles);
+    out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
+                                                   missing.empty() ? "system" : "system_incomplete",
+                                                   extras);
   }
   if (!o.out_h5.empty()) {
     out.h5_file = std::make_unique<OutputFile>(o.out_h5);

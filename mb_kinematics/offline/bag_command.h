@@ -32,6 +32,8 @@ struct BagOutputs {
   std::string out_mot;       // --mot: OpenSim Storage (offline/mot_output.h)
   int h5_compression = 0;    // --h5-compression: deflate level 0-9
   std::string frame_prefix;  // of the bag's frames (messages/frames.h)
+  bool body_axes = false;    // --body-axes: the CSV's segment-frame columns (io/tidy_csv.h)
+  std::string angles;        // --angles ORDER|FILE.yaml: the CSV's joint angle columns
 };
 
 // A run of mbk bag (mb_kinematics/tools/bag_cli.h makes it from the command line): its input,

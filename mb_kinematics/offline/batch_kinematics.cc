@@ -9,6 +9,7 @@
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/segment_frames.h"
 #include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
@@ -34,10 +35,17 @@ const BatchFieldTraits kTraits[kBatchFieldCount] = {
     {"system_acceleration", kA, true, true, false, 3},
     {"linear_momentum", kV, true, false, false, 3},
     {"angular_momentum", kV, true, false, false, 3},
-    {"partial_omega", kV, false, false, true, 0},
-    {"partial_velocity", kV, false, false, true, 0},
-    {"partial_omega_dot", kA, true, false, true, 0},
-    {"partial_velocity_dot", kA, true, false, true, 0},
+    {"partial_omega", kV, false, false, true, 0, true},
+    {"partial_velocity", kV, false, false, true, 0, true},
+    {"partial_omega_dot", kA, true, false, true, 0, true},
+    {"partial_velocity_dot", kA, true, false, true, 0, true},
+    {"omega_body", kV, true, false, true, 3, true},
+    {"alpha_body", kA, true, true, true, 3, true},
+    {"velocity_body", kV, true, false, true, 3, true},
+    {"acceleration_body", kA, true, true, true, 3, true},
+    {"relative_rotation", kP, false, false, true, 9, true},
+    {"relative_omega", kV, true, false, true, 3, true},
+    {"relative_alpha", kA, true, true, true, 3, true},
 };
 
 template <typename T>
@@ -73,6 +81,12 @@ void put(T* out, const Vec3<double>& v) {
 }
 
 template <typename T>
+void put(T* out, const Mat3<double>& m) {  // row by row
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out[a * 3 + b] = static_cast<T>(m(a, b));
+}
+
+template <typename T>
 void put_or_nan(T* out, const Vec3<double>& v, bool known) {
   for (int i = 0; i < 3; ++i)
     out[i] = known ? static_cast<T>(v[i]) : std::numeric_limits<T>::quiet_NaN();
@@ -82,14 +96,37 @@ void put_or_nan(T* out, const Vec3<double>& v, bool known) {
 // sample of the human model's full batch, 12-16 % of its time) but needs every kernel to treat
 // the ground, which has no row in the caller's arrays, apart.
 template <typename T>
-void write_bodies(const Data<double>& data, std::size_t s, const BatchOutput<T>& out) {
+bool any_relative(const BatchOutput<T>& out) {
+  return out[BatchField::kRelativeRotation] || out[BatchField::kRelativeOmega] ||
+         out[BatchField::kRelativeAlpha];
+}
+
+// The segment frames and joint motion of body k (core/segment_frames.h) into row `row`.
+template <typename T>
+void write_segment_frames(const Model& model, const Data<double>& data, int k, std::size_t row,
+                          const BatchOutput<T>& out) {
+  const std::pair<BatchField, const std::vector<Vec3<double>>*> in_body[] = {
+      {BatchField::kOmegaBody, &data.omega},
+      {BatchField::kAlphaBody, &data.alpha},
+      {BatchField::kVelocityBody, &data.mass_center_velocity},
+      {BatchField::kAccelerationBody, &data.mass_center_acceleration}};
+  for (const auto& [field, values] : in_body)
+    if (T* v = out[field]) put(v + row * 3, in_body_axes(data, k, (*values)[k]));
+  if (!any_relative(out)) return;
+  const RelativeMotion<double> m = relative_motion(model, data, k);
+  if (T* r = out[BatchField::kRelativeRotation]) put(r + row * 9, m.rotation);
+  if (T* w = out[BatchField::kRelativeOmega]) put(w + row * 3, m.omega);
+  if (T* a = out[BatchField::kRelativeAlpha]) put(a + row * 3, m.alpha);
+}
+
+template <typename T>
+void write_bodies(const Model& model, const Data<double>& data, std::size_t s,
+                  const BatchOutput<T>& out) {
   const std::size_t nb = out.bodies.size();
   for (std::size_t i = 0; i < nb; ++i) {
     const int k = out.bodies[i];
     const std::size_t row = s * nb + i;
-    if (T* r = out[BatchField::kRotation])
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) r[row * 9 + a * 3 + b] = static_cast<T>(data.rotation[k](a, b));
+    if (T* r = out[BatchField::kRotation]) put(r + row * 9, data.rotation[k]);
     const std::pair<BatchField, const std::vector<Vec3<double>>*> vectors[] = {
         {BatchField::kOrigin, &data.origin},
         {BatchField::kMassCenter, &data.mass_center},
@@ -99,6 +136,7 @@ void write_bodies(const Data<double>& data, std::size_t s, const BatchOutput<T>&
         {BatchField::kAcceleration, &data.mass_center_acceleration}};
     for (const auto& [field, values] : vectors)
       if (T* v = out[field]) put(v + row * 3, (*values)[k]);
+    write_segment_frames(model, data, k, row, out);
   }
 }
 
@@ -195,7 +233,7 @@ void check_request(const Model& model, const BatchInput& in, const BatchOutput<T
 template <typename T>
 void write_batch_fields(const Model& model, const Data<double>& data, std::size_t s, Level level,
                         const BatchOutput<T>& out, SystemKinematics<double>& system) {
-  write_bodies(data, s, out);
+  write_bodies(model, data, s, out);
   if (out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
       out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
       out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum]) {

@@ -21,6 +21,10 @@ namespace mbk {
 // system_mass (N); the other system fields (N, 3); the partial velocities and their time
 // derivatives (N, B, nv, 3), zero in the columns of speeds outside a body's chain and of mimic
 // coordinates (whose columns count, times the multiplier, in their sources', as in `mbk eval`).
+// The segment frames and joint motion (core/segment_frames.h, opt-in): omega, alpha, velocity and
+// acceleration of G_k in Bk's own axes (`*_body`, as `mbk eval --body-axes`); each body relative
+// to its lower body Bj: relative_rotation SJK (N, B, 3, 3), relative_omega and relative_alpha in
+// Bj's axes (as `mbk eval --relative`).
 enum class BatchField {
   kRotation,
   kOrigin,
@@ -39,6 +43,13 @@ enum class BatchField {
   kPartialVelocity,
   kPartialOmegaDot,
   kPartialVelocityDot,
+  kOmegaBody,
+  kAlphaBody,
+  kVelocityBody,
+  kAccelerationBody,
+  kRelativeRotation,
+  kRelativeOmega,
+  kRelativeAlpha,
   kCount,
 };
 constexpr int kBatchFieldCount = static_cast<int>(BatchField::kCount);
@@ -50,6 +61,7 @@ struct BatchFieldTraits {
   bool needs_acceleration;  // depends on their derivatives
   bool per_body;            // one block per chosen body
   int width;                // numbers per block (per sample for system fields); 0: nv * 3
+  bool opt_in = false;      // written only when asked for by name (not in Python's default)
 };
 const BatchFieldTraits& batch_field_traits(BatchField field);
 // The field of that name; throws std::invalid_argument naming it and the known names.

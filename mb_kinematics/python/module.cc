@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/euler_angles.h"
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
@@ -33,9 +34,10 @@ using ModelPtr = std::shared_ptr<mbk::Model>;  // never changed after load
 using InputArray = py::array_t<double, py::array::c_style>;
 
 ModelPtr load(const std::string& path_or_text, py::object scale, py::object body_mass,
-              py::object sex, py::object segments, const std::string& source) {
-  const bool bvh =
-      !scale.is_none() || !body_mass.is_none() || !sex.is_none() || !segments.is_none();
+              py::object sex, py::object segments, const std::string& source,
+              py::object anthropometry) {
+  const bool bvh = !scale.is_none() || !body_mass.is_none() || !sex.is_none() ||
+                   !segments.is_none() || !anthropometry.is_none();
   mbk::BvhModelOptions options;
   if (!scale.is_none()) options.scale = scale.cast<double>();
   if (!body_mass.is_none()) options.body_mass = body_mass.cast<double>();
@@ -43,6 +45,7 @@ ModelPtr load(const std::string& path_or_text, py::object scale, py::object body
   if (!segments.is_none()) options.segments = segments.cast<std::string>();
   if (!options.segments.empty() && !(options.body_mass > 0))
     throw std::invalid_argument("segments maps joints to masses: it needs body_mass");
+  if (!anthropometry.is_none()) options.anthropometry = anthropometry.cast<std::string>();
   py::gil_scoped_release release;
   return std::make_shared<mbk::Model>(
       mbk::load_model(path_or_text, bvh ? &options : nullptr, source));
@@ -340,8 +343,25 @@ py::dict field_traits() {
     d["needs_acceleration"] = t.needs_acceleration;
     d["per_body"] = t.per_body;
     d["width"] = t.width;
+    d["opt_in"] = t.opt_in;
     out[t.name] = d;
   }
+  return out;
+}
+
+// The angles (samples, series, 3) of rotations (samples, series, 3, 3) in `orders` (one, or one
+// per series), continuous along the samples (core/euler_angles.h).
+py::array_t<double> euler_angles(const InputArray& rotations,
+                                 const std::vector<std::string>& orders) {
+  if (rotations.ndim() != 4 || rotations.shape(2) != 3 || rotations.shape(3) != 3)
+    throw std::invalid_argument("rotations: wrong shape");
+  std::vector<mbk::EulerOrder> o;
+  for (const std::string& text : orders) o.push_back(mbk::euler_order_from_string(text));
+  const std::size_t samples = rotations.shape(0), series = rotations.shape(1);
+  py::array_t<double> out({samples, series, std::size_t{3}});
+  double* x = out.mutable_data();
+  py::gil_scoped_release release;
+  mbk::euler_angle_series(rotations.data(), samples, series, o, x);
   return out;
 }
 
@@ -390,12 +410,14 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("neutral_position", &neutral_position);
   m.def("load", &load, py::arg("path_or_text"), py::arg("scale") = py::none(),
         py::arg("body_mass") = py::none(), py::arg("sex") = py::none(),
-        py::arg("segments") = py::none(), py::arg("source") = "<text>");
+        py::arg("segments") = py::none(), py::arg("source") = "<text>",
+        py::arg("anthropometry") = py::none());
   m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
   m.def("field_traits", &field_traits);
   m.def("field_shape", &field_shape);
+  m.def("euler_angles", &euler_angles);
   py::class_<Recorded, RecordedPtr>(m, "Recording")
       .def_property_readonly("times",
                              [](const Recorded& r) {

@@ -97,6 +97,7 @@ void read_model_source(const ros::NodeHandle& nh, const ros::NodeHandle& pnh, No
   get(pnh, "scale", p.bvh.scale, "a number (metres per unit of a .bvh ~model)");
   get(pnh, "body_mass", p.bvh.body_mass, "a number (kg)");
   get(pnh, "sex", p.bvh.sex, "a string: male or female");
+  get(pnh, "anthropometry", p.bvh.anthropometry, "a string: de_leva or dempster");
   get(pnh, "lower_body_array", p.lower_body_array, "a list of integers");
   get(pnh, "joint_type", p.joint_type, "a string");
 }

@@ -24,7 +24,7 @@ enum class MissingCoordinates {
 struct NodeParams {
   std::string robot_description;  // robot_description (URDF text), if set
   std::string model;              // ~model: a .urdf, .yaml or .bvh path; wins over it
-  mbk::BvhModelOptions bvh;  // ~scale (m per file unit), ~body_mass (kg), ~sex: a .bvh ~model's
+  mbk::BvhModelOptions bvh;       // ~scale, ~body_mass (kg), ~sex, ~anthropometry: a .bvh ~model's
   std::vector<int> lower_body_array;    // ~lower_body_array: a bare scene; wins over both
   std::string joint_type = "ball_123";  // ~joint_type: the bare scene's joints
   std::string frame_id;                 // ~frame_id: R's frame; "" = URDF root link / scene frame

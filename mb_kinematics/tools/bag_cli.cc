@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"
@@ -22,7 +23,7 @@ bool ends_with(const std::string& s, const std::string& end) {
 // The command line as it is read: a .bvh model's options as text, checked once all are read.
 struct Reading {
   BagCommandLine line;
-  std::string scale, body_mass, sex, segments;
+  std::string scale, body_mass, sex, segments, anthropometry;
 };
 
 // `text` as a number, NaN when it is not one whole.
@@ -66,6 +67,14 @@ const Option kOptions[] = {
     {"--body-mass", true, [](Reading& r, const std::string& v) { r.body_mass = v; }},
     {"--sex", true, [](Reading& r, const std::string& v) { r.sex = v; }},
     {"--segments", true, [](Reading& r, const std::string& v) { r.segments = v; }},
+    {"--anthropometry", true, [](Reading& r, const std::string& v) { r.anthropometry = v; }},
+    {"--body-axes", false, [](Reading& r, const std::string&) { r.line.body_axes = true; }},
+    {"--angles", true,
+     [](Reading& r, const std::string& v) {
+       if (!ends_with(v, ".yaml") && !ends_with(v, ".yml"))
+         mbk::euler_order_from_string(v);  // a bad order refused before anything is read
+       r.line.angles = v;
+     }},
     {"--max-gap", true,
      [](Reading& r, const std::string& v) {
        r.line.max_gap = number(v);
@@ -110,10 +119,14 @@ void check(Reading& r) {
   if (o.input.empty()) throw std::invalid_argument("bag needs an input IN.bag, IN.csv or IN.bvh");
   if (o.model.empty() && mbk::is_bvh_file(o.input)) o.model = o.input;
   if (o.model.empty()) throw std::invalid_argument("bag needs --model FILE");
-  if (!(r.scale + r.body_mass + r.sex + r.segments).empty() && !mbk::is_bvh_file(o.model))
+  if (!(r.scale + r.body_mass + r.sex + r.segments + r.anthropometry).empty() &&
+      !mbk::is_bvh_file(o.model))
     throw std::invalid_argument(
-        "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
-  o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments);
+        "--scale, --body-mass, --sex, --segments and --anthropometry apply to a .bvh model only");
+  o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments, r.anthropometry);
+  if ((o.body_axes || !o.angles.empty()) && o.out_csv.empty())
+    throw std::invalid_argument(
+        "--body-axes and --angles add columns to the CSV: give --csv OUT.csv");
   if (output_files(o).empty())
     throw std::invalid_argument(
         "bag needs at least one of --out OUT.bag, --csv OUT.csv, --h5 OUT.h5, --mot OUT.mot");
@@ -152,7 +165,12 @@ const char* bag_usage() {
          "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
          "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"
          "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
-         "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml] ...\n"
+         "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
+         "           [--anthropometry de_leva|dempster] ...\n"
+         "       with --csv: [--body-axes] [--angles ORDER|ORDERS.yaml]\n"
+         "   --body-axes: omega, alpha, velocity, acceleration in each body's own axes\n"
+         "   --angles: each body's Cardan/Euler angles relative to its lower body, ORDER one of\n"
+         "             XYZ ... ZYZ, or a YAML file of body or joint name: ORDER (and default:)\n"
          "   --verbose: every coordinate's error bars and the times in the summary\n"
          "   --max-memory: GiB of address space at most (default: 90 % of this machine's memory)\n"
          "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";

@@ -1,7 +1,8 @@
 // mbk: the command-line tool (doc/method.md 8).
 //   mbk tables (--lower 0,1,2,... | --model FILE) [--csv]
 //   mbk eval --model FILE [--state STATE.json|- | --frame N]
-//       [--method recursive|partial_velocity] [--partial-velocities]   (-: standard input)
+//       [--method recursive|partial_velocity] [--partial-velocities] [--body-axes]
+//       [--relative]   (-: standard input)
 //   FILE: .urdf, .yaml or .bvh (with [--scale M] [--body-mass KG] [--sex male|female])
 //   mbk urdf --model SCENE.yaml [--name ROBOT] [--display]   (a scene as URDF: the equivalent
 //       kinematics for KDL and robot_state_publisher, or with --display a link per body for
@@ -40,16 +41,19 @@ namespace {
 const char kTablesUsage[] = "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n";
 const char kEvalUsage[] =
     "usage: mbk eval --model FILE [--state STATE.json | --frame N]\n"
-    "                [--method recursive|partial_velocity] [--partial-velocities]\n";
+    "                [--method recursive|partial_velocity] [--partial-velocities]\n"
+    "                [--body-axes] [--relative]\n";
 const char kUrdfUsage[] = "usage: mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n";
 const char kFileUsage[] =
     "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
-    "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n";
+    "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
+    "         [--anthropometry de_leva|dempster]\n";
 
 const char kUsage[] =
     "usage: mbk tables (--lower 0,1,2,... | --model FILE) [--csv]\n"
     "       mbk eval --model FILE [--state STATE.json|- | --frame N]\n"
     "                [--method recursive|partial_velocity] [--partial-velocities]\n"
+    "                [--body-axes] [--relative]\n"
     "       mbk urdf --model SCENE.yaml [--name ROBOT] [--display]\n"
     "       mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv] [--joint-states T]\n"
     "           [--joint-accelerations T] [--base-odometry T] [--estimator NAME] [--frame-prefix "
@@ -60,6 +64,7 @@ const char kUsage[] =
     "           [--model FILE] [--bag] [--csv] [mbk bag's options]   (mbk batch --help)\n"
     "   FILE: .urdf, .yaml or .bvh; a .bvh also takes [--scale M] (metres per file unit)\n"
     "         [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
+    "         [--anthropometry de_leva|dempster]\n"
     "   mbk COMMAND --help: that command's usage\n";
 
 // `mbk COMMAND --help`'s text; "" for a command mbk does not have.
@@ -81,16 +86,18 @@ struct UsageError : std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// Options of the form --name value, and the flags --csv, --display and --partial-velocities.
+// Options of the form --name value, and the flags --csv, --display, --partial-velocities,
+// --body-axes and --relative.
 std::map<std::string, std::string> parse_options(int argc, char** argv) {
   std::map<std::string, std::string> options;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--csv" || arg == "--display" || arg == "--partial-velocities") {
+    if (arg == "--csv" || arg == "--display" || arg == "--partial-velocities" ||
+        arg == "--body-axes" || arg == "--relative") {
       options[arg] = "1";
     } else if ((arg == "--lower" || arg == "--model" || arg == "--state" || arg == "--method" ||
                 arg == "--name" || arg == "--frame" || arg == "--scale" || arg == "--body-mass" ||
-                arg == "--sex" || arg == "--segments") &&
+                arg == "--sex" || arg == "--segments" || arg == "--anthropometry") &&
                i + 1 < argc) {
       options[arg] = argv[++i];
     } else {
@@ -105,17 +112,19 @@ std::string option(const std::map<std::string, std::string>& options, const std:
   return it == options.end() ? "" : it->second;
 }
 
-// --scale, --body-mass, --sex and --segments, for a .bvh model only.
+// --scale, --body-mass, --sex, --segments and --anthropometry, for a .bvh model only.
 mbk::BvhModelOptions bvh_options(const std::map<std::string, std::string>& options,
                                  const std::string& path) {
   const bool given = options.count("--scale") || options.count("--body-mass") ||
                      options.count("--sex") || options.count("--frame") ||
-                     options.count("--segments");
+                     options.count("--segments") || options.count("--anthropometry");
   if (given && !mbk::is_bvh_file(path))
     throw UsageError(
-        "--scale, --body-mass, --sex, --segments and --frame apply to a .bvh model only");
+        "--scale, --body-mass, --sex, --segments, --anthropometry and --frame apply to a .bvh "
+        "model only");
   return mbk::bvh_model_options(option(options, "--scale"), option(options, "--body-mass"),
-                                option(options, "--sex"), option(options, "--segments"));
+                                option(options, "--sex"), option(options, "--segments"),
+                                option(options, "--anthropometry"));
 }
 
 void print_warnings(const mbk::Model& model) {
@@ -197,8 +206,11 @@ int eval(const std::map<std::string, std::string>& options) {
   if (method == "recursive") mbk::forward_kinematics(model, state, data);
   mbk::SystemKinematics<double> system;
   mbk::system_kinematics(model, data, system);
+  mbk::EvalExtras extra;
+  extra.body_axes = options.count("--body-axes");
+  extra.relative = options.count("--relative");
   std::cout << mbk::format_eval_json(model, data, &system, partials ? pv.get() : nullptr,
-                                     file.missing_segments);
+                                     file.missing_segments, extra);
   return 0;
 }
 

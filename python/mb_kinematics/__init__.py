@@ -22,7 +22,7 @@ except ImportError:  # imported from the source folder first on sys.path (a deve
     __path__ = pkgutil.extend_path(__path__, __name__)
     from mb_kinematics import _core
 
-__all__ = ["load", "Model", "OUTPUTS", "Recording"]
+__all__ = ["load", "Model", "OUTPUTS", "Recording", "angles"]
 
 #: A recording's samples (read_recording, or Model.recording from arrays): `times` (rows,),
 #: `positions` (rows, nq), `velocities` and `accelerations` (rows, nq, NaN where not recorded),
@@ -36,13 +36,17 @@ _POSE, _VELOCITY, _ACCELERATION = 0, 1, 2
 OUTPUTS = tuple(_TRAITS)
 _PARTIALS = tuple(name for name in OUTPUTS if name.startswith("partial_"))
 MOST_THREADS = 1024  # as mbk bag --threads
+#: Written only when asked for by name: the partial velocities, the segment frames (`*_body`)
+#: and the joint motion (`relative_*`).
+OPT_IN = tuple(name for name in OUTPUTS if _TRAITS[name]["opt_in"])
 
 
-def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None):
-    """The model of a file (.urdf, .xml, .yaml, .bvh) or of a text (URDF XML, e.g.
-    rospy.get_param("robot_description"), or a YAML scene). scale (metres per file unit),
-    body_mass (kg), sex ("male"/"female") and segments (a YAML map of joints to segments, with
-    body_mass) apply to a .bvh file only. Raises ValueError with the loader's one-line
+def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None, anthropometry=None):
+    """The model of a file (.urdf, .xml, .sdf, .yaml, .bvh) or of a text (URDF, MJCF or SDFormat
+    XML, e.g. rospy.get_param("robot_description"), or a YAML scene). scale (metres per file
+    unit), body_mass (kg), sex ("male"/"female"), segments (a YAML map of joints to segments,
+    with body_mass) and anthropometry ("de_leva", the default, or "dempster": the segment table,
+    with body_mass) apply to a .bvh file only. Raises ValueError with the loader's one-line
     message."""
     if isinstance(path_or_text, os.PathLike):
         path_or_text = os.fspath(path_or_text)
@@ -56,8 +60,48 @@ def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None):
         segments = os.fspath(segments)
     if segments is not None and not isinstance(segments, str):
         raise TypeError("segments: a file name (str), not %s" % type(segments).__name__)
-    return Model(_core.load(path_or_text, scale, body_mass, sex, segments),
+    if anthropometry is not None and not isinstance(anthropometry, str):
+        raise TypeError("anthropometry: 'de_leva' or 'dempster', not %s"
+                        % type(anthropometry).__name__)
+    if anthropometry is not None and not body_mass:
+        raise ValueError("anthropometry chooses the masses' table: it needs body_mass")
+    return Model(_core.load(path_or_text, scale, body_mass, sex, segments,
+                            anthropometry=anthropometry),
                  1.0 if scale is None else float(scale))
+
+
+def angles(rotation, order):
+    """Cardan/Euler angles (rad) of rotation matrices, e.g. kinematics()' `relative_rotation`
+    (N, B, 3, 3) for joint angles (doc/python.md). order: one of the 12 orders ("XYZ", "ZXY",
+    ..., "ZXZ", or digits as "312") for every matrix, or for (N, B, 3, 3) a sequence of B orders,
+    one per body. Returns (..., 3): alpha, beta, gamma with R = R_a1(alpha) R_a2(beta)
+    R_a3(gamma) (turns about the moving axes). Continuous along the first axis: the first
+    sample's principal angles (alpha, gamma in [-pi, pi]; beta in [-pi/2, pi/2], proper Euler
+    orders [0, pi]), each next sample's the set nearest the one before (no 2 pi jumps; at gimbal
+    lock alpha stays). One (3, 3) matrix gives its principal angles."""
+    r = _real(rotation, "rotation")
+    if r.ndim < 2 or r.shape[-2:] != (3, 3):
+        raise ValueError("rotation: shape %s, expected (..., 3, 3)" % (r.shape,))
+    orders = [order] if isinstance(order, str) else list(order)
+    if not all(isinstance(o, str) for o in orders):
+        raise TypeError("order: an order name such as 'ZXY', or a sequence of them")
+    if len(orders) != 1 and (r.ndim != 4 or len(orders) != r.shape[1]):
+        raise ValueError("order: %d orders for rotations of shape %s (one, or one per body of "
+                         "(N, B, 3, 3))" % (len(orders), r.shape))
+    rows = np.ascontiguousarray(r.reshape((1 if r.ndim == 2 else r.shape[0], -1, 3, 3)),
+                                dtype=np.float64)
+    if not np.isfinite(rows).all():
+        raise ValueError("rotation: not finite")
+    gram = np.einsum("...ji,...jk->...ik", rows, rows) - np.eye(3)
+    bad = (np.abs(gram).max(axis=(-2, -1)) > 1e-6) | (np.linalg.det(rows) <= 0)
+    if bad.any():
+        raise ValueError("rotation: not a rotation matrix at index %s (orthonormal, det 1)"
+                         % (np.unravel_index(int(np.argmax(bad)), r.shape[:-2]),))
+    try:
+        out = _core.euler_angles(rows, orders)
+    except ValueError as e:
+        raise ValueError("order: %s" % e) from None
+    return out.reshape(r.shape[:-2] + (3,))
 
 
 class Model:
@@ -382,7 +426,7 @@ def _outputs(outputs, out, has_velocity, has_acceleration):
         outputs = list(out)
     if outputs is None:
         level = _ACCELERATION if has_acceleration else _VELOCITY if has_velocity else _POSE
-        return [n for n in OUTPUTS if n not in _PARTIALS and _TRAITS[n]["level"] <= level]
+        return [n for n in OUTPUTS if n not in OPT_IN and _TRAITS[n]["level"] <= level]
     if isinstance(outputs, str):
         outputs = [outputs]
     names = []

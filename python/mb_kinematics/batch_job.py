@@ -18,7 +18,7 @@ COMMON_OPTIONS = {"--estimator": "NAME", "--max-gap": "S", "--joint-states": "TO
                   "--frame-prefix": "P", "--start-time": "S", "--threads": "N",
                   "--h5-compression": "0-9"}
 BVH_OPTIONS = {"--scale": "M", "--body-mass": "KG", "--sex": "male|female",
-               "--segments": "MAP.yaml"}
+               "--segments": "MAP.yaml", "--anthropometry": "de_leva|dempster"}
 
 
 def locate_mbk_bag():

@@ -22,4 +22,4 @@ def test_example_runs(block, tmp_path):
 
 
 def test_every_example_found():
-    assert len(BLOCKS) == 2
+    assert len(BLOCKS) == 3

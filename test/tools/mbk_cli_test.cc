@@ -826,8 +826,8 @@ TEST(MbkCli, ABvhFileIsAModel) {
       << late.err;
   const Output yaml = mbk("eval --model config/human_body.yaml --body-mass 70");
   EXPECT_EQ(yaml.status, 1);
-  EXPECT_EQ(yaml.err.rfind("mbk: error: --scale, --body-mass, --sex, --segments and --frame apply "
-                           "to a .bvh model only\nusage:",
+  EXPECT_EQ(yaml.err.rfind("mbk: error: --scale, --body-mass, --sex, --segments, --anthropometry "
+                           "and --frame apply to a .bvh model only\nusage:",
                            0),
             0u)
       << yaml.err;
