@@ -10,6 +10,11 @@
 //                                     default estimator, auto); real time, counter samples_per_s
 //   rosbag_read/human_urdf/6000       the floor: rosbag's own read of the same bag (rosbag::View
 //                                     over its messages, each deserialised by instantiate<>)
+//   bag/<tree12|human_urdf>/60000/h5_out   run_bag on 60 s at 1 kHz of the demo trajectories of
+//                                     a 12-link tree (mbk::make_random_revolute_tree(12, 1) with
+//                                     random inertias, as a URDF) or of the human URDF to OUT.h5
+//                                     alone (auto, two computing threads); real time, counter
+//                                     samples_per_s; rosbag_read/<model>/60000: its floor
 //   compute/<model>/<estimated|given>/threads:T   the computation as mbk bag runs it
 //                                     (OfflineBatch: estimates, state checks, forward_kinematics)
 //                                     on T threads, for 5 s at 1 kHz, derivatives estimated
@@ -61,6 +66,7 @@
 #include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
+#include "mb_kinematics/io/urdf_writer.h"
 #include "mb_kinematics/offline/bag_command.h"
 #include "mb_kinematics/offline/offline_batch.h"
 
@@ -71,9 +77,10 @@ const std::string kHumanUrdf = std::string(MBK_SOURCE_DIR) + "/config/human_body
 
 // `seconds` of the demo trajectories of `model_path` at `rate` on /joint_states (positions).
 std::string demo_bag(double rate, const std::string& model_path = kHuman, double seconds = 10) {
+  const std::string stem = model_path == kHumanUrdf ? "urdf" : "tree12";
   const std::string path = "/tmp/mbk_bag_benchmark_" + std::to_string(int(rate)) + "_" +
                            std::to_string(int(seconds * rate)) +
-                           (model_path == kHuman ? "" : "_urdf") + ".bag";
+                           (model_path == kHuman ? "" : "_" + stem) + ".bag";
   const mbk::Model model = mbk::load_model_file(model_path);
   const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
   rosbag::Bag bag(path, rosbag::bagmode::Write);
@@ -126,9 +133,52 @@ void bag_to_csv(benchmark::State& state) {
   state.counters["read_ms_per_1k"] = 1e6 * read / samples;
 }
 
-// rosbag's own read of bag_to_csv's bag: every message deserialised, nothing else.
-void rosbag_read(benchmark::State& state) {
-  const std::string path = demo_bag(1000, kHumanUrdf, 6);
+// The 12-link tree of bag/tree12/60000/h5_out, written as a URDF once (at its first use: not
+// before main, as the model's tables are made).
+const std::string& tree12_urdf() {
+  static const std::string path = [] {
+    const std::string p = "/tmp/mbk_bag_benchmark_tree12.urdf";
+    std::FILE* f = std::fopen(p.c_str(), "w");
+    const mbk::Model m = mbk::with_random_inertias(mbk::make_random_revolute_tree(12, 1), 1);
+    const std::string text = mbk::write_urdf(m, "tree12");
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+    return p;
+  }();
+  return path;
+}
+
+// mbk bag from `seconds` of a 1 kHz bag of `model_path` to an HDF5 file alone, on two computing
+// threads, reading included, in real time.
+// "tree12" or "human_urdf".
+std::string bench_model(const std::string& name) {
+  return name == "tree12" ? tree12_urdf() : kHumanUrdf;
+}
+
+void bag_to_h5(benchmark::State& state, const std::string& model, double seconds) {
+  const std::string model_path = bench_model(model);
+  mbk_offline::BagOptions o;
+  o.input = demo_bag(1000, model_path, seconds);
+  o.model = model_path;
+  o.out_h5 = "/tmp/mbk_bag_benchmark_out.h5";
+  o.threads = 2;
+  long samples = 0;
+  double read = 0, compute = 0, write = 0;
+  for (auto _ : state) {
+    const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
+    samples += s.written;
+    read += s.read_seconds, compute += s.compute_seconds, write += s.write_seconds;
+  }
+  state.counters["samples_per_s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
+  state.counters["read_ms_per_1k"] = 1e6 * read / samples;
+  state.counters["compute_ms_per_1k"] = 1e6 * compute / samples;
+  state.counters["write_ms_per_1k"] = 1e6 * write / samples;
+}
+
+// rosbag's own read of the bag of `seconds` at 1 kHz of `model_path`: every message
+// deserialised, nothing else.
+void rosbag_read(benchmark::State& state, const std::string& model, double seconds) {
+  const std::string path = demo_bag(1000, bench_model(model), seconds);
   long samples = 0;
   for (auto _ : state) {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
@@ -347,8 +397,24 @@ BENCHMARK(bag_to_csv)
     ->Name("bag/human_urdf/6000/csv_out")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(rosbag_read)
+BENCHMARK_CAPTURE(rosbag_read, human_urdf / 6000, "human_urdf", 6.0)
     ->Name("rosbag_read/human_urdf/6000")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(bag_to_h5, tree12 / 60000 / h5_out, "tree12", 60.0)
+    ->Name("bag/tree12/60000/h5_out")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(rosbag_read, tree12 / 60000, "tree12", 60.0)
+    ->Name("rosbag_read/tree12/60000")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(bag_to_h5, human_urdf / 60000 / h5_out, "human_urdf", 60.0)
+    ->Name("bag/human_urdf/60000/h5_out")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(rosbag_read, human_urdf / 60000, "human_urdf", 60.0)
+    ->Name("rosbag_read/human_urdf/60000")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(compute, human / estimated, human(), false)

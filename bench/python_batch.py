@@ -8,7 +8,7 @@ pose, velocities and accelerations) on 1000 states; the peak memory of a fresh c
 process: its peak RSS during the call, VmHWM reset just before it, above its RSS then) against the bytes of the arrays
 asked for. Prints a markdown table. Not a test: the figures depend on the machine's load.
 
-  source devel/setup.bash; /usr/bin/python3 bench/python_batch.py [--samples N]
+  source devel/setup.bash; /usr/bin/python3 bench/python_batch.py [--samples N] [--in-place-only]
   (run outside the repository's root, which would shadow the package: e.g. cd /tmp first)
 """
 import argparse
@@ -129,8 +129,13 @@ def dartpy_loop(name, model, q, v, a):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--samples", type=int, default=100000)
-    n = parser.parse_args().samples
+    parser.add_argument("--in-place-only", action="store_true",
+                        help="only the last table (out=, fresh arrays, chunks)")
+    arguments = parser.parse_args()
+    n = arguments.samples
     cpp = cpp_rows()
+    if arguments.in_place_only:
+        return chunk_rows(n, cpp)
     print("| model | outputs | threads | Python call, out= (ms) | C++ batch_kinematics (ms) | "
           "Python / C++ | Python, fresh arrays (ms) | ns per sample | ns per body and sample |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -175,6 +180,55 @@ def main():
             used, asked = peak_memory(name, outputs, n)
             print("%s %s: peak memory of the call %.1f MB, arrays asked for %.1f MB (%.2fx)" % (
                 name, kind, used / 1e6, asked / 1e6, used / asked))
+    chunk_rows(n, cpp)
+
+
+def chunk_rows(n, cpp):
+    """Human, full outputs, 2 threads: out= against the plain copy of the same bytes, fresh
+    arrays against out=, chunks of 10,000 rows (kinematics_chunks) against one call, and the
+    chunks' peak memory against one chunk's arrays."""
+    model = mb_kinematics.load(os.path.join(ROOT, MODELS["human"]))
+    q, v, a = states(model, n)
+    names = [k for k in mb_kinematics.OUTPUTS if not k.startswith("partial")]
+    fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
+    out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
+    call = best(lambda: model.kinematics(q, v, a, outputs=names, threads=2, out=out), 5)
+    fresh = best(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 5)
+
+    def chunks():
+        for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000):
+            pass
+    chunked = best(chunks, 5)
+    copy = cpp["copy/human/full/threads:2"]
+    print()
+    print("| human, full outputs, 2 threads | ms | ratio | aim |")
+    print("|---|---:|---:|---:|")
+    print("| plain copy of the same bytes (C++ memcpy) | %.1f | | |" % (copy * 1e3))
+    print("| out= | %.1f | %.2fx the copy | 1.25x |" % (call * 1e3, call / copy))
+    print("| fresh arrays | %.1f | %.2fx out= | 1.3x |" % (fresh * 1e3, fresh / call))
+    print("| kinematics_chunks, rows=10000 | %.1f | %.2fx out= | 1.1x |" % (
+        chunked * 1e3, chunked / call))
+    code = """
+import sys, numpy as np, mb_kinematics
+m = mb_kinematics.load(sys.argv[1]); n = int(sys.argv[2]); outputs = sys.argv[3].split(",")
+rng = np.random.default_rng(1)
+q, v, a = (rng.uniform(-0.5, 0.5, (n, k)) for k in (m.nq, m.nv, m.nv))
+def status(key):
+    line = next(l for l in open("/proc/self/status") if l.startswith(key))
+    return int(line.split()[1]) * 1024
+open("/proc/self/clear_refs", "w").write("5")
+before = status("VmRSS:")
+chunk = 0
+for start, out in m.kinematics_chunks(q, v, a, outputs=outputs, threads=2, rows=10000):
+    chunk = max(chunk, sum(x.nbytes for x in out.values()))
+print(status("VmHWM:") - before, chunk)
+"""
+    done = subprocess.run([sys.executable, "-c", code, os.path.join(ROOT, MODELS["human"]),
+                           str(n), ",".join(names)], capture_output=True, text=True, check=True,
+                          cwd="/tmp")
+    used, chunk = map(int, done.stdout.split())
+    print("| kinematics_chunks' peak memory | %.1f MB | %.2fx one chunk's arrays (%.1f MB) | 1x |"
+          % (used / 1e6, used / chunk, chunk / 1e6))
 
 
 if __name__ == "__main__":

@@ -292,6 +292,29 @@ class Model:
                     for name, a in arrays.items()}
         return arrays
 
+    def kinematics_chunks(self, q, velocity=None, acceleration=None, rows=10000, **options):
+        """kinematics() of (N, nq) q (and (N, nv) velocity, acceleration) `rows` samples at a
+        time, for any N in the memory of one chunk: yields (start, out) per chunk, out's arrays
+        holding samples start.. start + len (rows, fewer in the last chunk). The arrays are
+        reused by the next chunk: copy what must outlive it. Options as kinematics() but out."""
+        rows = _count(rows, "rows")
+        if "out" in options:
+            raise ValueError("out: not with kinematics_chunks (its arrays are its own)")
+        single, q = _positions(self, q)
+        if single:
+            raise ValueError("q: shape (%d,), expected (N, %d) rows to split" % (self.nq, self.nq))
+        n = q.shape[0]
+        velocity = _speeds(self, velocity, "velocity", n, False)
+        acceleration = _speeds(self, acceleration, "acceleration", n, False)
+        arrays = None
+        for start in range(0, n, rows):
+            stop = min(n, start + rows)
+            part = [None if x is None else x[start:stop] for x in (velocity, acceleration)]
+            out = None if arrays is None else {k: a[:stop - start] for k, a in arrays.items()}
+            result = self.kinematics(q[start:stop], part[0], part[1], out=out, **options)
+            arrays = arrays or result
+            yield start, result
+
 
 def _frozen(array):
     """A read-only view of a read-only array: setflags(write=True) cannot undo it (numpy refuses
@@ -476,6 +499,17 @@ def _apart(arrays, *inputs):
     return [None if a is None else
             a.copy() if any(np.may_share_memory(a, o) for o in arrays.values()) else a
             for a in inputs]
+
+
+def _count(value, name):
+    """A count of at least 1 (ValueError naming `name` otherwise)."""
+    try:
+        n = operator.index(value)
+    except TypeError:
+        raise TypeError("%s: an integer, not %s" % (name, type(value).__name__)) from None
+    if n < 1:
+        raise ValueError("%s: %d, expected at least 1" % (name, n))
+    return n
 
 
 def _threads(threads):

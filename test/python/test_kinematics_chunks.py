@@ -1,0 +1,64 @@
+"""Model.kinematics_chunks: the results of one call, chunk by chunk, in the memory of one chunk
+(tracemalloc counts numpy's arrays); a chunk size of 0 or less is a ValueError naming `rows`.
+And one large call (its outputs streamed past the caches, offline/stream_copy.h) equals the same
+samples computed in small calls (written in place), in float64 and float32."""
+import tracemalloc
+
+import numpy as np
+import pytest
+
+from conftest import random_states, source
+
+
+@pytest.fixture(scope="module")
+def human(mbk_kinematics):
+    return mbk_kinematics.load(source("config/human_body.urdf"))
+
+
+def test_chunks_are_the_one_call_in_fixed_memory(human):
+    q, v, a = random_states(human, 2500, seed=5)
+    whole = human.kinematics(q, v, a, threads=2)
+    starts = []
+    for start, out in human.kinematics_chunks(q, v, a, rows=300, threads=2):
+        starts.append(start)
+        size = len(out["rotation"])
+        assert size == min(300, 2500 - start)
+        for name, array in out.items():
+            assert np.array_equal(array, whole[name][start:start + size], equal_nan=True)
+    assert starts == list(range(0, 2500, 300))
+    tracemalloc.start()
+    try:
+        for start, out in human.kinematics_chunks(q, v, a, rows=300, threads=2):
+            pass
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    chunk_bytes = sum(x[:300].nbytes for x in whole.values())
+    assert chunk_bytes < peak < 1.2 * chunk_bytes  # one chunk's arrays, not 2500 samples'
+    only = list(human.kinematics_chunks(q[:10], v[:10], outputs=["omega"], rows=4))
+    assert [s for s, _ in only] == [0, 4, 8] and set(only[0][1]) == {"omega"}
+
+
+def test_bad_chunk_sizes(human):
+    q = np.zeros((5, human.nq))
+    for rows in (0, -3):
+        with pytest.raises(ValueError, match="rows: %d, expected at least 1" % rows):
+            next(human.kinematics_chunks(q, rows=rows))
+    with pytest.raises(TypeError, match="rows: an integer"):
+        next(human.kinematics_chunks(q, rows=2.5))
+    with pytest.raises(ValueError, match="out: not with kinematics_chunks"):
+        next(human.kinematics_chunks(q, rows=2, out={}))
+
+
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_streamed_outputs_equal_small_calls(human, dtype):
+    """3000 samples of the default outputs (24 MB in float64, 12 in float32): streamed; calls of
+    20 samples stay under the threshold and are written in place."""
+    q, v, a = random_states(human, 3000, seed=6)
+    big = human.kinematics(q, v, a, outputs=None, threads=2, dtype=dtype)
+    assert sum(x.nbytes for x in big.values()) > (8 << 20)
+    for start in range(0, 3000, 20):
+        small = human.kinematics(q[start:start + 20], v[start:start + 20], a[start:start + 20],
+                                 threads=1, dtype=dtype)
+        for name in small:
+            assert np.array_equal(small[name], big[name][start:start + 20], equal_nan=True), name
