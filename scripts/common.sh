@@ -41,6 +41,7 @@ MBK_TEST_PACKAGES=(
   valgrind  # the loaders' memcheck (test/tests.cmake)
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
+  python3-mypy  # the Python stubs checked against the module (test/python/test_typing.py)
   python3-dask python3-distributed python3-psutil  # mbk batch --scheduler's tests (Dask)
   python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
   joint-state-publisher-gui  # mb_kinematics.launch gui:=true (Qt: 106 packages; gui_launch)
