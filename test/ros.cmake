@@ -4,7 +4,7 @@ find_package(rostest REQUIRED)
 
 catkin_add_gtest(joint_state_input_test test/ros/joint_state_input_test.cc)
 add_dependencies(joint_state_input_test mb_kinematics_msgs_generate_messages_cpp)
-target_link_libraries(joint_state_input_test mbk_ros mbk_io mbk_core gtest_main)
+target_link_libraries(joint_state_input_test mbk_ros mbk_engine mbk_io mbk_core gtest_main)
 target_compile_definitions(joint_state_input_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 # The input side's models, with and without ~base_odometry (no ROS master needed).
@@ -90,7 +90,7 @@ target_link_libraries(nodelet_load_test ${catkin_LIBRARIES})
 # mbk bag on bags written by the test (no master needed).
 catkin_add_gtest(bag_test test/offline/bag_test.cc)
 add_dependencies(bag_test mbk mbk_bag mb_kinematics_msgs_generate_messages_cpp)
-target_link_libraries(bag_test mbk_offline mbk_analysis mbk_io mbk_core gtest_main)
+target_link_libraries(bag_test mbk_bag_cli mbk_offline mbk_analysis mbk_io mbk_core gtest_main)
 target_compile_definitions(bag_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   MBK_MBK_PATH="$<TARGET_FILE:mbk>")
 

@@ -4,13 +4,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
-#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -27,7 +25,6 @@
 #include "mb_kinematics/offline/bag_output.h"
 #include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/bvh_recording.h"
-#include "mb_kinematics/offline/error_bar_summary.h"
 #include "mb_kinematics/offline/offline_batch.h"
 #include "mb_kinematics/offline/offline_stream.h"
 #include "mb_kinematics/offline/output_file.h"
@@ -89,29 +86,31 @@ std::string errors_path(const std::string& csv, const char* suffix = ".errors.cs
   return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
 }
 
-// Refuses, before anything is read or written, an output that is the same file as an input
-// (IN, --model) or as another output; with "auto" (`side_files`) the outputs include the CSV's
-// side files OUT.errors.csv and OUT.sample_errors.csv.
-void refuse_same_files(const BagOptions& o, bool side_files) {
-  using Named = std::pair<std::string, std::string>;
-  const std::vector<Named> inputs = {{"the input", o.input}, {"--model", o.model}};
-  std::vector<Named> outputs;
-  if (!o.out_bag.empty()) outputs.push_back({"--out", o.out_bag});
-  if (!o.out_csv.empty()) outputs.push_back({"--csv", o.out_csv});
-  if (!o.summary_json.empty()) outputs.push_back({"--summary-json", o.summary_json});
+// What a run writes: the outputs, the caller's other files, and with "auto" (`side_files`) the
+// CSV's side files OUT.errors.csv and OUT.sample_errors.csv.
+std::vector<NamedFile> written_files(const BagOptions& o, bool side_files) {
+  std::vector<NamedFile> files = output_files(o);
+  files.insert(files.end(), o.other_outputs.begin(), o.other_outputs.end());
   if (side_files && has_side_files(o.out_csv))
     for (const char* suffix : {".errors.csv", ".sample_errors.csv"})
-      outputs.push_back({"--csv's side file", errors_path(o.out_csv, suffix)});
-  for (const Named& out : outputs)
-    for (const Named& in : inputs)
-      if (same_file(out.second, in.second, false))
-        throw std::invalid_argument(out.first + " " + out.second + " is the same file as " +
-                                    in.first + " " + in.second + ": refused, nothing written");
+      files.push_back({"--csv's side file", errors_path(o.out_csv, suffix)});
+  return files;
+}
+
+// Refuses, before anything is read or written, an output that is the same file as an input or
+// as another output.
+void refuse_same_files(const std::vector<NamedFile>& inputs,
+                       const std::vector<NamedFile>& outputs) {
+  for (const NamedFile& out : outputs)
+    for (const NamedFile& in : inputs)
+      if (same_file(out.path, in.path, false))
+        throw std::invalid_argument(out.name + " " + out.path + " is the same file as " + in.name +
+                                    " " + in.path + ": refused, nothing written");
   for (size_t i = 0; i < outputs.size(); ++i)
     for (size_t j = i + 1; j < outputs.size(); ++j)
-      if (same_file(outputs[i].second, outputs[j].second, true))
-        throw std::invalid_argument(outputs[i].first + " " + outputs[i].second + " and " +
-                                    outputs[j].first + " " + outputs[j].second +
+      if (same_file(outputs[i].path, outputs[j].path, true))
+        throw std::invalid_argument(outputs[i].name + " " + outputs[i].path + " and " +
+                                    outputs[j].name + " " + outputs[j].path +
                                     " are the same file: refused, nothing written");
 }
 
@@ -191,31 +190,46 @@ void compute_and_write(mbk::OfflineBatch& batch, const mbk::Model& model, int ro
   s.write_seconds += since(t_close);
 }
 
-// Every sample of the input into `builder` (a trajectory CSV, a BVH file or a bag) for the model
-// of `file`; `checked`: the bag was read safely before (read_bag). A BVH input that is the model
-// file (the default) is not read again: its motion is in `file`.
-void read_input(const BagOptions& o, const mbk::ModelFile& file, mbk::RecordingBuilder& builder,
-                BaseOdometry& base, BagSummary& s, bool checked) {
-  mbk::Progress bar("reading  ", o.progress);
-  builder.offset_times(o.start_time);
-  if (file.bvh && o.input == o.model)
-    return mbk::add_bvh_frames(*file.bvh, file.model, o.bvh.scale, builder);
-  if (mbk::is_bvh_file(o.input))
-    return mbk::add_bvh_frames(mbk::read_bvh(o.input), file.model, o.bvh.scale, builder);
-  if (ends_with(o.input, ".csv")) return mbk::read_trajectory_csv(o.input, builder);
+// How a run reads its input (read_input) for the model of `file`.
+struct InputReading {
+  const BagInput& in;
+  const mbk::ModelFile& file;
+  double bvh_scale;  // a BVH input's frames at the model's scale
+  bool is_model;     // IN is the model file (a BVH input's own skeleton): its motion is in `file`
+  bool progress;
+};
+
+InputReading reading_of(const BagOptions& o, const mbk::ModelFile& file) {
+  return {o, file, o.bvh.scale, file.bvh && o.input == o.model, o.progress};
+}
+
+// Every sample of the input into `builder` (a trajectory CSV, a BVH file or a bag);
+// `checked`: the bag was read safely before (read_bag). A BVH input that is the model file (the
+// default) is not read again.
+void read_input(const InputReading& r, mbk::RecordingBuilder& builder, BaseOdometry& base,
+                BagSummary& s, bool checked) {
+  const std::string& input = r.in.input;
+  mbk::Progress bar("reading  ", r.progress);
+  builder.offset_times(r.in.start_time);
+  if (r.is_model) return mbk::add_bvh_frames(*r.file.bvh, r.file.model, r.bvh_scale, builder);
+  if (mbk::is_bvh_file(input))
+    return mbk::add_bvh_frames(mbk::read_bvh(input), r.file.model, r.bvh_scale, builder);
+  if (ends_with(input, ".csv")) return mbk::read_trajectory_csv(input, builder);
   Unreadable unreadable;
   read_bag(
-      o.input, {o.joint_states, o.joint_accelerations, o.base_odometry}, builder, base, unreadable,
+      input, r.in, builder, base, unreadable,
       [&](long done, long total) { bar.update(done, total); }, checked);
   s.unreadable = unreadable.count;
   s.unreadable_example = unreadable.first;
 }
 
 // OUT.bag and/or OUT.csv opened (under temporary names) for `base_model`'s bodies (the model of
-// `file`, with or without a base); errors: the CSV has the error bars' columns.
-void open_outputs(const BagOptions& o, const mbk::ModelFile& file, const mbk::Model& base_model,
-                  const std::string& base_frame, bool errors, Outputs& out) {
-  out.input = o.input;
+// `file`, with or without a base); errors: the CSV has the error bars' columns. `input` names IN
+// in the bag's stamp error.
+void open_outputs(const BagOutputs& o, const std::string& input, const mbk::ModelFile& file,
+                  const mbk::Model& base_model, const std::string& base_frame, bool errors,
+                  Outputs& out) {
+  out.input = input;
   const std::vector<std::string>& missing = file.missing_segments;
   if (!o.out_bag.empty()) {
     out.bag_file = std::make_unique<OutputFile>(o.out_bag);
@@ -319,18 +333,18 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
-  InputRows(const BagOptions& o, const mbk::ModelFile& file) : o_(o), file_(file) {}
+  explicit InputRows(const InputReading& reading) : reading_(reading) {}
   // Every row to `sink`; the first pass's unreadable messages go to `s`.
   void pass(const Sink& sink, BagSummary& s) {
     if (read_ && kept_) return replay(sink);
     const bool first = !read_;
-    mbk::RecordingBuilder builder(file_.model);
+    mbk::RecordingBuilder builder(reading_.file.model);
     builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
       if (first) keep(t, p, v, g);
       sink(t, p, v, g);
     });
     BaseOdometry unused;
-    read_input(o_, file_, builder, unused, s, read_);
+    read_input(reading_, builder, unused, s, read_);
     builder.finish();  // every coordinate named, or the error
     if (!first) return;
     read_ = true;
@@ -345,7 +359,7 @@ class InputRows {
 
  private:
   void keep(double t, const double* p, const double* v, const std::uint8_t* g) {
-    const std::size_t nq = file_.model.nq, rows = t_.size();
+    const std::size_t nq = reading_.file.model.nq, rows = t_.size();
     const std::size_t most = kKeptRowBytes / (sizeof(double) * (1 + 2 * nq) + nq);
     if (!kept_) return;
     if (rows == most) {
@@ -363,8 +377,8 @@ class InputRows {
     given_.insert(given_.end(), g, g + nq);
   }
   void replay(const Sink& sink) const {
-    const std::size_t nq = file_.model.nq, rows = t_.size();
-    mbk::Progress bar("computing", o_.progress);
+    const std::size_t nq = reading_.file.model.nq, rows = t_.size();
+    mbk::Progress bar("computing", reading_.progress);
     for (std::size_t r = 0; r < rows; ++r) {
       if (r % 1024 == 0) bar.update(static_cast<long>(r), static_cast<long>(rows));
       sink(t_[r], position_.data() + r * nq, velocity_.data() + r * nq, given_.data() + r * nq);
@@ -372,8 +386,7 @@ class InputRows {
     bar.finish();
   }
 
-  const BagOptions& o_;
-  const mbk::ModelFile& file_;
+  const InputReading reading_;
   bool read_ = false, kept_ = true;
   mbk::DropLog log_;
   long samples_read_ = 0;
@@ -390,7 +403,7 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
                   const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
   const mbk::Model& model = file.model;
-  InputRows input(o, file);
+  InputRows input(reading_of(o, file));
   const bool intervals = o.max_gap <= 0 || estimator.automatic;
   mbk::RecordingSurvey survey(model.nq, intervals);
   mbk::StampGridFit grid_fit;
@@ -429,7 +442,7 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
     whole = choose.finish(reach);
   }
   Outputs out;
-  open_outputs(o, file, model, "", estimator.automatic, out);
+  open_outputs(o, o.input, file, model, "", estimator.automatic, out);
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,
       [&](const mbk::OfflineRow& row) { take(row, out, input.log(), s.written); });
@@ -467,85 +480,19 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
 
 }  // namespace
 
-BagOptions parse_bag_options(int argc, char** argv) {
-  BagOptions o;
-  std::string scale, body_mass, sex, segments;
-  const std::map<std::string, std::string*> values = {
-      {"--model", &o.model},
-      {"--out", &o.out_bag},
-      {"--csv", &o.out_csv},
-      {"--summary-json", &o.summary_json},
-      {"--joint-states", &o.joint_states},
-      {"--joint-accelerations", &o.joint_accelerations},
-      {"--base-odometry", &o.base_odometry},
-      {"--estimator", &o.estimator},
-      {"--frame-prefix", &o.frame_prefix},
-      {"--scale", &scale},
-      {"--body-mass", &body_mass},
-      {"--sex", &sex},
-      {"--segments", &segments}};
-  std::set<std::string> given;  // of `values`: each once
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto it = values.find(arg);
-    if (it != values.end() && i + 1 < argc) {
-      if (!given.insert(arg).second) throw std::invalid_argument(arg + " is given twice");
-      *it->second = argv[++i];
-    } else if (arg == "--max-gap" && i + 1 < argc) {
-      char* end = nullptr;
-      o.max_gap = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(o.max_gap > 0))  // 0 is the default's mark: not a gap to give
-        throw std::invalid_argument("--max-gap needs seconds > 0, not '" + std::string(argv[i]) +
-                                    "' (leave it out for 5 x the median sample interval)");
-    } else if (arg == "--start-time" && i + 1 < argc) {
-      char* end = nullptr;
-      o.start_time = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !std::isfinite(o.start_time))
-        throw std::invalid_argument("--start-time needs seconds, not '" + std::string(argv[i]) +
-                                    "'");
-    } else if (arg == "--threads" && i + 1 < argc) {
-      char* end = nullptr;
-      const long n = std::strtol(argv[++i], &end, 10);
-      if (*end != '\0' || n < 1 || n > 1024)
-        throw std::invalid_argument("--threads needs a count from 1 to 1024, not '" +
-                                    std::string(argv[i]) + "'");
-      o.threads = static_cast<int>(n);
-    } else if (arg == "--max-memory" && i + 1 < argc) {
-      char* end = nullptr;
-      o.max_memory = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(o.max_memory > 0) || !std::isfinite(o.max_memory))
-        throw std::invalid_argument("--max-memory needs GiB > 0, not '" + std::string(argv[i]) +
-                                    "'");
-    } else if (arg == "--verbose") {
-      o.verbose = true;
-    } else if (arg == "--help" || arg == "-h") {
-      o.help = true;
-      return o;
-    } else if (arg.rfind("--", 0) != 0 && o.input.empty()) {
-      o.input = arg;
-    } else {
-      throw std::invalid_argument("unknown or incomplete option '" + arg + "'");
-    }
-  }
-  if (o.input.empty()) throw std::invalid_argument("bag needs an input IN.bag, IN.csv or IN.bvh");
-  if (o.model.empty() && mbk::is_bvh_file(o.input)) o.model = o.input;
-  if (o.model.empty()) throw std::invalid_argument("bag needs --model FILE");
-  if (!(scale + body_mass + sex + segments).empty() && !mbk::is_bvh_file(o.model))
-    throw std::invalid_argument(
-        "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
-  o.bvh = mbk::bvh_model_options(scale, body_mass, sex, segments);
-  if (o.out_bag.empty() && o.out_csv.empty())
-    throw std::invalid_argument("bag needs --out OUT.bag and/or --csv OUT.csv");
-  if (o.start_time != 0 && !ends_with(o.input, ".csv") && !mbk::is_bvh_file(o.input))
-    throw std::invalid_argument("--start-time applies to a .csv or .bvh input, not a bag");
-  return o;
+std::vector<NamedFile> output_files(const BagOutputs& o) {
+  std::vector<NamedFile> files;
+  if (!o.out_bag.empty()) files.push_back({"--out", o.out_bag});
+  if (!o.out_csv.empty()) files.push_back({"--csv", o.out_csv});
+  return files;
 }
 
 BagSummary run_bag(const BagOptions& o) {
   const auto wall = Clock::now();
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
-  refuse_same_files(o, estimator.automatic);
+  refuse_same_files({{"the input", o.input}, {"--model", o.model}},
+                    written_files(o, estimator.automatic));
   BagSummary s;
   const mbk::ModelFile file = load(o.model, o.bvh);
   const mbk::Model& model = file.model;
@@ -563,7 +510,7 @@ BagSummary run_bag(const BagOptions& o) {
   }
   mbk::RecordingBuilder builder(model);
   BaseOdometry base;
-  read_input(o, file, builder, base, s, may_stream);
+  read_input(reading_of(o, file), builder, base, s, may_stream);
   const mbk::Recording rec = builder.finish();
   s.grid = rec.grid;
   s.read = builder.samples_read();
@@ -588,7 +535,7 @@ BagSummary run_bag(const BagOptions& o) {
         mbk::with_floating_base(model, base.frame, "base_odometry"));
   const mbk::Model& base_model = floating ? *with_base : model;
   // The error bars' columns with auto (in the model's frame: not with a base).
-  open_outputs(o, file, base_model, base.frame, estimator.automatic && !floating, out);
+  open_outputs(o, o.input, file, base_model, base.frame, estimator.automatic && !floating, out);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);
   batch.set_formatter(out.formatter());
@@ -603,66 +550,6 @@ BagSummary run_bag(const BagOptions& o) {
   }
   s.wall_seconds = since(wall);
   return s;
-}
-
-int exit_status(const BagSummary& s) { return s.unreadable == 0 && s.written > 0 ? 0 : 2; }
-
-const char* bag_usage() {
-  return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
-         "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
-         "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
-         "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"
-         "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
-         "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml] ...\n"
-         "   --verbose: every coordinate's error bars and the times in the summary\n"
-         "   --max-memory: GiB of address space at most (default: 90 % of this machine's memory)\n"
-         "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";
-}
-
-std::string format_summary(const BagSummary& s, bool verbose) {
-  char line[256];
-  std::string out;
-  std::snprintf(
-      line, sizeof line,
-      "mbk bag: %ld samples read, %ld written, %ld dropped (estimator %s, gaps > %.3g s)\n", s.read,
-      s.written, s.log.dropped(), s.estimator.c_str(), s.max_gap);
-  out += line;
-  for (const auto& d : s.log.drops)
-    out += "  dropped " + std::to_string(d.second) + ": " + d.first +
-           " (first: " + s.log.example.at(d.first) + ")\n";
-  for (const auto& n : s.log.notes)
-    out += "  note " + std::to_string(n.second) + " samples: " + n.first +
-           " (first: " + s.log.example.at(n.first) + ")\n";
-  if (s.grid.moves) {
-    std::snprintf(line, sizeof line,
-                  "  stamps on a uniform grid of %.9g s: differentiated at the grid's times, %.2g "
-                  "s at most from the stamps (tolerance %.2g s)\n",
-                  static_cast<double>(s.grid.period), s.grid.worst, s.grid.tolerance);
-    out += line;
-  }
-  if (!verbose) out += mbk::error_bar_line(s.errors);
-  if (verbose && !s.errors.empty())
-    out +=
-        "  error bars (noise level; median standard error of velocity, acceleration, medians to "
-        "5e-4 relative):\n";
-  for (const mbk::CoordinateError& e : verbose ? s.errors : std::vector<mbk::CoordinateError>{}) {
-    std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n",
-                  mbk::printable(e.name).c_str(), e.noise, e.velocity_se, e.acceleration_se);
-    out += line;
-  }
-  if (s.unreadable > 0)
-    out += "  unreadable " + std::to_string(s.unreadable) +
-           " messages, skipped: the output is partial (first: " + s.unreadable_example + ")\n";
-  if (s.written == 0) out += "  nothing written\n";
-  if (!verbose) return out;
-  const double rate = s.wall_seconds > 0 ? s.written / s.wall_seconds : 0;
-  std::snprintf(line, sizeof line,
-                "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s (%d threads, summed; "
-                "beside the writing), write %.3f s\n",
-                s.wall_seconds, rate, s.read_seconds, s.compute_seconds, s.threads,
-                s.write_seconds);
-  out += line;
-  return out;
 }
 
 }  // namespace mbk_offline

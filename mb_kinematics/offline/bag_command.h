@@ -3,36 +3,50 @@
 // (doc/recorded_data.md).
 #pragma once
 
-#include <map>
 #include <string>
 #include <vector>
 
 #include "mb_kinematics/estimation/stamp_grid.h"
 #include "mb_kinematics/io/bvh_model.h"
+#include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/offline_kinematics.h"
 #include "mb_kinematics/offline/recording.h"
 
 namespace mbk_offline {
 
-struct BagOptions {
-  std::string input;         // .bag, .csv or .bvh
+// A file by what names it ("--csv", "the input"), for messages.
+struct NamedFile {
+  std::string name, path;
+};
+
+// What a run reads: IN and, of a bag, its topics (bag_input.h).
+struct BagInput : BagTopics {
+  std::string input;      // .bag, .csv or .bvh
+  double start_time = 0;  // seconds added to every time of a .csv or .bvh input
+};
+
+// What a run writes: OUT.bag and/or OUT.csv.
+struct BagOutputs {
+  std::string out_bag, out_csv;
+  std::string frame_prefix;  // of the bag's frames (messages/frames.h)
+};
+
+// A run of mbk bag (mb_kinematics/tools/bag_cli.h makes it from the command line): its input,
+// its outputs, and how the kinematics are computed. The inner steps take their group only.
+struct BagOptions : BagInput, BagOutputs {
   std::string model;         // a .bvh input's own skeleton when empty
   mbk::BvhModelOptions bvh;  // --scale, --body-mass, --sex: a .bvh model's
-  std::string out_bag, out_csv;
-  std::string summary_json;  // --summary-json: the summary for programs (bag_summary_json.h)
-  std::string joint_states = "/joint_states";
-  std::string joint_accelerations;
-  std::string base_odometry;  // nav_msgs/Odometry of a floating base (core/floating_base.h)
-  std::string estimator;      // empty: the default
-  std::string frame_prefix;
-  double max_gap = 0;     // seconds; 0: 5 x the median interval
-  double start_time = 0;  // seconds added to every time of a .csv or .bvh input
-  bool progress = false;  // draw a progress bar on stderr
-  int threads = 0;        // computing threads; 0: one per CPU (default_thread_count)
-  double max_memory = 0;  // --max-memory GiB of address space (offline/memory_cap.h); 0: default
-  bool verbose = false;   // --verbose: the summary with every coordinate's error bars
-  bool help = false;      // --help: print the usage, nothing else
+  std::string estimator;     // empty: the default
+  double max_gap = 0;        // seconds; 0: 5 x the median interval
+  int threads = 0;           // computing threads; 0: one per CPU (default_thread_count)
+  bool progress = false;     // draw a progress bar on stderr
+  // Files the caller writes besides the outputs (mbk bag's --summary-json): refused, as the
+  // outputs are, when one is an input or another output.
+  std::vector<NamedFile> other_outputs;
 };
+
+// The files a run writes (but the error bars' side files): --out, --csv, in that order.
+std::vector<NamedFile> output_files(const BagOutputs& o);
 
 struct BagSummary {
   long read = 0, written = 0;
@@ -50,20 +64,5 @@ struct BagSummary {
 
 // Throws std::invalid_argument (bad options, model, input) with a one-line message.
 BagSummary run_bag(const BagOptions& options);
-
-// mbk bag's exit status after a run: 0 when every sample read was written or dropped for a
-// counted reason; 2 when some message could not be read or nothing was written (partial).
-int exit_status(const BagSummary& s);
-
-// The summary as printed at the end: samples, drops, the estimator, the noise level and the
-// worst error bar; `verbose` adds every coordinate's error bars and the times.
-std::string format_summary(const BagSummary& s, bool verbose = false);
-
-// `mbk bag`'s usage (--help).
-const char* bag_usage();
-
-// Parses `mbk bag IN --model F ...` (argv[0] is "mbk", argv[1] "bag"); throws
-// std::invalid_argument for a wrong command line.
-BagOptions parse_bag_options(int argc, char** argv);
 
 }  // namespace mbk_offline

@@ -11,8 +11,6 @@
 namespace mbk {
 namespace {
 
-std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
-
 std::string join(const std::vector<std::string>& names, size_t max = 8) {
   std::string out;
   for (size_t i = 0; i < names.size() && i < max; ++i) out += (i ? ", " : "") + names[i];
@@ -44,75 +42,9 @@ long DropLog::dropped() const {
 }
 
 RecordingBuilder::RecordingBuilder(const Model& model)
-    : model_(model),
-      mimic_(model.nq, 0),
-      message_index_(model.nq, -1),
-      last_(model.nq, 0.0),
-      seen_(model.nq, 0) {
+    : model_(model), intake_(model), acceleration_names_(model), mimic_(model.nq, 0) {
   rec_.nq = model.nq;
-  for (int i = 0; i < model.nq; ++i) index_[model.coordinate_names[i]] = i;
   for (const Mimic& m : model.mimics) mimic_[m.coordinate] = 1;
-}
-
-std::string RecordingBuilder::validate(const std::vector<std::string>& names,
-                                       const std::vector<double>& position,
-                                       const std::vector<double>& velocity) {
-  const size_t n = names.size();
-  if (position.size() != n)
-    return std::to_string(n) + " names but " + std::to_string(position.size()) + " positions";
-  if (!velocity.empty() && velocity.size() != n)
-    return std::to_string(n) + " names but " + std::to_string(velocity.size()) + " velocities";
-  if (names != mapped_names_) map_names(names);  // most samples name the same joints in order
-  for (size_t i = 0; i < n; ++i) {               // the first problem in the sample's order
-    if (i == duplicate_at_) return "joint '" + names[i] + "' is named twice";
-    if (!known_[i]) continue;
-    if (!std::isfinite(position[i]))
-      return "joint '" + names[i] + "': position is " + describe(position[i]);
-    if (!velocity.empty() && !std::isfinite(velocity[i]))
-      return "joint '" + names[i] + "': velocity is " + describe(velocity[i]);
-  }
-  return "";
-}
-
-// message_index_, known_, unknown_ and duplicate_at_ for a sample naming `names`.
-void RecordingBuilder::map_names(const std::vector<std::string>& names) {
-  mapped_names_ = names;
-  std::fill(message_index_.begin(), message_index_.end(), -1);
-  known_.assign(names.size(), 0);
-  unknown_.clear();
-  duplicate_at_ = names.size();
-  for (size_t i = 0; i < names.size(); ++i) {
-    auto it = index_.find(names[i]);
-    if (it == index_.end()) {
-      unknown_.push_back(names[i]);
-      continue;
-    }
-    if (message_index_[it->second] >= 0) {
-      duplicate_at_ = i;
-      return;
-    }
-    message_index_[it->second] = static_cast<int>(i);
-    known_[i] = 1;
-  }
-}
-
-// e and -e are one rotation: a sample that gives all four parameters of a joint with a negative
-// dot product against the previous ones is negated (with its velocities).
-void RecordingBuilder::align_euler_signs(std::vector<double>& row,
-                                         const std::vector<std::uint8_t>& given) const {
-  for (int k = 1; k <= model_.body_count(); ++k) {
-    const Body& body = model_.bodies[k];
-    if (!uses_euler_parameters(body.joint.type)) continue;
-    const int e = body.q_index + coordinate_count(body.joint.type) - 4;
-    double dot = 0;
-    bool all = true;
-    for (int i = e; i < e + 4; ++i) {
-      all = all && given[i] && seen_[i];
-      dot += row[i] * last_[i];
-    }
-    if (all && dot < 0)
-      for (int i = e; i < e + 4; ++i) row[i] = -row[i];
-  }
 }
 
 void RecordingBuilder::add(double t, const std::vector<std::string>& names,
@@ -121,29 +53,25 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
   ++read_;
   t += time_offset_;
   if (!std::isfinite(t)) return log_.drop("stamp not finite", where);
-  const std::string error = validate(names, position, velocity);
+  const std::string error = intake_.check(names, position, velocity);
   if (!error.empty())
     return log_.drop("bad sample (lengths, duplicates, NaN/Inf)", where + ": " + error);
   if (has_last_stamp_ && t <= last_stamp_)
     return log_.drop(
         t == last_stamp_ ? "repeated stamp" : "stamp goes backwards",
         where + ": stamp " + std::to_string(t) + " after " + std::to_string(last_stamp_));
-  if (!unknown_.empty()) log_.note("names not in the model ignored", where + ": " + join(unknown_));
+  if (!intake_.unknown().empty())
+    log_.note("names not in the model ignored", where + ": " + join(intake_.unknown()));
+  intake_.take(position);  // the named coordinates' positions, Euler parameters' signs aligned
   const int nq = model_.nq;
-  std::vector<double> row(last_), vrow(nq, 0.0);
+  std::vector<double> row(intake_.last()), vrow(nq, 0.0);  // the others keep their last
   std::vector<std::uint8_t> given(nq, 0);
-  for (int i = 0; i < nq; ++i) {
-    const int m = message_index_[i];
-    if (m < 0) continue;  // a published mimic value wins over its rule (as the node)
-    row[i] = position[m];
+  for (size_t m = 0; m < names.size(); ++m) {  // a mimic's published value wins (as the node)
+    const int i = intake_.coordinates()[m];
+    if (i < 0) continue;
     given[i] = Recording::kPosition;
-    if (!velocity.empty()) vrow[i] = velocity[m], given[i] |= Recording::kVelocity;
-  }
-  std::vector<double> before(row);
-  align_euler_signs(row, given);
-  for (int i = 0; i < nq; ++i) {
-    if (row[i] != before[i]) vrow[i] = -vrow[i];
-    if (given[i]) seen_[i] = 1, last_[i] = row[i];
+    if (!velocity.empty())
+      vrow[i] = intake_.sign(i) * velocity[m], given[i] |= Recording::kVelocity;
   }
   has_last_stamp_ = true, last_stamp_ = t;
   if (sink_) {  // as finish() drops the rows before every coordinate was named
@@ -159,7 +87,7 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
 std::vector<std::string> RecordingBuilder::not_named_yet() const {
   std::vector<std::string> names;
   for (int i = 0; i < model_.nq; ++i)
-    if (!mimic_[i] && !seen_[i]) names.push_back(model_.coordinate_names[i]);
+    if (!mimic_[i] && !intake_.taken(i)) names.push_back(model_.coordinate_names[i]);
   return names;
 }
 
@@ -215,7 +143,7 @@ void RecordingBuilder::exclude_outlier(int p, int c, double median, double scale
     if (pending_[q].given[c] & Recording::kPosition) return;
     pending_[q].row[c] = median;
   }
-  last_[c] = median;
+  intake_.replace_last(c, median);
 }
 
 void RecordingBuilder::emit(const PendingRow& r) {
@@ -236,16 +164,17 @@ void RecordingBuilder::add_accelerations(double t, const std::vector<std::string
                          std::to_string(acceleration.size()) + " accelerations");
   std::vector<double> value(model_.nq, 0.0);
   std::vector<char> given(model_.nq, 0);
+  const std::vector<int>& coordinate = acceleration_names_.look_up(names);
   for (size_t i = 0; i < names.size(); ++i) {
-    auto it = index_.find(names[i]);
-    if (it == index_.end())
+    const int c = coordinate[i];
+    if (c < 0)
       return log_.note("joint_accelerations ignored",
                        where + ": joint '" + names[i] + "' is not in the model");
-    if (given[it->second] || !std::isfinite(acceleration[i]))
+    if (given[c] || !std::isfinite(acceleration[i]))
       return log_.note("joint_accelerations ignored",
                        where + ": joint '" + names[i] + "' named twice or not finite");
-    value[it->second] = acceleration[i];
-    given[it->second] = 1;
+    value[c] = acceleration[i];
+    given[c] = 1;
   }
   accelerations_[t] = {std::move(value), std::move(given)};
 }

@@ -9,9 +9,9 @@
 #include <functional>
 #include <map>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
+#include "mb_kinematics/core/joint_state_intake.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/estimation/stamp_grid.h"
 
@@ -93,10 +93,6 @@ class RecordingBuilder {
   long samples_read() const { return read_; }
 
  private:
-  std::string validate(const std::vector<std::string>& names, const std::vector<double>& position,
-                       const std::vector<double>& velocity);
-  void map_names(const std::vector<std::string>& names);
-  void align_euler_signs(std::vector<double>& row, const std::vector<std::uint8_t>& given) const;
   // A row held until the outlier test has seen the samples after it.
   struct PendingRow {
     double t;
@@ -112,16 +108,10 @@ class RecordingBuilder {
   std::vector<std::string> not_named_yet() const;
 
   const Model& model_;
-  std::unordered_map<std::string, int> index_;
+  JointStateIntake intake_;  // the samples' names, checks and Euler signs; the last positions
+  CoordinateLookup acceleration_names_;
   std::vector<char> mimic_;
   Recording rec_;
-  std::vector<int> message_index_;         // where the current sample names each coordinate, or -1
-  std::vector<std::string> mapped_names_;  // the names message_index_ maps (hashed once)
-  std::vector<char> known_;                // per name of mapped_names_: in the model
-  std::vector<std::string> unknown_;       // mapped_names_ not in the model
-  size_t duplicate_at_ = 0;                // the first name given twice, or their count
-  std::vector<double> last_;               // last position of every coordinate (for Euler signs)
-  std::vector<char> seen_;
   std::map<double, std::pair<std::vector<double>, std::vector<char>>> accelerations_;
   DropLog log_;
   long read_ = 0;

@@ -22,70 +22,49 @@ bool sound(const mbk::DerivativeEstimator& estimator, int used) {
   return true;
 }
 
+// The node's class of a sample the intake refused.
+InputProblem problem_of(mbk::SampleProblem problem) {
+  switch (problem) {
+    case mbk::SampleProblem::kUnequalLengths:
+      return InputProblem::kUnequalLengths;
+    case mbk::SampleProblem::kDuplicateName:
+      return InputProblem::kDuplicateName;
+    case mbk::SampleProblem::kNonFinite:
+    case mbk::SampleProblem::kNone:
+      break;
+  }
+  return InputProblem::kNonFinite;
+}
+
 }  // namespace
 
 JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeEstimator& prototype,
                                  double max_gap)
     : model_(model),
       max_gap_(max_gap),
+      intake_(model),
+      acceleration_names_(model),
       coordinates_(model.nq),
-      seen_(model.nq, -1),
-      message_index_(model.nq, 0),
-      sign_(model.nq, 1.0),
       initial_(model),
       trial_(model) {
   if (model.nq != model.nv)
     throw std::invalid_argument("JointStateInput needs coordinate-derivative speeds");
   for (int i = 0; i < model.nq; ++i) {
-    index_[model.coordinate_names[i]] = i;
     coordinates_[i].position_history = prototype.clone();
     coordinates_[i].velocity_history = prototype.clone();
   }
   for (const mbk::Mimic& m : model.mimics) coordinates_[m.coordinate].mimic = true;
-  for (int k = 1; k <= model.body_count(); ++k) {
-    const mbk::Body& body = model.bodies[k];
-    if (mbk::uses_euler_parameters(body.joint.type))
-      euler_.push_back(body.q_index + mbk::first_euler_parameter(body.joint.type));
-  }
 }
 
-const std::vector<int>& JointStateInput::look_up(const std::vector<std::string>& names,
-                                                 NameLookup& cache) const {
-  if (names == cache.names) return cache.index;  // a full compare: cheaper than hashing each
-  cache.names = names;
-  cache.index.resize(names.size());
-  for (size_t i = 0; i < names.size(); ++i) {
-    auto it = index_.find(names[i]);
-    cache.index[i] = it == index_.end() ? -1 : it->second;
-  }
-  return cache.index;
-}
-
+// The message checked whole (mbk::JointStateIntake: lengths, duplicate names, NaN/Inf), then
+// its values (check_values).
 std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update& update) {
-  const size_t n = msg.name.size();
-  update.problem = InputProblem::kUnequalLengths;
-  if (msg.position.size() != n)
-    return std::to_string(n) + " names but " + std::to_string(msg.position.size()) + " positions";
-  if (!msg.velocity.empty() && msg.velocity.size() != n)
-    return std::to_string(n) + " names but " + std::to_string(msg.velocity.size()) + " velocities";
-  ++generation_;
-  const std::vector<int>& name_index = look_up(msg.name, state_names_);
-  for (size_t i = 0; i < n; ++i) {
-    const int j = name_index[i];
-    if (j < 0) {
-      update.unknown.push_back(msg.name[i]);
-      continue;
-    }
-    update.problem = InputProblem::kDuplicateName;
-    if (seen_[j] == generation_) return "joint '" + msg.name[i] + "' is named twice";
-    seen_[j] = generation_;
-    message_index_[j] = i;
-    update.problem = InputProblem::kNonFinite;
-    if (!std::isfinite(msg.position[i]))
-      return "joint '" + msg.name[i] + "': position is " + describe(msg.position[i]);
-    if (!msg.velocity.empty() && !std::isfinite(msg.velocity[i]))
-      return "joint '" + msg.name[i] + "': velocity is " + describe(msg.velocity[i]);
+  const std::string error = intake_.check(msg.name, msg.position, msg.velocity);
+  if (!error.empty()) {
+    update.problem = problem_of(intake_.problem());
+    return error;
   }
+  update.unknown = intake_.unknown();
   return check_values(msg, update);
 }
 
@@ -98,7 +77,7 @@ std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Up
   trial_.velocity.setZero();
   trial_.acceleration.setZero();
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    const int j = state_names_.index[i];
+    const int j = intake_.coordinates()[i];
     if (j < 0 || coordinates_[j].mimic) continue;
     trial_.position[j] = msg.position[i];
     if (!msg.velocity.empty()) trial_.velocity[j] = msg.velocity[i];
@@ -114,32 +93,13 @@ std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Up
   return error;
 }
 
-// Euler parameters e and -e are the same rotation; a publisher may flip between them (e.g. to
-// keep e4 >= 0). A message that sets all four of a joint's parameters with a negative dot
-// product against the previous ones is negated, so that e, and its estimated derivatives, stay
-// continuous.
-int JointStateInput::align_euler_signs(const sensor_msgs::JointState& msg) {
-  int flipped = 0;
-  for (const int e : euler_) {
-    double dot = 0;
-    bool all = true;
-    for (int i = e; i < e + 4; ++i) {
-      all = all && seen_[i] == generation_ && coordinates_[i].has_value;
-      if (all) dot += msg.position[message_index_[i]] * coordinates_[i].position;
-    }
-    for (int i = e; i < e + 4; ++i) sign_[i] = all && dot < 0 ? -1.0 : 1.0;
-    flipped += all && dot < 0;
-  }
-  return flipped;
-}
-
 JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg, double t) {
   Update update;
   update.error = validate(msg, update);
   if (!update.error.empty()) return update;
-  update.flipped = align_euler_signs(msg);
+  update.flipped = intake_.take(msg.position);  // e and -e: one rotation, e kept continuous
   for (size_t i = 0; i < msg.name.size(); ++i) {
-    const int j = state_names_.index[i];
+    const int j = intake_.coordinates()[i];
     if (j < 0) continue;  // a published mimic value wins over its rule (robot_state_publisher)
     Coordinate& c = coordinates_[j];
     if (c.has_value && t < c.stamp) {  // e.g. a bag looping: the old history means nothing
@@ -151,9 +111,9 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
       c.velocity_history->reset();
     }
     c.has_value = true;
-    c.position = sign_[j] * msg.position[i];
+    c.position = intake_.last()[j];
     c.velocity_given = !msg.velocity.empty();
-    if (c.velocity_given) c.velocity = sign_[j] * msg.velocity[i];
+    if (c.velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
     if (!take(c, t)) update.estimator_reset.push_back(msg.name[i]);
     ++update.used;
   }
@@ -185,7 +145,7 @@ std::string JointStateInput::convert(const mb_kinematics_msgs::JointAcceleration
   out.stamp = t;
   out.value.assign(model_.nq, 0.0);
   out.given.assign(model_.nq, 0);
-  const std::vector<int>& index = look_up(msg.name, acceleration_names_);
+  const std::vector<int>& index = acceleration_names_.look_up(msg.name);
   for (size_t i = 0; i < msg.name.size(); ++i) {
     const int j = index[i];
     if (j < 0) return "joint '" + msg.name[i] + "' is not in the model";

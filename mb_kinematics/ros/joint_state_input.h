@@ -10,10 +10,10 @@
 
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/joint_state_intake.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
@@ -96,30 +96,16 @@ class JointStateInput {
     double position = 0, velocity = 0, stamp = 0;
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
-  // A message's names and their coordinates (-1: not in the model), looked up again only when a
-  // message's names differ from the previous one's (a publisher sends one list).
-  struct NameLookup {
-    std::vector<std::string> names;
-    std::vector<int> index;
-  };
-  const std::vector<int>& look_up(const std::vector<std::string>& names, NameLookup& cache) const;
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
-  int align_euler_signs(const sensor_msgs::JointState& msg);
   bool take(Coordinate& c, double t);
 
   const mbk::Model& model_;
   double max_gap_;
-  std::unordered_map<std::string, int> index_;
-  NameLookup state_names_;         // of joint_states
-  NameLookup acceleration_names_;  // of joint_accelerations
-  std::vector<int> euler_;         // the first coordinate of each joint with Euler parameters
+  mbk::JointStateIntake intake_;              // of joint_states (core/joint_state_intake.h)
+  mbk::CoordinateLookup acceleration_names_;  // of joint_accelerations
   std::vector<Coordinate> coordinates_;
-  std::vector<int> seen_;  // message generation that last named each coordinate (duplicates)
-  std::vector<size_t> message_index_;        // where the current message names each coordinate
-  std::vector<double> sign_;                 // +-1: e and -e are one rotation; keep e continuous
   mbk::JointState<double> initial_, trial_;  // the state before any sample; a message's values
-  int generation_ = 0;
   AccelerationPairing pairing_;
 };
 

@@ -11,17 +11,17 @@
 #include <system_error>
 
 #include "mb_kinematics/core/printable.h"
-#include "mb_kinematics/offline/bag_command.h"
-#include "mb_kinematics/offline/bag_summary_json.h"
 #include "mb_kinematics/offline/memory_cap.h"
 #include "mb_kinematics/offline/progress.h"
 #include "mb_kinematics/offline/temporary_files.h"
+#include "mb_kinematics/tools/bag_cli.h"
+#include "mb_kinematics/tools/bag_summary_json.h"
 
 namespace {
 
 // A run that stopped with `error`: its one line on stderr, and --summary-json's record of it
 // (nothing when that cannot be written either: the line still says what happened). Exit 1.
-int fail(const mbk_offline::BagOptions& options, const std::string& error) {
+int fail(const mbk_offline::BagCommandLine& options, const std::string& error) {
   if (!options.summary_json.empty()) {
     try {
       mbk_offline::write_summary_json(options.summary_json,
@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   // would break the one-line format: what it cannot read is counted and named in the summary.
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   mbk_offline::remove_temporaries_on_signals();  // an interrupted run leaves no partial file
-  mbk_offline::BagOptions options;
+  mbk_offline::BagCommandLine options;
   double cap = 0;
   try {
     options = mbk_offline::parse_bag_options(argc, argv);

@@ -32,6 +32,7 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
+#include "mb_kinematics/tools/bag_cli.h"
 #include "test/support/renamed_bvh.h"
 
 namespace {
@@ -657,6 +658,28 @@ TEST(BagTest, TheMbkCommandRunsIt) {
   std::getline(err2, line);
   EXPECT_EQ(line.rfind("mbk: error: ", 0), 0u) << line;
   EXPECT_NE(line.find("the bag has /joint_states"), std::string::npos) << line;
+}
+
+// Each option that takes a value is given once at most (a second would silently win), and
+// --summary-json's file is among the files the run refuses to overwrite with another.
+TEST(BagTest, EveryValueOptionOnce) {
+  const auto parse = [](std::vector<const char*> args) {
+    args.insert(args.begin(), {"mbk", "bag", "in.bag", "--model", "m.yaml"});
+    return mbk_offline::parse_bag_options(static_cast<int>(args.size()),
+                                          const_cast<char**>(args.data()));
+  };
+  for (const char* option : {"--out", "--max-gap", "--threads", "--start-time", "--max-memory"}) {
+    try {
+      parse({"--csv", "o.csv", option, "1", option, "2"});
+      ADD_FAILURE() << option << " twice accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(e.what(), std::string(option) + " is given twice");
+    }
+  }
+  const mbk_offline::BagCommandLine line = parse({"--csv", "o.csv", "--summary-json", "s.json"});
+  ASSERT_EQ(line.other_outputs.size(), 1u);
+  EXPECT_EQ(line.other_outputs[0].name, "--summary-json");
+  EXPECT_EQ(line.other_outputs[0].path, "s.json");
 }
 
 TEST(BagTest, ThreadsOptionIsACountFromOne) {

@@ -108,7 +108,7 @@ TEST(RecordingTest, EulerParametersStayContinuousAndAccelerationsPair) {
   ASSERT_EQ(r.rows(), 2);
   EXPECT_EQ(r.position[4], 0.1);
   EXPECT_EQ(r.position[7], 0.99);
-  EXPECT_EQ(r.velocity[4], -1.0);
+  for (int c = 0; c < 4; ++c) EXPECT_EQ(r.velocity[4 + c], -(c + 1.0));  // negated with e
   EXPECT_EQ(r.acceleration[4], 5.0);
   EXPECT_TRUE(r.given[4] & mbk::Recording::kAcceleration);
   EXPECT_FALSE(r.given[5] & mbk::Recording::kAcceleration);

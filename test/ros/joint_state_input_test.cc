@@ -11,6 +11,7 @@
 
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/urdf_model.h"
+#include "mb_kinematics/offline/recording.h"
 
 namespace {
 
@@ -59,6 +60,27 @@ TEST_F(JointStateInputTest, RejectsBadMessagesWhole) {
   m.velocity[4] = -std::numeric_limits<double>::infinity();
   EXPECT_NE(input_.add(m, 1).error.find("Inf"), std::string::npos);
   EXPECT_EQ(input_.missing().size(), kAll.size()) << "a rejected message changed the state";
+}
+
+// The node and mbk bag's recordings take joint states through one intake
+// (core/joint_state_intake.h): each bad sample is refused with the same words by both.
+TEST_F(JointStateInputTest, TheSameWordsAsARecording) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<sensor_msgs::JointState> bad(5, msg(kAll, 0.1, true));
+  bad[0].position.pop_back();
+  bad[1].velocity.pop_back();
+  bad[2].name[2] = bad[2].name[0];
+  bad[3].position[3] = nan;
+  bad[4].velocity[4] = -std::numeric_limits<double>::infinity();
+  const std::string kBad = "bad sample (lengths, duplicates, NaN/Inf)";
+  for (const sensor_msgs::JointState& m : bad) {
+    mbk::RecordingBuilder recording(model_);
+    recording.add(1, m.name, m.position, m.velocity, "s");
+    const std::string error = input_.add(m, 1).error;
+    ASSERT_FALSE(error.empty());
+    ASSERT_EQ(recording.log().drops.at(kBad), 1);
+    EXPECT_EQ(recording.log().example.at(kBad), "s: " + error);
+  }
 }
 
 // A published mimic value wins over the mimic rule, as in robot_state_publisher: the
@@ -260,6 +282,31 @@ TEST(JointStateInputEuler, SignFlipsKeepEContinuous) {
   EXPECT_NEAR(state.velocity[2], std::cos(0.015) / 2, 1e-5);
   EXPECT_NEAR(state.velocity[3], -std::sin(0.015) / 2, 1e-5);
   EXPECT_GT(state.position[3], 0.0);  // the last sample was negated back: continuous with e4 > 0
+}
+
+// The same samples in a recording: the same continuous e, and velocities negated with it.
+TEST(JointStateInputEuler, ARecordingFlipsTheSame) {
+  const mbk::Model model = mbk::make_bare_model({0}, mbk::JointType::kBallEuler);
+  const auto estimator = mbk::make_derivative_estimator("backward_difference");
+  mbk_ros::JointStateInput input(model, *estimator, 1.0);
+  mbk::RecordingBuilder recording(model);
+  for (int i = 0; i < 4; ++i) {
+    const double t = 0.01 * i, sign = i % 2 ? -1.0 : 1.0;
+    sensor_msgs::JointState m;
+    m.name = model.coordinate_names;
+    m.position = {0.0, sign * 0.1, sign * std::sin(t / 2), sign * std::cos(t / 2)};
+    m.velocity = {sign * 1, sign * 2, sign * 3, sign * 4};
+    ASSERT_EQ(input.add(m, t).flipped, i % 2);
+    recording.add(t, m.name, m.position, m.velocity, "s");
+    mbk::JointState<double> state(model);
+    ASSERT_EQ(input.fill(Level::kPose, nullptr, state), Level::kPose);
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(state.position[c], sign * m.position[c]) << i;
+  }
+  const mbk::Recording r = recording.finish();
+  ASSERT_EQ(r.rows(), 4);
+  for (int row = 0; row < 4; ++row)
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(r.velocity[row * 4 + c], c + 1.0) << row;
+  EXPECT_GT(r.position[3 * 4 + 3], 0.0);
 }
 
 }  // namespace

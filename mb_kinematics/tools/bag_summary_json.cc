@@ -1,4 +1,4 @@
-#include "mb_kinematics/offline/bag_summary_json.h"
+#include "mb_kinematics/tools/bag_summary_json.h"
 
 #include <cmath>
 #include <fstream>
@@ -9,18 +9,17 @@
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/offline/error_bar_summary.h"
 #include "mb_kinematics/offline/output_file.h"
+#include "mb_kinematics/tools/bag_cli.h"
 
 namespace mbk_offline {
 namespace {
 
 std::string number(double x) { return std::isfinite(x) ? mbk::format_double(x) : "null"; }
 
-std::string outputs(const BagOptions& o) {
-  std::vector<std::string> paths;
-  if (!o.out_bag.empty()) paths.push_back(mbk::json_string(o.out_bag));
-  if (!o.out_csv.empty()) paths.push_back(mbk::json_string(o.out_csv));
+std::string outputs(const BagOutputs& o) {
   std::string text = "[";
-  for (size_t i = 0; i < paths.size(); ++i) text += (i ? ", " : "") + paths[i];
+  for (const NamedFile& file : output_files(o))
+    text += (text.size() > 1 ? ", " : "") + mbk::json_string(file.path);
   return text + "]";
 }
 

@@ -1,0 +1,107 @@
+#include "mb_kinematics/core/joint_state_intake.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mbk {
+namespace {
+
+std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
+
+std::string lengths(size_t names, size_t values, const char* what) {
+  return std::to_string(names) + " names but " + std::to_string(values) + " " + what;
+}
+
+}  // namespace
+
+CoordinateLookup::CoordinateLookup(const Model& model) {
+  for (int i = 0; i < model.nq; ++i) index_[model.coordinate_names[i]] = i;
+}
+
+const std::vector<int>& CoordinateLookup::look_up(const std::vector<std::string>& names,
+                                                  bool* changed) {
+  const bool differ = names != names_;  // a full compare: cheaper than hashing each name
+  if (changed) *changed = differ;
+  if (!differ) return coordinate_of_;
+  names_ = names;
+  coordinate_of_.resize(names.size());
+  for (size_t i = 0; i < names.size(); ++i) {
+    auto it = index_.find(names[i]);
+    coordinate_of_[i] = it == index_.end() ? -1 : it->second;
+  }
+  return coordinate_of_;
+}
+
+JointStateIntake::JointStateIntake(const Model& model)
+    : model_(model),
+      lookup_(model),
+      place_(model.nq, -1),
+      sign_(model.nq, 1.0),
+      last_(model.nq, 0.0),
+      taken_(model.nq, 0) {
+  for (int k = 1; k <= model.body_count(); ++k) {
+    const Body& body = model.bodies[k];
+    if (uses_euler_parameters(body.joint.type))
+      euler_.push_back(body.q_index + first_euler_parameter(body.joint.type));
+  }
+}
+
+// unknown_, place_ and duplicate_at_ for new names (coordinate_of_ looked up).
+void JointStateIntake::map_names(const std::vector<std::string>& names) {
+  unknown_.clear();
+  std::fill(place_.begin(), place_.end(), -1);
+  duplicate_at_ = names.size();
+  for (size_t i = 0; i < names.size(); ++i) {
+    const int c = lookup_.coordinates()[i];
+    if (c < 0)
+      unknown_.push_back(names[i]);
+    else if (place_[c] < 0)
+      place_[c] = static_cast<int>(i);
+    else if (duplicate_at_ == names.size())
+      duplicate_at_ = i;
+  }
+}
+
+std::string JointStateIntake::check(const std::vector<std::string>& names,
+                                    const std::vector<double>& position,
+                                    const std::vector<double>& velocity) {
+  const size_t n = names.size();
+  problem_ = SampleProblem::kUnequalLengths;
+  if (position.size() != n) return lengths(n, position.size(), "positions");
+  if (!velocity.empty() && velocity.size() != n) return lengths(n, velocity.size(), "velocities");
+  bool changed = false;
+  const std::vector<int>& coordinate_of = lookup_.look_up(names, &changed);
+  if (changed) map_names(names);
+  for (size_t i = 0; i < n; ++i) {  // the first problem in the sample's order
+    problem_ = SampleProblem::kDuplicateName;
+    if (i == duplicate_at_) return "joint '" + names[i] + "' is named twice";
+    if (coordinate_of[i] < 0) continue;
+    problem_ = SampleProblem::kNonFinite;
+    if (!std::isfinite(position[i]))
+      return "joint '" + names[i] + "': position is " + describe(position[i]);
+    if (!velocity.empty() && !std::isfinite(velocity[i]))
+      return "joint '" + names[i] + "': velocity is " + describe(velocity[i]);
+  }
+  problem_ = SampleProblem::kNone;
+  return "";
+}
+
+int JointStateIntake::take(const std::vector<double>& position) {
+  int flipped = 0;
+  for (const int e : euler_) {
+    double dot = 0;
+    bool all = true;
+    for (int i = e; i < e + 4; ++i) {
+      all = all && place_[i] >= 0 && taken_[i];
+      if (all) dot += position[place_[i]] * last_[i];
+    }
+    const bool flip = all && dot < 0;
+    for (int i = e; i < e + 4; ++i) sign_[i] = flip ? -1.0 : 1.0;
+    flipped += flip;
+  }
+  for (int i = 0; i < model_.nq; ++i)
+    if (place_[i] >= 0) last_[i] = sign_[i] * position[place_[i]], taken_[i] = 1;
+  return flipped;
+}
+
+}  // namespace mbk

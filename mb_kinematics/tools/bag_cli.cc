@@ -1,0 +1,196 @@
+#include "mb_kinematics/tools/bag_cli.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include "mb_kinematics/core/printable.h"
+#include "mb_kinematics/io/bvh_model.h"
+#include "mb_kinematics/io/load_model.h"
+#include "mb_kinematics/offline/error_bar_summary.h"
+
+namespace mbk_offline {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& end) {
+  return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
+}
+
+// The command line as it is read: a .bvh model's options as text, checked once all are read.
+struct Reading {
+  BagCommandLine line;
+  std::string scale, body_mass, sex, segments;
+};
+
+// `text` as a number, NaN when it is not one whole.
+double number(const std::string& text) {
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  return *end == '\0' ? x : NAN;
+}
+
+// One option of `mbk bag`: its name, whether a value follows it, and what it sets (a wrong value
+// throws std::invalid_argument naming the option). A value option is given once at most.
+struct Option {
+  const char* name;
+  bool takes_value;
+  void (*set)(Reading& r, const std::string& value);
+};
+
+const Option kOptions[] = {
+    {"--model", true, [](Reading& r, const std::string& v) { r.line.model = v; }},
+    {"--out", true, [](Reading& r, const std::string& v) { r.line.out_bag = v; }},
+    {"--csv", true, [](Reading& r, const std::string& v) { r.line.out_csv = v; }},
+    {"--summary-json", true, [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
+    {"--joint-states", true, [](Reading& r, const std::string& v) { r.line.joint_states = v; }},
+    {"--joint-accelerations", true,
+     [](Reading& r, const std::string& v) { r.line.joint_accelerations = v; }},
+    {"--base-odometry", true, [](Reading& r, const std::string& v) { r.line.base_odometry = v; }},
+    {"--estimator", true, [](Reading& r, const std::string& v) { r.line.estimator = v; }},
+    {"--frame-prefix", true, [](Reading& r, const std::string& v) { r.line.frame_prefix = v; }},
+    {"--scale", true, [](Reading& r, const std::string& v) { r.scale = v; }},
+    {"--body-mass", true, [](Reading& r, const std::string& v) { r.body_mass = v; }},
+    {"--sex", true, [](Reading& r, const std::string& v) { r.sex = v; }},
+    {"--segments", true, [](Reading& r, const std::string& v) { r.segments = v; }},
+    {"--max-gap", true,
+     [](Reading& r, const std::string& v) {
+       r.line.max_gap = number(v);
+       if (!(r.line.max_gap > 0))  // 0 is the default's mark: not a gap to give
+         throw std::invalid_argument("--max-gap needs seconds > 0, not '" + v +
+                                     "' (leave it out for 5 x the median sample interval)");
+     }},
+    {"--start-time", true,
+     [](Reading& r, const std::string& v) {
+       r.line.start_time = number(v);
+       if (!std::isfinite(r.line.start_time))
+         throw std::invalid_argument("--start-time needs seconds, not '" + v + "'");
+     }},
+    {"--threads", true,
+     [](Reading& r, const std::string& v) {
+       char* end = nullptr;
+       const long n = std::strtol(v.c_str(), &end, 10);
+       if (*end != '\0' || n < 1 || n > 1024)
+         throw std::invalid_argument("--threads needs a count from 1 to 1024, not '" + v + "'");
+       r.line.threads = static_cast<int>(n);
+     }},
+    {"--max-memory", true,
+     [](Reading& r, const std::string& v) {
+       r.line.max_memory = number(v);
+       if (!(r.line.max_memory > 0) || !std::isfinite(r.line.max_memory))
+         throw std::invalid_argument("--max-memory needs GiB > 0, not '" + v + "'");
+     }},
+    {"--verbose", false, [](Reading& r, const std::string&) { r.line.verbose = true; }},
+    {"--help", false, [](Reading& r, const std::string&) { r.line.help = true; }},
+    {"-h", false, [](Reading& r, const std::string&) { r.line.help = true; }},
+};
+
+const Option* find_option(const std::string& name) {
+  for (const Option& option : kOptions)
+    if (name == option.name) return &option;
+  return nullptr;
+}
+
+// The checks across options, once all are read.
+void check(Reading& r) {
+  BagCommandLine& o = r.line;
+  if (o.input.empty()) throw std::invalid_argument("bag needs an input IN.bag, IN.csv or IN.bvh");
+  if (o.model.empty() && mbk::is_bvh_file(o.input)) o.model = o.input;
+  if (o.model.empty()) throw std::invalid_argument("bag needs --model FILE");
+  if (!(r.scale + r.body_mass + r.sex + r.segments).empty() && !mbk::is_bvh_file(o.model))
+    throw std::invalid_argument(
+        "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
+  o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments);
+  if (o.out_bag.empty() && o.out_csv.empty())
+    throw std::invalid_argument("bag needs --out OUT.bag and/or --csv OUT.csv");
+  if (o.start_time != 0 && !ends_with(o.input, ".csv") && !mbk::is_bvh_file(o.input))
+    throw std::invalid_argument("--start-time applies to a .csv or .bvh input, not a bag");
+  if (!o.summary_json.empty()) o.other_outputs.push_back({"--summary-json", o.summary_json});
+}
+
+}  // namespace
+
+BagCommandLine parse_bag_options(int argc, char** argv) {
+  Reading r;
+  std::set<std::string> given;  // value options: each once
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const Option* option = find_option(arg);
+    if (option && (!option->takes_value || i + 1 < argc)) {
+      if (option->takes_value && !given.insert(arg).second)
+        throw std::invalid_argument(arg + " is given twice");
+      option->set(r, option->takes_value ? argv[++i] : "");
+      if (r.line.help) return r.line;  // the usage, whatever else is given
+    } else if (arg.rfind("--", 0) != 0 && r.line.input.empty()) {
+      r.line.input = arg;
+    } else {
+      throw std::invalid_argument("unknown or incomplete option '" + arg + "'");
+    }
+  }
+  check(r);
+  return r.line;
+}
+
+const char* bag_usage() {
+  return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
+         "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
+         "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
+         "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"
+         "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
+         "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml] ...\n"
+         "   --verbose: every coordinate's error bars and the times in the summary\n"
+         "   --max-memory: GiB of address space at most (default: 90 % of this machine's memory)\n"
+         "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";
+}
+
+std::string format_summary(const BagSummary& s, bool verbose) {
+  char line[256];
+  std::string out;
+  std::snprintf(
+      line, sizeof line,
+      "mbk bag: %ld samples read, %ld written, %ld dropped (estimator %s, gaps > %.3g s)\n", s.read,
+      s.written, s.log.dropped(), s.estimator.c_str(), s.max_gap);
+  out += line;
+  for (const auto& d : s.log.drops)
+    out += "  dropped " + std::to_string(d.second) + ": " + d.first +
+           " (first: " + s.log.example.at(d.first) + ")\n";
+  for (const auto& n : s.log.notes)
+    out += "  note " + std::to_string(n.second) + " samples: " + n.first +
+           " (first: " + s.log.example.at(n.first) + ")\n";
+  if (s.grid.moves) {
+    std::snprintf(line, sizeof line,
+                  "  stamps on a uniform grid of %.9g s: differentiated at the grid's times, %.2g "
+                  "s at most from the stamps (tolerance %.2g s)\n",
+                  static_cast<double>(s.grid.period), s.grid.worst, s.grid.tolerance);
+    out += line;
+  }
+  if (!verbose) out += mbk::error_bar_line(s.errors);
+  if (verbose && !s.errors.empty())
+    out +=
+        "  error bars (noise level; median standard error of velocity, acceleration, medians to "
+        "5e-4 relative):\n";
+  for (const mbk::CoordinateError& e : verbose ? s.errors : std::vector<mbk::CoordinateError>{}) {
+    std::snprintf(line, sizeof line, "    %s: noise %.2e; %.2e, %.2e\n",
+                  mbk::printable(e.name).c_str(), e.noise, e.velocity_se, e.acceleration_se);
+    out += line;
+  }
+  if (s.unreadable > 0)
+    out += "  unreadable " + std::to_string(s.unreadable) +
+           " messages, skipped: the output is partial (first: " + s.unreadable_example + ")\n";
+  if (s.written == 0) out += "  nothing written\n";
+  if (!verbose) return out;
+  const double rate = s.wall_seconds > 0 ? s.written / s.wall_seconds : 0;
+  std::snprintf(line, sizeof line,
+                "  wall %.3f s (%.0f samples/s): read %.3f s, compute %.3f s (%d threads, summed; "
+                "beside the writing), write %.3f s\n",
+                s.wall_seconds, rate, s.read_seconds, s.compute_seconds, s.threads,
+                s.write_seconds);
+  out += line;
+  return out;
+}
+
+int exit_status(const BagSummary& s) { return s.unreadable == 0 && s.written > 0 ? 0 : 2; }
+
+}  // namespace mbk_offline
