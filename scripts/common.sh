@@ -23,6 +23,7 @@ MBK_DEMO_PACKAGES=(
   libtopic-tools-dev pluginlib-dev
   pybind11-dev python3-dev python3-numpy  # the Python module (doc/python.md)
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
+  python3-rosservice  # the docs' rosservice call ~reload, ~get_partial_velocities
 )
 # rviz and what the display plugin builds against: scripts/demo.sh --rviz, and the tests.
 MBK_RVIZ_PACKAGES=(librviz-dev rviz qtbase5-dev libogre-1.12-dev)
