@@ -354,7 +354,7 @@ def main():
     ap.add_argument("--links-only", action="store_true")
     ap.add_argument("--pages", action="store_true", help="run the command blocks of doc/*.md")
     ap.add_argument("--timeout", type=float, default=45)
-    ap.add_argument("--settle", type=int, default=6)
+    ap.add_argument("--settle", type=int, default=12)  # a loaded machine: roslaunch still starting at 6 s
     ap.add_argument("--only", help="with --pages: the blocks whose FILE:LINE matches this regex")
     args = ap.parse_args()
     errors = check_links(args.root)
