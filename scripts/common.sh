@@ -25,6 +25,7 @@ MBK_DEMO_PACKAGES=(
   libmujoco-dev libsdformat-dev  # MJCF and SDFormat models (doc/conventions.md)
   libhdf5-dev  # mbk bag --h5 (doc/recorded_data.md)
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
+  python3-rosservice  # the docs' rosservice call ~reload, ~get_partial_velocities
 )
 # rviz and what the display plugin builds against: scripts/demo.sh --rviz, and the tests.
 MBK_RVIZ_PACKAGES=(librviz-dev rviz qtbase5-dev libogre-1.12-dev)
@@ -44,6 +45,7 @@ MBK_TEST_PACKAGES=(
   libdart-dev libdart-utils-urdf-dev  # kinematics_benchmark's DART peer only (bench/bench.cmake)
   python3-pytest python3-pykdl python3-dartpy  # the Python module's tests and their peers
   python3-scipy  # the Butterworth estimator's peer (test/python/test_butterworth.py)
+  python3-mypy  # the Python stubs checked against the module (test/python/test_typing.py)
   python3-dask python3-distributed python3-psutil  # mbk batch --scheduler's tests (Dask)
   python3-nav-msgs  # the Python tests write base odometry (test/python/test_recordings.py)
   python3-h5py  # mbk bag --h5's files read back (test/python/test_h5_output.py)

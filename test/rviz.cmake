@@ -65,3 +65,8 @@ mbk_rviz_moving_test(rviz_moving_romeo_small
 mbk_rviz_moving_test(rviz_moving_walk LAUNCH=bvh.launch
   RVIZ_CONFIG=${PROJECT_SOURCE_DIR}/config/bvh.rviz
   "DEMO_ARGS=bvh:=${PROJECT_SOURCE_DIR}/test/mocap/131_01.bvh scale:=0.056444")
+# A humanoid on a moving base (test/rviz/moving_base.launch: base_odometry, the base walking 10 m
+# in 20 s): the shipped config's view follows the base (the display sets the Orbit view's Target
+# Frame), so after 20 s the robot is still in the middle of the view.
+mbk_rviz_moving_test(rviz_moving_base LAUNCH=moving_base.launch EXPECT_FRAME=odom
+  EXPECT_FOLLOW=base_link)

@@ -27,6 +27,7 @@ function(mbk_test_cost regex seconds)
   endif()
 endfunction()
 
+mbk_test_cost("^doc_pages$" 300)
 mbk_test_cost("^fuzz_smoke$" 46)
 mbk_test_cost("^rviz_moving_" 25)
 mbk_test_cost("rostest_test_ros_hostile\\.test$" 24)
@@ -43,12 +44,13 @@ mbk_test_cost("^gui_launch$|rostest_test_ros_hz\\.test$|^rviz_robot_panda$" 6)
 mbk_test_cost("^rviz_screenshot|^rviz_robot_anymal_c$" 5)
 
 # Busy tests: two slots each.
-mbk_tests_matching("^fuzz_smoke$|^node_load_smoke$|^memcheck_|^python_module$|^rviz_" busy)
+mbk_tests_matching("^fuzz_smoke$|^node_load_smoke$|^memcheck_|^python_module$|^rviz_|^doc_pages$"
+  busy)
 set_tests_properties(${busy} PROPERTIES PROCESSORS 2)
 
 # Each rviz test locks a resource of its own name, which every rate test takes too: no rviz test
 # beside a rate test (nor two rate tests together), rviz tests beside each other.
-mbk_tests_matching("^rviz_" rviz)
+mbk_tests_matching("^rviz_|^doc_pages$" rviz)  # doc_pages starts rviz too
 mbk_tests_matching("rostest_test_ros_(hz|nodelet|deep_partials|deep_partials_nodelet)\\.test$"
   rate)
 list(APPEND rate node_load_smoke)

@@ -73,6 +73,10 @@ set_tests_properties(fuzz_smoke PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} T
 # master of the test's own (test/doc/doc_check.py; needs mbk, mb_kinematics_node, demo_publisher).
 add_test(NAME doc_check COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/doc/doc_check.py)
 set_tests_properties(doc_check PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 90)
+# Every command block of doc/*.md as written, from a fresh shell in a fresh folder
+# (test/doc/doc_check.py --pages; needs the node, mbk, demo_publisher, rviz and Xvfb).
+add_test(NAME doc_pages COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/doc/doc_check.py --pages)
+set_tests_properties(doc_pages PROPERTIES ENVIRONMENT MBK_WS=${MBK_WORKSPACE} TIMEOUT 900)
 # The layers of mb_kinematics/ (doc/architecture.md): no #include from a lower layer to a higher
 # one, no ROS in core/ or estimation/ (scripts/check_layers.py, tested on planted includes).
 add_test(NAME layer_includes COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/test/layers_test.py)

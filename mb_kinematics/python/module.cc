@@ -369,6 +369,8 @@ py::array_t<double> euler_angles(const InputArray& rotations,
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "mb_kinematics' compiled part; use the package mb_kinematics (doc/python.md)";
+  m.attr("__version__") = MBK_VERSION;  // package.xml's (CMakeLists.txt)
+  m.def("is_model_text", &mbk::is_model_text);
   py::class_<mbk::Model, ModelPtr>(m, "Model")
       .def_readonly("frame", &mbk::Model::frame)
       .def_readonly("nq", &mbk::Model::nq)

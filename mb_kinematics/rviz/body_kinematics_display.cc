@@ -4,12 +4,14 @@
 #include <OgreSceneNode.h>
 #include <ros/console.h>
 #include <ros/init.h>
+#include <ros/node_handle.h>
 #include <rviz/frame_manager.h>
 #include <rviz/properties/bool_property.h>
 #include <rviz/properties/color_property.h>
 #include <rviz/properties/float_property.h>
 #include <rviz/properties/int_property.h>
 #include <rviz/properties/string_property.h>
+#include <rviz/properties/tf_frame_property.h>
 #include <rviz/view_controller.h>
 #include <rviz/view_manager.h>
 #include <rviz/visualization_manager.h>
@@ -229,11 +231,14 @@ void BodyKinematicsDisplay::onInitialize() {
   updateMasses();
 }
 
+// rviz's reset (Auto Frame's change of the Fixed Frame, the Reset button) clears the statuses:
+// the legend, which depends on the properties alone, is shown again.
 void BodyKinematicsDisplay::reset() {
   MFDClass::reset();
   visuals_.clear();
   pending_.clear();
   system_visual_.reset();
+  showLegend();
 }
 
 void BodyKinematicsDisplay::onEnable() {
@@ -258,10 +263,26 @@ void BodyKinematicsDisplay::adoptFrame(
   manager->setFixedFrame(frame);
 }
 
+std::string BodyKinematicsDisplay::followFrame(const mb_kinematics_msgs::BodyKinematicsArray& msg,
+                                               const QString& target) const {
+  const auto tf = context_->getTF2BufferPtr();
+  std::string frame;
+  if (ros::NodeHandle("~").getParam("follow_frame", frame) && !frame.empty())
+    return tf->_frameExists(frame) ? frame : "";
+  if (msg.bodies.empty() || target != rviz::TfFrameProperty::FIXED_FRAME_STRING) return "";
+  const std::string& name = msg.bodies[0].name;
+  const std::string& r = msg.header.frame_id;
+  const std::string prefixed = r.substr(0, r.rfind('/') + 1) + name;  // ~frame_prefix's
+  if (tf->_frameExists(prefixed)) return prefixed;
+  return tf->_frameExists(name) ? name : "";
+}
+
 // The camera looks at the centre of the box around every O_k and G_k drawn (within
-// mbk::kMaxGlyphDistance) from where the box's bounding sphere fills the view's height.
+// mbk::kMaxGlyphDistance) from where the box's bounding sphere fills the view's height, and
+// follows the robot's base (followFrame): a robot on a moving base stays in view.
 void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& drawn,
-                                        const std_msgs::Header& header) {
+                                        const mb_kinematics_msgs::BodyKinematicsArray& msg) {
+  const std_msgs::Header& header = msg.header;
   rviz::ViewController* view = context_->getViewManager()->getCurrent();
   Eigen::AlignedBox3d box;
   for (const mbk::GlyphBody& b : drawn) box.extend(b.origin).extend(b.mass_center);
@@ -272,6 +293,14 @@ void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& drawn
     return;
   const double radius = 0.5 * box.diagonal().norm() + auto_length_->getFloat();
   const double half_fov = 0.5 * view->getCamera()->getFOVy().valueRadians();
+  rviz::Property* target = view->subProp("Target Frame");  // Orbit and the other tracking views
+  const std::string follow = followFrame(msg, target->getValue().toString());
+  if (!follow.empty() && target->getValue().isValid()) {
+    // The view keeps its focal point where it was on a change of target (rviz's
+    // onTargetFrameChanged); lookAt then places it relative to the new target.
+    target->setValue(QString::fromStdString(follow));
+    ROS_INFO_STREAM("BodyKinematics: the view follows '" << follow << "'");
+  }
   view->lookAt(center);
   view->subProp("Distance")->setValue(std::max(kMinCameraDistance, radius / std::sin(half_fov)));
 }
@@ -330,12 +359,22 @@ void BodyKinematicsDisplay::updateStyle() {
   showLegend();
 }
 
-// The status panel's "Legend": which color is which quantity, as the properties set them.
+// The status panel's legend, a row per color ("Legend: cyan", "velocity of G_k (m/s)"): which
+// color is which quantity, as the properties set them. Two quantities of one color share a row.
 void BodyKinematicsDisplay::showLegend() {
-  QString legend;
-  for (const std::string& entry : mbk::glyph_legend(style_))
-    legend += (legend.isEmpty() ? "" : "; ") + QString::fromStdString(entry);
-  setStatus(rviz::StatusProperty::Ok, "Legend", legend.isEmpty() ? "nothing shown" : legend);
+  for (const QString& name : legend_rows_) deleteStatus(name);
+  legend_rows_.clear();
+  std::map<QString, QString> rows;
+  for (const std::string& entry : mbk::glyph_legend(style_)) {
+    const std::size_t colon = entry.find(": ");
+    QString& text = rows["Legend: " + QString::fromStdString(entry.substr(0, colon))];
+    text += (text.isEmpty() ? "" : "; ") + QString::fromStdString(entry.substr(colon + 2));
+  }
+  if (rows.empty()) rows["Legend"] = "nothing shown";
+  for (const auto& row : rows) {
+    setStatus(rviz::StatusProperty::Ok, row.first, row.second);
+    legend_rows_.push_back(row.first);
+  }
 }
 
 void BodyKinematicsDisplay::updateFilter() {
@@ -432,7 +471,7 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
   if (masses_.empty() && (ros::WallTime::now() - masses_tried_).toSec() > 1) updateMasses();
   const mbk::BodySelection drawn = mbk::select_bodies(msg, masses_, style_);
   if (auto_frame_->getBool() && !framed_) {
-    frameCamera(drawn.drawn(), msg.header);
+    frameCamera(drawn.drawn(), msg);
     framed_ = true;
   }
   autoScale(drawn);

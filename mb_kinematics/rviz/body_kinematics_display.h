@@ -84,8 +84,15 @@ class BodyKinematicsDisplay
   // Auto Frame: the Fixed Frame becomes the message's frame when tf does not know it. Every
   // message, before the tf filter (which holds back those it cannot transform to the Fixed Frame).
   void adoptFrame(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg);
-  // `drawn`: the bodies drawn (BodySelection::drawn).
-  void frameCamera(const std::vector<mbk::GlyphBody>& drawn, const std_msgs::Header& header);
+  // `drawn`: the bodies drawn (BodySelection::drawn); the view then follows followFrame(msg).
+  void frameCamera(const std::vector<mbk::GlyphBody>& drawn,
+                   const mb_kinematics_msgs::BodyKinematicsArray& msg);
+  // The frame Auto Frame's view follows: rviz's ~follow_frame (mb_kinematics.launch's
+  // follow_frame), else, while the view's Target Frame is the Fixed Frame (the config names
+  // none), the message's first body (the base, on a floating one), as tf names it (with the
+  // node's ~frame_prefix); "" for none or a frame tf does not know.
+  std::string followFrame(const mb_kinematics_msgs::BodyKinematicsArray& msg,
+                          const QString& target) const;
   // The whole system's visual, placed at G (in double, as the bodies' anchor).
   void drawSystem(const mb_kinematics_msgs::BodyKinematicsArray& msg);
 
@@ -101,6 +108,7 @@ class BodyKinematicsDisplay
   std::map<std::string, double> masses_;  // link name -> kg, from Robot Description
   ros::WallTime masses_tried_;
   bool framed_ = false;  // the camera has framed the bodies since Auto Frame was turned on
+  std::vector<QString> legend_rows_;  // the legend's status names (showLegend)
   message_filters::Connection frame_connection_;
 
   mbk::GlyphStyle style_;

@@ -13,10 +13,9 @@ struct NamedHue {
 constexpr NamedHue kHues[] = {{15, "red"},   {45, "orange"}, {70, "yellow"},   {160, "green"},
                               {200, "cyan"}, {260, "blue"},  {330, "magenta"}, {360, "red"}};
 
-const char* const kWhat[GlyphQuantity::kCount] = {
-    "velocity of each mass center G_k (m/s)", "acceleration of each mass center G_k (m/s^2)",
-    "angular velocity omega_k (arrow and arc, rad/s)",
-    "angular acceleration alpha_k (arrow and arc, rad/s^2)"};
+// At most kMaxLegendText characters each: one status row of the Displays panel.
+const char* const kWhat[GlyphQuantity::kCount] = {"velocity of G_k, m/s", "accel. of G_k, m/s^2",
+                                                  "omega_k, rad/s", "alpha_k, rad/s^2"};
 
 double hue_degrees(double r, double g, double b, double hi, double span) {
   double h = hi == r ? (g - b) / span : hi == g ? 2 + (b - r) / span : 4 + (r - g) / span;
@@ -41,7 +40,7 @@ std::vector<std::string> glyph_legend(const GlyphStyle& style) {
   for (int q = 0; q < GlyphQuantity::kCount; ++q)
     if (style.show[q]) legend.push_back(color_name(style.color[q]) + ": " + kWhat[q]);
   if (style.mass_centers)
-    legend.push_back(color_name(style.mass_center_color) + " spheres: mass centers G_k");
+    legend.push_back(color_name(style.mass_center_color) + ": spheres at G_k");
   return legend;
 }
 

@@ -3,6 +3,7 @@
 // in the display's properties is named too.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -14,8 +15,12 @@ namespace mbk {
 // unsaturated colors.
 std::string color_name(const Rgba& color);
 
-// An entry per shown quantity and for the mass centers, e.g. "cyan: velocity of each mass
-// center G_k (m/s)".
+// The longest text after "<color>: " in a legend entry: what the text column of rviz's Displays
+// panel shows whole in the shipped configs (doc/rviz.md).
+constexpr std::size_t kMaxLegendText = 21;
+
+// An entry per shown quantity and for the mass centers, e.g. "cyan: velocity of G_k, m/s";
+// the rviz display shows each as a status row (name "Legend: cyan", the text after ": ").
 std::vector<std::string> glyph_legend(const GlyphStyle& style);
 
 }  // namespace mbk

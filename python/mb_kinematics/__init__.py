@@ -9,6 +9,8 @@ in one call into numpy arrays named as `mbk eval`'s JSON.
 The computation is C++ (offline/batch_kinematics.h, the loaders of io/); this package checks the
 arguments, names what is wrong (ValueError, TypeError) and makes the arrays.
 """
+import errno
+import hashlib
 import operator
 import os
 import pkgutil
@@ -22,13 +24,16 @@ except ImportError:  # imported from the source folder first on sys.path (a deve
     __path__ = pkgutil.extend_path(__path__, __name__)
     from mb_kinematics import _core
 
-__all__ = ["load", "Model", "OUTPUTS", "Recording", "angles"]
+from mb_kinematics.recording import Recording  # noqa: E402 (after _core's search)
 
-#: A recording's samples (read_recording, or Model.recording from arrays): `times` (rows,),
-#: `positions` (rows, nq), `velocities` and `accelerations` (rows, nq, NaN where not recorded),
-#: `drops` (samples dropped, by reason, as `mbk bag` counts them), `grid` (the stamps' uniform
-#: grid, when they lie on one), `base` (a bag's base odometry, or None).
-Recording = _core.Recording
+__all__ = ["load", "Model", "OUTPUTS", "OPT_IN", "Recording", "angles"]
+#: The package's version (package.xml's).
+__version__ = _core.__version__
+
+
+def __dir__():
+    """The public names only (the modules this one uses are not part of it)."""
+    return sorted(set(__all__) | {"__version__"})
 
 _TRAITS = _core.field_traits()
 _POSE, _VELOCITY, _ACCELERATION = 0, 1, 2
@@ -65,9 +70,15 @@ def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None, anth
                         % type(anthropometry).__name__)
     if anthropometry is not None and not body_mass:
         raise ValueError("anthropometry chooses the masses' table: it needs body_mass")
-    return Model(_core.load(path_or_text, scale, body_mass, sex, segments,
-                            anthropometry=anthropometry),
-                 1.0 if scale is None else float(scale))
+    text = _core.is_model_text(path_or_text)
+    core = _missing_file_checked(_core.load, None if text else path_or_text, path_or_text, scale,
+                                 body_mass, sex, segments, anthropometry=anthropometry)
+    model = Model(core, 1.0 if scale is None else float(scale))
+    source = path_or_text if text else os.path.abspath(path_or_text)  # from any folder
+    segments = None if segments is None else os.path.abspath(segments)
+    model._source = (source, scale, body_mass, sex, segments, anthropometry,
+                     None if text else _file_digest(source))
+    return model
 
 
 def angles(rotation, order):
@@ -104,10 +115,48 @@ def angles(rotation, order):
     return out.reshape(r.shape[:-2] + (3,))
 
 
+class _NoSuchFile(FileNotFoundError, ValueError):
+    """A missing model or recording file: FileNotFoundError, and a ValueError as every other
+    loader error (as io.UnsupportedOperation is both an OSError and a ValueError)."""
+
+
+# Shown (tracebacks) and pickled as the FileNotFoundError it is.
+_NoSuchFile.__module__, _NoSuchFile.__name__, _NoSuchFile.__qualname__ = (
+    "builtins", "FileNotFoundError", "FileNotFoundError")
+
+
+def _missing_file_checked(call, path, *args):
+    """call(*args); the loader's ValueError about a `path` that does not exist as
+    FileNotFoundError, with the loader's message."""
+    try:
+        return call(*args)
+    except ValueError as e:
+        if path is None or os.path.exists(path):
+            raise
+        raise _NoSuchFile(errno.ENOENT, str(e), path) from None
+
+
+def _file_digest(path):
+    """The SHA-256 of a file's bytes."""
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def _load_pickled(path_or_text, scale, body_mass, sex, segments, anthropometry, digest):
+    """A pickled Model made again from its source: the same file (same bytes) or text."""
+    if digest is not None and not os.path.exists(path_or_text):
+        raise _NoSuchFile(errno.ENOENT, "the pickled model's file: no such file", path_or_text)
+    if digest is not None and _file_digest(path_or_text) != digest:
+        raise ValueError("%s: the model file changed since the model was pickled" % path_or_text)
+    return load(path_or_text, scale, body_mass, sex, segments, anthropometry)
+
+
 class Model:
     """A loaded model: its bodies k = 1..N (body_names[k - 1]), coordinates and speeds; `scale`,
     the metres per file unit it was loaded with (1 but for a .bvh file given another).
-    Immutable; safe to share between threads."""
+    Immutable (its attributes are read-only); safe to share between threads. Pickles (for
+    multiprocessing and Dask) as its source and options, loaded again where it is unpickled:
+    the file (which must hold the same bytes there) or the text."""
 
     def __init__(self, core, scale=1.0):
         self._core = core
@@ -136,6 +185,28 @@ class Model:
         self.masses, self.mass_centers, self.lower, self.neutral_position = (
             _frozen(a) for a in (self.masses, self.mass_centers, self.lower,
                                  self.neutral_position))
+        self._source = None  # load()'s arguments, for pickle
+        self._sealed = True
+
+    def __setattr__(self, name, value):
+        if self.__dict__.get("_sealed") and not name.startswith("_"):
+            raise AttributeError("Model is immutable: %s cannot be set (load another model)"
+                                 % name)
+        object.__setattr__(self, name, value)
+
+    def __delattr__(self, name):
+        raise AttributeError("Model is immutable: %s cannot be deleted" % name)
+
+    def __reduce__(self):
+        if self._source is None:
+            raise TypeError("a Model made without mb_kinematics.load cannot be pickled")
+        return _load_pickled, self._source
+
+    def __copy__(self):
+        return self
+
+    def __deepcopy__(self, memo):
+        return self  # immutable: a copy would be the same model
 
     @property
     def body_count(self):
@@ -193,8 +264,11 @@ class Model:
         for name, topic in topics.items():
             if not isinstance(topic, str):
                 raise TypeError("%s: a topic name (str), not %s" % (name, type(topic).__name__))
-        return _core.read_recording(self._core, path, self.scale, topics["joint_states"],
-                                    topics["joint_accelerations"], topics["base_odometry"])
+        core = _missing_file_checked(_core.read_recording, path, self._core, path, self.scale,
+                                     topics["joint_states"], topics["joint_accelerations"],
+                                     topics["base_odometry"])
+        return Recording(core, (_read_pickled, (self, os.path.abspath(path), scale, joint_states,
+                                                joint_accelerations, base_odometry)))
 
     def recording(self, times, positions):
         """A Recording of positions (N, nq) at increasing times (N,): every coordinate in every
@@ -206,8 +280,10 @@ class Model:
                              (times.shape, positions.shape, self.nq))
         if not (np.isfinite(times).all() and np.isfinite(positions).all()):
             raise ValueError("times, positions: not finite (drop or repair those samples)")
-        return _core.recording_of_positions(
-            self._core, times, np.ascontiguousarray(positions, dtype=np.float64))
+        positions = np.array(positions, dtype=np.float64, order="C")  # the caller's may change
+        times = times.copy()
+        return Recording(_core.recording_of_positions(self._core, times, positions),
+                         (_recording_pickled, (self, times, positions)))
 
     def states(self, recording, estimator="auto", max_gap=None):
         """Every row's joint state as `mbk bag` computes it: the recorded values, velocities and
@@ -218,7 +294,7 @@ class Model:
         row has its last sample's), and `valid` (rows,): False where mbk bag drops the row (too
         few samples around it), whose `drop_reason` says why."""
         gap = _estimator_arguments(recording, estimator, max_gap)
-        out = _core.recording_states(self._core, recording, estimator, gap)
+        out = _core.recording_states(self._core, recording._core, estimator, gap)
         out["time"] = recording.times
         out["valid"] = np.array([not r for r in out["drop_reason"]], dtype=bool)
         return out
@@ -243,10 +319,10 @@ class Model:
                 raise ValueError("with base odometry: %s not available (threads only)"
                                  % ", ".join(sorted(unknown)))
             gap = _estimator_arguments(recording, estimator, max_gap)
-            return _core.floating_base_kinematics(self._core, recording, estimator, gap,
+            return _core.floating_base_kinematics(self._core, recording._core, estimator, gap,
                                                   _threads(options.get("threads")))
         gap = _estimator_arguments(recording, estimator, max_gap)
-        rows = _core.recording_rows(self._core, recording, estimator, gap,
+        rows = _core.recording_rows(self._core, recording._core, estimator, gap,
                                     _threads(options.get("threads")))
         out = self.kinematics(rows["position"], rows["velocity"], rows["acceleration"],
                               **options)
@@ -324,6 +400,16 @@ def _frozen(array):
     view = array.view()
     view.setflags(write=False)
     return view
+
+
+def _read_pickled(model, path, scale, joint_states, joint_accelerations, base_odometry):
+    """A pickled Recording read again from its file, with the same model and options."""
+    return model.read_recording(path, scale, joint_states, joint_accelerations, base_odometry)
+
+
+def _recording_pickled(model, times, positions):
+    """A pickled Recording of arrays made again."""
+    return model.recording(times, positions)
 
 
 def _estimator_arguments(recording, estimator, max_gap):

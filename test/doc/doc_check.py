@@ -7,8 +7,20 @@
     through /usr/bin/python3) run, in order, as one bash script (set -e) in a temporary directory, against the workspace MBK_WS, on a ROS
     master of the test's own (a free port); after each block the commands it left running
     (ending in `&`) are stopped with SIGTERM (a background job of a non-interactive shell ignores SIGINT). The whole script must end within --timeout s.
+(c) With --pages (ctest doc_pages): every ```sh, ```bash and ```python block of doc/*.md runs as
+    written, each from a fresh shell that has sourced the workspace only (bash -e; python blocks
+    through /usr/bin/python3), in a fresh folder of its own (not the repository), on a ROS
+    master of the check's own, on an Xvfb screen (rviz:=true). The folder holds the reader's own
+    files the pages name (FIXTURES: copies of the repository's real data). A command that runs
+    until the reader stops it (roslaunch, rostopic echo, rviz) passes when it is still running
+    after --settle s with no node died and no error printed, and is then stopped (SIGTERM, as
+    the reader's Ctrl-C). An HTML comment on the line before a block may say
+    `<!-- doc_check: first COMMAND -->` (run before the block: what the page's text says is
+    already there, e.g. a bringup's robot_description), `<!-- doc_check: beside COMMAND -->`
+    (started before the block and stopped after it: the running node the block talks to) or
+    `<!-- doc_check: skip REASON -->` (not run: a cluster, a clone, a file's content; listed).
 
-Usage: doc_check.py [--root DIR] [--links-only] [--timeout S]
+Usage: doc_check.py [--root DIR] [--links-only] [--pages [--only REGEX]] [--timeout S] [--settle S]
 """
 import argparse
 import os
@@ -164,15 +176,193 @@ def run_quick_start(root, ws, timeout):
     return []
 
 
+# The reader's own files the pages name, made in each block's folder (doc_check --pages).
+FIXTURES = {
+    "walk.bvh": "test/mocap/131_01.bvh",  # a motion capture file
+    "run.bag": "test/fuzz/seeds/bag/human_10_samples.bag",  # joint states of the human body
+    "more.bag": "test/fuzz/seeds/bag/human_10_samples.bag",
+    "robot.urdf": "config/human_body.urdf",  # the reader's robot (run.bag's)
+    "my_robot.urdf": "config/human_body.urdf",
+    "list.txt": None,  # a list of recordings: walk.bvh
+    "trials/131_01.bvh": "test/mocap/131_01.bvh",  # a folder of recordings
+    "logs/run.bag": "test/fuzz/seeds/bag/human_10_samples.bag",
+}
+# A trajectory CSV of the human body scene (config/human_body.yaml): every coordinate, the pelvis
+# rising 1 mm a sample.
+MOCAP_CSV = r"""/usr/bin/python3 - <<'MBK_CSV' > mocap.csv
+import subprocess, mb_kinematics
+pkg = subprocess.check_output(["rospack", "find", "mb_kinematics"], text=True).strip()
+names = mb_kinematics.load(pkg + "/config/human_body.yaml").coordinate_names
+print(",".join(("time",) + names))
+for i in range(20):
+    print(",".join(["%g" % (0.01 * (i + 1))] + ["%g" % (0.001 * i if n == "root/z" else 0) for n in names]))
+MBK_CSV"""
+DIRECTIVE = re.compile(r"^<!--\s*doc_check:\s*(first|beside|skip)\s+(.*?)\s*-->$")
+# Commands that run until the reader stops them: shell functions of the same name run them in
+# the background, wait --settle s, fail if they ended or printed an error, then stop them
+# (SIGTERM: a background job of a non-interactive shell ignores SIGINT).
+LONG_RUNNING = r"""
+mbk_running() {
+  local log; log=$(mktemp)
+  "$@" >"$log" 2>&1 &
+  local pid=$! waited=0
+  while [ "$waited" -lt "$MBK_SETTLE" ] && kill -0 "$pid" 2>/dev/null; do sleep 1; waited=$((waited + 1)); done
+  local alive=true; kill -0 "$pid" 2>/dev/null || alive=false
+  kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null || true
+  if ! $alive || grep -qE 'process has died|RLException|ERROR|FATAL|Traceback' "$log"; then
+    cat "$log" >&2; echo "doc_check: '$*' ended or failed within $MBK_SETTLE s" >&2; rm -f "$log"; return 1
+  fi
+  rm -f "$log"; echo "doc_check: '$*' ran $MBK_SETTLE s, stopped" >&2
+}
+roslaunch() { mbk_running command roslaunch "$@"; }
+rviz() { mbk_running command rviz "$@"; }
+rostopic() { if [ "$1" = echo ] && [[ " $* " != *" -n "* ]]; then mbk_running command rostopic "$@"; else command rostopic "$@"; fi; }
+"""
+
+
+def page_blocks(path):
+    """(line, language, text, directives) of every ```sh/```bash/```python block of a page."""
+    blocks, lines = [], open(path, encoding="utf-8").read().split("\n")
+    i = 0
+    while i < len(lines):
+        m = re.match(r"^```(\w*)\s*$", lines[i])
+        if not m:
+            i += 1
+            continue
+        end = i + 1
+        while not lines[end].startswith("```"):
+            end += 1
+        directives = []
+        j = i - 1
+        while j >= 0 and DIRECTIVE.match(lines[j].strip()):
+            directives.insert(0, DIRECTIVE.match(lines[j].strip()).groups())
+            j -= 1
+        if m.group(1) in ("sh", "bash", "python"):
+            blocks.append((i + 1, m.group(1), "\n".join(lines[i + 1:end]), directives))
+        i = end + 1
+    return blocks
+
+
+def block_script(root, setup, language, text, directives):
+    """The bash script that runs one block from a fresh shell in the current folder."""
+    parts = ["source %s" % setup, "set -e"]
+    for name, source in FIXTURES.items():
+        if source:
+            parts.append("mkdir -p $(dirname %s) && cp %s %s" % (name, os.path.join(root, source), name))
+    parts.append(MOCAP_CSV)
+    parts.append("echo walk.bvh > list.txt")
+    parts.append("beside=()")
+    for kind, command in directives:
+        if kind == "first":
+            parts.append(command)
+        elif kind == "beside":
+            parts.append("%s >beside.log 2>&1 & beside+=($!); sleep $((3 * MBK_SETTLE))" % command)
+    parts.append("trap 'for p in \"${beside[@]}\"; do kill -TERM $p 2>/dev/null; done; wait' EXIT")
+    parts.append(LONG_RUNNING)  # after the directives' commands, which run as they are
+    if language == "python":
+        parts.append("/usr/bin/python3 - <<'MBK_PYTHON_BLOCK'\n%s\nMBK_PYTHON_BLOCK" % text)
+    else:
+        parts.append(text)
+    return "\n".join(parts) + "\n"
+
+
+def start_xvfb(env):
+    """An Xvfb screen for rviz:=true (None when Xvfb is not installed)."""
+    r, w = os.pipe()
+    try:
+        xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(w), "-screen", "0", "1280x900x24",
+                                 "-nolisten", "tcp"], pass_fds=(w,), stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL, start_new_session=True)
+    except FileNotFoundError:
+        return None
+    os.close(w)
+    with os.fdopen(r) as f:
+        env["DISPLAY"] = ":" + f.readline().strip()
+    return xvfb
+
+
+def fresh_parameters(master_uri):
+    """The parameter server as roscore starts it: a block does not see the one before's."""
+    import xmlrpc.client
+    server = xmlrpc.client.ServerProxy(master_uri)
+    for _ in range(100):
+        try:
+            names = server.getParamNames("/doc_check")[2]
+            break
+        except OSError:
+            time.sleep(0.2)
+    for name in names:
+        if name not in ("/run_id", "/rosdistro", "/rosversion"):
+            server.deleteParam("/doc_check", name)
+
+
+def run_pages(root, ws, settle, timeout, only=None):
+    """Every command block of doc/*.md (c); a list of problems."""
+    errors, skipped, ran = [], [], 0
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_HOSTNAME="127.0.0.1",
+               MBK_SETTLE=str(settle))
+    env["PATH"] = "/usr/bin:" + env.get("PATH", "")
+    setup = os.path.join(ws, "devel", "setup.bash")
+    with tempfile.TemporaryDirectory() as tmp:
+        env["ROS_HOME"] = os.path.join(tmp, "ros")
+        env["HOME"] = os.path.join(tmp, "home")
+        os.makedirs(env["HOME"])
+        xvfb = start_xvfb(env)
+        master = subprocess.Popen(["roscore", "-p", str(port)], env=env, cwd=tmp,
+                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                  start_new_session=True)
+        try:
+            for path in doc_files(root)[1:]:
+                for line, language, text, directives in page_blocks(path):
+                    where = "%s:%d" % (os.path.relpath(path, root), line)
+                    if only and not re.search(only, where):
+                        continue
+                    skip = [d for k, d in directives if k == "skip"]
+                    if skip:
+                        skipped.append("%s (%s)" % (where, skip[0]))
+                        continue
+                    fresh_parameters(env["ROS_MASTER_URI"])
+                    folder = tempfile.mkdtemp(dir=tmp)
+                    print("--- %s" % where, file=sys.stderr, flush=True)
+                    proc = subprocess.Popen(["bash", "-c", block_script(root, setup, language, text,
+                                                                        directives)],
+                                            env=env, cwd=folder, start_new_session=True)
+                    ran += 1
+                    try:
+                        rc = proc.wait(timeout=4 * timeout)  # a block: several commands
+                    except subprocess.TimeoutExpired:
+                        os.killpg(proc.pid, signal.SIGKILL)
+                        proc.wait()
+                        rc = "no end within %g s" % timeout
+                    if rc != 0:
+                        errors.append("%s: the block failed (%s; its output is above)" % (where, rc))
+        finally:
+            os.killpg(master.pid, signal.SIGINT)
+            master.wait()
+            if xvfb:
+                xvfb.terminate()
+                xvfb.wait()
+    print("doc_check: %d blocks of doc/*.md run; not run: %s" % (ran, "; ".join(skipped) or "none"))
+    return errors
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", default=os.path.dirname(os.path.dirname(here)))
     ap.add_argument("--links-only", action="store_true")
+    ap.add_argument("--pages", action="store_true", help="run the command blocks of doc/*.md")
     ap.add_argument("--timeout", type=float, default=45)
+    ap.add_argument("--settle", type=int, default=12)  # a loaded machine: roslaunch still starting at 6 s
+    ap.add_argument("--only", help="with --pages: the blocks whose FILE:LINE matches this regex")
     args = ap.parse_args()
     errors = check_links(args.root)
-    if not args.links_only:
+    if args.pages:
+        ws = os.environ.get("MBK_WS")
+        errors += (run_pages(args.root, ws, args.settle, args.timeout, args.only) if ws else
+                   ["MBK_WS is not set: the workspace whose devel/setup.bash the pages use"])
+    elif not args.links_only:
         ws = os.environ.get("MBK_WS")
         if not ws:
             errors.append("MBK_WS is not set: the workspace whose devel/setup.bash the quick start uses")

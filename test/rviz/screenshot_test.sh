@@ -11,7 +11,8 @@
 # only pixels there count (the middle of the 3D view, where the framed robot is); CENTER=X,Y,TOL:
 # the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
 # camera frames the robot); SHOT_NAME: the name of the kept files; SETTLE=S: screenshots count
-# only after S s of motion (the camera must keep the moving robot in view; TIMEOUT counts on).
+# only after S s of motion (the camera must keep the moving robot in view; TIMEOUT counts on);
+# EXPECT_FOLLOW=FRAME: the display must have made the view follow FRAME.
 # Hostile runs (LAUNCH=hostile_bodies.launch, test/rviz.cmake): READY: the launch's line that says
 # it is up (default: the node's "coordinates, max depth"); MAX_RSS_MB: rviz may hold at most this
 # resident memory at the end; SIGINT_WITHIN=S: rviz must exit within S s of a SIGINT; HOLD=S:
@@ -82,6 +83,10 @@ if [ -n "$EXPECT_FRAME" ]; then
     fail "the display did not set the Fixed Frame to '$EXPECT_FRAME'"
 elif grep -q "is not in tf; set to" "$tmp/rviz.log"; then
   fail "the display changed the config's Fixed Frame, which tf knows"
+fi
+if [ -n "${EXPECT_FOLLOW:-}" ]; then
+  grep -q "the view follows '$EXPECT_FOLLOW'" "$tmp/rviz.log" ||
+    fail "the display did not make the view follow '$EXPECT_FOLLOW'"
 fi
 $passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s${SETTLE:+ (from $SETTLE s on)}"
 # rviz's CPU time (user + system, clock ticks) and the wall time, for its CPU % over HOLD.

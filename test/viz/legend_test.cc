@@ -32,19 +32,29 @@ TEST(Legend, ALineForEachShownQuantity) {
   mbk::GlyphStyle style;
   std::vector<std::string> legend = mbk::glyph_legend(style);
   ASSERT_EQ(legend.size(), 5u);
-  EXPECT_EQ(legend[0], "cyan: velocity of each mass center G_k (m/s)");
-  EXPECT_EQ(legend[1], "orange: acceleration of each mass center G_k (m/s^2)");
-  EXPECT_EQ(legend[2].rfind("magenta: angular velocity omega_k", 0), 0u) << legend[2];
-  EXPECT_EQ(legend[3].rfind("yellow: angular acceleration alpha_k", 0), 0u) << legend[3];
-  EXPECT_EQ(legend[4], "white spheres: mass centers G_k");
+  EXPECT_EQ(legend[0], "cyan: velocity of G_k, m/s");
+  EXPECT_EQ(legend[1], "orange: accel. of G_k, m/s^2");
+  EXPECT_EQ(legend[2], "magenta: omega_k, rad/s");
+  EXPECT_EQ(legend[3], "yellow: alpha_k, rad/s^2");
+  EXPECT_EQ(legend[4], "white: spheres at G_k");
 
   style.show[mbk::GlyphQuantity::kAcceleration] = false;
   style.color[mbk::GlyphQuantity::kVelocity] = {0, 0.8f, 0, 1};
   style.mass_centers = false;
   legend = mbk::glyph_legend(style);
   ASSERT_EQ(legend.size(), 3u);
-  EXPECT_EQ(legend[0], "green: velocity of each mass center G_k (m/s)");
+  EXPECT_EQ(legend[0], "green: velocity of G_k, m/s");
   EXPECT_EQ(legend[1].rfind("magenta:", 0), 0u) << legend[1];
+}
+
+// Each entry is a status row of rviz's Displays panel: its text (after "<color>: ") fits the
+// panel's text column whole.
+TEST(Legend, EveryTextFitsAStatusRow) {
+  for (const std::string& entry : mbk::glyph_legend(mbk::GlyphStyle())) {
+    const std::size_t colon = entry.find(": ");
+    ASSERT_NE(colon, std::string::npos) << entry;
+    EXPECT_LE(entry.size() - colon - 2, mbk::kMaxLegendText) << entry;
+  }
 }
 
 }  // namespace
