@@ -136,6 +136,8 @@ struct Outputs {
     origin = seconds;
     if (bag) bag->set_time_origin(seconds);
     if (csv) csv->set_time_origin(seconds);
+    if (h5) h5->set_time_origin(seconds);
+    if (mot) mot->set_time_origin(seconds);
   }
 
   void write(const mbk::OfflineRow& row) {

@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/io/number_format.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
 
 #ifndef MBK_VERSION
@@ -176,6 +178,8 @@ struct H5Output::File {
   std::string shown;
   const mbk::Model& model;
   std::size_t nq, bodies, chunk_rows = 1, rows = 0;  // rows: buffered
+  double origin = 0;                                  // the stamps' (set_time_origin)
+  std::size_t time = 0;                               // the `time` dataset's index
   hsize_t written = 0;
   Id file;
   std::vector<Dataset> datasets;
@@ -372,8 +376,20 @@ void H5Output::write(const mbk::OfflineRow& row, const mbk::Data<double>& data) 
     throw std::logic_error("H5Output: a row of another model");
   for (File::Dataset& d : f.datasets)
     if (d.fill) d.fill(row, d.buffer.data() + f.rows * d.width, d.width);
+  if (f.origin != 0) {  // the CSV's text of the stamp, read back
+    char text[mbk::kMaxStampChars];
+    mbk::write_stamp(text, f.origin, row.stamp);
+    f.datasets[f.time].buffer[f.rows] = std::strtod(text, nullptr);
+  }
   mbk::write_batch_fields(f.model, data, f.rows, mbk::Level::kAcceleration, f.batch, f.system);
   if (++f.rows == f.chunk_rows) f.flush();
+}
+
+void H5Output::set_time_origin(double seconds) {
+  File& f = *file_;
+  f.origin = seconds;
+  for (std::size_t i = 0; i < f.datasets.size(); ++i)
+    if (f.datasets[i].name == "time") f.time = i;
 }
 
 void H5Output::close() {

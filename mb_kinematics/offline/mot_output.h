@@ -26,6 +26,9 @@ class MotOutput {
   MotOutput& operator=(const MotOutput&) = delete;
 
   void write(const mbk::OfflineRow& row);  // its stamp and coordinates
+  // The stamps' origin (Recording::origin): times written as the CSV writes them (whole seconds
+  // and nanoseconds of origin + stamp).
+  void set_time_origin(double seconds) { origin_ = seconds; }
   // Writes what is buffered, sets nRows and closes; throws std::runtime_error ("PATH: write
   // failed (...)") if the disk refused the data.
   void close();
@@ -39,6 +42,7 @@ class MotOutput {
 
   std::string shown_;
   int fd_ = -1;
+  double origin_ = 0;
   std::vector<double> scale_;  // per coordinate: 180 / pi for angles, else 1
   std::string buffer_;
   long rows_ = 0;

@@ -1,7 +1,8 @@
 # Type stubs of the package mb_kinematics (doc/python.md): its public names, as __all__ lists
 # them. test/python/test_typing.py checks them against the module (mypy's stubtest).
 import os
-from typing import Any, Dict, Final, Iterable, Mapping, Optional, Sequence, Tuple, Union
+from typing import (Any, Dict, Final, Iterable, Iterator, Mapping, Optional, Sequence, Tuple,
+                    Union)
 
 import numpy as np
 import numpy.typing as npt
@@ -11,12 +12,18 @@ __version__: str
 
 #: Every output Model.kinematics can write, in its order.
 OUTPUTS: Tuple[str, ...]
+#: Written only when asked for by name (partial velocities, segment frames, joint motion).
+OPT_IN: Tuple[str, ...]
 
 _Array = npt.NDArray[np.float64]
 _Values = Union[npt.ArrayLike, Mapping[str, npt.ArrayLike]]
 
 def load(path_or_text: Union[str, os.PathLike[str]], scale: Optional[float] = ...,
-         body_mass: Optional[float] = ..., sex: Optional[str] = ...) -> Model: ...
+         body_mass: Optional[float] = ..., sex: Optional[str] = ...,
+         segments: Union[None, str, os.PathLike[str]] = ...,
+         anthropometry: Optional[str] = ...) -> Model: ...
+
+def angles(rotation: npt.ArrayLike, order: Union[str, Sequence[str]]) -> _Array: ...
 
 class Recording:
     def __init__(self, core: Any, source: Any) -> None: ...
@@ -52,7 +59,8 @@ class Model:
     mimics: Final[Tuple[Dict[str, Any], ...]]
     warnings: Final[Tuple[str, ...]]
     neutral_position: Final[_Array]
-    def __init__(self, core: Any) -> None: ...
+    scale: Final[float]
+    def __init__(self, core: Any, scale: float = ...) -> None: ...
     @property
     def body_count(self) -> int: ...
     @property
@@ -61,7 +69,7 @@ class Model:
     def lower_table(self) -> npt.NDArray[np.int64]: ...
     def tables(self) -> str: ...
     def body_index(self, name: str) -> int: ...
-    def read_recording(self, path: Union[str, os.PathLike[str]], scale: float = ...,
+    def read_recording(self, path: Union[str, os.PathLike[str]], scale: Optional[float] = ...,
                        joint_states: str = ..., joint_accelerations: Optional[str] = ...,
                        base_odometry: Optional[str] = ...) -> Recording: ...
     def recording(self, times: npt.ArrayLike, positions: npt.ArrayLike) -> Recording: ...
@@ -76,3 +84,6 @@ class Model:
                    threads: Optional[int] = ...,
                    out: Optional[Dict[str, npt.NDArray[Any]]] = ...,
                    dtype: npt.DTypeLike = ...) -> Dict[str, npt.NDArray[Any]]: ...
+    def kinematics_chunks(self, q: _Values, velocity: Optional[_Values] = ...,
+                          acceleration: Optional[_Values] = ..., rows: int = ...,
+                          **options: Any) -> Iterator[Tuple[int, Dict[str, npt.NDArray[Any]]]]: ...

@@ -300,11 +300,19 @@ def test_wall_clock_csv_stamps_are_kept_to_the_nanosecond(panda, tmp_path):
     stamps = arm_rows(wall, 1700000000)
     arm_rows(early, 1)
     out, bag = str(tmp_path / "out.csv"), str(tmp_path / "out.bag")
-    run = run_mbk("bag", wall, "--model", PANDA, "--csv", out, "--out", bag)
+    h5, mot = str(tmp_path / "out.h5"), str(tmp_path / "out.mot")
+    run = run_mbk("bag", wall, "--model", PANDA, "--csv", out, "--out", bag, "--h5", h5,
+                  "--mot", mot)
     assert run.returncode == 0, run.stderr
     with open(out) as f:
         written = sorted({line.split(",", 1)[0] for line in f.readlines()[1:]})
     assert written == stamps
+    import h5py
+    with h5py.File(h5, "r") as f:  # the CSV's stamps as doubles, not origin + stamp rounded
+        assert list(f["time"][:]) == [float(s) for s in stamps]
+    with open(mot) as f:
+        rows = f.read().split("endheader\n", 1)[1].splitlines()[1:]
+    assert [r.split("\t", 1)[0] for r in rows] == stamps
     import rosbag
     with rosbag.Bag(bag) as b:
         times = sorted({"%d.%09d" % (m.header.stamp.secs, m.header.stamp.nsecs)
