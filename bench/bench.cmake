@@ -1,5 +1,5 @@
-# kinematics_benchmark (Google Benchmark): ours against Orocos KDL, and against Pinocchio and
-# DART when CMake finds them. Like the tests, benchmarks and their peers are test dependencies
+# kinematics_benchmark (Google Benchmark): ours against Orocos KDL, and against Pinocchio, DART
+# and MuJoCo when CMake finds them. Like the tests, benchmarks and their peers are test dependencies
 # (package.xml): without Google Benchmark, no benchmark.
 #   Pinocchio 3.x is not in Debian: build it yourself and point CMake at it, e.g.
 #   `source scripts/common.sh; mbk_build -DCMAKE_PREFIX_PATH=<its install prefix>`.
@@ -53,6 +53,17 @@ elseif(DART_FOUND)
   target_compile_definitions(kinematics_benchmark PRIVATE MBK_WITH_DART)
 else()
   message(STATUS "kinematics_benchmark: without DART (libdart-dev, libdart-utils-urdf-dev)")
+endif()
+
+find_library(MBK_MUJOCO_LIBRARY mujoco)  # as test/tests.cmake
+find_path(MBK_MUJOCO_INCLUDE mujoco/mujoco.h)
+if(MBK_MUJOCO_LIBRARY AND MBK_MUJOCO_INCLUDE)
+  message(STATUS "kinematics_benchmark: with MuJoCo (${MBK_MUJOCO_LIBRARY})")
+  target_sources(kinematics_benchmark PRIVATE bench/mujoco_peer.cc)
+  target_link_libraries(kinematics_benchmark ${MBK_MUJOCO_LIBRARY})
+  target_compile_definitions(kinematics_benchmark PRIVATE MBK_WITH_MUJOCO)
+else()
+  message(STATUS "kinematics_benchmark: without MuJoCo (libmujoco-dev)")
 endif()
 
 # bag_benchmark: the whole `mbk bag` path (read, compute, write) on the human model.

@@ -25,6 +25,7 @@ struct Scene {
   bool parse_urdf;   // peers load `urdf` with their parsers (else a peer builds `model`)
   bool peers;        // run the peers (their memory or time grows faster than N: at most
                      // 1000 bodies; Pinocchio's Data alone holds N x N matrices)
+  std::string mjcf = "";  // an MJCF file of the model: MuJoCo alone reads it (not the others)
 };
 
 inline mbk::JointState<double> random_state(const mbk::Model& model, unsigned seed) {

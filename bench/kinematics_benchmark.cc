@@ -10,6 +10,8 @@
 //   pinocchio/<scene>/full_own_coordinates   the same from Pinocchio's own q, v, a (no
 //                                     conversion of our coordinates in the loop)
 //   dart/<scene>/full                 DART: the same full state, read body by body (dart_peer.h)
+//   mujoco/<scene>/pose               MuJoCo: mj_kinematics      (only when CMake found MuJoCo)
+//   mujoco/<scene>/full               the same full state as MuJoCo gives it (mujoco_peer.h)
 //   kdl/<scene>/tree_pose_all_links   TreeFkSolverPos_recursive::JntToCart for every link
 //                                     (what robot_state_publisher's users get: poses only)
 //   kdl/<scene>/chain_pose_longest    ChainFkSolverPos_recursive, all frames of the longest chain
@@ -27,7 +29,9 @@
 // 1 m along x (mbk::make_chain). The URDF scenes are written as URDF (write_urdf) and every
 // side, ours included, loads that text. Chains give Pinocchio the model joint by joint (its
 // URDF parser does not cope with long chains); KDL and DART run up to 1000 bodies, Pinocchio up
-// to 100 (its Data holds N^3 tensors).
+// to 100 (its Data holds N^3 tensors). mjcf_humanoid and mjcf_panda: test/robots/mjcf/
+// humanoid.xml and panda.xml, which ours (io/mjcf_model.h) and MuJoCo read (the others do not
+// read MJCF); MuJoCo also reads every URDF scene of up to 1000 bodies.
 // Before timing, each peer's results are checked against ours on every body it computes.
 // Each iteration nudges one coordinate and speed so that nothing is computed once and reused.
 #include <benchmark/benchmark.h>
@@ -62,6 +66,9 @@
 #include "mb_kinematics/io/urdf_writer.h"
 #ifdef MBK_WITH_PINOCCHIO
 #include "bench/pinocchio_peer.h"
+#endif
+#ifdef MBK_WITH_MUJOCO
+#include "bench/mujoco_peer.h"
 #endif
 #ifdef MBK_WITH_DART
 #include "bench/dart_peer.h"
@@ -328,6 +335,11 @@ int main(int argc, char** argv) {
     scenes.push_back(std::make_unique<Scene>(
         Scene{"chain" + std::to_string(n), std::move(chain), urdf, false, small}));
   }
+  for (const char* name : {"humanoid", "panda"}) {
+    const std::string mjcf = source_path(std::string("test/robots/mjcf/") + name + ".xml");
+    scenes.push_back(std::make_unique<Scene>(
+        Scene{std::string("mjcf_") + name, mbk::load_model_file(mjcf), "", false, false, mjcf}));
+  }
 
   std::vector<std::unique_ptr<KdlScene>> kdl;
   const std::pair<const char*, mbk::Level> levels[] = {{"pose", mbk::Level::kPose},
@@ -342,6 +354,10 @@ int main(int argc, char** argv) {
         benchmark::RegisterBenchmark(("ours/" + scene->name + "/pv/" + level_name).c_str(),
                                      ours_partial_velocity, model, level);
     }
+#ifdef MBK_WITH_MUJOCO
+    if (!scene->mjcf.empty() || (scene->peers && !scene->urdf.empty()))
+      mbk_bench::register_mujoco(*scene);
+#endif
     if (!scene->peers) continue;
 #ifdef MBK_WITH_PINOCCHIO
     if (model->body_count() <= 100)  // its Data holds N^3 tensors: 32 GB at N = 1000
@@ -368,6 +384,9 @@ int main(int argc, char** argv) {
 #endif
 #ifndef MBK_WITH_DART
   std::fprintf(stderr, "kinematics_benchmark: built without DART (libdart-dev)\n");
+#endif
+#ifndef MBK_WITH_MUJOCO
+  std::fprintf(stderr, "kinematics_benchmark: built without MuJoCo (libmujoco-dev)\n");
 #endif
 
   benchmark::Initialize(&argc, argv);

@@ -4,7 +4,6 @@
 
 #include <stdexcept>
 
-#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/sdformat_reader.h"
 #include "mb_kinematics/io/text_file.h"
 
@@ -52,9 +51,7 @@ Model load(const std::string& path_or_text, bool text, const std::string& source
   SdformatReadFunction read = reader();
   Model model;
   std::string error;
-  if (!read(path_or_text, text, source, model, error))
-    throw std::invalid_argument(printable(error));
-  for (std::string& warning : model.warnings) warning = printable(warning);
+  if (!read(path_or_text, text, source, model, error)) throw std::invalid_argument(error);
   return model;
 }
 

@@ -16,14 +16,18 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mb_kinematics/core/printable.h"
+
 namespace mbk {
 namespace {
 
 using Pose = ignition::math::Pose3d;
 
-// One line from sdformat's errors: the first, and how many more.
+// One line from sdformat's errors: the first (its first 300 characters: a text it cannot parse
+// is quoted whole), and how many more.
 std::string first_error(const sdf::Errors& errors) {
   std::string line = errors.front().Message();
+  if (line.size() > 300) line = line.substr(0, 300) + "...";
   for (char& c : line)
     if (c == '\n') c = ' ';
   if (errors.size() > 1) line += " (and " + std::to_string(errors.size() - 1) + " more)";
@@ -319,11 +323,12 @@ Model read(const std::string& path_or_text, bool text, const std::string& source
 extern "C" bool mbk_read_sdformat(const std::string& path_or_text, bool text,
                                   const std::string& source, mbk::Model& model,
                                   std::string& error) {
-  try {
+  try {  // messages hold names and sdformat's text: control characters escaped
     model = mbk::read(path_or_text, text, source);
+    for (std::string& warning : model.warnings) warning = mbk::printable(warning);
     return true;
   } catch (const std::exception& e) {
-    error = e.what();
+    error = mbk::printable(e.what());
     return false;
   }
 }

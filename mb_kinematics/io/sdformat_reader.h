@@ -13,7 +13,8 @@ constexpr const char* kSdformatReaderLibrary = "libmbk_sdformat.so";
 constexpr const char* kSdformatReadSymbol = "mbk_read_sdformat";
 
 // Reads a file (text = false) or an SDFormat text into `model` (finalized); false with a one-line
-// `error` ("<source>: <what>") for a model sdformat refuses or that does not map.
+// `error` ("<source>: <what>", control characters escaped) for a model sdformat refuses or that
+// does not map.
 using SdformatReadFunction = bool (*)(const std::string& path_or_text, bool text,
                                       const std::string& source, Model& model, std::string& error);
 
