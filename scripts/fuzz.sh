@@ -20,7 +20,7 @@ case "${1:-}" in
   "") ;;
   *) echo "usage: scripts/fuzz.sh [seconds | --smoke | --build]" >&2; exit 2 ;;
 esac
-harnesses=(urdf yaml_scene state_json lower joint_state_input bag glyphs mjcf sdf)
+harnesses=(urdf yaml_scene state_json lower joint_state_input bag glyphs mjcf sdf recording)
 dir=${MBK_FUZZ_DIR:-$MBK_WS/fuzz}
 mkdir -p "$dir/build" "$dir/findings"
 
@@ -47,6 +47,7 @@ smoke_runs() {  # about 5 s each on this project's 2-core CI machines
     glyphs) echo 5000 ;;
     mjcf) echo 2000 ;;
     sdf) echo 200 ;;  # sdformat is slow: 2000 runs took 314 s here (at load 20)
+    recording) echo 2000 ;;
   esac
 }
 
@@ -60,6 +61,7 @@ seeds() {  # the shipped files each harness starts from
     glyphs) ls "$MBK_SRC"/test/fuzz/seeds/glyphs/* ;;
     mjcf) ls "$MBK_SRC"/test/robots/mjcf/*.xml ;;
     sdf) ls "$MBK_SRC"/test/robots/sdf/*.sdf ;;
+    recording) ls "$MBK_SRC"/test/fuzz/seeds/recording/* ;;
   esac
 }
 

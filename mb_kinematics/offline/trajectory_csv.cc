@@ -6,9 +6,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <istream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/text_file.h"
@@ -107,6 +109,14 @@ CellTime cell_time(const std::string& cell, double x) {
 // holds its nanoseconds.
 constexpr double kTimeOriginFrom = 1e6;
 
+// t as the outputs write it: whole seconds and nanoseconds (io/number_format.h's write_stamp).
+std::pair<double, long long> whole_nanoseconds(double t) {
+  double whole = std::floor(t);
+  long long ns = std::llround((t - whole) * 1e9);
+  if (ns == 1000000000) whole += 1, ns = 0;
+  return {whole, ns};
+}
+
 }  // namespace
 
 void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
@@ -118,6 +128,7 @@ void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
   const std::vector<std::string> all(header.begin() + 1, header.end());
   std::vector<std::string> names;
   std::vector<double> position;
+  double last = std::numeric_limits<double>::quiet_NaN();  // the time of the row before
   for (int number = 2; next_line(in, line); ++number) {
     if (line.empty()) continue;
     const std::string where = path + ":" + std::to_string(number);
@@ -150,6 +161,11 @@ void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
         position.push_back(x);
       }
     }
+    if (std::isfinite(t) && t > last && whole_nanoseconds(t) == whole_nanoseconds(last))
+      throw std::invalid_argument(where + ": time " + printable(cells[0]) +
+                                  " is less than 1 ns after the row before: the outputs' stamps "
+                                  "hold whole nanoseconds, so both would be written alike");
+    if (std::isfinite(t)) last = t;
     builder.add(t, names, position, {}, where);
   }
 }

@@ -266,12 +266,14 @@ py::dict floating_base_kinematics(const ModelPtr& model, const RecordedPtr& reco
 // rows' times and states, (rows,) and (rows, nq), and the drops, the reading's included.
 py::dict recording_rows(const ModelPtr& model, const RecordedPtr& recorded,
                         const std::string& estimator, double max_gap, int threads) {
+  check_same_model(*model, *recorded);
   mbk::DropLog log = recorded->log;
+  const double origin = recorded->recording.origin;  // a wall clock's whole seconds, or 0
   std::vector<double> time, position, velocity, acceleration;
   {
     py::gil_scoped_release release;
     const auto keep = [&](const mbk::OfflineRow& row) {
-      time.push_back(row.stamp);
+      time.push_back(origin + row.stamp);
       const mbk::JointState<double>& s = row.state;
       position.insert(position.end(), s.position.data(), s.position.data() + s.position.size());
       velocity.insert(velocity.end(), s.velocity.data(), s.velocity.data() + s.velocity.size());

@@ -125,11 +125,11 @@ _NoSuchFile.__module__, _NoSuchFile.__name__, _NoSuchFile.__qualname__ = (
     "builtins", "FileNotFoundError", "FileNotFoundError")
 
 
-def _missing_file_checked(call, path, *args):
-    """call(*args); the loader's ValueError about a `path` that does not exist as
+def _missing_file_checked(call, path, *args, **kwargs):
+    """call(*args, **kwargs); the loader's ValueError about a `path` that does not exist as
     FileNotFoundError, with the loader's message."""
     try:
-        return call(*args)
+        return call(*args, **kwargs)
     except ValueError as e:
         if path is None or os.path.exists(path):
             raise

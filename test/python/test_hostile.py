@@ -72,15 +72,17 @@ def test_threads_that_cannot_start_shrink_the_pool():
 
 
 def test_mbk_bag_threads_beyond_the_address_space(tmp_path):
-    """mbk bag --threads 1024 under --max-memory 2, 4 and 8 GiB (the stacks alone take 8): the
-    run completes on the threads that started, as on one thread, or stops with the one line of
-    --max-memory; never an abort, and no temporary is left."""
+    """mbk bag --threads 1024 under --max-memory 2, 4, 8 and 16 GiB (the stacks alone take 8):
+    the run completes on the threads that started, as on one thread, or stops with the one line
+    of --max-memory; never an abort, and no temporary is left. Which limits complete depends on
+    what the build maps (the libraries' address space): 16 GiB always leaves room. The pool's
+    shrinking itself: split_runs_test ThreadsThatCannotStartShrinkThePool."""
     csv = arm_csv(str(tmp_path / "t.csv"))
     one = str(tmp_path / "one.csv")
     first = run_mbk("bag", csv, "--model", PANDA, "--csv", one, "--threads", "1")
     assert first.returncode == 0, first.stderr
     completed = 0
-    for gib in ("2", "4", "8"):
+    for gib in ("2", "4", "8", "16"):
         many = str(tmp_path / ("many%s.csv" % gib))
         run = run_mbk("bag", csv, "--model", PANDA, "--csv", many, "--threads", "1024",
                       "--max-memory", gib)
@@ -323,3 +325,28 @@ def test_wall_clock_csv_stamps_are_kept_to_the_nanosecond(panda, tmp_path):
     assert np.abs(late["time"] - 1700000000 + 1 - soon["time"]).max() <= 2.4e-7  # a double's
     scale = np.abs(soon["acceleration"]).max()
     assert np.abs(late["acceleration"] - soon["acceleration"]).max() <= 1e-6 * scale
+
+
+def test_csv_times_closer_than_a_nanosecond_are_refused(panda, tmp_path):
+    """Times less than 1 ns apart would be written alike (the outputs hold whole nanoseconds):
+    the CSV is refused with one line naming the row, and nothing is written."""
+    path, out = str(tmp_path / "close.csv"), str(tmp_path / "out.csv")
+    with open(path, "w") as f:
+        f.write(",".join(["time"] + ["panda_joint%d" % j for j in range(1, 8)] +
+                         ["panda_finger_joint1"]) + "\n")
+        for i in range(5):
+            f.write("%.12f," % (1 + i * 1e-10) + ",".join(["0.1"] * 8) + "\n")
+    run = run_mbk("bag", path, "--model", PANDA, "--csv", out)
+    assert run.returncode != 0
+    assert "close.csv:3: time 1.000000000100 is less than 1 ns after the row before" in \
+        run.stderr, run.stderr
+    assert len(run.stderr.strip().splitlines()) == 1, run.stderr
+    assert not os.path.exists(out)
+    with pytest.raises(ValueError, match="less than 1 ns after the row before"):
+        panda.read_recording(path)
+    spaced = str(tmp_path / "spaced.csv")  # 1 ns apart: read, each stamp as written
+    with open(path) as f, open(spaced, "w") as g:
+        lines = f.read().splitlines()
+        g.write(lines[0] + "\n" + "".join("%.9f," % (1 + i * 1e-9) + l.split(",", 1)[1] + "\n"
+                                         for i, l in enumerate(lines[1:])))
+    assert run_mbk("bag", spaced, "--model", PANDA, "--csv", out).returncode == 0
