@@ -29,6 +29,7 @@ endfunction()
 
 mbk_test_cost("^doc_pages$" 300)
 mbk_test_cost("^fuzz_smoke$" 46)
+mbk_test_cost("^python_batch$" 150)
 mbk_test_cost("^rviz_moving_" 25)
 mbk_test_cost("rostest_test_ros_hostile\\.test$" 24)
 mbk_test_cost("rostest_test_ros_missing\\.test$" 21)

@@ -107,7 +107,7 @@ set_tests_properties(python_module PROPERTIES TIMEOUT 300 ENVIRONMENT
 # mbk batch (doc/batch.md): test/batch/ under pytest, as python_module, on a small collection.
 add_test(NAME python_batch COMMAND /usr/bin/python3 -m pytest -q -p no:cacheprovider
   ${PROJECT_SOURCE_DIR}/test/batch WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-set_tests_properties(python_batch PROPERTIES TIMEOUT 120 ENVIRONMENT
+set_tests_properties(python_batch PROPERTIES TIMEOUT 600 ENVIRONMENT
   "PYTHONPATH=${CATKIN_DEVEL_PREFIX}/${CATKIN_GLOBAL_PYTHON_DESTINATION};MBK_DEVEL=${CATKIN_DEVEL_PREFIX};PYTHONNOUSERSITE=1")
 # Every JSON `mbk eval` writes parses as JSON (no inf or nan), on the fuzzers' starting models,
 # the workspace's fuzz corpus when a fuzz run left one, and models at a double's limits; a

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <utility>
 
 #include "mb_kinematics/core/finite_kinematics.h"
@@ -31,6 +32,8 @@ void OfflineBatch::start_threads() {
   try {
     threads_.reserve(workers_.size());
     for (int i = 0; i < threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);
+  } catch (const std::system_error& e) {  // its code kept: under mbk bag --max-memory, the cap
+    if (threads_.empty()) throw std::system_error(e.code(), "cannot start a computing thread");
   } catch (const std::exception& e) {
     if (threads_.empty())
       throw std::runtime_error(std::string("cannot start a computing thread: ") + e.what());

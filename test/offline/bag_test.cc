@@ -1127,6 +1127,8 @@ TEST(BagTest, ABvhFileIsItsOwnRecording) {
     mbk_offline::parse_bag_options(static_cast<int>(argv.size()), argv.data());
     ADD_FAILURE() << "--scale with a .yaml model accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "--scale, --body-mass, --sex and --segments apply to a .bvh model only");
+    EXPECT_STREQ(e.what(),
+                 "--scale, --body-mass, --sex, --segments and --anthropometry apply to a .bvh "
+                 "model only");
   }
 }
