@@ -96,11 +96,13 @@ def when_records(out, count, then):
 
 def test_a_lost_scheduler_keeps_the_finished_jobs(tmp_path):
     """The scheduler killed after the first records: those jobs are ok (their records and
-    outputs are whole), the others failed; before, every row was "failed CancelledError"."""
+    outputs are whole), the others failed; before, every row was "failed CancelledError". The
+    worker goes with it: a worker that outlives its scheduler finishes the job it holds after
+    the batch has reported it failed (its record then appears late; a resumed run skips it)."""
     scheduler, worker, address = start_cluster(tmp_path)
     try:
         folder, out = walks(str(tmp_path / "in"), 12, frames=994), str(tmp_path / "out")
-        when_records(out, 2, scheduler.kill)
+        when_records(out, 2, lambda: (scheduler.kill(), worker.kill()))
         run = subprocess.run([mbk_path(), "batch"] + walk_arguments(folder, out) +
                              ["--scheduler", address], capture_output=True, text=True,
                              timeout=300)
