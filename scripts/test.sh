@@ -41,7 +41,6 @@ echo "== building tests (${SECONDS} s in)"
   echo "test build failed: full log in $MBK_WS/build.log" >&2
   exit 1
 }
-[ -n "$sanitize" ] || { echo "== building the fuzz harnesses (${SECONDS} s in)" && "$MBK_SRC/scripts/fuzz.sh" --build; }
 [ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 echo "== ctest (${SECONDS} s in)"
 cd "$MBK_WS/build"

@@ -10,7 +10,9 @@
 # a core (rviz_moving_walk: 14.8 CPU seconds in its 25 s): two slots, never beside the node's rate
 # tests (hztest at 50 Hz, node_load_smoke's every sample counted, /tf's longest gap during a heavy
 # call in deep_partials), two rviz tests at once allowed. rviz_hostile_many runs alone
-# (test/rviz.cmake).
+# (test/rviz.cmake). doc_pages takes one slot: its blocks mostly wait (a launched node's settle
+# time), three at once. fuzz_smoke starts first: its clang build keeps both cores busy while the
+# waiting tests run beside it.
 
 # mbk_tests_matching(REGEX OUT): the names of this directory's tests that match REGEX.
 function(mbk_tests_matching regex out)
@@ -27,8 +29,8 @@ function(mbk_test_cost regex seconds)
   endif()
 endfunction()
 
-mbk_test_cost("^doc_pages$" 300)
-mbk_test_cost("^fuzz_smoke$" 46)
+mbk_test_cost("^fuzz_smoke$" 400)  # the harnesses' clang build, then the runs
+mbk_test_cost("^doc_pages$" 150)
 mbk_test_cost("^python_batch$" 150)
 mbk_test_cost("^rviz_moving_" 25)
 mbk_test_cost("rostest_test_ros_hostile\\.test$" 24)
@@ -45,8 +47,7 @@ mbk_test_cost("^gui_launch$|rostest_test_ros_hz\\.test$|^rviz_robot_panda$" 6)
 mbk_test_cost("^rviz_screenshot|^rviz_robot_anymal_c$" 5)
 
 # Busy tests: two slots each.
-mbk_tests_matching("^fuzz_smoke$|^node_load_smoke$|^memcheck_|^python_module$|^rviz_|^doc_pages$"
-  busy)
+mbk_tests_matching("^fuzz_smoke$|^node_load_smoke$|^memcheck_|^python_module$|^rviz_" busy)
 set_tests_properties(${busy} PROPERTIES PROCESSORS 2)
 
 # Each rviz test locks a resource of its own name, which every rate test takes too: no rviz test

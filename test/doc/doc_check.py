@@ -10,7 +10,8 @@
 (c) With --pages (ctest doc_pages): every ```sh, ```bash and ```python block of doc/*.md runs as
     written, each from a fresh shell that has sourced the workspace only (bash -e; python blocks
     through /usr/bin/python3), in a fresh folder of its own (not the repository), on a ROS
-    master of the check's own, on an Xvfb screen (rviz:=true). The folder holds the reader's own
+    master of the check's own, on an Xvfb screen (rviz:=true); --jobs blocks at once, each on
+    a master and a screen of its own. The folder holds the reader's own
     files the pages name (FIXTURES: copies of the repository's real data). A command that runs
     until the reader stops it (roslaunch, rostopic echo, rviz) passes when it is still running
     after --settle s with no node died and no error printed, and is then stopped (SIGTERM, as
@@ -20,7 +21,8 @@
     (started before the block and stopped after it: the running node the block talks to) or
     `<!-- doc_check: skip REASON -->` (not run: a cluster, a clone, a file's content; listed).
 
-Usage: doc_check.py [--root DIR] [--links-only] [--pages [--only REGEX]] [--timeout S] [--settle S]
+Usage: doc_check.py [--root DIR] [--links-only] [--pages [--only REGEX] [--jobs N]] [--timeout S]
+                    [--settle S]
 """
 import argparse
 import os
@@ -208,8 +210,11 @@ mbk_running() {
   local pid=$! waited=0
   while [ "$waited" -lt "$MBK_SETTLE" ] && kill -0 "$pid" 2>/dev/null; do sleep 1; waited=$((waited + 1)); done
   local alive=true; kill -0 "$pid" 2>/dev/null || alive=false
+  # What it printed before the reader's Ctrl-C: a roslaunch still starting nodes on a loaded
+  # machine says RLException when stopped, which is not the page's fault.
+  local failed=false; grep -qE 'process has died|RLException|ERROR|FATAL|Traceback' "$log" && failed=true
   kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null || true
-  if ! $alive || grep -qE 'process has died|RLException|ERROR|FATAL|Traceback' "$log"; then
+  if ! $alive || $failed; then
     cat "$log" >&2; echo "doc_check: '$*' ended or failed within $MBK_SETTLE s" >&2; rm -f "$log"; return 1
   fi
   rm -f "$log"; echo "doc_check: '$*' ran $MBK_SETTLE s, stopped" >&2
@@ -296,55 +301,96 @@ def fresh_parameters(master_uri):
             server.deleteParam("/doc_check", name)
 
 
-def run_pages(root, ws, settle, timeout, only=None):
-    """Every command block of doc/*.md (c); a list of problems."""
-    errors, skipped, ran = [], [], 0
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % port, ROS_HOSTNAME="127.0.0.1",
-               MBK_SETTLE=str(settle))
-    env["PATH"] = "/usr/bin:" + env.get("PATH", "")
+class Station:
+    """What one worker runs blocks on: a ROS master, an Xvfb screen, a ROS_HOME and a HOME of its
+    own, in a folder of its own."""
+
+    def __init__(self, tmp, settle):
+        self.folder = tempfile.mkdtemp(dir=tmp)
+        self.port = free_port()
+        self.env = dict(os.environ, ROS_MASTER_URI="http://127.0.0.1:%d" % self.port,
+                        ROS_HOSTNAME="127.0.0.1", MBK_SETTLE=str(settle),
+                        ROS_HOME=os.path.join(self.folder, "ros"),
+                        HOME=os.path.join(self.folder, "home"))
+        self.env["PATH"] = "/usr/bin:" + self.env.get("PATH", "")
+        os.makedirs(self.env["HOME"])
+        self.xvfb = start_xvfb(self.env)
+        self.master = subprocess.Popen(["roscore", "-p", str(self.port)], env=self.env,
+                                       cwd=self.folder, stdout=subprocess.DEVNULL,
+                                       stderr=subprocess.DEVNULL, start_new_session=True)
+
+    def run(self, script, timeout):
+        """(exit status or a reason, the block's output)."""
+        fresh_parameters(self.env["ROS_MASTER_URI"])
+        folder = tempfile.mkdtemp(dir=self.folder)
+        with tempfile.TemporaryFile(mode="w+") as log:
+            proc = subprocess.Popen(["bash", "-c", script], env=self.env, cwd=folder,
+                                    stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+            try:
+                rc = proc.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+                rc = "no end within %g s" % timeout
+            log.seek(0)
+            return rc, log.read()
+
+    def close(self):
+        os.killpg(self.master.pid, signal.SIGINT)
+        self.master.wait()
+        if self.xvfb:
+            self.xvfb.terminate()
+            self.xvfb.wait()
+
+
+def run_pages(root, ws, settle, timeout, only=None, jobs=3):
+    """Every command block of doc/*.md (c), on JOBS stations at once (the blocks are independent:
+    each has a fresh folder and a fresh parameter server; most of their time is the settle wait
+    of a command that runs until stopped); a list of problems."""
+    import queue
+    import threading
     setup = os.path.join(ws, "devel", "setup.bash")
+    todo, skipped = queue.Queue(), []
+    for path in doc_files(root)[1:]:
+        for line, language, text, directives in page_blocks(path):
+            where = "%s:%d" % (os.path.relpath(path, root), line)
+            if only and not re.search(only, where):
+                continue
+            skip = [d for k, d in directives if k == "skip"]
+            if skip:
+                skipped.append("%s (%s)" % (where, skip[0]))
+                continue
+            todo.put((where, block_script(root, setup, language, text, directives)))
+    ran = todo.qsize()
+    errors, printing = [], threading.Lock()
+
+    def work(station):
+        while True:
+            try:
+                where, script = todo.get_nowait()
+            except queue.Empty:
+                return
+            began = time.monotonic()
+            rc, output = station.run(script, 4 * timeout)  # a block: several commands
+            with printing:
+                print("--- %s (%.0f s)\n%s" % (where, time.monotonic() - began, output),
+                      file=sys.stderr, end="", flush=True)
+                if rc != 0:
+                    errors.append("%s: the block failed (%s; its output is above)" % (where, rc))
+
     with tempfile.TemporaryDirectory() as tmp:
-        env["ROS_HOME"] = os.path.join(tmp, "ros")
-        env["HOME"] = os.path.join(tmp, "home")
-        os.makedirs(env["HOME"])
-        xvfb = start_xvfb(env)
-        master = subprocess.Popen(["roscore", "-p", str(port)], env=env, cwd=tmp,
-                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                  start_new_session=True)
+        stations = [Station(tmp, settle) for _ in range(max(1, min(jobs, ran)))]
         try:
-            for path in doc_files(root)[1:]:
-                for line, language, text, directives in page_blocks(path):
-                    where = "%s:%d" % (os.path.relpath(path, root), line)
-                    if only and not re.search(only, where):
-                        continue
-                    skip = [d for k, d in directives if k == "skip"]
-                    if skip:
-                        skipped.append("%s (%s)" % (where, skip[0]))
-                        continue
-                    fresh_parameters(env["ROS_MASTER_URI"])
-                    folder = tempfile.mkdtemp(dir=tmp)
-                    print("--- %s" % where, file=sys.stderr, flush=True)
-                    proc = subprocess.Popen(["bash", "-c", block_script(root, setup, language, text,
-                                                                        directives)],
-                                            env=env, cwd=folder, start_new_session=True)
-                    ran += 1
-                    try:
-                        rc = proc.wait(timeout=4 * timeout)  # a block: several commands
-                    except subprocess.TimeoutExpired:
-                        os.killpg(proc.pid, signal.SIGKILL)
-                        proc.wait()
-                        rc = "no end within %g s" % timeout
-                    if rc != 0:
-                        errors.append("%s: the block failed (%s; its output is above)" % (where, rc))
+            workers = [threading.Thread(target=work, args=(s,)) for s in stations]
+            for w in workers:
+                w.start()
+            for w in workers:
+                w.join()
         finally:
-            os.killpg(master.pid, signal.SIGINT)
-            master.wait()
-            if xvfb:
-                xvfb.terminate()
-                xvfb.wait()
+            for s in stations:
+                s.close()
     print("doc_check: %d blocks of doc/*.md run; not run: %s" % (ran, "; ".join(skipped) or "none"))
-    return errors
+    return sorted(errors)
 
 
 def main():
@@ -356,11 +402,12 @@ def main():
     ap.add_argument("--timeout", type=float, default=45)
     ap.add_argument("--settle", type=int, default=12)  # a loaded machine: roslaunch still starting at 6 s
     ap.add_argument("--only", help="with --pages: the blocks whose FILE:LINE matches this regex")
+    ap.add_argument("--jobs", type=int, default=3, help="with --pages: blocks run at once")
     args = ap.parse_args()
     errors = check_links(args.root)
     if args.pages:
         ws = os.environ.get("MBK_WS")
-        errors += (run_pages(args.root, ws, args.settle, args.timeout, args.only) if ws else
+        errors += (run_pages(args.root, ws, args.settle, args.timeout, args.only, args.jobs) if ws else
                    ["MBK_WS is not set: the workspace whose devel/setup.bash the pages use"])
     elif not args.links_only:
         ws = os.environ.get("MBK_WS")
