@@ -404,6 +404,8 @@ def main():
     ap.add_argument("--only", help="with --pages: the blocks whose FILE:LINE matches this regex")
     ap.add_argument("--jobs", type=int, default=3, help="with --pages: blocks run at once")
     args = ap.parse_args()
+    # ctest's timeout (SIGTERM): the masters and screens are stopped on the way out.
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit("doc_check: stopped (SIGTERM)"))
     errors = check_links(args.root)
     if args.pages:
         ws = os.environ.get("MBK_WS")
