@@ -381,7 +381,7 @@ def run_pages(root, ws, settle, timeout, only=None, jobs=3):
     with tempfile.TemporaryDirectory() as tmp:
         stations = [Station(tmp, settle) for _ in range(max(1, min(jobs, ran)))]
         try:
-            workers = [threading.Thread(target=work, args=(s,)) for s in stations]
+            workers = [threading.Thread(target=work, args=(s,), daemon=True) for s in stations]
             for w in workers:
                 w.start()
             for w in workers:
