@@ -1,6 +1,6 @@
 // mb_kinematics._core: the compiled part of the Python module (doc/python.md). It converts
 // arrays and exceptions and releases the GIL around the C++; the loaders are io/load_model.h,
-// the batch is offline/batch_kinematics.h. The Python package (python/mb_kinematics/) checks
+// the batch is offline/batch_kinematics.h. The Python package beside it (__init__.py) checks
 // the caller's arguments and names them; the checks here only keep a wrong call from writing
 // out of bounds.
 #include <pybind11/numpy.h>
