@@ -19,6 +19,7 @@
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/offline/base_track.h"
@@ -49,6 +50,13 @@ ModelPtr load(const std::string& path_or_text, py::object scale, py::object body
   py::gil_scoped_release release;
   return std::make_shared<mbk::Model>(
       mbk::load_model(path_or_text, bvh ? &options : nullptr, source));
+}
+
+// mbk bag's check of a BVH model's --scale, --body-mass and --sex texts ("" keeps the default):
+// mbk batch refuses a bad subjects row before anything runs, with mbk bag's message.
+void check_bvh_options(const std::string& scale, const std::string& body_mass,
+                       const std::string& sex) {
+  mbk::bvh_model_options(scale, body_mass, sex);
 }
 
 py::dict joint(const mbk::Body& body) {
@@ -419,6 +427,7 @@ PYBIND11_MODULE(_core, m) {
   m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
+  m.def("check_bvh_options", &check_bvh_options);
   m.def("field_traits", &field_traits);
   m.def("field_shape", &field_shape);
   m.def("euler_angles", &euler_angles);
