@@ -26,6 +26,7 @@
 #include "mb_kinematics/offline/batch_kinematics.h"
 #include "mb_kinematics/offline/recording_input.h"
 #include "mb_kinematics/offline/recording_states.h"
+#include "mb_kinematics/tools/bag_cli.h"
 
 namespace py = pybind11;
 
@@ -57,6 +58,19 @@ ModelPtr load(const std::string& path_or_text, py::object scale, py::object body
 void check_bvh_options(const std::string& scale, const std::string& body_mass,
                        const std::string& sex) {
   mbk::bvh_model_options(scale, body_mass, sex);
+}
+
+// mbk bag's options (tools/bag_cli.h's table): (name, value, who takes it) per option, the value
+// "" for a flag, who: "every job", "bvh jobs" (mbk batch's) or "bag alone".
+py::list bag_options() {
+  py::list out;
+  for (const mbk_offline::BagOptionRow& row : mbk_offline::bag_option_rows()) {
+    const char* use = row.use == mbk_offline::BagOptionUse::kEveryJob  ? "every job"
+                      : row.use == mbk_offline::BagOptionUse::kBvhJobs ? "bvh jobs"
+                                                                       : "bag alone";
+    out.append(py::make_tuple(row.name, row.value, use));
+  }
+  return out;
 }
 
 py::dict joint(const mbk::Body& body) {
@@ -428,6 +442,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
   m.def("check_bvh_options", &check_bvh_options);
+  m.def("bag_options", &bag_options);
   m.def("field_traits", &field_traits);
   m.def("field_shape", &field_shape);
   m.def("euler_angles", &euler_angles);
