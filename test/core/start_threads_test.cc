@@ -9,23 +9,14 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <cstdio>
 #include <cstring>
 #include <string>
 #include <thread>
 #include <vector>
 
-namespace {
+#include "test/support/address_space.h"
 
-// This process's address space now, in bytes (/proc/self/statm's first field).
-long address_space() {
-  long pages = 0;
-  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%ld", &pages) != 1) pages = 0;
-    std::fclose(f);
-  }
-  return pages * sysconf(_SC_PAGESIZE);
-}
+namespace {
 
 // The exit status of `check` run in a child whose address space is capped `room` bytes above
 // what it holds (an 8 MB thread stack needs more than 1 MB), or not capped (room < 0). Every
@@ -38,7 +29,7 @@ int in_child(long room, const Check& check) {
   if (child == 0) {
     rlimit limit{};
     getrlimit(RLIMIT_AS, &limit);
-    limit.rlim_cur = static_cast<rlim_t>(address_space() + room);
+    limit.rlim_cur = static_cast<rlim_t>(mbk_test::address_space() + room);
     if (room >= 0 && setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
     _exit(check());
   }
