@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The layers of mb_kinematics/ (doc/architecture.md): fails when an #include runs from a lower
 layer to a higher one (or across to a peer of the same rank), or when core/ or estimation/
-includes anything but the C++ library, Eigen and themselves (no ROS).
+includes anything but the C++ library, Eigen and themselves (no ROS). The Python binding's C++
+(python/mb_kinematics/*.cc) is above every layer: it may include any of them, and none it.
 
   scripts/check_layers.py [SOURCE_ROOT]     SOURCE_ROOT defaults to this repository
 """
@@ -11,7 +12,8 @@ import sys
 
 # Lowest first; folders in one tuple share a rank and do not include each other.
 LAYERS = [("core",), ("estimation",), ("io",), ("analysis", "viz"), ("messages",),
-          ("offline", "ros"), ("rviz", "tools", "python")]
+          ("offline", "ros"), ("rviz", "tools")]
+BINDING = ("python", "mb_kinematics")  # the binding's C++, beside its Python package
 RANK = {folder: rank for rank, folders in enumerate(LAYERS) for folder in folders}
 ROS_FREE = ("core", "estimation")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
@@ -37,7 +39,7 @@ def problems_of(path, folder):
                 target = own.group(1)
                 if target not in RANK:
                     found.append(f"{where}: mb_kinematics/{target}/ is in no layer")
-                elif target != folder and RANK[target] >= RANK[folder]:
+                elif folder in RANK and target != folder and RANK[target] >= RANK[folder]:
                     found.append(f"{where}: {target}/ is not below {folder}/")
             elif folder in ROS_FREE and not allowed_system_header(header):
                 found.append(f"{where}: {folder}/ stays ROS-free (C++ library and Eigen only)")
@@ -60,6 +62,10 @@ def main():
             for name in sorted(files):
                 if name.endswith((".h", ".cc")):
                     problems += problems_of(os.path.join(base, name), folder)
+    binding = os.path.join(root, *BINDING)
+    for name in sorted(os.listdir(binding)) if os.path.isdir(binding) else []:
+        if name.endswith((".h", ".cc")):
+            problems += problems_of(os.path.join(binding, name), "python")
     for problem in problems:
         print(problem, file=sys.stderr)
     return 1 if problems else 0

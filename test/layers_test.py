@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """ctest layer_includes: scripts/check_layers.py passes on this tree, and fails, naming the file,
-line and both layers, on a copy with a planted upward include and on a ROS header in core/."""
+line and both layers, on a copy with a planted upward include, on a ROS header in core/ and on
+the Python binding's C++ (python/mb_kinematics/_core.cc) including a folder in no layer."""
 import os
 import shutil
 import subprocess
@@ -43,6 +44,14 @@ def main():
                 failures.append(f"planted {line} in {path}: exit {code}, {err!r}")
             shutil.copy(os.path.join(SOURCE, "mb_kinematics", path),
                         os.path.join(tree, "mb_kinematics", path))
+        binding = os.path.join(tree, "python", "mb_kinematics")
+        os.makedirs(binding)
+        shutil.copy(os.path.join(SOURCE, "python", "mb_kinematics", "_core.cc"), binding)
+        with open(os.path.join(binding, "_core.cc"), "a", encoding="utf-8") as source:
+            source.write('#include "mb_kinematics/python/binding.h"\n')
+        code, err = check(tree)
+        if code == 0 or "_core.cc:" not in err or "python/ is in no layer" not in err:
+            failures.append(f"planted a binding include in _core.cc: exit {code}, {err!r}")
     for failure in failures:
         print(failure, file=sys.stderr)
     return 1 if failures else 0

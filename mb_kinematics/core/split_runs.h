@@ -5,16 +5,17 @@
 
 #include <cstddef>
 #include <exception>
-#include <system_error>
 #include <thread>
 #include <vector>
+
+#include "mb_kinematics/core/start_threads.h"
 
 namespace mbk {
 
 // Runs job(t, begin, end) on `threads` contiguous runs of [0, items), the last on this thread;
 // an exception of a run (std::bad_alloc) is rethrown here after every run has ended. A thread
-// that cannot start (no address space for its stack, a process limit) shrinks the pool: its run
-// and the later ones go on this thread, with the same results.
+// that cannot start shrinks the pool (start_threads): its run and the later ones go on this
+// thread, with the same results.
 template <typename Job>
 void split_runs(std::size_t items, int threads, const Job& job) {
   const std::size_t n = static_cast<std::size_t>(threads);
@@ -26,14 +27,8 @@ void split_runs(std::size_t items, int threads, const Job& job) {
       errors[t] = std::current_exception();
     }
   };
-  std::vector<std::thread> pool;
-  std::size_t started = 0;
-  try {
-    pool.reserve(n - 1);
-    for (; started + 1 < n; ++started) pool.emplace_back(run, started);
-  } catch (const std::exception&) {  // std::system_error, or bad_alloc in reserve
-  }
-  for (std::size_t t = started; t < n; ++t) run(t);
+  std::vector<std::thread> pool = start_threads(n - 1, run, false);
+  for (std::size_t t = pool.size(); t < n; ++t) run(t);
   for (std::thread& thread : pool) thread.join();
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);

@@ -159,4 +159,10 @@ char* write_stamp(char* out, double origin, double t) {
                              static_cast<long long>(std::abs(seconds)), ns);
 }
 
+double written_stamp(double origin, double t) {
+  char text[kMaxStampChars];
+  write_stamp(text, origin, t);
+  return std::strtod(text, nullptr);
+}
+
 }  // namespace mbk

@@ -29,6 +29,10 @@ constexpr int kMaxStampChars = 400;
 // double of it would not. Returns the end.
 char* write_stamp(char* out, double origin, double t);
 
+// The double write_stamp's text reads back as: the stamp as every output holds it (the tidy CSV's
+// and the OpenSim file's text, the HDF5 file's time), so that they agree number for number.
+double written_stamp(double origin, double t);
+
 // write_shortest's text as a string.
 std::string format_double(double x);
 

@@ -72,8 +72,7 @@ void bodies_or_nan(const std::vector<mbk::Vec3<double>>& v, double* out, std::si
 
 const char kCoordinateUnit[] = "each coordinate's: rad (angles), m (translations), 1 (e1..e4)";
 const RowQuantity kRowQuantities[] = {
-    {"time", "s", Need::kAlways, Extent::kOne,
-     [](const mbk::OfflineRow& r, double* x, std::size_t) { x[0] = r.stamp; }},
+    {"time", "s", Need::kAlways, Extent::kOne, nullptr},  // H5Output::write: the stamp as written
     {"joint_position", kCoordinateUnit, Need::kAlways, Extent::kCoordinates,
      [](const mbk::OfflineRow& r, double* x, std::size_t n) {
        std::copy_n(r.state.position.data(), n, x);
@@ -376,11 +375,7 @@ void H5Output::write(const mbk::OfflineRow& row, const mbk::Data<double>& data) 
     throw std::logic_error("H5Output: a row of another model");
   for (File::Dataset& d : f.datasets)
     if (d.fill) d.fill(row, d.buffer.data() + f.rows * d.width, d.width);
-  if (f.origin != 0) {  // the CSV's text of the stamp, read back
-    char text[mbk::kMaxStampChars];
-    mbk::write_stamp(text, f.origin, row.stamp);
-    f.datasets[f.time].buffer[f.rows] = std::strtod(text, nullptr);
-  }
+  f.datasets[f.time].buffer[f.rows] = mbk::written_stamp(f.origin, row.stamp);
   mbk::write_batch_fields(f.model, data, f.rows, mbk::Level::kAcceleration, f.batch, f.system);
   if (++f.rows == f.chunk_rows) f.flush();
 }

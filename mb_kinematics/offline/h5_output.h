@@ -46,7 +46,7 @@ class H5Output {
   // floating base's layout), buffered; a full chunk of rows is written.
   void write(const mbk::OfflineRow& row, const mbk::Data<double>& data);
   // The stamps' origin (Recording::origin, a trajectory CSV's wall-clock seconds): `time` holds
-  // origin + stamp as the CSV writes it (whole seconds and nanoseconds), read as a double.
+  // origin + stamp (io/number_format.h's written_stamp: the CSV's text of it, read back).
   void set_time_origin(double seconds);
   // Writes the rows left and closes the file; throws std::runtime_error ("PATH: write failed
   // (No space left on device)") if the file could not be written.

@@ -52,13 +52,9 @@ MotOutput::~MotOutput() {
 }
 
 void MotOutput::write(const mbk::OfflineRow& row) {
+  char stamp[mbk::kMaxStampChars];  // as the CSV writes it
+  buffer_.append(stamp, mbk::write_stamp(stamp, origin_, row.stamp));
   char cells[mbk::kMaxDoubleChars + 1];
-  if (origin_ != 0) {
-    char stamp[mbk::kMaxStampChars];
-    buffer_.append(stamp, mbk::write_stamp(stamp, origin_, row.stamp));
-  } else {
-    buffer_.append(cells, mbk::write_shortest(cells, row.stamp));
-  }
   for (std::size_t c = 0; c < scale_.size(); ++c) {
     cells[0] = '\t';
     buffer_.append(cells, mbk::write_shortest(cells + 1, row.state.position[c] * scale_[c]));

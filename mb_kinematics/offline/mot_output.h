@@ -3,8 +3,8 @@
 // inDegrees=yes, endheader), the column labels `time` and the coordinate names (a space or
 // tab in a name becomes `_`: OpenSim splits labels at both), then one line per sample, all
 // tab-separated. Angles in degrees (the model's revolute, ball and free joints' angles),
-// translations in metres, Euler parameters as they are; numbers in their shortest round-trip
-// form (io/number_format.h). nRows is counted as the rows are written and set in the header at
+// translations in metres, Euler parameters as they are; the stamp as the CSV writes it, numbers in
+// their shortest round-trip form (io/number_format.h). nRows is counted as the rows are written and set in the header at
 // close(): the file must be seekable (a regular file, or /dev/null). ROS-free.
 #pragma once
 
@@ -26,8 +26,8 @@ class MotOutput {
   MotOutput& operator=(const MotOutput&) = delete;
 
   void write(const mbk::OfflineRow& row);  // its stamp and coordinates
-  // The stamps' origin (Recording::origin): times written as the CSV writes them (whole seconds
-  // and nanoseconds of origin + stamp).
+  // The stamps' origin (Recording::origin): the times are origin + stamp (written as the CSV
+  // writes them, whole seconds and nanoseconds).
   void set_time_origin(double seconds) { origin_ = seconds; }
   // Writes what is buffered, sets nRows and closes; throws std::runtime_error ("PATH: write
   // failed (...)") if the disk refused the data.

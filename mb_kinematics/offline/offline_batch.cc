@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
-#include <stdexcept>
 #include <string>
-#include <system_error>
 #include <utility>
 
 #include "mb_kinematics/core/finite_kinematics.h"
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/start_threads.h"
 #include "mb_kinematics/core/state_check.h"
 
 namespace mbk {
@@ -23,21 +22,9 @@ OfflineBatch::OfflineBatch(const Model& model, const Recording& recording,
   workers_.emplace_back(model, recording, estimator, max_gap, whole, threads);
   while (static_cast<int>(workers_.size()) < threads)
     workers_.push_back(workers_.front());  // a copy: no second scan of the rows
-  start_threads();
-}
-
-// A thread that cannot start (no address space for its stack, a process limit) shrinks the
-// pool to those that did; none at all is an error.
-void OfflineBatch::start_threads() {
-  try {
-    threads_.reserve(workers_.size());
-    for (int i = 0; i < threads(); ++i) threads_.emplace_back(&OfflineBatch::work, this, i);
-  } catch (const std::system_error& e) {  // its code kept: under mbk bag --max-memory, the cap
-    if (threads_.empty()) throw std::system_error(e.code(), "cannot start a computing thread");
-  } catch (const std::exception& e) {
-    if (threads_.empty())
-      throw std::runtime_error(std::string("cannot start a computing thread: ") + e.what());
-  }
+  // A thread that cannot start shrinks the pool to those that did; none at all is an error.
+  threads_ = start_threads(
+      workers_.size(), [this](std::size_t i) { work(static_cast<int>(i)); }, true);
   while (workers_.size() > threads_.size()) workers_.pop_back();  // no block started yet
 }
 

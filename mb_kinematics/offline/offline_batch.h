@@ -87,7 +87,6 @@ class OfflineBatch {
  private:
   void compute_row(OfflineStates& states, int r, OfflineRow& out) const;
   void work(int worker);  // a worker's loop: wait for a block, take its chunks, repeat
-  void start_threads();
 
   const Model& model_;
   const Recording& rec_;

@@ -33,20 +33,26 @@ double number(const std::string& text) {
   return *end == '\0' ? x : NAN;
 }
 
-// One option of `mbk bag`: its name, whether a value follows it, and what it sets (a wrong value
-// throws std::invalid_argument naming the option). A value option is given once at most.
+// One option of `mbk bag`: its name, the value that follows it in the usage ("" for a flag), who
+// takes it (bag_cli.h) and what it sets (a wrong value throws std::invalid_argument naming the
+// option). A value option is given once at most.
 struct Option {
   const char* name;
-  bool takes_value;
+  const char* value;
+  BagOptionUse use;
   void (*set)(Reading& r, const std::string& value);
+  bool takes_value() const { return *value != '\0'; }
 };
 
+constexpr BagOptionUse kJob = BagOptionUse::kEveryJob, kBvh = BagOptionUse::kBvhJobs,
+                       kOwn = BagOptionUse::kBagAlone;
+
 const Option kOptions[] = {
-    {"--model", true, [](Reading& r, const std::string& v) { r.line.model = v; }},
-    {"--out", true, [](Reading& r, const std::string& v) { r.line.out_bag = v; }},
-    {"--csv", true, [](Reading& r, const std::string& v) { r.line.out_csv = v; }},
-    {"--h5", true, [](Reading& r, const std::string& v) { r.line.out_h5 = v; }},
-    {"--h5-compression", true,
+    {"--model", "FILE", kOwn, [](Reading& r, const std::string& v) { r.line.model = v; }},
+    {"--out", "OUT.bag", kOwn, [](Reading& r, const std::string& v) { r.line.out_bag = v; }},
+    {"--csv", "OUT.csv", kOwn, [](Reading& r, const std::string& v) { r.line.out_csv = v; }},
+    {"--h5", "OUT.h5", kOwn, [](Reading& r, const std::string& v) { r.line.out_h5 = v; }},
+    {"--h5-compression", "0-9", kJob,
      [](Reading& r, const std::string& v) {
        char* end = nullptr;
        const long level = std::strtol(v.c_str(), &end, 10);
@@ -55,40 +61,45 @@ const Option kOptions[] = {
                                      v + "'");
        r.line.h5_compression = static_cast<int>(level);
      }},
-    {"--mot", true, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
-    {"--summary-json", true, [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
-    {"--joint-states", true, [](Reading& r, const std::string& v) { r.line.joint_states = v; }},
-    {"--joint-accelerations", true,
+    {"--mot", "OUT.mot", kOwn, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
+    {"--summary-json", "FILE", kOwn,
+     [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
+    {"--joint-states", "TOPIC", kJob,
+     [](Reading& r, const std::string& v) { r.line.joint_states = v; }},
+    {"--joint-accelerations", "TOPIC", kJob,
      [](Reading& r, const std::string& v) { r.line.joint_accelerations = v; }},
-    {"--base-odometry", true, [](Reading& r, const std::string& v) { r.line.base_odometry = v; }},
-    {"--estimator", true, [](Reading& r, const std::string& v) { r.line.estimator = v; }},
-    {"--frame-prefix", true, [](Reading& r, const std::string& v) { r.line.frame_prefix = v; }},
-    {"--scale", true, [](Reading& r, const std::string& v) { r.scale = v; }},
-    {"--body-mass", true, [](Reading& r, const std::string& v) { r.body_mass = v; }},
-    {"--sex", true, [](Reading& r, const std::string& v) { r.sex = v; }},
-    {"--segments", true, [](Reading& r, const std::string& v) { r.segments = v; }},
-    {"--anthropometry", true, [](Reading& r, const std::string& v) { r.anthropometry = v; }},
-    {"--body-axes", false, [](Reading& r, const std::string&) { r.line.body_axes = true; }},
-    {"--angles", true,
+    {"--base-odometry", "TOPIC", kJob,
+     [](Reading& r, const std::string& v) { r.line.base_odometry = v; }},
+    {"--estimator", "NAME", kJob, [](Reading& r, const std::string& v) { r.line.estimator = v; }},
+    {"--frame-prefix", "P", kJob,
+     [](Reading& r, const std::string& v) { r.line.frame_prefix = v; }},
+    {"--scale", "M", kBvh, [](Reading& r, const std::string& v) { r.scale = v; }},
+    {"--body-mass", "KG", kBvh, [](Reading& r, const std::string& v) { r.body_mass = v; }},
+    {"--sex", "male|female", kBvh, [](Reading& r, const std::string& v) { r.sex = v; }},
+    {"--segments", "MAP.yaml", kBvh, [](Reading& r, const std::string& v) { r.segments = v; }},
+    {"--anthropometry", "de_leva|dempster", kBvh,
+     [](Reading& r, const std::string& v) { r.anthropometry = v; }},
+    {"--body-axes", "", kOwn, [](Reading& r, const std::string&) { r.line.body_axes = true; }},
+    {"--angles", "ORDER|ORDERS.yaml", kOwn,
      [](Reading& r, const std::string& v) {
        if (!ends_with(v, ".yaml") && !ends_with(v, ".yml"))
          mbk::euler_order_from_string(v);  // a bad order refused before anything is read
        r.line.angles = v;
      }},
-    {"--max-gap", true,
+    {"--max-gap", "S", kJob,
      [](Reading& r, const std::string& v) {
        r.line.max_gap = number(v);
        if (!(r.line.max_gap > 0))  // 0 is the default's mark: not a gap to give
          throw std::invalid_argument("--max-gap needs seconds > 0, not '" + v +
                                      "' (leave it out for 5 x the median sample interval)");
      }},
-    {"--start-time", true,
+    {"--start-time", "S", kJob,
      [](Reading& r, const std::string& v) {
        r.line.start_time = number(v);
        if (!std::isfinite(r.line.start_time))
          throw std::invalid_argument("--start-time needs seconds, not '" + v + "'");
      }},
-    {"--threads", true,
+    {"--threads", "N", kJob,
      [](Reading& r, const std::string& v) {
        char* end = nullptr;
        const long n = std::strtol(v.c_str(), &end, 10);
@@ -96,15 +107,15 @@ const Option kOptions[] = {
          throw std::invalid_argument("--threads needs a count from 1 to 1024, not '" + v + "'");
        r.line.threads = static_cast<int>(n);
      }},
-    {"--max-memory", true,
+    {"--max-memory", "GIB", kOwn,
      [](Reading& r, const std::string& v) {
        r.line.max_memory = number(v);
        if (!(r.line.max_memory > 0) || !std::isfinite(r.line.max_memory))
          throw std::invalid_argument("--max-memory needs GiB > 0, not '" + v + "'");
      }},
-    {"--verbose", false, [](Reading& r, const std::string&) { r.line.verbose = true; }},
-    {"--help", false, [](Reading& r, const std::string&) { r.line.help = true; }},
-    {"-h", false, [](Reading& r, const std::string&) { r.line.help = true; }},
+    {"--verbose", "", kOwn, [](Reading& r, const std::string&) { r.line.verbose = true; }},
+    {"--help", "", kOwn, [](Reading& r, const std::string&) { r.line.help = true; }},
+    {"-h", "", kOwn, [](Reading& r, const std::string&) { r.line.help = true; }},
 };
 
 const Option* find_option(const std::string& name) {
@@ -143,10 +154,10 @@ BagCommandLine parse_bag_options(int argc, char** argv) {
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     const Option* option = find_option(arg);
-    if (option && (!option->takes_value || i + 1 < argc)) {
-      if (option->takes_value && !given.insert(arg).second)
+    if (option && (!option->takes_value() || i + 1 < argc)) {
+      if (option->takes_value() && !given.insert(arg).second)
         throw std::invalid_argument(arg + " is given twice");
-      option->set(r, option->takes_value ? argv[++i] : "");
+      option->set(r, option->takes_value() ? argv[++i] : "");
       if (r.line.help) return r.line;  // the usage, whatever else is given
     } else if (arg.rfind("--", 0) != 0 && r.line.input.empty()) {
       r.line.input = arg;
@@ -158,16 +169,40 @@ BagCommandLine parse_bag_options(int argc, char** argv) {
   return r.line;
 }
 
-const char* bag_usage() {
-  return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
-         "           [--h5 OUT.h5 [--h5-compression 0-9]] [--mot OUT.mot]\n"
-         "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
-         "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
-         "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"
-         "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
-         "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
-         "           [--anthropometry de_leva|dempster] ...\n"
-         "       with --csv: [--body-axes] [--angles ORDER|ORDERS.yaml]\n"
+std::vector<BagOptionRow> bag_option_rows() {
+  std::vector<BagOptionRow> rows;
+  for (const Option& option : kOptions) rows.push_back({option.name, option.value, option.use});
+  return rows;
+}
+
+namespace {
+
+// The usage's lines of options: `heading`, then every row of kOptions taken by `use`, wrapped.
+std::string option_lines(const char* heading, BagOptionUse use) {
+  constexpr std::size_t kWidth = 100;
+  const std::string indent(7, ' ');
+  std::string text = std::string("   ") + heading + "\n", line = indent;
+  for (const Option& option : kOptions) {
+    if (option.use != use) continue;
+    const std::string item =
+        std::string("[") + option.name + (option.takes_value() ? " " : "") + option.value + "]";
+    if (line.size() > indent.size() && line.size() + 1 + item.size() > kWidth)
+      text += line + "\n", line = indent;
+    line += (line.size() > indent.size() ? " " : "") + item;
+  }
+  return text + line + "\n";
+}
+
+}  // namespace
+
+std::string bag_usage() {
+  return "usage: mbk bag IN.bag|IN.csv --model FILE OUTPUTS [OPTIONS]\n"
+         "       mbk bag WALK.bvh [--model FILE] OUTPUTS [OPTIONS] [BVH OPTIONS]\n" +
+         option_lines(
+             "OUTPUTS (one at least; --body-axes, --angles with --csv), and the run's own:",
+             BagOptionUse::kBagAlone) +
+         option_lines("OPTIONS:", BagOptionUse::kEveryJob) +
+         option_lines("BVH OPTIONS (a .bvh model's):", BagOptionUse::kBvhJobs) +
          "   --body-axes: omega, alpha, velocity, acceleration in each body's own axes\n"
          "   --angles: each body's Cardan/Euler angles relative to its lower body, ORDER one of\n"
          "             XYZ ... ZYZ, or a YAML file of body or joint name: ORDER (and default:)\n"

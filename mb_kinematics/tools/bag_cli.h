@@ -1,10 +1,11 @@
 // `mbk bag`'s command line (mbk_bag): its options into the engine's run (offline/bag_command.h),
 // its usage, the summary it prints and its exit status. A new option is a row of kOptions in
-// bag_cli.cc (and, for a field the engine reads, a field of BagOptions), plus its line of the
-// usage there.
+// bag_cli.cc (and, for a field the engine reads, a field of BagOptions); the usage and mbk batch
+// take it from there.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "mb_kinematics/offline/bag_command.h"
 
@@ -23,8 +24,21 @@ struct BagCommandLine : BagOptions {
 // other_outputs (refused when it is an input or an output).
 BagCommandLine parse_bag_options(int argc, char** argv);
 
-// `mbk bag`'s usage (--help).
-const char* bag_usage();
+// `mbk bag`'s usage (--help): every row of kOptions.
+std::string bag_usage();
+
+// Who takes an option of `mbk bag`: mbk batch gives it as given to every job, or to the jobs of
+// .bvh inputs (a BVH model's options); or mbk bag alone (the model, the outputs, which mbk batch
+// names itself, and the process's own: --max-memory, --verbose, --help).
+enum class BagOptionUse { kEveryJob, kBvhJobs, kBagAlone };
+
+// The rows of kOptions, for the usage, mbk batch (through the Python module) and their tests:
+// each option's name, the value that follows it ("" for a flag) and who takes it.
+struct BagOptionRow {
+  std::string name, value;
+  BagOptionUse use;
+};
+std::vector<BagOptionRow> bag_option_rows();
 
 // The summary as printed at the end: samples, drops, the estimator, the noise level and the
 // worst error bar; `verbose` adds every coordinate's error bars and the times.

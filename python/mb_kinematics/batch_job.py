@@ -11,14 +11,13 @@ import subprocess
 import threading
 import time
 
+from mb_kinematics import _core
+
 STATE = ".mbk-batch"  # under --out-dir: the records of finished jobs
-# `mbk bag` options every job takes as given; those of a BVH model go to .bvh inputs only.
-COMMON_OPTIONS = {"--estimator": "NAME", "--max-gap": "S", "--joint-states": "TOPIC",
-                  "--joint-accelerations": "TOPIC", "--base-odometry": "TOPIC",
-                  "--frame-prefix": "P", "--start-time": "S", "--threads": "N",
-                  "--h5-compression": "0-9"}
-BVH_OPTIONS = {"--scale": "M", "--body-mass": "KG", "--sex": "male|female",
-               "--segments": "MAP.yaml", "--anthropometry": "de_leva|dempster"}
+# `mbk bag` options (name -> its value in the usage) from its one table (tools/bag_cli.cc): those
+# every job takes as given, and a BVH model's, which go to .bvh inputs only.
+COMMON_OPTIONS = {name: value for name, value, use in _core.bag_options() if use == "every job"}
+BVH_OPTIONS = {name: value for name, value, use in _core.bag_options() if use == "bvh jobs"}
 
 
 def locate_mbk_bag():
@@ -26,7 +25,6 @@ def locate_mbk_bag():
     install space: lib/mb_kinematics/mbk_bag beside lib/python3/dist-packages/)."""
     if os.environ.get("MBK_BAG"):
         return os.environ["MBK_BAG"]
-    from mb_kinematics import _core
     lib = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(_core.__file__))))
     path = os.path.join(lib, "mb_kinematics", "mbk_bag")
     if not os.path.isfile(path):

@@ -5,41 +5,25 @@ with a header: `path` (a file or a glob, relative to the CSV's folder) and any o
 whose path names it."""
 import csv
 import glob
-import math
 import os
 
+from mb_kinematics import _core
 from mb_kinematics.batch_inputs import BatchError
 
 # column -> mbk bag's option
 OPTIONS = {"scale": "--scale", "body_mass": "--body-mass", "sex": "--sex"}
 COLUMNS = ["path"] + list(OPTIONS)
-SEXES = ("male", "female", "m", "f")
-
-
-def _number(where, column, text, positive):
-    try:
-        x = float(text)
-    except ValueError:
-        x = float("nan")
-    if not math.isfinite(x) or x < 0 or (positive and x == 0):
-        raise BatchError("%s: %s '%s' is not a number %s" % (where, column, text,
-                                                              "> 0" if positive else ">= 0"))
-    return text
 
 
 def _options(where, row):
-    """mbk bag's options of one row: {"--scale": "0.01", ...}, its empty cells left out."""
-    options = {}
-    for column, option in OPTIONS.items():
-        text = (row.get(column) or "").strip()
-        if not text:
-            continue
-        if column == "sex" and text not in SEXES:
-            raise BatchError("%s: sex '%s' is neither male nor female" % (where, text))
-        if column != "sex":
-            text = _number(where, column, text, column == "scale")
-        options[option] = text
-    return options
+    """mbk bag's options of one row: {"--scale": "0.01", ...}, its empty cells left out; checked
+    as mbk bag checks them (BatchError with its message)."""
+    cells = {column: (row.get(column) or "").strip() for column in OPTIONS}
+    try:
+        _core.check_bvh_options(cells["scale"], cells["body_mass"], cells["sex"])
+    except ValueError as e:
+        raise BatchError("%s: %s" % (where, e)) from None
+    return {OPTIONS[column]: text for column, text in cells.items() if text}
 
 
 def read_subjects(path):

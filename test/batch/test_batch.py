@@ -2,9 +2,12 @@
 them, the outputs of one job and of two byte for byte those of direct `mbk bag` runs, the
 summary from mbk bag's own --summary-json, the exit status counting the failure."""
 import os
+import subprocess
 
-from conftest import (CMU_MASS, CMU_SCALE, DAMAGED, PANDA, batch, batch_arguments, output_files,
-                      recordings, summary_rows)
+from conftest import (CMU_MASS, CMU_SCALE, DAMAGED, PANDA, batch, batch_arguments, mbk_path,
+                      output_files, recordings, summary_rows)
+from mb_kinematics import _core
+from mb_kinematics.batch_job import BVH_OPTIONS, COMMON_OPTIONS
 
 
 def test_one_job_two_jobs_and_direct_runs_agree(collection, direct_runs, tmp_path):
@@ -209,3 +212,22 @@ def test_the_jobs_share_the_cores(walk_template, tmp_path, monkeypatch):
                          scale=CMU_SCALE, body_mass=CMU_MASS, **options)
         assert [r["status"] for r in rows] == ["ok"]
         assert threads == [expected], (jobs, given)
+
+
+def test_every_option_of_mbk_bags_table_reaches_its_usage_and_mbk_batch():
+    """mbk bag's one table of options (tools/bag_cli.cc), read through the module: every row is
+    in `mbk bag --help` (as `[--name VALUE]`); those mbk batch passes on are its options, with
+    the same value, to every job or to .bvh jobs, and in `mbk batch --help`; `mbk --help` points
+    to `mbk bag --help`. A new row of the table reaches all of them."""
+    rows = _core.bag_options()
+    assert len(rows) > 20 and ("--estimator", "NAME", "every job") in rows
+    usage = subprocess.run([mbk_path(), "bag", "--help"], capture_output=True, text=True).stdout
+    batch_help = batch("--help", check=0)[1]
+    for name, value, use in rows:
+        assert "[%s]" % " ".join(filter(None, (name, value))) in usage, (name, usage)
+        passed = {"every job": COMMON_OPTIONS, "bvh jobs": BVH_OPTIONS}.get(use, {})
+        assert (name in COMMON_OPTIONS or name in BVH_OPTIONS) == (use != "bag alone"), name
+        if use != "bag alone":
+            assert passed[name] == value and name in batch_help, name
+    assert "(mbk bag --help)" in subprocess.run([mbk_path(), "--help"], capture_output=True,
+                                                text=True).stdout

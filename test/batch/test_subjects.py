@@ -114,8 +114,11 @@ def test_subjects_give_each_file_its_units_and_body(trials, tmp_path):
      "subjects.csv: unknown column 'age' (the columns: path, scale, body_mass, sex)"),
     ("scale\n1\n", "subjects.csv: no column 'path' (the columns: path, scale, body_mass, sex)"),
     ("path,scale\nnone/*.bvh,0.01\n", "subjects.csv:2: {dir}/none/*.bvh names no input"),
-    ("path,scale\ncm/walk.bvh,-1\n", "subjects.csv:2: scale '-1' is not a number > 0"),
-    ("path,sex\ncm/walk.bvh,x\n", "subjects.csv:2: sex 'x' is neither male nor female"),
+    ("path,scale\ncm/walk.bvh,-1\n", "subjects.csv:2: --scale needs metres per file unit > 0"),
+    ("path,scale\ncm/walk.bvh,1x\n", "subjects.csv:2: --scale needs a number, not '1x'"),
+    ("path,body_mass\ncm/walk.bvh,-70\n", "subjects.csv:2: --body-mass needs kg >= 0"),
+    ("path,sex\ncm/walk.bvh,x\n",
+     "subjects.csv:2: sex: 'x' is neither male nor female (de Leva's columns)"),
 ])
 def test_a_bad_subjects_file_is_refused_before_anything_runs(trials, tmp_path, text, error):
     subjects = os.path.join(trials, "subjects.csv")  # beside the trials: paths relative to it

@@ -6,10 +6,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <vector>
+
+#include "test/support/address_space.h"
 
 namespace {
 
@@ -22,16 +23,6 @@ bool every_item_once(int runs) {
   for (std::size_t i = 0; i < hits.size(); ++i)
     if (hits[i] != 1 || owner[i] != static_cast<int>(i)) return false;
   return true;
-}
-
-// This process's address space now, in bytes (/proc/self/statm's first field).
-long address_space() {
-  long pages = 0;
-  if (FILE* f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%ld", &pages) != 1) pages = 0;
-    std::fclose(f);
-  }
-  return pages * sysconf(_SC_PAGESIZE);
 }
 
 TEST(SplitRuns, EveryRunOnceOnAnyThreadCount) {
@@ -58,7 +49,7 @@ TEST(SplitRuns, ThreadsThatCannotStartShrinkThePool) {
   if (child == 0) {
     rlimit limit{};
     getrlimit(RLIMIT_AS, &limit);
-    limit.rlim_cur = static_cast<rlim_t>(address_space() + (256L << 20));
+    limit.rlim_cur = static_cast<rlim_t>(mbk_test::address_space() + (256L << 20));
     if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(3);
     _exit(every_item_once(1000) ? 0 : 2);
   }

@@ -4,11 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <functional>
 #include <string>
 
 #include "mb_kinematics/io/load_model.h"
+#include "test/support/temp_file.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -20,14 +20,6 @@ std::string error_of(const std::function<void()>& load) {
     return e.what();
   }
   return "";
-}
-
-std::string write_temp(const std::string& text, const std::string& name) {
-  const std::string path = ::testing::TempDir() + name;
-  FILE* f = std::fopen(path.c_str(), "w");
-  std::fputs(text.c_str(), f);
-  std::fclose(f);
-  return path;
 }
 
 const char kTwoJoints[] = R"(<mujoco><compiler angle="radian"/><worldbody>
@@ -88,12 +80,12 @@ TEST(MjcfModel, LinearJointEqualitiesAreMimicsOthersAWarning) {
 }
 
 TEST(MjcfModel, XmlFilesAndTextGoByTheirFirstElement) {
-  const std::string mjcf = write_temp(kTwoJoints, "model.xml");
+  const std::string mjcf = mbk_test::write_temp(kTwoJoints, "model.xml");
   EXPECT_EQ(mbk::load_model_file(mjcf).body_count(), 5);
   EXPECT_EQ(mbk::load_model(std::string("<?xml version=\"1.0\"?><!-- <robot> -->\n") + kTwoJoints)
                 .body_count(),
             5);
-  const std::string urdf = write_temp(
+  const std::string urdf = mbk_test::write_temp(
       "<robot name=\"r\"><link name=\"base\"/><link name=\"l\"/><joint name=\"j\" "
       "type=\"continuous\"><parent link=\"base\"/><child link=\"l\"/></joint></robot>",
       "robot.xml");
@@ -101,7 +93,7 @@ TEST(MjcfModel, XmlFilesAndTextGoByTheirFirstElement) {
 }
 
 TEST(MjcfModel, ErrorsAreOneLineNamingTheFile) {
-  const std::string bad = write_temp(
+  const std::string bad = mbk_test::write_temp(
       "<mujoco><worldbody><body name=\"x\"><joint/></body>"
       "</worldbody></mujoco>",
       "massless.xml");
@@ -112,7 +104,7 @@ TEST(MjcfModel, ErrorsAreOneLineNamingTheFile) {
       << e;
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 
-  const std::string mesh = write_temp(
+  const std::string mesh = mbk_test::write_temp(
       "<mujoco><asset><mesh name=\"m\" file=\"nowhere/link.stl\"/></asset><worldbody><body>"
       "<joint/><geom type=\"mesh\" mesh=\"m\"/></body></worldbody></mujoco>",
       "meshes.xml");

@@ -16,17 +16,12 @@
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/offline_kinematics.h"
 #include "mb_kinematics/offline/trajectory_csv.h"
+#include "test/support/temp_file.h"
 
 namespace {
 
 mbk::Model two_joints() {  // coordinates "J1" and "J2"
   return mbk::make_bare_model({0, 1}, mbk::JointType::kRevolute);
-}
-
-std::string temp_file(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
 }
 
 TEST(RecordingTest, BadSamplesAreCountedDropsAndTheRestIsKept) {
@@ -166,8 +161,8 @@ TEST(RecordingTest, AGrossOutlierIsNotedAndExcluded) {
 
 TEST(TrajectoryCsvTest, ReadsSamplesAndCountsBadLines) {
   const mbk::Model model = two_joints();
-  const std::string path = temp_file(
-      "traj.csv", "time,J2,J1\n0.0,0.2,0.1\n0.01,0.3,\n0.02,nan,0.1\n0.03,0.4,0.5\n0.04,0.1");
+  const std::string path = mbk_test::write_temp(
+      "time,J2,J1\n0.0,0.2,0.1\n0.01,0.3,\n0.02,nan,0.1\n0.03,0.4,0.5\n0.04,0.1", "traj.csv");
   mbk::RecordingBuilder b(model);
   mbk::read_trajectory_csv(path, b);
   const mbk::Recording r = b.finish();
@@ -184,7 +179,7 @@ TEST(TrajectoryCsvTest, ClearErrors) {
        {std::make_pair("t,J1\n0,1\n", "traj_bad1.csv:1: the first column must be 'time'"),
         std::make_pair("time,J1\n0,x1\n", "traj_bad2.csv:2: column 'J1': 'x1' is not a number")}) {
     const std::string name = std::string(bad.second).substr(0, 13);
-    const std::string path = temp_file(name, bad.first);
+    const std::string path = mbk_test::write_temp(bad.first, name);
     try {
       mbk::read_trajectory_csv(path, b);
       FAIL() << "no error for " << bad.first;
@@ -200,8 +195,8 @@ TEST(TrajectoryCsvTest, LineEndsAndByteOrderMark) {
   const mbk::Model model = two_joints();
   for (const std::string end : {"\n", "\r\n", "\r"}) {
     for (const std::string bom : {"", "\xEF\xBB\xBF"}) {
-      const std::string path = temp_file(
-          "traj_ends.csv", bom + "time,J1,J2" + end + "0,0.1,0.2" + end + "0.01,0.3,0.4" + end);
+      const std::string path = mbk_test::write_temp(
+          bom + "time,J1,J2" + end + "0,0.1,0.2" + end + "0.01,0.3,0.4" + end, "traj_ends.csv");
       mbk::RecordingBuilder b(model);
       mbk::read_trajectory_csv(path, b);
       const mbk::Recording r = b.finish();
@@ -218,8 +213,8 @@ TEST(TrajectoryCsvTest, ATwiceNamedColumnAmongManyIsFoundInLinearTime) {
   constexpr int kColumns = 300000;
   std::string header = "time";
   for (int i = 0; i < kColumns; ++i) header += ",c" + std::to_string(i);
-  const std::string path = temp_file("traj_wide.csv", header + ",c0\n0" +
-                                                          std::string(kColumns + 1, ',') + "\n");
+  const std::string path = mbk_test::write_temp(
+      header + ",c0\n0" + std::string(kColumns + 1, ',') + "\n", "traj_wide.csv");
   mbk::RecordingBuilder b(two_joints());
   try {
     mbk::read_trajectory_csv(path, b);
@@ -239,7 +234,7 @@ TEST(TrajectoryCsvTest, NulInACellAndATwiceNamedColumnAreErrors) {
                        "traj_nul.csv:2: column 'J1': '0.5\\x00abc' is not a number"),
         std::make_pair(std::string("time,J1,J1\n0,0.5,0.1\n"),
                        "traj_two.csv:1: column 'J1' is given twice (2 and 3)")}) {
-    const std::string path = temp_file(std::string(bad.second).substr(0, 12), bad.first);
+    const std::string path = mbk_test::write_temp(bad.first, std::string(bad.second).substr(0, 12));
     mbk::RecordingBuilder b(model);
     try {
       mbk::read_trajectory_csv(path, b);

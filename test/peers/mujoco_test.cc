@@ -28,6 +28,7 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/io/mjcf_model.h"
 #include "test/support/mujoco_state.h"
+#include "test/support/temp_file.h"
 #include "test/support/test_models.h"
 
 namespace {
@@ -175,18 +176,10 @@ std::string random_mjcf(int n, unsigned seed) {
   return x.str();
 }
 
-std::string write_temp(const std::string& text, const std::string& name) {
-  const std::string path = ::testing::TempDir() + name;
-  FILE* f = std::fopen(path.c_str(), "w");
-  std::fputs(text.c_str(), f);
-  std::fclose(f);
-  return path;
-}
-
 TEST(MujocoPeer, RandomTreesMoveAsInMujoco) {
   for (unsigned seed = 1; seed <= 20; ++seed) {
     const std::string path =
-        write_temp(random_mjcf(5 + 3 * static_cast<int>(seed), seed), "random.xml");
+        mbk_test::write_temp(random_mjcf(5 + 3 * static_cast<int>(seed), seed), "random.xml");
     expect_equal_to_mujoco(compare_with_mujoco(path, seed, 10), "seed " + std::to_string(seed));
   }
 }

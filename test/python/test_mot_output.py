@@ -78,6 +78,25 @@ def test_mot_is_opensim_storage_of_the_coordinates(mbk_kinematics, tmp_path):
         assert same(rows[:, 1:], h5["joint_position"][...] * scale)
 
 
+def test_every_output_holds_the_stamps_the_csv_writes(tmp_path):
+    """The OpenSim file's times are the tidy CSV's stamp texts and the HDF5 file's `time` those
+    texts read back, for a BVH file's stamps k * 0.0083333 s (its frame time), whose shortest
+    texts are not the CSV's 9 decimals."""
+    bvh = walk(tmp_path, 100)
+    out = {ext: str(tmp_path / ("walk." + ext)) for ext in ("csv", "mot", "h5")}
+    status, err = run_bag(bvh, "--scale", SCALE, "--body-mass", MASS, "--csv", out["csv"],
+                          "--mot", out["mot"], "--h5", out["h5"])
+    assert status == 0, err
+    with open(out["csv"]) as f:
+        stamps = list(dict.fromkeys(line.split(",", 1)[0] for line in f.readlines()[1:]))
+    assert len(stamps) == 100 and stamps[0] == "0.008333300"
+    with open(out["mot"]) as f:
+        rows = f.read().split("endheader\n", 1)[1].splitlines()[1:]
+    assert [r.split("\t", 1)[0] for r in rows] == stamps
+    with h5py.File(out["h5"], "r") as h5:
+        assert list(h5["time"][:]) == [float(s) for s in stamps]
+
+
 def test_mot_of_an_arm_and_bad_outputs(mbk_kinematics, tmp_path):
     """A URDF with revolute and prismatic joints (the Panda's fingers): metres stay metres."""
     urdf = source("test/robots/panda.urdf")

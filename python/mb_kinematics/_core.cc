@@ -1,6 +1,6 @@
 // mb_kinematics._core: the compiled part of the Python module (doc/python.md). It converts
 // arrays and exceptions and releases the GIL around the C++; the loaders are io/load_model.h,
-// the batch is offline/batch_kinematics.h. The Python package (python/mb_kinematics/) checks
+// the batch is offline/batch_kinematics.h. The Python package beside it (__init__.py) checks
 // the caller's arguments and names them; the checks here only keep a wrong call from writing
 // out of bounds.
 #include <pybind11/numpy.h>
@@ -19,12 +19,14 @@
 #include "mb_kinematics/core/lower_body_array.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/report.h"
 #include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
 #include "mb_kinematics/offline/recording_input.h"
 #include "mb_kinematics/offline/recording_states.h"
+#include "mb_kinematics/tools/bag_cli.h"
 
 namespace py = pybind11;
 
@@ -49,6 +51,26 @@ ModelPtr load(const std::string& path_or_text, py::object scale, py::object body
   py::gil_scoped_release release;
   return std::make_shared<mbk::Model>(
       mbk::load_model(path_or_text, bvh ? &options : nullptr, source));
+}
+
+// mbk bag's check of a BVH model's --scale, --body-mass and --sex texts ("" keeps the default):
+// mbk batch refuses a bad subjects row before anything runs, with mbk bag's message.
+void check_bvh_options(const std::string& scale, const std::string& body_mass,
+                       const std::string& sex) {
+  mbk::bvh_model_options(scale, body_mass, sex);
+}
+
+// mbk bag's options (tools/bag_cli.h's table): (name, value, who takes it) per option, the value
+// "" for a flag, who: "every job", "bvh jobs" (mbk batch's) or "bag alone".
+py::list bag_options() {
+  py::list out;
+  for (const mbk_offline::BagOptionRow& row : mbk_offline::bag_option_rows()) {
+    const char* use = row.use == mbk_offline::BagOptionUse::kEveryJob  ? "every job"
+                      : row.use == mbk_offline::BagOptionUse::kBvhJobs ? "bvh jobs"
+                                                                       : "bag alone";
+    out.append(py::make_tuple(row.name, row.value, use));
+  }
+  return out;
 }
 
 py::dict joint(const mbk::Body& body) {
@@ -419,6 +441,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
+  m.def("check_bvh_options", &check_bvh_options);
+  m.def("bag_options", &bag_options);
   m.def("field_traits", &field_traits);
   m.def("field_shape", &field_shape);
   m.def("euler_angles", &euler_angles);
