@@ -56,6 +56,8 @@ const Option kOptions[] = {
        r.line.h5_compression = static_cast<int>(level);
      }},
     {"--mot", true, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
+    {"--mot-coordinates", false,
+     [](Reading& r, const std::string&) { r.line.mot_coordinates = true; }},
     {"--summary-json", true, [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
     {"--joint-states", true, [](Reading& r, const std::string& v) { r.line.joint_states = v; }},
     {"--joint-accelerations", true,
@@ -124,9 +126,15 @@ void check(Reading& r) {
     throw std::invalid_argument(
         "--scale, --body-mass, --sex, --segments and --anthropometry apply to a .bvh model only");
   o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments, r.anthropometry);
-  if ((o.body_axes || !o.angles.empty()) && o.out_csv.empty())
+  if (o.body_axes && o.out_csv.empty())
+    throw std::invalid_argument("--body-axes adds columns to the CSV: give --csv OUT.csv");
+  if (!o.angles.empty() && o.out_csv.empty() && o.out_mot.empty())
     throw std::invalid_argument(
-        "--body-axes and --angles add columns to the CSV: give --csv OUT.csv");
+        "--angles sets the joint angles of the CSV and the OpenSim file: give --csv OUT.csv or "
+        "--mot OUT.mot");
+  if (o.mot_coordinates && o.out_mot.empty())
+    throw std::invalid_argument(
+        "--mot-coordinates adds columns to the OpenSim file: give --mot OUT.mot");
   if (output_files(o).empty())
     throw std::invalid_argument(
         "bag needs at least one of --out OUT.bag, --csv OUT.csv, --h5 OUT.h5, --mot OUT.mot");
@@ -160,17 +168,19 @@ BagCommandLine parse_bag_options(int argc, char** argv) {
 
 const char* bag_usage() {
   return "usage: mbk bag IN.bag|IN.csv --model FILE [--out OUT.bag] [--csv OUT.csv]\n"
-         "           [--h5 OUT.h5 [--h5-compression 0-9]] [--mot OUT.mot]\n"
+         "           [--h5 OUT.h5 [--h5-compression 0-9]] [--mot OUT.mot [--mot-coordinates]]\n"
          "           [--joint-states T] [--joint-accelerations T] [--base-odometry T]\n"
          "           [--estimator NAME] [--frame-prefix P] [--max-gap S] [--threads N]\n"
          "           [--start-time S] [--max-memory GIB] [--verbose] [--summary-json FILE]\n"
          "       mbk bag WALK.bvh (--out OUT.bag | --csv OUT.csv) [--model FILE] [--scale M]\n"
          "           [--body-mass KG] [--sex male|female] [--segments MAP.yaml]\n"
          "           [--anthropometry de_leva|dempster] ...\n"
-         "       with --csv: [--body-axes] [--angles ORDER|ORDERS.yaml]\n"
+         "       with --csv: [--body-axes]; with --csv or --mot: [--angles ORDER|ORDERS.yaml]\n"
          "   --body-axes: omega, alpha, velocity, acceleration in each body's own axes\n"
          "   --angles: each body's Cardan/Euler angles relative to its lower body, ORDER one of\n"
          "             XYZ ... ZYZ, or a YAML file of body or joint name: ORDER (and default:)\n"
+         "   --mot: the joint angles in degrees (--angles' orders, XYZ without it) as OpenSim\n"
+         "          Storage; --mot-coordinates adds the joint coordinates\n"
          "   --verbose: every coordinate's error bars and the times in the summary\n"
          "   --max-memory: GiB of address space at most (default: 90 % of this machine's memory)\n"
          "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";
