@@ -92,7 +92,8 @@ std::vector<double> noise_levels(const Residuals& res) {
 // and count[k] such samples.
 using Statistics = AutoChooser::Statistics;
 
-// Selection sample i's share of Lepski's statistics; w, estimate: scratch.
+// Selection sample i's share of Lepski's statistics; w, estimate: scratch, w[0] holding the
+// first candidate's weights at i already (add_residuals').
 void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
                 const Segments& segments, const double* x, int ld, int m, int i, SeriesShare share,
                 DerivativeWeights (&w)[2], std::vector<double> (&estimate)[2],
@@ -100,7 +101,7 @@ void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vect
   const int kc = static_cast<int>(candidates.size());
   for (int k = 0; k < kc; ++k) {
     DerivativeWeights &cur = w[k % 2], &prev = w[(k + 1) % 2];
-    derivative_weights(candidates[k], t, segments, i, cur);
+    if (k > 0) derivative_weights(candidates[k], t, segments, i, cur);
     if (cur.valid < 2 || !centred_window(t, i, cur)) break;  // longer ones are not either
     std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
     for (int d = 1; d <= 2; ++d) {
@@ -144,14 +145,18 @@ struct SampleWeights {
   DerivativeWeights w, shorter, end;
   bool shifted = false, has_shorter = false;
   double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
+  // known: candidate k - 1's weights at this sample when already computed (else nullptr).
   void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-            const Segments& segments, int i, int k) {
+            const Segments& segments, int i, int k, const DerivativeWeights* known) {
     derivative_weights(candidates[k], t, segments, i, w);
     for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
     shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
     has_shorter = k > 0 && w.valid == 2;
     if (!has_shorter) return;
-    derivative_weights(candidates[k - 1], t, segments, i, shorter);
+    if (known)
+      shorter = *known;  // the same weights as computing them again
+    else
+      derivative_weights(candidates[k - 1], t, segments, i, shorter);
     for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
     if (!shifted) return;
     OfflineEstimator e = candidates[k - 1];
@@ -192,10 +197,13 @@ void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
                 const std::vector<double>& t, const Segments& segments, const double* x, int ld,
                 int m, size_t begin, size_t end, AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
-  SampleWeights w;
+  SampleWeights both[2];  // this window's, and the one before in in_use (ascending)
   for (size_t i = begin; i < end; ++i)
-    for (int k : in_use) {
-      w.load(chosen.candidates, t, segments, static_cast<int>(i), k);
+    for (size_t u = 0; u < in_use.size(); ++u) {
+      const int k = in_use[u];
+      SampleWeights &w = both[u % 2], &before = both[(u + 1) % 2];
+      const bool known = u > 0 && in_use[u - 1] == k - 1;  // before.w: candidate k - 1's, at i
+      w.load(chosen.candidates, t, segments, static_cast<int>(i), k, known ? &before.w : nullptr);
       for (int c = 0; c < m; ++c) {
         const size_t at = i * m + c;
         if (choice[0][c] != k && choice[1][c] != k) continue;

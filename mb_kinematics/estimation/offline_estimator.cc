@@ -146,10 +146,14 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
   const int n = (end - 1 - w.begin) / w.stride + 1, order = std::min(e.order, n - 1);
   w.count = n;
   w.valid = std::min(order, 2);
-  w.value.assign(n, 0.0);
-  w.first.assign(n, 0.0);
-  w.second.assign(n, 0.0);
-  if (order < 1) return;
+  w.value.resize(n);  // every entry written below (no fill first: this runs per sample and window)
+  w.first.resize(n);
+  w.second.resize(n);
+  if (order < 1) {
+    std::fill_n(w.value.begin(), n, 0.0), std::fill_n(w.first.begin(), n, 0.0);
+    std::fill_n(w.second.begin(), n, 0.0);
+    return;
+  }
   const double scale = std::max(t[i] - t[w.begin], t[w.row(n - 1)] - t[i]);
   double moment[2 * kMaxOrder + 1] = {};  // sum_j s_j^k
   for (int j = 0; j < n; ++j) {
@@ -187,7 +191,7 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
       value += p * g[0][c], first += p * g[1][c], second += p * g[2][c];
     w.value[j] = value;
     w.first[j] = first / scale;
-    if (order >= 2) w.second[j] = 2 * second / (scale * scale);
+    w.second[j] = order >= 2 ? 2 * second / (scale * scale) : 0.0;
   }
 }
 
