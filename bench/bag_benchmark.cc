@@ -13,8 +13,11 @@
 //   bag/<tree12|human_urdf>/60000/h5_out   run_bag on 60 s at 1 kHz of the demo trajectories of
 //                                     a 12-link tree (mbk::make_random_revolute_tree(12, 1) with
 //                                     random inertias, as a URDF) or of the human URDF to OUT.h5
-//                                     alone (auto, two computing threads); real time, counter
-//                                     samples_per_s; rosbag_read/<model>/60000: its floor
+//                                     alone (auto, two computing threads); real time, counters
+//                                     samples_per_s and cpu_us_per_sample (every thread's and
+//                                     the bag check's child's CPU); rosbag_read/<model>/60000:
+//                                     its floor; bag/tree12/60000/h5_out/centered_0.4s_4: with
+//                                     --estimator centered_0.4s_4 (no error bars)
 //   compute/<model>/<estimated|given>/threads:T   the computation as mbk bag runs it
 //                                     (OfflineBatch: estimates, state checks, forward_kinematics)
 //                                     on T threads, for 5 s at 1 kHz, derivatives estimated
@@ -51,6 +54,7 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -155,20 +159,37 @@ std::string bench_model(const std::string& name) {
   return name == "tree12" ? tree12_urdf() : kHumanUrdf;
 }
 
-void bag_to_h5(benchmark::State& state, const std::string& model, double seconds) {
+// CPU seconds of this process's threads and of its children waited for (mbk bag's check of a
+// bag runs in a child process).
+double process_cpu_seconds() {
+  double total = 0;
+  for (int who : {RUSAGE_SELF, RUSAGE_CHILDREN}) {
+    rusage u{};
+    getrusage(who, &u);
+    for (const timeval& t : {u.ru_utime, u.ru_stime}) total += t.tv_sec + 1e-6 * t.tv_usec;
+  }
+  return total;
+}
+
+// estimator: --estimator's name, empty for the default (auto).
+void bag_to_h5(benchmark::State& state, const std::string& model, double seconds,
+               const std::string& estimator = "") {
   const std::string model_path = bench_model(model);
   mbk_offline::BagOptions o;
   o.input = demo_bag(1000, model_path, seconds);
   o.model = model_path;
   o.out_h5 = "/tmp/mbk_bag_benchmark_out.h5";
   o.threads = 2;
+  o.estimator = estimator;
   long samples = 0;
   double read = 0, compute = 0, write = 0;
+  const double cpu = process_cpu_seconds();
   for (auto _ : state) {
     const mbk_offline::BagSummary s = mbk_offline::run_bag(o);
     samples += s.written;
     read += s.read_seconds, compute += s.compute_seconds, write += s.write_seconds;
   }
+  state.counters["cpu_us_per_sample"] = 1e6 * (process_cpu_seconds() - cpu) / samples;
   state.counters["samples_per_s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
   state.counters["read_ms_per_1k"] = 1e6 * read / samples;
   state.counters["compute_ms_per_1k"] = 1e6 * compute / samples;
@@ -180,6 +201,7 @@ void bag_to_h5(benchmark::State& state, const std::string& model, double seconds
 void rosbag_read(benchmark::State& state, const std::string& model, double seconds) {
   const std::string path = demo_bag(1000, bench_model(model), seconds);
   long samples = 0;
+  const double cpu = process_cpu_seconds();
   for (auto _ : state) {
     rosbag::Bag bag(path, rosbag::bagmode::Read);
     for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
@@ -188,6 +210,7 @@ void rosbag_read(benchmark::State& state, const std::string& model, double secon
       ++samples;
     }
   }
+  state.counters["cpu_us_per_sample"] = 1e6 * (process_cpu_seconds() - cpu) / samples;
   state.counters["samples_per_s"] = benchmark::Counter(samples, benchmark::Counter::kIsRate);
 }
 
@@ -403,6 +426,10 @@ BENCHMARK_CAPTURE(rosbag_read, human_urdf / 6000, "human_urdf", 6.0)
     ->UseRealTime();
 BENCHMARK_CAPTURE(bag_to_h5, tree12 / 60000 / h5_out, "tree12", 60.0)
     ->Name("bag/tree12/60000/h5_out")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(bag_to_h5, tree12 / 60000 / h5_out / centered, "tree12", 60.0, "centered_0.4s_4")
+    ->Name("bag/tree12/60000/h5_out/centered_0.4s_4")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(rosbag_read, tree12 / 60000, "tree12", 60.0)

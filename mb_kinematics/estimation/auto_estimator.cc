@@ -36,6 +36,12 @@ double norm2(const std::vector<double>& v, int count) {
 double difference2(const DerivativeWeights& a, const DerivativeWeights& b, int d) {
   const std::vector<double>&av = weights_of(a, d), &bv = weights_of(b, d);
   double shared = 0;
+  if (a.stride == 1 && b.stride == 1) {  // the same rows and sums as below, without the tests
+    const int shift = b.begin - a.begin;
+    for (int j = std::max(0, -shift); j < std::min(b.count, a.count - shift); ++j)
+      shared += av[j + shift] * bv[j];
+    return norm2(av, a.count) + norm2(bv, b.count) - 2 * shared;
+  }
   for (int j = 0; j < b.count; ++j) {
     const int offset = b.row(j) - a.begin;
     if (offset < 0 || offset % a.stride != 0 || offset / a.stride >= a.count) continue;
@@ -92,7 +98,8 @@ std::vector<double> noise_levels(const Residuals& res) {
 // and count[k] such samples.
 using Statistics = AutoChooser::Statistics;
 
-// Selection sample i's share of Lepski's statistics; w, estimate: scratch.
+// Selection sample i's share of Lepski's statistics; w, estimate: scratch, w[0] holding the
+// first candidate's weights at i already (add_residuals').
 void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
                 const Segments& segments, const double* x, int ld, int m, int i, SeriesShare share,
                 DerivativeWeights (&w)[2], std::vector<double> (&estimate)[2],
@@ -100,16 +107,13 @@ void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vect
   const int kc = static_cast<int>(candidates.size());
   for (int k = 0; k < kc; ++k) {
     DerivativeWeights &cur = w[k % 2], &prev = w[(k + 1) % 2];
-    derivative_weights(candidates[k], t, segments, i, cur);
+    if (k > 0) derivative_weights(candidates[k], t, segments, i, cur);
     if (cur.valid < 2 || !centred_window(t, i, cur)) break;  // longer ones are not either
     std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
+    // Both derivatives of the share's series, each the sum over the window's rows in order.
+    apply_weights(cur, x + share.begin, ld, share.end - share.begin, now.data() + share.begin,
+                  now.data() + m + share.begin);
     for (int d = 1; d <= 2; ++d) {
-      const std::vector<double>& weights = weights_of(cur, d);
-      for (int c = share.begin; c < share.end; ++c) {
-        double sum = 0;
-        for (int j = 0; j < cur.count; ++j) sum += weights[j] * x[cur.row(j) * ld + c];
-        now[(d - 1) * m + c] = sum;
-      }
       if (k == 0) continue;
       Statistics& s = stats[d - 1];
       if (share.shared) s.change[k] += difference2(cur, prev, d), s.count[k] += 1;
@@ -144,14 +148,18 @@ struct SampleWeights {
   DerivativeWeights w, shorter, end;
   bool shifted = false, has_shorter = false;
   double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
+  // known: candidate k - 1's weights at this sample when already computed (else nullptr).
   void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-            const Segments& segments, int i, int k) {
+            const Segments& segments, int i, int k, const DerivativeWeights* known) {
     derivative_weights(candidates[k], t, segments, i, w);
     for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
     shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
     has_shorter = k > 0 && w.valid == 2;
     if (!has_shorter) return;
-    derivative_weights(candidates[k - 1], t, segments, i, shorter);
+    if (known)
+      shorter = *known;  // the same weights as computing them again
+    else
+      derivative_weights(candidates[k - 1], t, segments, i, shorter);
     for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
     if (!shifted) return;
     OfflineEstimator e = candidates[k - 1];
@@ -161,28 +169,37 @@ struct SampleWeights {
   }
 };
 
-double apply(const DerivativeWeights& w, int d, const double* x, int ld, int c) {
-  const std::vector<double>& weights = weights_of(w, d);
-  double sum = 0;
-  for (int j = 0; j < w.count; ++j) sum += weights[j] * x[w.row(j) * ld + c];
-  return sum;
-}
+// Every series' estimates of both derivatives at a sample from a SampleWeights' windows (each
+// the sum over the window's rows in order, apply_weights): [d - 1] per derivative d, of w, of
+// shorter where the SampleWeights has it, of end where it is shifted.
+struct SampleEstimates {
+  std::vector<double> w[2], shorter[2], end[2];
+  explicit SampleEstimates(int m) {
+    for (auto* v : {&w, &shorter, &end}) (*v)[0].resize(m), (*v)[1].resize(m);
+  }
+  void load(const SampleWeights& s, const double* x, int ld) {
+    const int m = static_cast<int>(w[0].size());
+    apply_weights(s.w, x, ld, m, w[0].data(), w[1].data());
+    if (s.has_shorter) apply_weights(s.shorter, x, ld, m, shorter[0].data(), shorter[1].data());
+    if (s.shifted) apply_weights(s.end, x, ld, m, end[0].data(), end[1].data());
+  }
+};
 
 // Series c's estimate of its chosen derivative at a sample and its standard error: noise and
 // the squared bias the choice's last step showed (its mean over the samples, or where larger
 // the step from the shorter window at this sample beyond the noise: the bias is not uniform);
 // where the window is shifted, the accelerations from the shorter window at order kEndOrder at
 // most (a one-sided fit's bias and variance grow faster with its length and order).
-void final_estimate(const SampleWeights& s, const double* x, int ld, int c, double sigma, int d,
+void final_estimate(const SampleWeights& s, const SampleEstimates& e, int c, double sigma, int d,
                     double bias2, double& estimate, double& se) {
-  estimate = apply(s.w, d, x, ld, c);
+  estimate = e.w[d - 1][c];
   se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + bias2);
   if (!s.has_shorter) return;
-  const double step = estimate - apply(s.shorter, d, x, ld, c);
+  const double step = estimate - e.shorter[d - 1][c];
   const double own = step * step - sigma * sigma * s.step2[d - 1];
   se = std::sqrt(se * se + std::max(0.0, own - bias2));
   if (!s.shifted || d == 1) return;
-  estimate = apply(s.end, 2, x, ld, c);
+  estimate = e.end[1][c];
   se = std::max(se, sigma * s.end_norm);
 }
 
@@ -192,20 +209,25 @@ void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
                 const std::vector<double>& t, const Segments& segments, const double* x, int ld,
                 int m, size_t begin, size_t end, AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
-  SampleWeights w;
+  SampleWeights both[2];  // this window's, and the one before in in_use (ascending)
+  SampleEstimates estimates(m);
   for (size_t i = begin; i < end; ++i)
-    for (int k : in_use) {
-      w.load(chosen.candidates, t, segments, static_cast<int>(i), k);
+    for (size_t u = 0; u < in_use.size(); ++u) {
+      const int k = in_use[u];
+      SampleWeights &w = both[u % 2], &before = both[(u + 1) % 2];
+      const bool known = u > 0 && in_use[u - 1] == k - 1;  // before.w: candidate k - 1's, at i
+      w.load(chosen.candidates, t, segments, static_cast<int>(i), k, known ? &before.w : nullptr);
+      estimates.load(w, x, ld);
       for (int c = 0; c < m; ++c) {
         const size_t at = i * m + c;
         if (choice[0][c] != k && choice[1][c] != k) continue;
         out.valid[at] = std::min(out.valid[at], w.w.valid);
         const double sigma = chosen.noise[c];
         if (choice[0][c] == k)
-          final_estimate(w, x, ld, c, sigma, 1, chosen.bias2[0][c], out.first[at],
+          final_estimate(w, estimates, c, sigma, 1, chosen.bias2[0][c], out.first[at],
                          out.first_se[at]);
         if (choice[1][c] == k)
-          final_estimate(w, x, ld, c, sigma, 2, chosen.bias2[1][c], out.second[at],
+          final_estimate(w, estimates, c, sigma, 2, chosen.bias2[1][c], out.second[at],
                          out.second_se[at]);
       }
     }

@@ -136,6 +136,41 @@ double default_max_gap(const std::vector<double>& t) {
 // matrix N = A^T A, N_ab = sum_j s_j^(a + b); x'(t_i) = c1 / scale, x''(t_i) = 2 c2 / scale^2, so
 // the weights are A N^-1 e1 / scale and 2 A N^-1 e2 / scale^2 (and the fitted value's A N^-1 e0). N
 // is solved by Cholesky in fixed arrays (order <= 5): no allocation, no general-size Eigen solver.
+namespace {
+
+// Row j's weights from s_j (in w.first[j]) and g[m] = N^-1 e_m (derivative_weights): value =
+// sum_c s_j^c g[0][c], first and second likewise, scaled. Two rows at a time as packs of two
+// doubles (GNU vectors, SSE2) that multiply and add lane by lane: each row's products and sums in
+// the same order as one row alone, so the same bits.
+template <typename T, typename G>
+inline void weight_row_pack(T s, int order, double scale, const G& g, T& value, T& first,
+                            T& second) {
+  T p = T{} + 1;  // T{}: +0 in every lane
+  value = first = second = T{};
+  for (int c = 0; c <= order; ++c, p *= s)
+    value += p * g[0][c], first += p * g[1][c], second += p * g[2][c];
+  first = first / scale;
+  second = order >= 2 ? 2.0 * second / (scale * scale) : T{};
+}
+
+void weight_rows(int n, int order, double scale, const double (&g)[3][kMaxOrder + 1],
+                 DerivativeWeights& w) {
+  typedef double Pack __attribute__((vector_size(2 * sizeof(double))));
+  int j = 0;
+  for (; j + 2 <= n; j += 2) {
+    Pack s, value, first, second;
+    std::memcpy(&s, &w.first[j], sizeof s);
+    weight_row_pack(s, order, scale, g, value, first, second);
+    std::memcpy(&w.value[j], &value, sizeof value);
+    std::memcpy(&w.first[j], &first, sizeof first);
+    std::memcpy(&w.second[j], &second, sizeof second);
+  }
+  for (; j < n; ++j)
+    weight_row_pack(w.first[j], order, scale, g, w.value[j], w.first[j], w.second[j]);
+}
+
+}  // namespace
+
 void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
                         const Segments& segments, int i, DerivativeWeights& w) {
   const int seg = segments.segment_of[i];
@@ -146,10 +181,14 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
   const int n = (end - 1 - w.begin) / w.stride + 1, order = std::min(e.order, n - 1);
   w.count = n;
   w.valid = std::min(order, 2);
-  w.value.assign(n, 0.0);
-  w.first.assign(n, 0.0);
-  w.second.assign(n, 0.0);
-  if (order < 1) return;
+  w.value.resize(n);  // every entry written below (no fill first: this runs per sample and window)
+  w.first.resize(n);
+  w.second.resize(n);
+  if (order < 1) {
+    std::fill_n(w.value.begin(), n, 0.0), std::fill_n(w.first.begin(), n, 0.0);
+    std::fill_n(w.second.begin(), n, 0.0);
+    return;
+  }
   const double scale = std::max(t[i] - t[w.begin], t[w.row(n - 1)] - t[i]);
   double moment[2 * kMaxOrder + 1] = {};  // sum_j s_j^k
   for (int j = 0; j < n; ++j) {
@@ -180,15 +219,7 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
       g[m][a] = sum / l[a][a];
     }
   }
-  for (int j = 0; j < n; ++j) {
-    const double s = w.first[j];
-    double p = 1, value = 0, first = 0, second = 0;
-    for (int c = 0; c <= order; ++c, p *= s)
-      value += p * g[0][c], first += p * g[1][c], second += p * g[2][c];
-    w.value[j] = value;
-    w.first[j] = first / scale;
-    if (order >= 2) w.second[j] = 2 * second / (scale * scale);
-  }
+  weight_rows(n, order, scale, g, w);
 }
 
 namespace {

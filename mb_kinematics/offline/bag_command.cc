@@ -154,7 +154,7 @@ struct Outputs {
       csv->write(row.stamp, *data, errors ? &row.alpha_se : nullptr,
                  errors ? &row.acceleration_se : nullptr);
     if (h5) h5->write(row, *data);
-    if (mot) mot->write(row);
+    if (mot) mot->write(row, *data);
   }
   // A bag holds stamps from ros::TIME_MIN (1 ns; 0 means "no stamp") to ros::TIME_MAX only.
   void check_bag_stamp(double t) const {
@@ -267,11 +267,13 @@ void open_outputs(const BagOutputs& o, const std::string& input, const mbk::Mode
     out.bag = std::make_unique<BagOutput>(out.bag_file->writing(), file.model, o.frame_prefix,
                                           base_frame, base_model, missing);
   }
+  std::vector<mbk::EulerOrder> orders;  // --angles', per body
+  if (!o.angles.empty()) orders = mbk::angle_orders(base_model, o.angles);
   if (!o.out_csv.empty()) {
     out.csv_file = std::make_unique<OutputFile>(o.out_csv);
     mbk::TidyCsvExtras extras;
     extras.body_axes = o.body_axes;
-    if (!o.angles.empty()) extras.angles = mbk::angle_orders(base_model, o.angles);
+    extras.angles = orders;
     out.csv = std::make_unique<mbk::TidyCsvWriter>(out.csv_file->writing(), base_model, errors,
                                                    missing.empty() ? "system" : "system_incomplete",
                                                    extras);
@@ -286,7 +288,13 @@ void open_outputs(const BagOutputs& o, const std::string& input, const mbk::Mode
   }
   if (!o.out_mot.empty()) {
     out.mot_file = std::make_unique<OutputFile>(o.out_mot);
-    out.mot = std::make_unique<MotOutput>(out.mot_file->writing(), o.out_mot, file.model);
+    MotColumns columns;  // without --angles: 1-2-3 (XYZ) for every body
+    columns.angles = orders.empty() ? std::vector<mbk::EulerOrder>(base_model.bodies.size(),
+                                                                   mbk::EulerOrder::kXYZ)
+                                    : orders;
+    columns.coordinates = o.mot_coordinates;
+    out.mot = std::make_unique<MotOutput>(out.mot_file->writing(), o.out_mot, file.model,
+                                          base_model, columns);
   }
   out.base_model = &base_model;
 }

@@ -33,7 +33,10 @@ struct BagOutputs {
   int h5_compression = 0;    // --h5-compression: deflate level 0-9
   std::string frame_prefix;  // of the bag's frames (messages/frames.h)
   bool body_axes = false;    // --body-axes: the CSV's segment-frame columns (io/tidy_csv.h)
-  std::string angles;        // --angles ORDER|FILE.yaml: the CSV's joint angle columns
+  // --angles ORDER|FILE.yaml: the orders of the CSV's and OUT.mot's joint angles
+  std::string angles;
+  // --mot-coordinates: OUT.mot's joint coordinates, after the joint angles
+  bool mot_coordinates = false;
 };
 
 // A run of mbk bag (mb_kinematics/tools/bag_cli.h makes it from the command line): its input,

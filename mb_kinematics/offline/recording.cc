@@ -115,14 +115,21 @@ void RecordingBuilder::test_outliers(int p) {
   constexpr int h = kOutlierHalfWindow, window = 2 * h + 1;
   const int held = static_cast<int>(pending_.size());
   const int lo = std::clamp(p - h, 0, std::max(0, held - window)), hi = std::min(held, lo + window);
+  // The window's rows, looked up in the deque once for every coordinate (exclude_outlier changes
+  // their values, never the rows themselves).
+  const double* rows[window];
+  const std::uint8_t* given[window];
+  for (int q = lo; q < hi; ++q)
+    rows[q - lo] = pending_[q].row.data(), given[q - lo] = pending_[q].given.data();
+  const std::uint8_t* given_p = pending_[p].given.data();
+  double values[window];
   for (int c = 0; c < model_.nq; ++c) {
-    if (!(pending_[p].given[c] & Recording::kPosition)) continue;
-    window_.clear();
-    for (int q = lo; q < hi; ++q)
-      if (pending_[q].given[c] & Recording::kPosition) window_.push_back(pending_[q].row[c]);
-    if (static_cast<int>(window_.size()) < kOutlierMinimumWindow) continue;
-    const OutlierTest test =
-        hampel_test(window_.data(), static_cast<int>(window_.size()), pending_[p].row[c]);
+    if (!(given_p[c] & Recording::kPosition)) continue;
+    int count = 0;
+    for (int q = 0; q < hi - lo; ++q)
+      if (given[q][c] & Recording::kPosition) values[count++] = rows[q][c];
+    if (count < kOutlierMinimumWindow) continue;
+    const OutlierTest test = hampel_test(values, count, pending_[p].row[c]);
     if (test.outlier) exclude_outlier(p, c, test.median, test.scale);
   }
 }

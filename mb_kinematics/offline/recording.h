@@ -129,7 +129,6 @@ class RecordingBuilder {
   double time_offset_ = 0;
   std::deque<PendingRow> pending_;
   bool tested_head_ = false;  // the first rows held have been tested
-  std::vector<double> window_;
   double stamp_rounding_ = 0;  // 0: none noted
   double origin_ = 0;
   bool has_origin_ = false;

@@ -62,6 +62,8 @@ const Option kOptions[] = {
        r.line.h5_compression = static_cast<int>(level);
      }},
     {"--mot", "OUT.mot", kOwn, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
+    {"--mot-coordinates", "", kOwn,
+     [](Reading& r, const std::string&) { r.line.mot_coordinates = true; }},
     {"--summary-json", "FILE", kOwn,
      [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
     {"--joint-states", "TOPIC", kJob,
@@ -135,9 +137,15 @@ void check(Reading& r) {
     throw std::invalid_argument(
         "--scale, --body-mass, --sex, --segments and --anthropometry apply to a .bvh model only");
   o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments, r.anthropometry);
-  if ((o.body_axes || !o.angles.empty()) && o.out_csv.empty())
+  if (o.body_axes && o.out_csv.empty())
+    throw std::invalid_argument("--body-axes adds columns to the CSV: give --csv OUT.csv");
+  if (!o.angles.empty() && o.out_csv.empty() && o.out_mot.empty())
     throw std::invalid_argument(
-        "--body-axes and --angles add columns to the CSV: give --csv OUT.csv");
+        "--angles sets the joint angles of the CSV and the OpenSim file: give --csv OUT.csv or "
+        "--mot OUT.mot");
+  if (o.mot_coordinates && o.out_mot.empty())
+    throw std::invalid_argument(
+        "--mot-coordinates adds columns to the OpenSim file: give --mot OUT.mot");
   if (output_files(o).empty())
     throw std::invalid_argument(
         "bag needs at least one of --out OUT.bag, --csv OUT.csv, --h5 OUT.h5, --mot OUT.mot");
@@ -199,13 +207,16 @@ std::string bag_usage() {
   return "usage: mbk bag IN.bag|IN.csv --model FILE OUTPUTS [OPTIONS]\n"
          "       mbk bag WALK.bvh [--model FILE] OUTPUTS [OPTIONS] [BVH OPTIONS]\n" +
          option_lines(
-             "OUTPUTS (one at least; --body-axes, --angles with --csv), and the run's own:",
+             "OUTPUTS (one at least; --body-axes with --csv, --angles with --csv or --mot,\n"
+             "   --mot-coordinates with --mot), and the run's own:",
              BagOptionUse::kBagAlone) +
          option_lines("OPTIONS:", BagOptionUse::kEveryJob) +
          option_lines("BVH OPTIONS (a .bvh model's):", BagOptionUse::kBvhJobs) +
          "   --body-axes: omega, alpha, velocity, acceleration in each body's own axes\n"
          "   --angles: each body's Cardan/Euler angles relative to its lower body, ORDER one of\n"
          "             XYZ ... ZYZ, or a YAML file of body or joint name: ORDER (and default:)\n"
+         "   --mot: the joint angles in degrees (--angles' orders, XYZ without it) as OpenSim\n"
+         "          Storage; --mot-coordinates adds the joint coordinates\n"
          "   --verbose: every coordinate's error bars and the times in the summary\n"
          "   --max-memory: GiB of address space at most (default: 90 % of this machine's memory)\n"
          "   --summary-json FILE: the summary as JSON (also for a run that fails)\n";

@@ -1,8 +1,10 @@
 """mbk bag --mot (offline/mot_output.h): an OpenSim Storage file, read here by a reader written
 from the format's description (OpenSim's Storage and STOFileAdapter: a name line, key=value
 lines, `endheader`, a line of labels starting with `time`, then one line of numbers per row,
-split at tabs and spaces): nRows and nColumns count what follows, inDegrees=yes, and every value
-is the joint coordinate of the HDF5 file of the same run, angles times 180 / pi, bit for bit."""
+split at tabs and spaces): nRows and nColumns count what follows, inDegrees=yes; every joint
+angle is the CSV's --angles column of the same run times 180 / pi, and with --mot-coordinates
+every coordinate is the HDF5 file's, angles times 180 / pi, bit for bit."""
+import csv
 import math
 import os
 
@@ -59,23 +61,86 @@ def angle_columns(model):
     return angles
 
 
-def test_mot_is_opensim_storage_of_the_coordinates(mbk_kinematics, tmp_path):
-    bvh = walk(tmp_path, 250)
-    mot, h5_path = str(tmp_path / "walk.mot"), str(tmp_path / "walk.h5")
-    status, err = run_bag(bvh, "--scale", SCALE, "--body-mass", MASS, "--mot", mot, "--h5", h5_path)
-    assert status == 0, err
-    model = mbk_kinematics.load(bvh, scale=float(SCALE), body_mass=float(MASS))
+def csv_angles(path, bodies):
+    """(stamps (N,), angles in radians (N, bodies, 3), each body's order) of a tidy CSV's
+    --angles columns."""
+    with open(path) as f:
+        rows = [r for r in csv.DictReader(f) if r["body"] != "system"]
+    assert len(rows) % bodies == 0
+    stamps = np.array([float(r["stamp"]) for r in rows[::bodies]])
+    angles = np.array([[float(r["angle_%d" % i]) for i in (1, 2, 3)] for r in rows])
+    return stamps, angles.reshape(-1, bodies, 3), [r["angle_order"] for r in rows[:bodies]]
+
+
+def angle_labels(body, order):
+    """The labels of a body's three angles: <body>_<axis>, numbered for a proper Euler order."""
+    if order[0] == order[2]:
+        return ["%s_%s%d" % (body, axis, i + 1) for i, axis in enumerate(order)]
+    return ["%s_%s" % (body, axis) for axis in order]
+
+
+def expect_angles(mot, csv_path, model, orders):
+    """OUT.mot's angle columns: the CSV's in degrees, under each body's labels in `orders`."""
     name, header, labels, rows = read_storage(mot)
     assert name == "Coordinates"
     assert header["version"] == "1" and header["inDegrees"] == "yes"
-    assert int(header["nRows"]) == rows.shape[0] == 250
-    assert int(header["nColumns"]) == len(labels) == rows.shape[1] == model.nq + 1
-    assert labels == ["time"] + list(model.coordinate_names)
+    assert int(header["nRows"]) == rows.shape[0] > 100
+    assert int(header["nColumns"]) == len(labels) == rows.shape[1]
+    bodies = len(model.body_names)
+    stamps, angles, csv_orders = csv_angles(csv_path, bodies)
+    assert csv_orders == orders
+    expected = [l for b, o in zip(model.body_names, orders) for l in angle_labels(b, o)]
+    assert labels[:1 + 3 * bodies] == ["time"] + expected
+    assert np.abs(rows[:, 0] - stamps).max() <= 5e-10  # the CSV's stamps have 9 decimals
+    assert same(rows[:, 1:1 + 3 * bodies], angles.reshape(len(stamps), -1) * (180.0 / math.pi))
+    assert np.abs(np.diff(rows[:, 1:1 + 3 * bodies], axis=0)).max() < 180  # continuous
+    return labels, rows
+
+
+def test_mot_is_opensim_storage_of_the_joint_angles(mbk_kinematics, tmp_path):
+    """Without --angles: XYZ for every body; --mot-coordinates adds the coordinates."""
+    bvh = walk(tmp_path, 250)
+    model = mbk_kinematics.load(bvh, scale=float(SCALE), body_mass=float(MASS))
+    bodies = len(model.body_names)
+    mot, csv_path = str(tmp_path / "walk.mot"), str(tmp_path / "walk.csv")
+    status, err = run_bag(bvh, "--scale", SCALE, "--body-mass", MASS, "--mot", mot)
+    assert status == 0, err
+    status, err = run_bag(bvh, "--scale", SCALE, "--body-mass", MASS, "--csv", csv_path,
+                          "--angles", "XYZ")
+    assert status == 0, err
+    labels, _ = expect_angles(mot, csv_path, model, ["XYZ"] * bodies)
+    assert len(labels) == 1 + 3 * bodies
+
+    with_q, h5_path = str(tmp_path / "q.mot"), str(tmp_path / "walk.h5")
+    status, err = run_bag(bvh, "--scale", SCALE, "--body-mass", MASS, "--mot", with_q,
+                          "--mot-coordinates", "--h5", h5_path)
+    assert status == 0, err
+    labels, rows = expect_angles(with_q, csv_path, model, ["XYZ"] * bodies)
+    assert labels[1 + 3 * bodies:] == list(model.coordinate_names)
+    assert len(labels) == 1 + 3 * bodies + model.nq
     scale = np.where(angle_columns(model), 180.0 / math.pi, 1.0)
     assert (scale != 1).sum() == model.nq - 3  # the hips' translations stay in metres
     with h5py.File(h5_path, "r") as h5:
         assert same(rows[:, 0], h5["time"][...])
-        assert same(rows[:, 1:], h5["joint_position"][...] * scale)
+        assert same(rows[:, 1 + 3 * bodies:], h5["joint_position"][...] * scale)
+
+
+def test_mot_angles_in_the_orders_of_angles(mbk_kinematics, tmp_path):
+    """--angles ORDERS.yaml sets the orders of both files; a proper Euler order's labels are
+    numbered."""
+    bvh = walk(tmp_path, 200)
+    model = mbk_kinematics.load(bvh, scale=float(SCALE), body_mass=float(MASS))
+    orders_path = str(tmp_path / "orders.yaml")
+    with open(orders_path, "w") as f:
+        f.write("default: XZY\nLeftShoulder: YXY\nRightShoulder: ZXZ\n")
+    mot, csv_path = str(tmp_path / "walk.mot"), str(tmp_path / "walk.csv")
+    status, err = run_bag(bvh, "--scale", SCALE, "--body-mass", MASS, "--mot", mot, "--csv",
+                          csv_path, "--angles", orders_path)
+    assert status == 0, err
+    special = {"LeftShoulder": "YXY", "RightShoulder": "ZXZ"}
+    orders = [special.get(b, "XZY") for b in model.body_names]
+    labels, _ = expect_angles(mot, csv_path, model, orders)
+    assert "LeftShoulder_Y1" in labels and "RightShoulder_Z3" in labels and "Hips_Z" in labels
 
 
 def test_every_output_holds_the_stamps_the_csv_writes(tmp_path):
@@ -107,22 +172,31 @@ def test_mot_of_an_arm_and_bad_outputs(mbk_kinematics, tmp_path):
     np.savetxt(trajectory, np.column_stack([t] + [0.01 + 0.3 * np.sin(t + c)
                                                   for c in range(len(names))]),
                delimiter=",", comments="", fmt="%.17g", header="time," + ",".join(names))
-    mot = str(tmp_path / "arm.mot")
-    status, err = run_bag(trajectory, "--model", urdf, "--mot", mot, "--estimator",
-                          "centered_9_4")
+    mot, csv_path = str(tmp_path / "arm.mot"), str(tmp_path / "out.csv")
+    status, err = run_bag(trajectory, "--model", urdf, "--mot", mot, "--mot-coordinates",
+                          "--estimator", "centered_9_4", "--csv", csv_path, "--angles", "ZYX")
     assert status == 0, err
-    _, header, labels, rows = read_storage(mot)
-    assert labels[1:] == list(names) and int(header["nRows"]) == rows.shape[0]
+    labels, rows = expect_angles(mot, csv_path, model, ["ZYX"] * len(model.body_names))
+    rows = rows[:, 1 + 3 * len(model.body_names):]
+    assert labels[1 + 3 * len(model.body_names):] == list(names)
     states = model.states(model.read_recording(trajectory), "centered_9_4")
     assert rows.shape[0] == states["valid"].sum() > 100
     scale = np.where(angle_columns(model), 180.0 / math.pi, 1.0)
     assert (scale == 1).sum() == 2  # the fingers, prismatic
-    assert same(rows[:, 1:], states["position"][states["valid"]] * scale)
+    assert same(rows, states["position"][states["valid"]] * scale)
     for path, message in ((str(tmp_path / "no" / "x.mot"), "cannot create a file beside it"),
                           ("/dev/full", "write failed (No space left on device)")):
         status, err = run_bag(trajectory, "--model", urdf, "--mot", path)
         assert status == 1 and err.count("\n") == 1, err
         assert err.startswith("mbk: error: %s: " % path) and message in err, err
+    for options, message in (
+            (["--mot-coordinates", "--csv", csv_path], "--mot-coordinates adds columns to the "
+             "OpenSim file: give --mot OUT.mot"),
+            (["--angles", "XYZ", "--h5", str(tmp_path / "a.h5")], "--angles sets the joint "
+             "angles of the CSV and the OpenSim file: give --csv OUT.csv or --mot OUT.mot"),
+            (["--mot", mot, "--angles", "XYY"], "XYY")):
+        status, err = run_bag(trajectory, "--model", urdf, *options)
+        assert status == 1 and err.count("\n") == 1 and message in err, err
     kept = str(tmp_path / "kept.mot")
     with open(kept, "w") as f:
         f.write("the previous output")
@@ -130,3 +204,26 @@ def test_mot_of_an_arm_and_bad_outputs(mbk_kinematics, tmp_path):
     assert status == 1 and "write failed (File too large)" in err, err
     assert open(kept).read() == "the previous output"
     assert not [n for n in os.listdir(str(tmp_path)) if ".mbk-tmp-" in n]
+
+
+def test_two_columns_of_one_label_are_refused(tmp_path):
+    """A joint named as a body's angle column (`arm_X`): with --mot-coordinates OpenSim would
+    read two columns of one label; refused, nothing written."""
+    urdf = str(tmp_path / "two.urdf")
+    with open(urdf, "w") as f:
+        f.write('<robot name="two"><link name="base"/><link name="arm"/>'
+                '<joint name="arm_X" type="revolute"><parent link="base"/><child link="arm"/>'
+                '<axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+                '</joint></robot>')
+    trajectory = str(tmp_path / "two.csv")
+    with open(trajectory, "w") as f:
+        f.write("time,arm_X\n" + "".join("%g,%g\n" % (1 + 0.01 * i, 0.01 * i) for i in range(50)))
+    mot = str(tmp_path / "two.mot")
+    status, err = run_bag(trajectory, "--model", urdf, "--mot", mot)
+    assert status == 0, err
+    assert read_storage(mot)[2] == ["time", "arm_X", "arm_Y", "arm_Z"]
+    os.remove(mot)
+    status, err = run_bag(trajectory, "--model", urdf, "--mot", mot, "--mot-coordinates")
+    assert status == 1 and err.count("\n") == 1, err
+    assert "two columns would be labelled 'arm_X'" in err and err.startswith("mbk: error: " + mot)
+    assert not os.path.exists(mot) and not [n for n in os.listdir(str(tmp_path)) if ".mbk-tmp-" in n]
