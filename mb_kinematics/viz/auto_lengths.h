@@ -31,7 +31,7 @@ double robot_size(const std::vector<GlyphBody>& bodies);
 
 // The `quantile` (0..1; 1: the maximum) of the values of the last `window` seconds, a value per
 // time. A time before the previous one (a bag played again) starts over. At most kMaxValues
-// values are kept (the newest), whatever the rate.
+// values are kept (the newest), whatever the rate (and for unstamped messages, all at time 0).
 class RunningQuantile {
  public:
   static constexpr size_t kMaxValues = 4096;
