@@ -367,15 +367,16 @@ void BodyKinematicsDisplay::updateStyle() {
   showLegend();
 }
 
-// The status panel's legend, a row per color ("Legend: cyan", "velocity of G_k (m/s)"): which
-// color is which quantity, as the properties set them. Two quantities of one color share a row.
+// The status panel's legend, a row per color named by it ("cyan", "velocity of G_k, m/s"):
+// which color is which quantity, as the properties set them; names this short show whole in the
+// Displays panel's name column at a status row's depth. Two quantities of one color share a row.
 void BodyKinematicsDisplay::showLegend() {
   for (const QString& name : legend_rows_) deleteStatus(name);
   legend_rows_.clear();
   std::map<QString, QString> rows;
   for (const std::string& entry : mbk::glyph_legend(style_)) {
     const std::size_t colon = entry.find(": ");
-    QString& text = rows["Legend: " + QString::fromStdString(entry.substr(0, colon))];
+    QString& text = rows[QString::fromStdString(entry.substr(0, colon))];
     text += (text.isEmpty() ? "" : "; ") + QString::fromStdString(entry.substr(colon + 2));
   }
   if (rows.empty()) rows["Legend"] = "nothing shown";
