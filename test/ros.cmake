@@ -109,10 +109,10 @@ target_compile_definitions(output_file_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SO
 # Their own files at -O1, with the node's tests' precompiled header (test/test_build.cmake).
 mbk_test_compile(mbk_ros_test_headers joint_state_input_test node_input_test
   output_allocation_test system_fields_test frame_player_test heap_trim_test
-  kinematics_markers_test glyph_limits_test auto_lengths_test legend_test node_test pairing_test rsp_compare_test
+  kinematics_markers_test glyph_limits_test legend_test node_test pairing_test rsp_compare_test
   markers_test hostile_test frame_prefix_test system_test base_odometry_test reload_test
   two_robots_test missing_test deep_partials_test bvh_launch_test real_robots_test
-  nodelet_load_test bag_test output_file_test)
+  nodelet_load_test bag_test output_file_test auto_lengths_test)
 
 # scripts/node_load.sh end to end on its own master (port 11523), the node and transport_floor
 # (MBK_WORKSPACE: test/tests.cmake).
