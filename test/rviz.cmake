@@ -82,7 +82,7 @@ foreach(robot_frame solo12:base_link baxter:base)
   add_test(NAME rviz_arrows_${robot}
     COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
       ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-  set_tests_properties(rviz_arrows_${robot} PROPERTIES TIMEOUT 120 ENVIRONMENT
+  set_tests_properties(rviz_arrows_${robot} PROPERTIES TIMEOUT 240 ENVIRONMENT
     "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};SHOT_NAME=rviz_arrows_${robot};SETTLE=12;TIMEOUT=40;ARROW_FRACTION=0.16,0.6")
 endforeach()
 
