@@ -5,7 +5,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <random>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "test/support/mujoco_state.h"
+#include "test/support/mujoco_urdf.h"
 
 namespace mbk_bench {
 namespace {
@@ -28,29 +28,12 @@ struct MujocoRun {
   }
 };
 
-// The URDF with MuJoCo's compiler options: every link a body (fusestatic off), massless links
-// bounded (MuJoCo refuses moving bodies without mass).
-std::string for_mujoco(const std::string& urdf) {
-  const std::size_t robot = urdf.find("<robot");
-  const std::size_t end = urdf.find('>', robot);
-  return urdf.substr(0, end + 1) +
-         "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" boundmass=\"1e-6\" "
-         "boundinertia=\"1e-9\"/></mujoco>" +
-         urdf.substr(end + 1);
-}
-
 mjModel* load(const Scene& scene) {
   char error[1000] = "";
   if (!scene.mjcf.empty()) return mj_loadXML(scene.mjcf.c_str(), nullptr, error, sizeof error);
-  const std::string text = for_mujoco(scene.urdf);
-  mjVFS* vfs = new mjVFS;
-  mj_defaultVFS(vfs);
-  mj_makeEmptyFileVFS(vfs, "scene.urdf", static_cast<int>(text.size()));
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, "scene.urdf")], text.data(), text.size());
-  mjModel* m = mj_loadXML("scene.urdf", vfs, error, sizeof error);
-  mj_deleteVFS(vfs);
-  delete vfs;
-  if (!m) std::fprintf(stderr, "%s: MuJoCo refuses it: %s\n", scene.name.c_str(), error);
+  std::string message;
+  mjModel* m = mbk_test::load_urdf_in_mujoco(scene.urdf, &message);
+  if (!m) std::fprintf(stderr, "%s: MuJoCo refuses it: %s\n", scene.name.c_str(), message.c_str());
   return m;
 }
 
