@@ -208,7 +208,7 @@ TEST(MujocoPeer, RandomTreesMoveAsInMujoco) {
 }
 
 TEST(MujocoPeer, ShippedModelsMoveAsInMujoco) {
-  for (const char* file : {"humanoid.xml", "panda.xml"})
+  for (const char* file : {"humanoid.xml", "panda.xml", "op3.xml"})
     expect_equal_to_mujoco(
         compare_with_mujoco(mbk_test::source_path(std::string("test/robots/mjcf/") + file), 7, 50),
         file);
