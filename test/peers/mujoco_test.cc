@@ -4,7 +4,8 @@
 // partial velocities) equal MuJoCo's xpos, xmat, xipos and, with gravity off, mj_objectVelocity
 // and mj_objectAcceleration at the inertial frame (after mj_kinematics, mj_comPos, mj_comVel and
 // mj_rnePostConstraint), on random MJCF trees (every joint type, several joints per body, joint
-// anchors off the body frame, refs, free roots) and on the shipped MJCF models.
+// anchors off the body frame, refs, free roots), on the shipped MJCF models, and on URDF models
+// (the human model, the published robots) as MuJoCo's own URDF import reads them.
 //
 // States go from MuJoCo's (qpos, qvel, qacc) to ours by coordinate name
 // (test/support/mujoco_state.h).
@@ -76,8 +77,8 @@ using RowMat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 Vec3 vec(const mjtNum* v) { return Vec3(v[0], v[1], v[2]); }
 
 // MuJoCo's model `m` and ours of the same file moved at `samples` random states of MuJoCo's.
-Errors compare_with_mujoco(const MjModelPtr& m, const mbk::Model& model, unsigned seed,
-                           int samples) {
+Errors compare_with_mujoco(const MjModelPtr& m, const mbk::Model& model, unsigned seed, int samples,
+                           bool impose_our_mimics = false) {
   Errors err;
   if (!m) return err;
   m->opt.gravity[0] = m->opt.gravity[1] = m->opt.gravity[2] = 0;  // cacc holds -gravity else
@@ -88,6 +89,7 @@ Errors compare_with_mujoco(const MjModelPtr& m, const mbk::Model& model, unsigne
   for (int n = 0; n < samples; ++n) {
     mbk_test::random_mujoco_state(m.get(), d.get(), rng);
     const mbk::JointState<double> state = mbk_test::our_state(m.get(), d.get(), model);
+    if (impose_our_mimics) mbk_test::impose_mimics(m.get(), d.get(), model, state);
     mj_kinematics(m.get(), d.get());
     mj_comPos(m.get(), d.get());
     mj_comVel(m.get(), d.get());
@@ -95,8 +97,10 @@ Errors compare_with_mujoco(const MjModelPtr& m, const mbk::Model& model, unsigne
     mbk::forward_kinematics(model, state, data, mbk::Level::kAcceleration);
     mbk::partial_velocity_kinematics(model, state, pv, data_pv, mbk::Level::kAcceleration);
     for (int b = 1; b < m->nbody; ++b) {
-      const int k = model.body_index(m->names + m->name_bodyadr[b]);
-      EXPECT_GT(k, 0) << "MJCF body " << (m->names + m->name_bodyadr[b]) << " is no body of ours";
+      const std::string name = m->names + m->name_bodyadr[b];
+      if (name == model.bodies[0].name) continue;  // a URDF's root link: our R, welded in MuJoCo
+      const int k = model.body_index(name);
+      EXPECT_GT(k, 0) << "MuJoCo's body " << name << " is no body of ours";
       if (k <= 0) continue;
       mjtNum velocity[6], acceleration[6];  // rotational, then linear; at xipos, world axes
       mj_objectVelocity(m.get(), d.get(), mjOBJ_BODY, b, velocity, 0);
@@ -121,13 +125,14 @@ Errors compare_with_mujoco(const std::string& mjcf_path, unsigned seed, int samp
   return compare_with_mujoco(mujoco_load(mjcf_path), mbk::load_mjcf_file(mjcf_path), seed, samples);
 }
 
-// A URDF file read by MuJoCo's URDF import (test/support/mujoco_urdf.h) and by ours.
+// A URDF file read by MuJoCo's URDF import (test/support/mujoco_urdf.h) and by ours; MuJoCo's
+// import drops <mimic>, so MuJoCo's state takes our mimic coordinates.
 Errors compare_urdf_with_mujoco(const std::string& path, unsigned seed, int samples) {
   const std::string urdf = mbk::read_text_file(path, "URDF");
   std::string error;
   const MjModelPtr m(mbk_test::load_urdf_in_mujoco(urdf, &error));
   EXPECT_TRUE(m) << path << ": " << error;
-  return compare_with_mujoco(m, mbk::load_urdf_string(urdf, "model"), seed, samples);
+  return compare_with_mujoco(m, mbk::load_urdf_string(urdf, "model"), seed, samples, true);
 }
 
 void expect_equal_to_mujoco(const Errors& e, const std::string& what) {
@@ -223,6 +228,15 @@ TEST(MujocoPeer, HumanUrdfMovesAsInMujoco) {
   expect_equal_to_mujoco(
       compare_urdf_with_mujoco(mbk_test::source_path("config/human_body.urdf"), 3, 50),
       "config/human_body.urdf");
+}
+
+// The published robot descriptions (test/robots/LICENSES.md): fixed joints, continuous wheels,
+// prismatic torsos, mimic grippers, inertials rotated off the link frames.
+TEST(MujocoPeer, RobotUrdfsMoveAsInMujoco) {
+  for (const char* file : {"solo12", "anymal_c", "romeo_small", "panda", "baxter", "pr2"}) {
+    const std::string path = std::string("test/robots/") + file + ".urdf";
+    expect_equal_to_mujoco(compare_urdf_with_mujoco(mbk_test::source_path(path), 5, 20), path);
+  }
 }
 
 // Why the URDF reaches MuJoCo with explicit inertials: a body with neither an inertial nor a

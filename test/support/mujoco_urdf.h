@@ -1,11 +1,14 @@
 // A URDF as MuJoCo 2.2.2 reads the same model, for the MuJoCo peer test and benchmark: MuJoCo's
 // compiler options in the robot element (every link a body: fusestatic off; visuals dropped;
-// massless links bounded to 1e-6 kg, as MuJoCo refuses moving bodies without mass), and every
+// massless links bounded to 1e-6 kg, as MuJoCo refuses moving bodies without mass; inertias that
+// break the triangle inequality balanced, as MuJoCo refuses them: the kinematics reads no
+// inertia), and every
 // link without <inertial> given URDF's default one explicitly (origin at the link frame, no
 // mass). The latter because MuJoCo's compiler, for a body with neither an inertial nor a geom,
 // copies the body's pos and quat (its frame in its parent's) into its inertial frame (ipos,
 // iquat, in the body's own frame): such a link's mass center would sit at its joint origin's
-// offset from the link frame instead of at the link frame.
+// offset from the link frame instead of at the link frame. MuJoCo's URDF import drops <mimic>:
+// impose_mimics gives MuJoCo's state our mimic coordinates.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -13,6 +16,9 @@
 #include <cstring>
 #include <memory>
 #include <string>
+
+#include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/state.h"
 
 namespace mbk_test {
 
@@ -53,7 +59,8 @@ inline std::string urdf_for_mujoco(const std::string& urdf) {
   const std::size_t robot = text.find("<robot");
   const std::size_t end = text.find('>', robot);
   return text.substr(0, end + 1) +
-         "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" boundmass=\"1e-6\" "
+         "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" balanceinertia=\"true\" "
+         "boundmass=\"1e-6\" "
          "boundinertia=\"1e-9\"/></mujoco>" +
          text.substr(end + 1);
 }
@@ -71,6 +78,19 @@ inline mjModel* load_urdf_in_mujoco(const std::string& urdf, std::string* error)
   mj_deleteVFS(vfs.get());
   if (!m && error) *error = message;
   return m;
+}
+
+// MuJoCo's qpos, qvel and qacc of each joint that is a mimic coordinate of ours set to ours.
+inline void impose_mimics(const mjModel* m, mjData* d, const mbk::Model& model,
+                          const mbk::JointState<double>& state) {
+  for (const mbk::Mimic& x : model.mimics) {
+    const std::string& name = model.coordinate_names[x.coordinate];
+    const int j = mj_name2id(m, mjOBJ_JOINT, name.c_str());
+    if (j < 0) continue;
+    d->qpos[m->jnt_qposadr[j]] = state.position[x.coordinate];
+    d->qvel[m->jnt_dofadr[j]] = state.velocity[x.coordinate];
+    d->qacc[m->jnt_dofadr[j]] = state.acceleration[x.coordinate];
+  }
 }
 
 }  // namespace mbk_test
