@@ -2,13 +2,12 @@
 // compiler options in the robot element (every link a body: fusestatic off; visuals dropped;
 // massless links bounded to 1e-6 kg, as MuJoCo refuses moving bodies without mass; inertias that
 // break the triangle inequality balanced, as MuJoCo refuses them: the kinematics reads no
-// inertia), and every
-// link without <inertial> given URDF's default one explicitly (origin at the link frame, no
-// mass). The latter because MuJoCo's compiler, for a body with neither an inertial nor a geom,
-// copies the body's pos and quat (its frame in its parent's) into its inertial frame (ipos,
-// iquat, in the body's own frame): such a link's mass center would sit at its joint origin's
-// offset from the link frame instead of at the link frame. MuJoCo's URDF import drops <mimic>:
-// impose_mimics gives MuJoCo's state our mimic coordinates.
+// inertia), and every link without <inertial> given URDF's default one explicitly (origin at
+// the link frame, no mass). The latter because MuJoCo's compiler, for a body with neither an
+// inertial nor a geom, copies the body's pos and quat (its frame in its parent's) into its
+// inertial frame (ipos, iquat, in the body's own frame): such a link's mass center would sit at
+// its joint origin's offset from the link frame instead of at the link frame. MuJoCo's URDF
+// import drops <mimic>: impose_mimics gives MuJoCo's state our mimic coordinates.
 #pragma once
 
 #include <mujoco/mujoco.h>
