@@ -29,9 +29,9 @@
 // 1 m along x (mbk::make_chain). The URDF scenes are written as URDF (write_urdf) and every
 // side, ours included, loads that text. Chains give Pinocchio the model joint by joint (its
 // URDF parser does not cope with long chains); KDL and DART run up to 1000 bodies, Pinocchio up
-// to 100 (its Data holds N^3 tensors). mjcf_humanoid and mjcf_panda: test/robots/mjcf/
-// humanoid.xml and panda.xml, which ours (io/mjcf_model.h) and MuJoCo read (the others do not
-// read MJCF); MuJoCo also reads every URDF scene of up to 1000 bodies.
+// to 100 (its Data holds N^3 tensors). mjcf_humanoid, mjcf_panda and mjcf_op3:
+// test/robots/mjcf/humanoid.xml, panda.xml and op3.xml, which ours (io/mjcf_model.h) and MuJoCo
+// read (the others do not read MJCF); MuJoCo also reads every URDF scene of up to 1000 bodies.
 // Before timing, each peer's results are checked against ours on every body it computes.
 // Each iteration nudges one coordinate and speed so that nothing is computed once and reused.
 #include <benchmark/benchmark.h>
@@ -335,7 +335,7 @@ int main(int argc, char** argv) {
     scenes.push_back(std::make_unique<Scene>(
         Scene{"chain" + std::to_string(n), std::move(chain), urdf, false, small}));
   }
-  for (const char* name : {"humanoid", "panda"}) {
+  for (const char* name : {"humanoid", "panda", "op3"}) {
     const std::string mjcf = source_path(std::string("test/robots/mjcf/") + name + ".xml");
     scenes.push_back(std::make_unique<Scene>(
         Scene{std::string("mjcf_") + name, mbk::load_model_file(mjcf), "", false, false, mjcf}));

@@ -57,6 +57,17 @@ TEST(MjcfModel, BallAndFreeJointsNameTheirCoordinates) {
   EXPECT_EQ(model.nq, 28);  // as MuJoCo: 7 of the free joint, 21 hinges
 }
 
+TEST(MjcfModel, AnUnnamedFreeJointIsJointIdAsInMujoco) {
+  // Menagerie's Robotis OP3: <freejoint/> without a name (MuJoCo's joint 0), 20 named hinges.
+  const mbk::Model op3 = mbk::load_mjcf_file(mbk_test::source_path("test/robots/mjcf/op3.xml"));
+  ASSERT_EQ(op3.coordinate_index("joint0/x"), 0);
+  EXPECT_EQ(op3.coordinate_index("joint0/e4"), 6);
+  EXPECT_EQ(op3.coordinate_index("head_pan"), 7);
+  EXPECT_EQ(op3.nq, 27);  // as MuJoCo: 7 of the free joint, 20 hinges
+  EXPECT_EQ(op3.body_count(), 21);
+  EXPECT_EQ(op3.bodies[op3.body_index("body_link")].mass, 1.34928);
+}
+
 TEST(MjcfModel, LinearJointEqualitiesAreMimicsOthersAWarning) {
   const mbk::Model panda = mbk::load_mjcf_file(mbk_test::source_path("test/robots/mjcf/panda.xml"));
   ASSERT_EQ(panda.mimics.size(), 1u);

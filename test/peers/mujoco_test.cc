@@ -4,7 +4,8 @@
 // partial velocities) equal MuJoCo's xpos, xmat, xipos and, with gravity off, mj_objectVelocity
 // and mj_objectAcceleration at the inertial frame (after mj_kinematics, mj_comPos, mj_comVel and
 // mj_rnePostConstraint), on random MJCF trees (every joint type, several joints per body, joint
-// anchors off the body frame, refs, free roots) and on the shipped MJCF models.
+// anchors off the body frame, refs, free roots), on the shipped MJCF models, and on URDF models
+// (the human model, the published robots) as MuJoCo's own URDF import reads them.
 //
 // States go from MuJoCo's (qpos, qvel, qacc) to ours by coordinate name
 // (test/support/mujoco_state.h).
@@ -27,7 +28,10 @@
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/io/mjcf_model.h"
+#include "mb_kinematics/io/text_file.h"
+#include "mb_kinematics/io/urdf_model.h"
 #include "test/support/mujoco_state.h"
+#include "test/support/mujoco_urdf.h"
 #include "test/support/temp_file.h"
 #include "test/support/test_models.h"
 
@@ -73,19 +77,20 @@ using RowMat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
 Vec3 vec(const mjtNum* v) { return Vec3(v[0], v[1], v[2]); }
 
-Errors compare_with_mujoco(const std::string& path, unsigned seed, int samples) {
+// MuJoCo's model `m` and ours of the same file moved at `samples` random states of MuJoCo's.
+Errors compare_with_mujoco(const MjModelPtr& m, const mbk::Model& model, unsigned seed, int samples,
+                           bool impose_our_mimics = false) {
   Errors err;
-  const MjModelPtr m = mujoco_load(path);
   if (!m) return err;
   m->opt.gravity[0] = m->opt.gravity[1] = m->opt.gravity[2] = 0;  // cacc holds -gravity else
   const MjDataPtr d(mj_makeData(m.get()));
-  const mbk::Model model = mbk::load_mjcf_file(path);
   mbk::Data<double> data(model), data_pv(model);
   mbk::PartialVelocities<double> pv(model);
   std::mt19937 rng(seed);
   for (int n = 0; n < samples; ++n) {
     mbk_test::random_mujoco_state(m.get(), d.get(), rng);
     const mbk::JointState<double> state = mbk_test::our_state(m.get(), d.get(), model);
+    if (impose_our_mimics) mbk_test::impose_mimics(m.get(), d.get(), model, state);
     mj_kinematics(m.get(), d.get());
     mj_comPos(m.get(), d.get());
     mj_comVel(m.get(), d.get());
@@ -93,8 +98,10 @@ Errors compare_with_mujoco(const std::string& path, unsigned seed, int samples) 
     mbk::forward_kinematics(model, state, data, mbk::Level::kAcceleration);
     mbk::partial_velocity_kinematics(model, state, pv, data_pv, mbk::Level::kAcceleration);
     for (int b = 1; b < m->nbody; ++b) {
-      const int k = model.body_index(m->names + m->name_bodyadr[b]);
-      EXPECT_GT(k, 0) << "MJCF body " << (m->names + m->name_bodyadr[b]) << " is no body of ours";
+      const std::string name = m->names + m->name_bodyadr[b];
+      if (name == model.bodies[0].name) continue;  // a URDF's root link: our R, welded in MuJoCo
+      const int k = model.body_index(name);
+      EXPECT_GT(k, 0) << "MuJoCo's body " << name << " is no body of ours";
       if (k <= 0) continue;
       mjtNum velocity[6], acceleration[6];  // rotational, then linear; at xipos, world axes
       mj_objectVelocity(m.get(), d.get(), mjOBJ_BODY, b, velocity, 0);
@@ -113,6 +120,20 @@ Errors compare_with_mujoco(const std::string& path, unsigned seed, int samples) 
   }
   err.rotation.scale = 1;
   return err;
+}
+
+Errors compare_with_mujoco(const std::string& mjcf_path, unsigned seed, int samples) {
+  return compare_with_mujoco(mujoco_load(mjcf_path), mbk::load_mjcf_file(mjcf_path), seed, samples);
+}
+
+// A URDF file read by MuJoCo's URDF import (test/support/mujoco_urdf.h) and by ours; MuJoCo's
+// import drops <mimic>, so MuJoCo's state takes our mimic coordinates.
+Errors compare_urdf_with_mujoco(const std::string& path, unsigned seed, int samples) {
+  const std::string urdf = mbk::read_text_file(path, "URDF");
+  std::string error;
+  const MjModelPtr m(mbk_test::load_urdf_in_mujoco(urdf, &error));
+  EXPECT_TRUE(m) << path << ": " << error;
+  return compare_with_mujoco(m, mbk::load_urdf_string(urdf, "model"), seed, samples, true);
 }
 
 void expect_equal_to_mujoco(const Errors& e, const std::string& what) {
@@ -185,10 +206,57 @@ TEST(MujocoPeer, RandomTreesMoveAsInMujoco) {
 }
 
 TEST(MujocoPeer, ShippedModelsMoveAsInMujoco) {
-  for (const char* file : {"humanoid.xml", "panda.xml"})
+  for (const char* file : {"humanoid.xml", "panda.xml", "op3.xml"})
     expect_equal_to_mujoco(
         compare_with_mujoco(mbk_test::source_path(std::string("test/robots/mjcf/") + file), 7, 50),
         file);
 }
 
 }  // namespace
+
+// The URDF path against MuJoCo's own URDF import: the human model (ball and free joints as
+// chains of one-axis joints between massless links, the links with mass holding their mass
+// centers off the link frame).
+TEST(MujocoPeer, HumanUrdfMovesAsInMujoco) {
+  expect_equal_to_mujoco(
+      compare_urdf_with_mujoco(mbk_test::source_path("config/human_body.urdf"), 3, 50),
+      "config/human_body.urdf");
+}
+
+// The published robot descriptions (test/robots/LICENSES.md): fixed joints, continuous wheels,
+// prismatic torsos, mimic grippers, inertials rotated off the link frames.
+TEST(MujocoPeer, RobotUrdfsMoveAsInMujoco) {
+  for (const char* file : {"solo12", "anymal_c", "romeo_small", "panda", "baxter", "pr2"}) {
+    const std::string path = std::string("test/robots/") + file + ".urdf";
+    expect_equal_to_mujoco(compare_urdf_with_mujoco(mbk_test::source_path(path), 5, 20), path);
+  }
+}
+
+// Why the URDF reaches MuJoCo with explicit inertials: a body with neither an inertial nor a
+// geom gets its own pos (its frame in its parent's) as its inertial frame's position in its own
+// frame, so the mass center of a massless link after an offset joint lands off the link frame.
+TEST(MujocoPeer, MujocoPutsAnInertialFreeBodysMassCenterAtItsPos) {
+  const std::string urdf =
+      "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/><joint name=\"j\" "
+      "type=\"continuous\"><origin xyz=\"0 0 0.5\"/><parent link=\"a\"/><child link=\"b\"/>"
+      "<axis xyz=\"1 0 0\"/></joint></robot>";
+  const auto ipos_of_b = [](const std::string& text) {
+    char error[1000] = "";
+    const std::string path = mbk_test::write_temp(text, "inertial_free.urdf");
+    const MjModelPtr m(mj_loadXML(path.c_str(), nullptr, error, sizeof error));
+    EXPECT_TRUE(m) << error;
+    if (!m) return Vec3(Vec3::Constant(NAN));
+    const int b = mj_name2id(m.get(), mjOBJ_BODY, "b");
+    EXPECT_GT(b, 0);
+    return vec(m->body_ipos + 3 * b);
+  };
+  const std::string bare =
+      "<robot name=\"r\"><mujoco><compiler fusestatic=\"false\" "
+      "boundmass=\"1e-6\" boundinertia=\"1e-9\"/></mujoco>" +
+      urdf.substr(std::string("<robot name=\"r\">").size());
+  EXPECT_EQ(ipos_of_b(bare), Vec3(0, 0, 0.5));
+  std::string error;
+  const MjModelPtr m(mbk_test::load_urdf_in_mujoco(urdf, &error));
+  ASSERT_TRUE(m) << error;
+  EXPECT_EQ(vec(m->body_ipos + 3 * mj_name2id(m.get(), mjOBJ_BODY, "b")), Vec3::Zero());
+}

@@ -2,7 +2,8 @@
 // by name (hinge and slide: the joint's name; ball: <joint>/e1..e4 from qpos (w, x, y, z) as
 // e4 = w; free: <joint>/x, y, z, then e1..e4), the Euler-parameter rates from MuJoCo's local
 // angular velocity w and its rate: e' = e (0, w) / 2, e'' = (e' (0, w) + e (0, w')) / 2
-// (quaternion products). Mimic coordinates come from our mimics.
+// (quaternion products). Mimic coordinates come from our mimics. An unnamed joint is joint<id>,
+// as ours names it.
 #pragma once
 
 #include <mujoco/mujoco.h>
@@ -64,13 +65,19 @@ inline int mujoco_coordinate(const mbk::Model& model, const std::string& name) {
   return i;
 }
 
+// MuJoCo's joint j by the name ours gives it (doc/conventions.md: unnamed, joint<j>).
+inline std::string joint_name(const mjModel* m, int j) {
+  const char* name = m->names + m->name_jntadr[j];
+  return *name ? std::string(name) : "joint" + std::to_string(j);
+}
+
 inline mbk::JointState<double> our_state(const mjModel* m, const mjData* d,
                                          const mbk::Model& model) {
   mbk::JointState<double> state(model);
   std::vector<bool> mimic(model.nq, false);
   for (const mbk::Mimic& x : model.mimics) mimic[x.coordinate] = true;
   for (int j = 0; j < m->njnt; ++j) {
-    const std::string name = m->names + m->name_jntadr[j];
+    const std::string name = joint_name(m, j);
     const mjtNum* q = d->qpos + m->jnt_qposadr[j];
     const mjtNum* v = d->qvel + m->jnt_dofadr[j];
     const mjtNum* a = d->qacc + m->jnt_dofadr[j];
