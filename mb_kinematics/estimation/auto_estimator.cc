@@ -137,30 +137,6 @@ void choose(const Statistics& s, const std::vector<double>& sigma, std::vector<i
     }
 }
 
-// The weights of candidate k at sample i, those of the candidate before it (`shorter`), and where
-// they are shifted (an end, a gap) those of that one at order kEndOrder at most (`end`).
-// Per derivative d at [d - 1], shared by every series: |w|^2, |w - shorter|^2 and |end''|.
-struct SampleWeights {
-  DerivativeWeights w, shorter, end;
-  bool shifted = false, has_shorter = false;
-  double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
-  void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-            const Segments& segments, int i, int k) {
-    derivative_weights(candidates[k], t, segments, i, w);
-    for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
-    shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
-    has_shorter = k > 0 && w.valid == 2;
-    if (!has_shorter) return;
-    derivative_weights(candidates[k - 1], t, segments, i, shorter);
-    for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
-    if (!shifted) return;
-    OfflineEstimator e = candidates[k - 1];
-    e.order = std::min(e.order, kEndOrder);
-    derivative_weights(e, t, segments, i, end);
-    end_norm = std::sqrt(norm2(end.second, end.count));
-  }
-};
-
 double apply(const DerivativeWeights& w, int d, const double* x, int ld, int c) {
   const std::vector<double>& weights = weights_of(w, d);
   double sum = 0;
@@ -173,7 +149,7 @@ double apply(const DerivativeWeights& w, int d, const double* x, int ld, int c) 
 // the step from the shorter window at this sample beyond the noise: the bias is not uniform);
 // where the window is shifted, the accelerations from the shorter window at order kEndOrder at
 // most (a one-sided fit's bias and variance grow faster with its length and order).
-void final_estimate(const SampleWeights& s, const double* x, int ld, int c, double sigma, int d,
+void final_estimate(const AutoSampleWeights& s, const double* x, int ld, int c, double sigma, int d,
                     double bias2, double& estimate, double& se) {
   estimate = apply(s.w, d, x, ld, c);
   se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + bias2);
@@ -192,7 +168,7 @@ void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
                 const std::vector<double>& t, const Segments& segments, const double* x, int ld,
                 int m, size_t begin, size_t end, AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
-  SampleWeights w;
+  AutoSampleWeights w;
   for (size_t i = begin; i < end; ++i)
     for (int k : in_use) {
       w.load(chosen.candidates, t, segments, static_cast<int>(i), k);
@@ -229,6 +205,22 @@ void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Se
 }
 
 }  // namespace
+
+void AutoSampleWeights::load(const std::vector<OfflineEstimator>& candidates,
+                             const std::vector<double>& t, const Segments& segments, int i, int k) {
+  derivative_weights(candidates[k], t, segments, i, w);
+  for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
+  shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
+  has_shorter = k > 0 && w.valid == 2;
+  if (!has_shorter) return;
+  derivative_weights(candidates[k - 1], t, segments, i, shorter);
+  for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
+  if (!shifted) return;
+  OfflineEstimator e = candidates[k - 1];
+  e.order = std::min(e.order, kEndOrder);
+  derivative_weights(e, t, segments, i, end);
+  end_norm = std::sqrt(norm2(end.second, end.count));
+}
 
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t) {
   return auto_candidates(default_max_gap(t) / 5);  // the median interval
