@@ -18,7 +18,9 @@
 #include "mb_kinematics/core/euler_angles.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/offline/offline_batch.h"
+#include "mb_kinematics/offline/offline_kinematics.h"
 #include "mb_kinematics/offline/recording.h"
+#include "mb_kinematics/offline/rotation_noise.h"
 
 namespace {
 
@@ -184,6 +186,32 @@ TEST(GimbalLockErrorsTest, StatedErrorsFitTheRealOnesNearTheLock) {
         EXPECT_LE(q.ratio(), 2.0) << what;
         EXPECT_GE(q.ratio(), 0.5) << what;
       }
+  }
+}
+
+// The noise is found on the rotations: each joint's covariance is the random rotations' (sigma^2
+// per axis, isotropic), near the lock too, where the spine's Z and Y angles' own noise levels
+// are many times sigma.
+TEST(GimbalLockErrorsTest, TheRotationsNoiseIsFoundWhereTheAnglesNoiseIsLarge) {
+  const mbk::Model model = spine_model();
+  for (double sigma : {2e-4, 1e-3}) {
+    const mbk::Recording rec = noisy_recording(model, walk(0.3), sigma, 3);
+    const std::vector<double>& t = rec.stamp;
+    mbk::RotationNoise noise(model, mbk::default_max_gap(t) / 5);
+    noise.add(t, mbk::find_segments(t, mbk::default_max_gap(t)), rec.position.data(), model.nq, 0,
+              rec.rows());
+    const std::vector<mbk::Mat3<double>> cov = noise.covariance();
+    ASSERT_EQ(cov.size(), 3u);
+    for (int j = 0; j < 3; ++j)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+          EXPECT_NEAR(cov[j](a, b), a == b ? sigma * sigma : 0.0, 0.15 * sigma * sigma)
+              << "joint " << j << " (" << a << ", " << b << "), sigma " << sigma;
+    const mbk::OfflineStates states(model, rec, mbk::make_offline_estimator("auto"), 0);
+    const std::vector<mbk::CoordinateError> angles = states.error_summary();
+    ASSERT_EQ(angles.size(), 9u);
+    for (int a : {3, 5})  // spine Z, Y
+      EXPECT_GT(angles[a].noise, 10 * sigma) << angles[a].name;
   }
 }
 
