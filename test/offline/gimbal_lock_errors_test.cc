@@ -19,6 +19,7 @@
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/offline/offline_batch.h"
 #include "mb_kinematics/offline/offline_kinematics.h"
+#include "mb_kinematics/offline/offline_stream.h"
 #include "mb_kinematics/offline/recording.h"
 #include "mb_kinematics/offline/rotation_noise.h"
 
@@ -212,6 +213,44 @@ TEST(GimbalLockErrorsTest, TheRotationsNoiseIsFoundWhereTheAnglesNoiseIsLarge) {
     ASSERT_EQ(angles.size(), 9u);
     for (int a : {3, 5})  // spine Z, Y
       EXPECT_GT(angles[a].noise, 10 * sigma) << angles[a].name;
+  }
+}
+
+// mbk bag computes a recording a piece at a time (offline/offline_stream.h), the rotation noise
+// summed in the choosing pass: the same error bars, bit for bit, as the whole recording at once.
+TEST(GimbalLockErrorsTest, PieceByPieceEqualsTheWholeRecording) {
+  const mbk::Model model = spine_model();
+  const mbk::Recording rec = noisy_recording(model, walk(0.3), 1e-3, 5);
+  const int rows = rec.rows(), nq = model.nq;
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("auto");
+  mbk::OfflineBatch batch(model, rec, e, 0, nullptr, 1);
+  batch.set_body_errors(true);
+  std::vector<mbk::OfflineRow> whole(rows, mbk::OfflineRow(model));
+  batch.start(0, rows, whole);
+  batch.finish();
+  mbk::RecordingSurvey survey(nq);
+  for (int r = 0; r < rows; ++r) survey.add(rec.stamp[r], rec.given.data() + r * nq);
+  ASSERT_TRUE(survey.finish_pass());
+  mbk::AutoChoosePass pass(model, survey, survey.default_max_gap(), 300);
+  for (int r = 0; r < rows; ++r)
+    pass.add(rec.stamp[r], rec.position.data() + r * nq, rec.velocity.data() + r * nq);
+  mbk::OfflineReach reach;
+  const mbk::WholeRecording chosen = pass.finish(reach);
+  std::vector<std::vector<mbk::Vec3<double>>> alpha_se, acceleration_se;
+  mbk::OfflineStream stream(model, e, reach, survey.default_max_gap(), chosen, 2, 300,
+                            [&](const mbk::OfflineRow& row) {
+                              alpha_se.push_back(row.alpha_se);
+                              acceleration_se.push_back(row.acceleration_se);
+                            });
+  stream.set_body_errors(true);
+  for (int r = 0; r < rows; ++r)
+    stream.add(rec.stamp[r], rec.position.data() + r * nq, rec.velocity.data() + r * nq,
+               rec.given.data() + r * nq);
+  stream.finish();
+  ASSERT_EQ(static_cast<int>(alpha_se.size()), rows);
+  for (int r = 0; r < rows; ++r) {
+    ASSERT_EQ(alpha_se[r], whole[r].alpha_se) << r;
+    ASSERT_EQ(acceleration_se[r], whole[r].acceleration_se) << r;
   }
 }
 
