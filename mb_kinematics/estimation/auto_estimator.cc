@@ -141,43 +141,15 @@ void choose(const Statistics& s, const std::vector<double>& sigma, std::vector<i
     }
 }
 
-// The weights of candidate k at sample i, those of the candidate before it (`shorter`), and where
-// they are shifted (an end, a gap) those of that one at order kEndOrder at most (`end`).
-// Per derivative d at [d - 1], shared by every series: |w|^2, |w - shorter|^2 and |end''|.
-struct SampleWeights {
-  DerivativeWeights w, shorter, end;
-  bool shifted = false, has_shorter = false;
-  double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
-  // known: candidate k - 1's weights at this sample when already computed (else nullptr).
-  void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-            const Segments& segments, int i, int k, const DerivativeWeights* known) {
-    derivative_weights(candidates[k], t, segments, i, w);
-    for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
-    shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
-    has_shorter = k > 0 && w.valid == 2;
-    if (!has_shorter) return;
-    if (known)
-      shorter = *known;  // the same weights as computing them again
-    else
-      derivative_weights(candidates[k - 1], t, segments, i, shorter);
-    for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
-    if (!shifted) return;
-    OfflineEstimator e = candidates[k - 1];
-    e.order = std::min(e.order, kEndOrder);
-    derivative_weights(e, t, segments, i, end);
-    end_norm = std::sqrt(norm2(end.second, end.count));
-  }
-};
-
-// Every series' estimates of both derivatives at a sample from a SampleWeights' windows (each
+// Every series' estimates of both derivatives at a sample from an AutoSampleWeights' windows (each
 // the sum over the window's rows in order, apply_weights): [d - 1] per derivative d, of w, of
-// shorter where the SampleWeights has it, of end where it is shifted.
+// shorter where the AutoSampleWeights has it, of end where it is shifted.
 struct SampleEstimates {
   std::vector<double> w[2], shorter[2], end[2];
   explicit SampleEstimates(int m) {
     for (auto* v : {&w, &shorter, &end}) (*v)[0].resize(m), (*v)[1].resize(m);
   }
-  void load(const SampleWeights& s, const double* x, int ld) {
+  void load(const AutoSampleWeights& s, const double* x, int ld) {
     const int m = static_cast<int>(w[0].size());
     apply_weights(s.w, x, ld, m, w[0].data(), w[1].data());
     if (s.has_shorter) apply_weights(s.shorter, x, ld, m, shorter[0].data(), shorter[1].data());
@@ -190,8 +162,8 @@ struct SampleEstimates {
 // the step from the shorter window at this sample beyond the noise: the bias is not uniform);
 // where the window is shifted, the accelerations from the shorter window at order kEndOrder at
 // most (a one-sided fit's bias and variance grow faster with its length and order).
-void final_estimate(const SampleWeights& s, const SampleEstimates& e, int c, double sigma, int d,
-                    double bias2, double& estimate, double& se) {
+void final_estimate(const AutoSampleWeights& s, const SampleEstimates& e, int c, double sigma,
+                    int d, double bias2, double& estimate, double& se) {
   estimate = e.w[d - 1][c];
   se = std::sqrt(sigma * sigma * s.norm2_w[d - 1] + bias2);
   if (!s.has_shorter) return;
@@ -209,12 +181,12 @@ void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
                 const std::vector<double>& t, const Segments& segments, const double* x, int ld,
                 int m, size_t begin, size_t end, AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
-  SampleWeights both[2];  // this window's, and the one before in in_use (ascending)
+  AutoSampleWeights both[2];  // this window's, and the one before in in_use (ascending)
   SampleEstimates estimates(m);
   for (size_t i = begin; i < end; ++i)
     for (size_t u = 0; u < in_use.size(); ++u) {
       const int k = in_use[u];
-      SampleWeights &w = both[u % 2], &before = both[(u + 1) % 2];
+      AutoSampleWeights &w = both[u % 2], &before = both[(u + 1) % 2];
       const bool known = u > 0 && in_use[u - 1] == k - 1;  // before.w: candidate k - 1's, at i
       w.load(chosen.candidates, t, segments, static_cast<int>(i), k, known ? &before.w : nullptr);
       estimates.load(w, x, ld);
@@ -251,6 +223,26 @@ void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Se
 }
 
 }  // namespace
+
+void AutoSampleWeights::load(const std::vector<OfflineEstimator>& candidates,
+                             const std::vector<double>& t, const Segments& segments, int i, int k,
+                             const DerivativeWeights* known) {
+  derivative_weights(candidates[k], t, segments, i, w);
+  for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
+  shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
+  has_shorter = k > 0 && w.valid == 2;
+  if (!has_shorter) return;
+  if (known)
+    shorter = *known;  // the same weights as computing them again
+  else
+    derivative_weights(candidates[k - 1], t, segments, i, shorter);
+  for (int d = 1; d <= 2; ++d) step2[d - 1] = difference2(w, shorter, d);
+  if (!shifted) return;
+  OfflineEstimator e = candidates[k - 1];
+  e.order = std::min(e.order, kEndOrder);
+  derivative_weights(e, t, segments, i, end);
+  end_norm = std::sqrt(norm2(end.second, end.count));
+}
 
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t) {
   return auto_candidates(default_max_gap(t) / 5);  // the median interval

@@ -76,6 +76,21 @@ class AutoChooser {
   Statistics stats_[2];  // per derivative d at [d - 1]
 };
 
+// At sample i, the weights of candidate k (`w`), of the candidate before it (`shorter`, when
+// has_shorter) and, where w is shifted (an end, a gap), of that one at order 4 at most (`end`,
+// which the accelerations apply there: a one-sided fit's bias and variance grow faster with its
+// length and order). Per derivative d at [d - 1]: |w|^2 and |w - shorter|^2; end_norm = |end''|.
+struct AutoSampleWeights {
+  DerivativeWeights w, shorter, end;
+  bool shifted = false, has_shorter = false;
+  double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
+  // known: candidate k - 1's weights at this sample when already computed (else nullptr).
+  void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+            const Segments& segments, int i, int k, const DerivativeWeights* known = nullptr);
+  // The weights the estimate of derivative d applies.
+  const DerivativeWeights& used(int d) const { return d == 2 && shifted ? end : w; }
+};
+
 struct AutoEstimate {
   int series = 0;                           // m
   std::vector<double> first, second;        // [r * m + c]

@@ -491,7 +491,7 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
   if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
-    mbk::AutoChoosePass choose(survey, s.max_gap, kStreamChunkRows, threads);
+    mbk::AutoChoosePass choose(model, survey, s.max_gap, kStreamChunkRows, threads);
     input.pass([&](double t, const double* p, const double* v,
                    const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
                s);

@@ -67,7 +67,7 @@ void OfflineBatch::compute_row(OfflineStates& states, int r, OfflineRow& out) co
   if (!finite_kinematics(out.data, Level::kAcceleration)) return drop("kinematics not finite", "");
   // The error bars in the model's frame; with a base, R is the odometry's: none.
   if (!body_errors_ || base_ ||
-      !states.body_errors(r, out.state, out.alpha_se, out.acceleration_se)) {
+      !states.body_errors(r, out.state, out.data, out.alpha_se, out.acceleration_se)) {
     out.alpha_se.clear(), out.acceleration_se.clear();
     out.joint_velocity_se.clear(), out.joint_acceleration_se.clear();
     return;

@@ -1,6 +1,7 @@
 #include "mb_kinematics/offline/offline_kinematics.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "mb_kinematics/core/body_errors.h"
 #include "mb_kinematics/estimation/butterworth_estimator.h"
@@ -33,6 +34,7 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
   if (whole) {
     velocity_everywhere_ = whole->velocity_everywhere;
     positions_choice_ = whole->positions, velocities_choice_ = whole->velocities;
+    whole_noise_ = whole->rotation_noise;
   }
   for (const Mimic& m : model.mimics) {  // the rule places a mimic until it is recorded
     int& r = rule_until_[m.coordinate];
@@ -79,7 +81,13 @@ void OfflineStates::fit_automatic(int threads) {
       estimate_with_errors(estimator_, rec_.stamp, x.data(), nq, nq, max_gap_, *a, threads);
     return a;
   };
+  if (!full_.empty() && estimator_.automatic && !positions_choice_) {  // kept for the error bars
+    AutoChooser chooser(default_max_gap(rec_.stamp) / 5, rec_.rows(), nq, threads);
+    chooser.add(rec_.stamp, segments_, rec_.position.data(), nq, 0, 0, rec_.rows());
+    positions_choice_ = std::make_shared<const AutoChoice>(chooser.choice());
+  }
   if (!full_.empty()) positions_fit_ = fit(rec_.position, positions_choice_.get());
+  find_rotations();
   if (any_velocity_everywhere_) velocities_fit_ = fit(rec_.velocity, velocities_choice_.get());
   for (size_t i = 0; i < partial_.size(); ++i) {
     Series& s = series_[i];
@@ -93,6 +101,37 @@ void OfflineStates::fit_automatic(int threads) {
                          max_gap_ > 0 ? max_gap_ : default_max_gap(s.t), *a);
     s.fit = std::move(a);
   }
+}
+
+// The joints on angles whose three angles come from "auto" over the positions in every row, and
+// their rotation noise (the whole recording's, or this one's).
+void OfflineStates::find_rotations() {
+  if (!estimator_.automatic || !positions_fit_) return;
+  const int nq = rec_.nq;
+  std::vector<char> full(nq, 0);
+  for (int c : full_) full[c] = !velocity_everywhere_[c];
+  std::vector<Mat3<double>> noise;
+  if (whole_noise_) {
+    noise = *whole_noise_;
+  } else {
+    RotationNoise sum(model_, default_max_gap(rec_.stamp) / 5);
+    sum.add(rec_.stamp, segments_, rec_.position.data(), nq, 0, rec_.rows());
+    noise = sum.covariance();
+  }
+  const std::vector<AngleJoint> all = angle_joints(model_);
+  for (size_t g = 0; g < all.size() && g < noise.size(); ++g) {
+    const int c = all[g].coordinate;
+    if (full[c] && full[c + 1] && full[c + 2])
+      rotations_.push_back(all[g]), rotation_noise_.push_back(noise[g]);
+  }
+  weights_row_.assign(positions_choice_->candidates.size(), -1);
+  // A window's rows at most, and about 20 MB per worker however many joints.
+  const size_t rows = std::min<size_t>(1024, std::max(16, rec_.rows()));
+  noise_rows_ =
+      std::clamp<size_t>(kAngleNoiseEntries / std::max<size_t>(1, rotations_.size()), 16, rows);
+  noise_at_.resize(rotations_.size() * noise_rows_);
+  noise_row_.assign(rotations_.size() * noise_rows_, -1);
+  window_weights_.resize(positions_choice_->candidates.size());
 }
 
 namespace {
@@ -187,7 +226,7 @@ void OfflineStates::series_errors(size_t i, int r, double& velocity_se,
     acceleration_se = velocity_everywhere_[c] ? a.first_se[at + 1] : a.second_se[at];
 }
 
-bool OfflineStates::body_errors(int r, const JointState<double>& state,
+bool OfflineStates::body_errors(int r, const JointState<double>& state, const Data<double>& data,
                                 std::vector<Vec3<double>>& alpha_se,
                                 std::vector<Vec3<double>>& acceleration_se) {
   if (!estimator_.whole_series() || model_.speeds != SpeedKind::kCoordinateDerivatives) return false;
@@ -197,9 +236,109 @@ bool OfflineStates::body_errors(int r, const JointState<double>& state,
     speed_se_.setZero(rec_.nq), speed_dot_se_.setZero(rec_.nq);
   }
   coordinate_errors(r, speed_se_.data(), speed_dot_se_.data());  // y = q': speed c is q_c'
+  const bool rotations = !rotations_.empty() && positions_only_[r];
+  if (rotations)  // carried as rotations below
+    for (const AngleJoint& g : rotations_)
+      for (int a = 0; a < 3; ++a) speed_se_[g.coordinate + a] = speed_dot_se_[g.coordinate + a] = 0;
   body_acceleration_errors(model_, state, *scratch_.pv, *scratch_.data, speed_se_.data(),
                            speed_dot_se_.data(), alpha_se, acceleration_se);
+  if (!rotations) return true;
+  alpha_var_.resize(alpha_se.size()), acceleration_var_.resize(acceleration_se.size());
+  for (size_t k = 0; k < alpha_se.size(); ++k)
+    alpha_var_[k] = alpha_se[k].cwiseAbs2(), acceleration_var_[k] = acceleration_se[k].cwiseAbs2();
+  for (size_t g = 0; g < rotations_.size(); ++g) {
+    const AngleJoint& j = rotations_[g];
+    const Mat9 l = angle_error_map(
+        model_.bodies[j.body].joint, state.position.data() + j.coordinate,
+        state.velocity.data() + j.coordinate, state.acceleration.data() + j.coordinate);
+    const Mat9 cov = l * angle_covariance(g, r) * l.transpose();
+    add_joint_rotation_variance(model_, data, j.body, cov, alpha_var_, acceleration_var_, subtree_);
+  }
+  for (size_t k = 0; k < alpha_se.size(); ++k)
+    alpha_se[k] = alpha_var_[k].cwiseSqrt(), acceleration_se[k] = acceleration_var_[k].cwiseSqrt();
   return true;
+}
+
+const AutoSampleWeights& OfflineStates::weights_at(int r, int k) {
+  if (weights_row_[k] != r)
+    window_weights_[k].load(positions_choice_->candidates, rec_.stamp, segments_, r, k),
+        weights_row_[k] = r;
+  return window_weights_[k];
+}
+
+// Joint g's angles' noise at row j, F_j = E_j^-1 noise E_j^-T (at the lock itself, E singular,
+// the angles' own noise levels, apart), kept for the last noise_rows_ rows (a cache: any size
+// gives the same values).
+const Mat3<double>& OfflineStates::angle_noise(size_t g, int j) {
+  const size_t at = g * noise_rows_ + static_cast<size_t>(j) % noise_rows_;
+  if (noise_row_[at] == j) return noise_at_[at];
+  const AngleJoint& joint = rotations_[g];
+  const Mat3<double> e = angle_rate_matrix(model_.bodies[joint.body].joint,
+                                           rec_.position.data() + j * rec_.nq + joint.coordinate);
+  Mat3<double>& f = noise_at_[at];
+  if (std::abs(e.determinant()) > 1e-12) {
+    const Mat3<double> e_inv = e.inverse();
+    f = e_inv * rotation_noise_[g] * e_inv.transpose();
+  } else {
+    f.setZero();
+    for (int a = 0; a < 3; ++a) f(a, a) = std::pow(positions_fit_->noise[joint.coordinate + a], 2);
+  }
+  noise_row_[at] = j;
+  return f;
+}
+
+// The covariance of the errors (dq, dq', dq'') of a joint's three angles at row r (slots
+// 3 d + a: derivative d of angle a), with rotation noise `noise` (doc/method.md 11): at each
+// sample j the angles' noise is F_j = E_j^-1 noise E_j^-T (E_j: core/rotation_errors.h at its
+// angles), and the derivatives are sums of the samples with the weights "auto" applied, so
+//   cov(slot s, slot s') = sum_j u_s,j u_s',j F_j[a, a']
+// (u: 1 at row r for the angles themselves). Plus each derivative's bias (auto_estimator.h: its
+// squared standard error beyond the noise, per angle) as one vector along the step from the
+// shorter window's estimates: the bias of angles turning together is shared, not independent.
+Mat9 OfflineStates::angle_covariance(size_t g, int r) {
+  const AngleJoint& joint = rotations_[g];
+  const int nq = rec_.nq;
+  entries_.clear();
+  for (int a = 0; a < 3; ++a) entries_.push_back({r, a, 1.0});
+  Vec3<double> bias[2];
+  for (int d = 1; d <= 2; ++d)
+    for (int a = 0; a < 3; ++a) {
+      const int c = joint.coordinate + a;
+      const AutoSampleWeights& s = weights_at(r, positions_choice_->choice[d - 1][c]);
+      const DerivativeWeights& used = s.used(d);
+      const std::vector<double>& u = d == 1 ? used.first : used.second;
+      double norm2 = 0, step = 0;
+      for (int j = 0; j < used.count; ++j)
+        entries_.push_back({used.row(j), 3 * d + a, u[j]}), norm2 += u[j] * u[j];
+      if (s.has_shorter) {
+        const std::vector<double>&w = d == 1 ? s.w.first : s.w.second,
+              &v = d == 1 ? s.shorter.first : s.shorter.second;
+        for (int j = 0; j < s.w.count; ++j) step += w[j] * rec_.position[s.w.row(j) * nq + c];
+        for (int j = 0; j < s.shorter.count; ++j)
+          step -= v[j] * rec_.position[s.shorter.row(j) * nq + c];
+      }
+      const size_t at = static_cast<size_t>(r) * nq + c;
+      const double se = d == 1 ? positions_fit_->first_se[at] : positions_fit_->second_se[at];
+      const double sigma = positions_fit_->noise[c];
+      bias[d - 1][a] =
+          std::copysign(std::sqrt(std::max(0.0, se * se - sigma * sigma * norm2)), step);
+    }
+  std::sort(entries_.begin(), entries_.end(),
+            [](const Entry& x, const Entry& y) { return x.row < y.row; });
+  Mat9 cov = Mat9::Zero();
+  for (size_t i = 0; i < entries_.size();) {
+    size_t end = i;
+    while (end < entries_.size() && entries_[end].row == entries_[i].row) ++end;
+    const Mat3<double>& f = angle_noise(g, entries_[i].row);
+    for (size_t x = i; x < end; ++x)
+      for (size_t y = i; y < end; ++y)
+        cov(entries_[x].slot, entries_[y].slot) +=
+            entries_[x].weight * entries_[y].weight * f(entries_[x].slot % 3, entries_[y].slot % 3);
+    i = end;
+  }
+  for (int d = 1; d <= 2; ++d)
+    cov.block<3, 3>(3 * d, 3 * d) += bias[d - 1] * bias[d - 1].transpose();
+  return cov;
 }
 
 // "auto": full_'s derivatives at row r from the fits.

@@ -11,11 +11,13 @@
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/partial_velocity.h"
+#include "mb_kinematics/core/rotation_errors.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/estimation/median_histogram.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/offline/recording.h"
+#include "mb_kinematics/offline/rotation_noise.h"
 
 namespace mbk {
 
@@ -40,6 +42,9 @@ struct WholeRecording {
   // "auto": the whole recording's choices (AutoChooser) for the positions and, where some
   // coordinate has them in every row, the given velocities; null: chosen over the piece.
   std::shared_ptr<const AutoChoice> positions, velocities;
+  // "auto": per joint on angles (angle_joints), the rotation noise of the whole recording
+  // (offline/rotation_noise.h); null: over the piece.
+  std::shared_ptr<const std::vector<Mat3<double>>> rotation_noise;
 };
 
 class OfflineStates {
@@ -63,16 +68,18 @@ class OfflineStates {
   std::vector<CoordinateError> error_summary(const ErrorColumns* whole = nullptr) const;
   // "auto": rows [begin, end)'s standard errors that error_summary takes the medians of.
   void append_errors(int begin, int end, ErrorColumns& out) const;
-  // "auto": the standard errors of each body's alpha and mass-center acceleration at row r, in
-  // `state` (from state_at), propagated from the coordinates' (core/body_errors.h; given
-  // derivatives and mimic rules count as exact; a coordinate estimated over its own samples
-  // has its last sample's). False, with nothing set, for a fixed estimator.
+  // The standard errors of each body's alpha and mass-center acceleration at row r, in `state`
+  // (from state_at; `data` its forward_kinematics at Level::kAcceleration), propagated from the
+  // coordinates' (core/body_errors.h; given derivatives and mimic rules count as exact; a
+  // coordinate estimated over its own samples has its last sample's); with "auto", a joint on
+  // angles from its rotation's noise (angle_covariance, core/rotation_errors.h). False, with
+  // nothing set, for a fixed estimator.
   // "auto": the standard errors of row r's joint velocities and accelerations into the
   // coordinates' places of velocity_se and acceleration_se (nq each; a coordinate set by a mimic
   // rule is left as it is); false, with nothing set, as for body_errors.
   bool coordinate_errors(int r, double* velocity_se, double* acceleration_se) const;
-  bool body_errors(int r, const JointState<double>& state, std::vector<Vec3<double>>& alpha_se,
-                   std::vector<Vec3<double>>& acceleration_se);
+  bool body_errors(int r, const JointState<double>& state, const Data<double>& data,
+                   std::vector<Vec3<double>>& alpha_se, std::vector<Vec3<double>>& acceleration_se);
 
  private:
   // The samples of coordinates that are not in every row.
@@ -86,6 +93,10 @@ class OfflineStates {
     std::shared_ptr<const AutoEstimate> fit;  // "auto": per sample, of positions then velocities
   };
   void fit_automatic(int threads);
+  void find_rotations();
+  Mat9 angle_covariance(size_t g, int r);
+  const Mat3<double>& angle_noise(size_t g, int j);
+  const AutoSampleWeights& weights_at(int r, int k);
   void load_automatic(int r);
   void estimate_series(size_t i, size_t entry);
   void series_errors(size_t i, int r, double& velocity_se, double& acceleration_se) const;
@@ -114,6 +125,27 @@ class OfflineStates {
   std::shared_ptr<const AutoEstimate> positions_fit_, velocities_fit_;
   Eigen::VectorXd first_, second_, velocity_first_;  // scratch, nq
   Eigen::VectorXd speed_se_, speed_dot_se_;          // body_errors' scratch, nq
+  // "auto": the joints on angles whose three angles are estimated from positions in every row,
+  // each with its rotation noise (offline/rotation_noise.h), carried as rotations by body_errors.
+  std::vector<AngleJoint> rotations_;
+  std::vector<Mat3<double>> rotation_noise_;
+  std::shared_ptr<const std::vector<Mat3<double>>> whole_noise_;  // WholeRecording's
+  // angle_covariance's scratch: per candidate window, its weights at row weights_row_[k].
+  std::vector<AutoSampleWeights> window_weights_;
+  std::vector<int> weights_row_;
+  struct Entry {
+    int row, slot;
+    double weight;
+  };
+  std::vector<Entry> entries_;
+  // angle_noise's: per joint of rotations_, F_j of row j at [j % noise_rows_], and that row
+  // (-1: none).
+  static constexpr size_t kAngleNoiseEntries = size_t{1} << 18;
+  size_t noise_rows_ = 1;
+  std::vector<Mat3<double>> noise_at_;
+  std::vector<int> noise_row_;
+  std::vector<Vec3<double>> alpha_var_, acceleration_var_;
+  std::vector<char> subtree_;
   // body_errors' scratch, made at its first call; a copy (another worker's) starts without.
   struct Scratch {
     Scratch() = default;

@@ -133,14 +133,15 @@ void OfflineStream::finish() {
   if (next_ < buffer_.rows()) compute(buffer_.rows(), true);
 }
 
-AutoChoosePass::AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows,
-                               int threads)
+AutoChoosePass::AutoChoosePass(const Model& model, const RecordingSurvey& survey, double max_gap,
+                               int chunk_rows, int threads)
     : nq_(survey.nq),
       max_gap_(max_gap),
       chunk_rows_(std::max(1, chunk_rows)),
       velocity_everywhere_(survey.velocity_everywhere),
       positions_(survey.default_max_gap() / 5, survey.rows, survey.nq, threads),
-      reach_(positions_.reach()) {
+      reach_(positions_.reach()),
+      rotations_(model, survey.default_max_gap() / 5) {
   for (int c = 0; c < nq_; ++c)
     if (survey.rows > 0 && survey.position_everywhere[c] && survey.velocity_everywhere[c])
       velocities_ =
@@ -162,6 +163,7 @@ void AutoChoosePass::take(int end) {
   const Segments segments = find_segments(t_, max_gap_);
   positions_.add(t_, segments, position_.data(), nq_, first_, next_, end);
   if (velocities_) velocities_->add(t_, segments, velocity_.data(), nq_, first_, next_, end);
+  rotations_.add(t_, segments, position_.data(), nq_, next_, end);
   next_ = end;
   const int drop = forgettable(t_, next_, reach_);
   drop_front(t_, drop);
@@ -173,7 +175,8 @@ void AutoChoosePass::take(int end) {
 WholeRecording AutoChoosePass::finish(OfflineReach& reach) {
   if (next_ < static_cast<int>(t_.size())) take(static_cast<int>(t_.size()));
   WholeRecording out{velocity_everywhere_, std::make_shared<const AutoChoice>(positions_.choice()),
-                     nullptr};
+                     nullptr,
+                     std::make_shared<const std::vector<Mat3<double>>>(rotations_.covariance())};
   int longest = out.positions->longest();
   if (velocities_) {
     out.velocities = std::make_shared<const AutoChoice>(velocities_->choice());

@@ -114,8 +114,10 @@ class OfflineStream {
 // its given velocities, the same as estimate_auto's on the whole recording.
 class AutoChoosePass {
  public:
-  // threads: AutoChooser's.
-  AutoChoosePass(const RecordingSurvey& survey, double max_gap, int chunk_rows, int threads = 1);
+  // threads: AutoChooser's. Also sums the rotation noise of the model's joints on angles
+  // (offline/rotation_noise.h); `model` must outlive this object.
+  AutoChoosePass(const Model& model, const RecordingSurvey& survey, double max_gap, int chunk_rows,
+                 int threads = 1);
   void add(double t, const double* position, const double* velocity);
   // The choices (with the survey's velocity_everywhere), and the estimating pass's reach: the
   // longest window chosen.
@@ -132,6 +134,7 @@ class AutoChoosePass {
   AutoChooser positions_;
   std::unique_ptr<AutoChooser> velocities_;      // when some coordinate has them in every row
   OfflineReach reach_;                           // the longest candidate's
+  RotationNoise rotations_;
   std::vector<double> t_, position_, velocity_;  // the rows kept, oldest first
   long first_ = 0;                               // the recording's row of buffer row 0
   int next_ = 0, peak_rows_ = 0;

@@ -127,7 +127,7 @@ std::vector<Result> streamed(const mbk::Model& model, const mbk::OfflineEstimato
   whole.velocity_everywhere = survey.velocity_everywhere;
   int peak_choosing = 0;
   if (e.automatic) {
-    mbk::AutoChoosePass pass(survey, survey.default_max_gap(), chunk);
+    mbk::AutoChoosePass pass(model, survey, survey.default_max_gap(), chunk);
     for (long i = 0; i < rows; ++i) {
       const Sample s = sample(model, trajectory, i);
       pass.add(s.t, s.position.data(), s.velocity.data());
