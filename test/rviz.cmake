@@ -6,21 +6,26 @@ add_test(NAME rviz_screenshot
     ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
 set_tests_properties(rviz_screenshot PROPERTIES TIMEOUT 150)
 
+# mbk_rviz_robot_test(NAME ROBOT FRAME TIMEOUT [VAR=VALUE...]): screenshot_test.sh on the demo of
+# test/robots/ROBOT.urdf, its Fixed Frame expected to be FRAME, with more of its environment.
+function(mbk_rviz_robot_test name robot frame timeout)
+  add_test(NAME ${name}
+    COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
+      ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
+  string(JOIN ";" environment
+    "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf" EXPECT_FRAME=${frame} ${ARGN})
+  set_tests_properties(${name} PROPERTIES TIMEOUT ${timeout} ENVIRONMENT "${environment}")
+endfunction()
+
 # The same on real robots (test/robots/, no meshes): config/mb_kinematics.rviz says Fixed Frame
 # `world`, which these robots have not; the display must set it to the model's root link and frame
 # the robot, so that the arrows show in the middle of the 3D view (REGION, and CENTER: their
 # centroid within 120 px of the view's centre; the 3D view spans x 364..1264, y 62..802 of the
 # 1280x900 screen).
-foreach(robot_frame panda:panda_link0 anymal_c:base)
-  string(REPLACE ":" ";" robot_frame ${robot_frame})
-  list(GET robot_frame 0 robot)
-  list(GET robot_frame 1 frame)
-  add_test(NAME rviz_robot_${robot}
-    COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
-      ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-  set_tests_properties(rviz_robot_${robot} PROPERTIES TIMEOUT 60 ENVIRONMENT
-    "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};REGION=520,200,1080,700;CENTER=814,432,120;SHOT_NAME=rviz_${robot};TIMEOUT=20")
-endforeach()
+mbk_rviz_robot_test(rviz_robot_panda panda panda_link0 60 REGION=520,200,1080,700
+  CENTER=814,432,120 SHOT_NAME=rviz_panda TIMEOUT=20)
+mbk_rviz_robot_test(rviz_robot_anymal_c anymal_c base 60 REGION=520,200,1080,700
+  CENTER=814,432,120 SHOT_NAME=rviz_anymal_c TIMEOUT=20)
 
 # The same on launch/bvh.launch and config/bvh.rviz: the real walk test/mocap/131_01.bvh.
 add_test(NAME rviz_screenshot_bvh
@@ -75,15 +80,12 @@ mbk_rviz_moving_test(rviz_moving_base LAUNCH=moving_base.launch EXPECT_FRAME=odo
 # 12 screenshots, the longest velocity and acceleration arrows are 0.16 to 0.6 of the robot's size
 # on screen (test/rviz/arrow_lengths.py; measured 0.24 to 0.29 on Solo 12, 0.39 and 0.42 on
 # Baxter). With 0.3 m for every robot's longest arrow, Baxter's were 0.10 and 0.14.
-foreach(robot_frame solo12:base_link baxter:base)
-  string(REPLACE ":" ";" robot_frame ${robot_frame})
-  list(GET robot_frame 0 robot)
-  list(GET robot_frame 1 frame)
-  add_test(NAME rviz_arrows_${robot}
-    COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/screenshot_test.sh
-      ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME})
-  set_tests_properties(rviz_arrows_${robot} PROPERTIES TIMEOUT 240 ENVIRONMENT
-    "DEMO_ARGS=model:=${PROJECT_SOURCE_DIR}/test/robots/${robot}.urdf;EXPECT_FRAME=${frame};SHOT_NAME=rviz_arrows_${robot};SETTLE=12;TIMEOUT=40;ARROW_FRACTION=0.16,0.6")
+foreach(robot solo12:base_link baxter:base)
+  string(REPLACE ":" ";" robot ${robot})
+  list(GET robot 0 name)
+  list(GET robot 1 frame)
+  mbk_rviz_robot_test(rviz_arrows_${name} ${name} ${frame} 240 SHOT_NAME=rviz_arrows_${name}
+    SETTLE=12 TIMEOUT=40 ARROW_FRACTION=0.16,0.6)
 endforeach()
 
 # The display's Legend in a real rviz (test/rviz/legend_reset_test.cc): shown at start and again
