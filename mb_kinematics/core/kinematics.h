@@ -29,54 +29,33 @@ struct JointTerms {
   Vec3<S> d, w, wd, sd, sdd;
 };
 
-// O_k and its velocity and acceleration from O_j's (doc/method.md 4, eq. 4.6.2): d = 0 (a joint
+// O_k and its velocity and acceleration from O_j's (doc/method.md 4, eq. 4.6.2): O_k is the point
+// at d of Bj, moved by S0J s_k' (and its Coriolis term) when the joint translates; d = 0 (a joint
 // at O_j that does not translate) leaves them O_j's.
 template <Level L, bool kTranslates, typename S>
 void origin_update(const BodyStep& b, int k, const JointTerms<S>& t, const DataView<S>& data) {
   const int j = b.lower;
-  if (!kTranslates && b.offset_shape == VectorShape::kZero) {
-    data.origin[k] = data.origin[j];
-    if constexpr (L != Level::kPose) data.origin_velocity[k] = data.origin_velocity[j];
-    if constexpr (L == Level::kAcceleration)
-      data.origin_acceleration[k] = data.origin_acceleration[j];
-    return;
+  const PointArrays<S> origins = data.origins();
+  if (!kTranslates && b.offset_shape == VectorShape::kZero)
+    return set_point<L>(origins, k, point_at<L>(origins, j));
+  PointMotion<Vec3<S>> o =
+      fixed_point<L>(point_at<L>(origins, j), data.omega[j], data.alpha[j], t.d);
+  if constexpr (kTranslates && L != Level::kPose) {
+    o.velocity += t.sd;                       // doc/method.md 4, origin velocity
+    if constexpr (L == Level::kAcceleration)  // doc/method.md 4, origin acceleration
+      o.acceleration += S(2) * data.omega[j].cross(t.sd) + t.sdd;
   }
-  data.origin[k] = data.origin[j] + t.d;  // doc/method.md 4, eq. 4.6.2: o_k = o_j + d_k
-  if constexpr (L != Level::kPose) {
-    const Vec3<S>& omega_j = data.omega[j];
-    const Vec3<S> omega_j_d = omega_j.cross(t.d);
-    Vec3<S>& vo = data.origin_velocity[k];
-    vo = data.origin_velocity[j] + omega_j_d;  // doc/method.md 4, origin velocity
-    if constexpr (kTranslates) vo += t.sd;
-    if constexpr (L == Level::kAcceleration) {
-      Vec3<S>& ao = data.origin_acceleration[k];  // doc/method.md 4, origin acceleration
-      ao = data.origin_acceleration[j] + data.alpha[j].cross(t.d) + omega_j.cross(omega_j_d);
-      if constexpr (kTranslates) ao += S(2) * omega_j.cross(t.sd) + t.sdd;
-    }
-  }
+  set_point<L>(origins, k, o);
 }
 
-// G_k and its velocity and acceleration from O_k's, rho = S0K r_k (doc/method.md 4): r_k = 0
-// leaves them O_k's.
+// G_k and its velocity and acceleration from O_k's, rho = S0K r_k (doc/method.md 4, mass
+// center): r_k = 0 leaves them O_k's.
 template <Level L, typename S>
 void mass_center_update(const BodyStep& b, int k, const DataView<S>& data) {
-  if (b.mass_center_shape == VectorShape::kZero) {
-    data.mass_center[k] = data.origin[k];
-    if constexpr (L != Level::kPose) data.mass_center_velocity[k] = data.origin_velocity[k];
-    if constexpr (L == Level::kAcceleration)
-      data.mass_center_acceleration[k] = data.origin_acceleration[k];
-    return;
-  }
+  const PointMotion<Vec3<S>> o = point_at<L>(data.origins(), k);
+  if (b.mass_center_shape == VectorShape::kZero) return set_point<L>(data.centers(), k, o);
   const Vec3<S> rho = times_constant(data.rotation[k], b.mass_center, b.mass_center_shape);
-  data.mass_center[k] = data.origin[k] + rho;  // doc/method.md 4, mass center
-  if constexpr (L != Level::kPose) {
-    const Vec3<S>& omega_k = data.omega[k];
-    const Vec3<S> omega_k_rho = omega_k.cross(rho);
-    data.mass_center_velocity[k] = data.origin_velocity[k] + omega_k_rho;
-    if constexpr (L == Level::kAcceleration)
-      data.mass_center_acceleration[k] =
-          data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k_rho);
-  }
+  set_point<L>(data.centers(), k, fixed_point<L>(o, data.omega[k], data.alpha[k], rho));
 }
 
 // Body k from its lower body once S0K = S0J SJK is in data.rotation[k] (doc/method.md 4).
