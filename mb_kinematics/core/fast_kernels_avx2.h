@@ -161,6 +161,15 @@ MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
 }
 
 }  // namespace v4
+#else
+namespace v4 {  // declared only: without MBK_VEC4 no copy with kAvx2 is instantiated
+template <Level L, int I>
+void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
+                        const DataView<double>& data);
+template <Level L>
+void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<double>& state,
+                   const DataView<double>& data);
+}  // namespace v4
 #endif  // MBK_VEC4
 
 }  // namespace detail
