@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The layers of mb_kinematics/ (doc/architecture.md): fails when an #include runs from a lower
-layer to a higher one (or across to a peer of the same rank), or when core/ or estimation/
-includes anything but the C++ library, Eigen and themselves (no ROS). The Python binding's C++
+layer to a higher one (or across to a peer of the same rank), when core/ or estimation/
+includes anything but the C++ library, Eigen and themselves (no ROS), or when headers include
+each other (an include loop, named file by file). The Python binding's C++
 (python/mb_kinematics/*.cc) is above every layer: it may include any of them, and none it.
 
   scripts/check_layers.py [SOURCE_ROOT]     SOURCE_ROOT defaults to this repository
@@ -46,6 +47,36 @@ def problems_of(path, folder):
     return found
 
 
+def own_includes(path):
+    """The package's headers that `path` includes, as mb_kinematics/... paths."""
+    with open(path, encoding="utf-8", errors="replace") as source:
+        return [m.group(2) for m in map(INCLUDE.match, source) if m and OWN.match(m.group(2))]
+
+
+def include_loops(root, headers):
+    """Every include loop among `headers` (mb_kinematics/... paths), each once."""
+    graph = {h: [i for i in own_includes(os.path.join(root, h)) if i in headers] for h in headers}
+    loops, done, path = [], set(), []
+
+    def visit(header):
+        if header in path:
+            loop = path[path.index(header):]
+            start = loop.index(min(loop))  # one way to name each loop
+            loops.append(loop[start:] + loop[:start])
+            return
+        if header in done:
+            return
+        path.append(header)
+        for included in graph[header]:
+            visit(included)
+        path.pop()
+        done.add(header)
+
+    for header in sorted(graph):
+        visit(header)
+    return sorted({tuple(loop) for loop in loops})
+
+
 def main():
     default = os.path.join(os.path.dirname(__file__), "..")
     root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else default)
@@ -66,6 +97,10 @@ def main():
     for name in sorted(os.listdir(binding)) if os.path.isdir(binding) else []:
         if name.endswith((".h", ".cc")):
             problems += problems_of(os.path.join(binding, name), "python")
+    headers = {os.path.relpath(os.path.join(base, name), root)
+               for base, _, files in os.walk(package) for name in files if name.endswith(".h")}
+    for loop in include_loops(root, headers):
+        problems.append("include loop: " + " -> ".join(loop + (loop[0],)))
     for problem in problems:
         print(problem, file=sys.stderr)
     return 1 if problems else 0

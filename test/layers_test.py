@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """ctest layer_includes: scripts/check_layers.py passes on this tree, and fails, naming the file,
-line and both layers, on a copy with a planted upward include, on a ROS header in core/ and on
-the Python binding's C++ (python/mb_kinematics/_core.cc) including a folder in no layer."""
+line and both layers, on a copy with a planted upward include, on a ROS header in core/, on the
+Python binding's C++ (python/mb_kinematics/_core.cc) including a folder in no layer and on two
+headers that include each other."""
 import os
 import shutil
 import subprocess
@@ -35,7 +36,10 @@ def main():
              "offline/bag_output.h:"),
             ("core/model.h", '#include "mb_kinematics/estimation/derivative_estimator.h"',
              "estimation/ is not below core/"),
-            ("estimation/kalman_estimator.h", "#include <ros/time.h>", "stays ROS-free")]:
+            ("estimation/kalman_estimator.h", "#include <ros/time.h>", "stays ROS-free"),
+            ("core/data.h", '#include "mb_kinematics/core/kinematics.h"', "include loop: "
+             "mb_kinematics/core/data.h -> mb_kinematics/core/kinematics.h -> "
+             "mb_kinematics/core/data.h")]:
             shutil.copy(os.path.join(SOURCE, "mb_kinematics", path),
                         os.path.join(tree, "mb_kinematics", path))
             planted(tree, path, line)

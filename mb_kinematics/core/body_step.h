@@ -11,8 +11,6 @@
 
 namespace mbk {
 
-struct Model;
-
 namespace detail {
 // Every this many joints of depth, S0K gets one Newton-Schulz step back to orthonormal
 // (doc/stability.md; kinematics.h).
@@ -85,8 +83,5 @@ struct BodySteps {
   // their sines and cosines together (Data::sine, Data::cosine) before the bodies.
   std::vector<int> angles;
 };
-
-// The steps of a model whose bodies, joints and indices are final (finalize_model calls it).
-BodySteps make_body_steps(const Model& model, KernelChoice choice = KernelChoice::kFast);
 
 }  // namespace mbk

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/point_kinematics.h"
 #include "mb_kinematics/core/types.h"
 
 namespace mbk {
@@ -31,25 +32,20 @@ BodyMotion<S> in_frame(const Data<S>& data, int k, ReferenceFrame frame, BodyMot
 }  // namespace detail
 
 // omega_k and the velocity of the point P at r from O_k (components in Bk; r = 0: O_k itself,
-// r = r_k: G_k): v_P = vO_k + omega_k x (S0K r) (doc/method.md 4, as v_k). Needs Level kVelocity.
+// r = r_k: G_k): v_P = vO_k + omega_k x (S0K r). Needs Level kVelocity.
 template <typename S>
 BodyMotion<S> point_velocity(const Data<S>& data, int k, const Vec3<S>& r, ReferenceFrame frame) {
-  const Vec3<S> rho = data.rotation[k] * r;  // S0K r
-  const BodyMotion<S> m{data.omega[k], data.origin_velocity[k] + data.omega[k].cross(rho)};
-  return detail::in_frame(data, k, frame, m);
+  const PointMotion<Vec3<S>> p = body_point<Level::kVelocity>(data, k, r);
+  return detail::in_frame(data, k, frame, BodyMotion<S>{data.omega[k], p.velocity});
 }
 
 // alpha_k and the acceleration of the same point:
-// a_P = aO_k + alpha_k x (S0K r) + omega_k x (omega_k x (S0K r)) (doc/method.md 4, as a_k).
-// Needs Level kAcceleration.
+// a_P = aO_k + alpha_k x (S0K r) + omega_k x (omega_k x (S0K r)). Needs Level kAcceleration.
 template <typename S>
 BodyMotion<S> point_acceleration(const Data<S>& data, int k, const Vec3<S>& r,
                                  ReferenceFrame frame) {
-  const Vec3<S> rho = data.rotation[k] * r;
-  const Vec3<S>& omega = data.omega[k];
-  const BodyMotion<S> m{data.alpha[k], data.origin_acceleration[k] + data.alpha[k].cross(rho) +
-                                           omega.cross(omega.cross(rho))};
-  return detail::in_frame(data, k, frame, m);
+  const PointMotion<Vec3<S>> p = body_point<Level::kAcceleration>(data, k, r);
+  return detail::in_frame(data, k, frame, BodyMotion<S>{data.alpha[k], p.acceleration});
 }
 
 }  // namespace mbk

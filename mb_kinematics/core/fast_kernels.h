@@ -1,29 +1,73 @@
-// The recursion's fast kernels (kinematics.h calls them through kernel_step): one per common joint,
-// chosen for each body when the model is finalized (body_step.cc kernel_of), with the pose part
-// of each (pose_step) for partial_velocity_kinematics.
-// What they speed up: the joint's terms of body_update (d, S0J w_k, S0J w_k', S0J s_k', S0J s_k'',
-// and S0K), which the generic step (motion_step) gets from joint_motion's SJK, W_r and s_k and
-// full 3x3 products. A kernel turns two columns of S0J for a revolute joint about x, y or z (and
-// three column turns for a ball or free joint's angles, in any Euler order), folds C_k and the
-// axis into constants at load (P0 + cos q P1 + sin q P2), and takes S0J w_k as a column of S0J,
-// so the update does neither joint_motion nor SJK (doc/speed.md, "How the update is fast").
-// On AVX2 CPUs the revolute kernels run as fast_kernels_avx2.h's copy.
+// The joints' kernels of the recursion: for body k, its joint's share (JointTerms: S0K into
+// data.rotation[k], d, S0J w_k, S0J w_k', S0J s_k', S0J s_k''), then the one-body update
+// (body_update.h). kernel_step is the one table over JointKernel (chosen for each body when the
+// model is finalized: body_step.cc kernel_of); pose_step gives the pose part of each to
+// partial_velocity_kinematics.
+// The generic kernel (motion_step) takes any joint's terms from joint_motion's SJK, W_r and s_k
+// and full 3x3 products. The fast ones get the same terms with fewer operations: a revolute joint
+// about x, y or z turns two columns of S0J (a ball or free joint's angles three column turns, in
+// any Euler order), C_k and the axis are folded into constants at load (P0 + cos q P1 + sin q P2),
+// and S0J w_k is a column of S0J, so the update does neither joint_motion nor SJK (doc/speed.md,
+// "How the update is fast"). On AVX2 CPUs the revolute rows run fast_kernels_avx2.h's copy.
 // How they are checked: test/core/generic_kernel_test.cc runs every joint type, with and without
 // offset rotations, through its kernel and through the generic path
 // (make_body_steps(model, KernelChoice::kGenericOnly)), at every level and in both formulations,
 // and requires the same results to rounding; the forward_kinematics it calls is the AVX2 copy on
-// AVX2 CPUs, so the copy is checked the same way. Include kinematics.h, which includes this file
-// after the generic step.
+// AVX2 CPUs, so the copy is checked the same way.
 #pragma once
 
 #include <array>
 #include <limits>
 
+#include "mb_kinematics/core/body_update.h"
 #include "mb_kinematics/core/fast_kernels_avx2.h"
-#include "mb_kinematics/core/kinematics.h"
+#include "mb_kinematics/core/joint_motion.h"
 
 namespace mbk {
 namespace detail {
+
+// Any joint from its joint_motion m: S0K and d.
+template <typename S>
+void motion_pose(const BodyStep& b, int k, const JointMotion<S>& m, const DataView<S>& data,
+                 Vec3<S>& d) {
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  data.rotation[k] = s0j * m.rotation;             // doc/method.md 4, S0K = S0J SJK
+  d = s0j * (b.offset.cast<S>() + m.translation);  // doc/method.md 4, eq. 4.6.2: d_k
+}
+
+// Any joint through joint_motion, column by column: the generic kernel (JointKernel::kGeneric),
+// and the folded joints of a reference build.
+template <Level L, typename S>
+void motion_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
+  const Body& body = model.bodies[k];
+  const BodyStep& b = model.steps.steps[k];
+  const S* y = L == Level::kPose ? nullptr : state.y + body.v_index;
+  JointMotion<S> m;
+  joint_motion(body.joint, model.speeds, state.q + body.q_index, y, m);
+  JointTerms<S> t;
+  motion_pose(b, k, m, data, t.d);
+  const Mat3<S>& s0j = data.rotation[b.lower];
+  if constexpr (L != Level::kPose) {
+    Vec3<S> w = Vec3<S>::Zero(), sd = Vec3<S>::Zero();  // doc/method.md 4: w_k, s_k' in Bj
+    for (int c = m.linear_speeds; c < m.speeds; ++c) w += m.angular[c] * y[c];
+    for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
+    t.w = s0j * w;
+    t.sd = s0j * sd;
+    if constexpr (L == Level::kAcceleration) {
+      const S* yd = state.yd + body.v_index;
+      Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // doc/method.md 4: w_k', s_k''
+      for (int c = m.linear_speeds; c < m.speeds; ++c)
+        wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
+      for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
+      t.wd = s0j * wd;
+      t.sdd = s0j * sdd;
+    }
+  }
+  if (m.linear_speeds > 0)  // the s_k' terms vanish otherwise
+    body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
+  else
+    body_update<L, JointMoves::kTurns>(b, k, t, data);
+}
 
 // S0K = S0J SJK for a turn (cos c, sin s) about coordinate axis I with C_k = I (eq. 4.4.9-4.4.11
 // column by column): column I of S0J stays, the other two turn.
@@ -230,51 +274,36 @@ MBK_FLATTEN void pose_step(const Model& model, int k, const S* q, const JointMot
 
 // Revolute joint about coordinate axis I, C_k = I: w_k = e_I q', so S0J w_k = column I of S0J q'.
 template <Level L, int I, typename S>
-void revolute_axis_step(const BodyStep& b, int k, const StateView<S>& state,
-                        const DataView<S>& data) {
-  JointTerms<S> t;
+void axis_terms(const BodyStep& b, int k, const StateView<S>& state, const DataView<S>& data,
+                JointTerms<S>& t) {
   axis_pose<I>(b, k, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.y[b.v_index];
   if constexpr (L == Level::kAcceleration) t.wd = s0j.col(I) * state.yd[b.v_index];
-  body_update<L, true, false>(b, k, t, data);
 }
 
 // Revolute joint about any axis: S0J w_k = S0J (C_k a) q'.
 template <Level L, typename S>
-void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                   const DataView<S>& data) {
-  JointTerms<S> t;
+void revolute_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                    const DataView<S>& data, JointTerms<S>& t) {
   revolute_pose(model, b, k, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
     t.w = u * state.y[b.v_index];
     if constexpr (L == Level::kAcceleration) t.wd = u * state.yd[b.v_index];
   }
-  body_update<L, true, false>(b, k, t, data);
 }
 
 // Prismatic joint: s_k' = (C_k a) q'.
 template <Level L, bool kRotated, typename S>
-void prismatic_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                    const DataView<S>& data) {
-  JointTerms<S> t;
+void prismatic_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                     const DataView<S>& data, JointTerms<S>& t) {
   rigid_pose<kRotated, true>(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
     t.sd = u * state.y[b.v_index];
     if constexpr (L == Level::kAcceleration) t.sdd = u * state.yd[b.v_index];
   }
-  body_update<L, false, true>(b, k, t, data);
-}
-
-// Fixed joint.
-template <Level L, bool kRotated, typename S>
-void fixed_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                const DataView<S>& data) {
-  JointTerms<S> t;
-  rigid_pose<kRotated, false>(model, b, k, state.q, data, t.d);
-  body_update<L, false, false>(b, k, t, data);
 }
 
 // w_k and the w_k' part of angles in the order O in R (eq. 4.4.13-4.4.16 for 1-2-3): the
@@ -305,9 +334,8 @@ void angles_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>&
 // Euler parameters in the joint frame and then M), and s_k' = M (x', y', z'). O: as for
 // ball_pose.
 template <Level L, JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
-void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-               const DataView<S>& data) {
-  JointTerms<S> t;
+void ball_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                const DataView<S>& data, JointTerms<S>& t) {
   BallFrame<S> f;
   ball_pose<K, O>(model, b, k, state.q, data, f, t.d);
   if constexpr (L != Level::kPose) {
@@ -327,7 +355,6 @@ void ball_step(const Model& model, const BodyStep& b, int k, const StateView<S>&
       if constexpr (L == Level::kAcceleration) t.sdd = f.m * Vec3<S>(yd[0], yd[1], yd[2]);
     }
   }
-  body_update<L, true, kFreeJoint<K>>(b, k, t, data);
 }
 
 // Column c of a ball or free joint's speeds in R, as ball_step sums them for a unit speed y_c
@@ -352,9 +379,8 @@ Vec3<S> ball_column(const BodyStep& b, SpeedKind speeds, const BallFrame<S>& f, 
 
 // Planar joint (planar_pose): w = (S0J C a) gamma', s_k' = S0J (C u1 x' + C u2 y').
 template <Level L, typename S>
-void planar_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                 const DataView<S>& data) {
-  JointTerms<S> t;
+void planar_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                  const DataView<S>& data, JointTerms<S>& t) {
   planar_pose(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
     const Mat3<S>& s0j = data.rotation[b.lower];
@@ -370,105 +396,78 @@ void planar_step(const Model& model, const BodyStep& b, int k, const StateView<S
       t.sdd = s0j * (u1 * yd[0] + u2 * yd[1]);
     }
   }
-  body_update<L, true, true>(b, k, t, data);
 }
 
-// Revolute joint about coordinate axis I, C_k = I: v4 for velocities and accelerations; the
-// pose alone (two columns turned, a column or two added) takes fewer instructions in Eigen's
-// code, which GCC vectorizes itself.
-// kAvx2: in the AVX2 copy (double).
-template <Level L, int I, bool kAvx2, typename S>
-void axis_step(const BodyStep& b, int k, const StateView<S>& state, const DataView<S>& data) {
-#ifdef MBK_VEC4
-  if constexpr (kAvx2 && L != Level::kPose) {
-    v4::revolute_axis_step<L, I>(b, k, state, data);
-    return;
-  }
-#endif
-  revolute_axis_step<L, I>(b, k, state, data);
-}
-
-// Revolute joint about any axis: v4, Eigen, or joint_motion (reference builds: kFolded).
-template <Level L, bool kAvx2, typename S>
-void any_axis_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                   const DataView<S>& data) {
-#ifdef MBK_VEC4
-  if constexpr (kAvx2) {
-    v4::revolute_step<L>(model, b, k, state, data);
-    return;
-  }
-#endif
-  if constexpr (kFolded<S>)
-    revolute_step<L>(model, b, k, state, data);
-  else
-    motion_step<L>(model, k, state, data);
-}
-
-// Body k by its joint's kernel (body_step.h JointKernel): the fast ones here, the generic step
-// (motion_step, kinematics.h) for kGeneric and, in reference builds (not kFolded), the joints
-// whose constants are folded in double. kAvx2: in the AVX2 copy (double only).
+// Body k by its joint's kernel (body_step.h JointKernel), one row per kernel: the joint's terms,
+// then body_update with what the joint moves. The generic kernel (motion_step) serves kGeneric
+// and, in reference builds (not kFolded), the joints whose constants are folded in double.
+// kAvx2: in the AVX2 copy (double only), whose revolute rows at velocity and acceleration level
+// run on four-lane vectors (fast_kernels_avx2.h); the pose alone (two columns turned, a column or
+// two added) takes fewer instructions in Eigen's code, which GCC vectorizes itself.
 template <Level L, bool kAvx2, typename S>
 void kernel_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                  const DataView<S>& data) {
+  constexpr bool kVec4 = kAvx2 && L != Level::kPose;
+  JointTerms<S> t;
   switch (b.kernel) {
     case JointKernel::kRevoluteX:
-      axis_step<L, 0, kAvx2>(b, k, state, data);
-      break;
+      if constexpr (kVec4) return v4::revolute_axis_step<L, 0>(b, k, state, data);
+      axis_terms<L, 0>(b, k, state, data, t);
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kRevoluteY:
-      axis_step<L, 1, kAvx2>(b, k, state, data);
-      break;
+      if constexpr (kVec4) return v4::revolute_axis_step<L, 1>(b, k, state, data);
+      axis_terms<L, 1>(b, k, state, data, t);
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kRevoluteZ:
-      axis_step<L, 2, kAvx2>(b, k, state, data);
-      break;
+      if constexpr (kVec4) return v4::revolute_axis_step<L, 2>(b, k, state, data);
+      axis_terms<L, 2>(b, k, state, data, t);
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kRevolute:
-      any_axis_step<L, kAvx2>(model, b, k, state, data);
-      break;
+      if constexpr (kAvx2) return v4::revolute_step<L>(model, b, k, state, data);
+      if constexpr (!kFolded<S>) return motion_step<L>(model, k, state, data);
+      revolute_terms<L>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kPrismatic:
-      prismatic_step<L, false>(model, b, k, state, data);
-      break;
+      prismatic_terms<L, false>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTranslates>(b, k, t, data);
     case JointKernel::kPrismaticRotated:
-      if constexpr (kFolded<S>)
-        prismatic_step<L, true>(model, b, k, state, data);
-      else
-        motion_step<L>(model, k, state, data);
-      break;
+      if constexpr (!kFolded<S>) return motion_step<L>(model, k, state, data);
+      prismatic_terms<L, true>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTranslates>(b, k, t, data);
     case JointKernel::kFixed:
-      fixed_step<L, false>(model, b, k, state, data);
-      break;
+      rigid_pose<false, false>(model, b, k, state.q, data, t.d);
+      return body_update<L, JointMoves::kNone>(b, k, t, data);
     case JointKernel::kFixedRotated:
-      fixed_step<L, true>(model, b, k, state, data);
-      break;
+      rigid_pose<true, false>(model, b, k, state.q, data, t.d);
+      return body_update<L, JointMoves::kNone>(b, k, t, data);
     case JointKernel::kBall123:
-      ball_step<L, JointKernel::kBall123>(model, b, k, state, data);
-      break;
+      ball_terms<L, JointKernel::kBall123>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kBallEuler:
-      ball_step<L, JointKernel::kBallEuler>(model, b, k, state, data);
-      break;
+      ball_terms<L, JointKernel::kBallEuler>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kFree123:
-      ball_step<L, JointKernel::kFree123>(model, b, k, state, data);
-      break;
+      ball_terms<L, JointKernel::kFree123>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
     case JointKernel::kFreeEuler:
-      ball_step<L, JointKernel::kFreeEuler>(model, b, k, state, data);
-      break;
+      ball_terms<L, JointKernel::kFreeEuler>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
     case JointKernel::kBallOrdered:
       with_euler_order(b.euler_order, [&](auto o) {
-        ball_step<L, JointKernel::kBall123, decltype(o)::value>(model, b, k, state, data);
+        ball_terms<L, JointKernel::kBall123, decltype(o)::value>(model, b, k, state, data, t);
       });
-      break;
+      return body_update<L, JointMoves::kTurns>(b, k, t, data);
     case JointKernel::kFreeOrdered:
       with_euler_order(b.euler_order, [&](auto o) {
-        ball_step<L, JointKernel::kFree123, decltype(o)::value>(model, b, k, state, data);
+        ball_terms<L, JointKernel::kFree123, decltype(o)::value>(model, b, k, state, data, t);
       });
-      break;
+      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
     case JointKernel::kPlanar:
-      if constexpr (kFolded<S>)
-        planar_step<L>(model, b, k, state, data);
-      else
-        motion_step<L>(model, k, state, data);
-      break;
+      if constexpr (!kFolded<S>) return motion_step<L>(model, k, state, data);
+      planar_terms<L>(model, b, k, state, data, t);
+      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
     case JointKernel::kGeneric:
-      motion_step<L>(model, k, state, data);
-      break;
+      return motion_step<L>(model, k, state, data);
   }
 }
 

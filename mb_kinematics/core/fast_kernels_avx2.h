@@ -19,53 +19,36 @@ namespace mbk {
 namespace detail {
 
 #ifdef MBK_VEC4
+template <>
+struct CrossProduct<v4::V4> {  // fixed_point's (point_kinematics.h)
+  MBK_AVX2 static void of(const v4::V4& a, const v4::V4& b, v4::V4& out) { out = v4::cross(a, b); }
+};
+
 // The revolute kernels of the AVX2 copy on four-lane vectors (vec4.h): the sums of the kernels
 // of fast_kernels.h, term for term and in the same order, so the same results bit for bit, in fewer
 // instructions.
 namespace v4 {
 
-// A point's position, velocity and acceleration, and a body's omega and alpha, in registers.
-struct PointMotion {
-  V4 p{}, v{}, a{};
-};
+// A body's omega and alpha, in registers.
 struct BodySpin {
   V4 omega{}, alpha{};
 };
 
-// Where Data keeps a point's motion (the origins', or the mass centers').
-struct PointArrays {
-  Vec3<double>*p, *v, *a;
-};
-
+// A point's motion (PointArrays, kinematics_views.h) in registers, and back.
 template <Level L>
-MBK_AVX2 PointMotion load_point(const PointArrays& arrays, int k) {
-  PointMotion m;
-  m.p = load3(arrays.p[k].data());
-  if constexpr (L != Level::kPose) m.v = load3(arrays.v[k].data());
-  if constexpr (L == Level::kAcceleration) m.a = load3(arrays.a[k].data());
+MBK_AVX2 PointMotion<V4> load_point(const PointArrays<double>& arrays, int k) {
+  PointMotion<V4> m;
+  m.position = load3(arrays.position[k].data());
+  if constexpr (L != Level::kPose) m.velocity = load3(arrays.velocity[k].data());
+  if constexpr (L == Level::kAcceleration) m.acceleration = load3(arrays.acceleration[k].data());
   return m;
 }
 
 template <Level L>
-MBK_AVX2 void store_point(const PointArrays& arrays, int k, const PointMotion& m) {
-  store3(arrays.p[k].data(), m.p);
-  if constexpr (L != Level::kPose) store3(arrays.v[k].data(), m.v);
-  if constexpr (L == Level::kAcceleration) store3(arrays.a[k].data(), m.a);
-}
-
-// Q = P + r fixed in a body of omega and alpha s (eq. 4.6.2 and its derivatives):
-// Q' = P' + omega x r, Q'' = P'' + alpha x r + omega x (omega x r).
-template <Level L>
-MBK_AVX2 PointMotion carried(const PointMotion& p, const BodySpin& s, V4 r) {
-  PointMotion q;
-  q.p = p.p + r;
-  if constexpr (L != Level::kPose) {
-    const V4 omega_r = cross(s.omega, r);
-    q.v = p.v + omega_r;
-    if constexpr (L == Level::kAcceleration)
-      q.a = (p.a + cross(s.alpha, r)) + cross(s.omega, omega_r);
-  }
-  return q;
+MBK_AVX2 void store_point(const PointArrays<double>& arrays, int k, const PointMotion<V4>& m) {
+  store3(arrays.position[k].data(), m.position);
+  if constexpr (L != Level::kPose) store3(arrays.velocity[k].data(), m.velocity);
+  if constexpr (L == Level::kAcceleration) store3(arrays.acceleration[k].data(), m.acceleration);
 }
 
 // m v for a constant v of the given shape (times_constant, kinematics_views.h).
@@ -110,7 +93,7 @@ MBK_AVX2 inline V4 store_rotation(const BodyStep& b, int k, const Cols& s0k,
 }
 
 // Body k of a revolute joint (body_update): S0K, its spin from u (turned_spin), O_k = O_j +
-// S0J q_k and G_k = O_k + S0K r_k with their motion (carried; r = 0 leaves the point's).
+// S0J q_k and G_k = O_k + S0K r_k with their motion (fixed_point; r = 0 leaves the point's).
 template <Level L>
 MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const Cols& s0k, V4 u,
                               const StateView<double>& state, const DataView<double>& data) {
@@ -122,15 +105,14 @@ MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const C
   const BodySpin spin_k = turned_spin<L>(spin_j, u, state, b.v_index);
   if constexpr (L != Level::kPose) store3(data.omega[k].data(), spin_k.omega);
   if constexpr (L == Level::kAcceleration) store3(data.alpha[k].data(), spin_k.alpha);
-  const PointArrays origins{data.origin, data.origin_velocity, data.origin_acceleration};
-  const PointArrays centers{data.mass_center, data.mass_center_velocity,
-                            data.mass_center_acceleration};
-  PointMotion point = load_point<L>(origins, j);
-  if (b.offset_shape != VectorShape::kZero)
-    point = carried<L>(point, spin_j, times_constant(s0j, b.offset, b.offset_shape));
-  store_point<L>(origins, k, point);
-  if (b.mass_center_shape != VectorShape::kZero) point = carried<L>(point, spin_k, rho);
-  store_point<L>(centers, k, point);
+  PointMotion<V4> point = load_point<L>(data.origins(), j);
+  if (b.offset_shape != VectorShape::kZero)  // fixed_point: point_kinematics.h
+    point = fixed_point<L>(point, spin_j.omega, spin_j.alpha,
+                           times_constant(s0j, b.offset, b.offset_shape));
+  store_point<L>(data.origins(), k, point);
+  if (b.mass_center_shape != VectorShape::kZero)
+    point = fixed_point<L>(point, spin_k.omega, spin_k.alpha, rho);
+  store_point<L>(data.centers(), k, point);
 }
 
 // S0K = S0J SJK for a turn (cos, sin at c, s) about coordinate axis I (turn_columns).
@@ -178,6 +160,15 @@ MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
   revolute_update<L>(b, k, s0j, s0k, u, state, data);
 }
 
+}  // namespace v4
+#else
+namespace v4 {  // declared only: without MBK_VEC4 no copy with kAvx2 is instantiated
+template <Level L, int I>
+void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
+                        const DataView<double>& data);
+template <Level L>
+void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<double>& state,
+                   const DataView<double>& data);
 }  // namespace v4
 #endif  // MBK_VEC4
 

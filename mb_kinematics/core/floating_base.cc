@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "mb_kinematics/core/point_kinematics.h"
+
 namespace mbk {
 
 bool interpolate_base(const std::vector<BaseSample>& samples,
@@ -42,11 +44,13 @@ void extrapolate_base(const BaseSample& s, const Vec3<double>& linear_accelerati
 void apply_floating_base(const BaseMotion& base, Data<double>& data) {
   const Mat3<double>& rb = base.rotation;
   const Vec3<double>& w = base.omega;
+  const PointMotion<Vec3<double>> origin{base.position, base.velocity, base.acceleration};
   const auto carry = [&](Vec3<double>& p, Vec3<double>& v, Vec3<double>& a) {
     const Vec3<double> r = rb * p, vr = rb * v;  // relative position and velocity, in R
-    a = base.acceleration + base.alpha.cross(r) + w.cross(w.cross(r)) + 2 * w.cross(vr) + rb * a;
-    v = base.velocity + w.cross(r) + vr;
-    p = base.position + r;
+    const PointMotion<Vec3<double>> fixed = fixed_point(origin, w, base.alpha, r);  // r fixed
+    a = fixed.acceleration + 2 * w.cross(vr) + rb * a;  // and moving: Coriolis, relative
+    v = fixed.velocity + vr;
+    p = fixed.position;
   };
   data.rotation[0] = rb;  // the root frame, where the root link's mass center sits
   data.origin[0] = base.position;

@@ -1,153 +1,22 @@
 // Absolute kinematics by the O(N) outward recursion along the lower body array (doc/method.md 4),
 // as the method states it: for k = 1..N in increasing order (so L(k) = j is done first), body k
-// from body j and its joint's terms (JointTerms) by body_update; the generic step (motion_step)
-// takes any joint's terms from joint_motion; forward_kinematics is the entry point.
-// Each body runs its joint's kernel, chosen once when the model was finalized (body_step.h): the
-// generic step, or a fast kernel (fast_kernels.h) that gets the same terms with fewer operations
-// and runs the same body_update (test/core/generic_kernel_test.cc checks one against the other).
+// from body j by its joint's kernel (fast_kernels.h kernel_step: the joint's terms, then the
+// one-body update of body_update.h). forward_kinematics is the entry point: it chooses, once per
+// call, the level and the copy of the loop for the scalar and the CPU.
 #pragma once
 
 #include <cassert>
 #include <limits>
 #include <type_traits>
 
-#include "mb_kinematics/core/body_step.h"
 #include "mb_kinematics/core/data.h"
-#include "mb_kinematics/core/joint_motion.h"
+#include "mb_kinematics/core/fast_kernels.h"
 #include "mb_kinematics/core/kinematics_views.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 
 namespace mbk {
 namespace detail {
-
-// A joint's share of body k's motion, in R components: d = S0J (q_k + s_k) (O_j to O_k), the
-// relative angular velocity w = S0J w_k and w' part wd = S0J w_k', and sd = S0J s_k',
-// sdd = S0J s_k''.
-template <typename S>
-struct JointTerms {
-  Vec3<S> d, w, wd, sd, sdd;
-};
-
-// O_k and its velocity and acceleration from O_j's (doc/method.md 4, eq. 4.6.2): d = 0 (a joint
-// at O_j that does not translate) leaves them O_j's.
-template <Level L, bool kTranslates, typename S>
-void origin_update(const BodyStep& b, int k, const JointTerms<S>& t, const DataView<S>& data) {
-  const int j = b.lower;
-  if (!kTranslates && b.offset_shape == VectorShape::kZero) {
-    data.origin[k] = data.origin[j];
-    if constexpr (L != Level::kPose) data.origin_velocity[k] = data.origin_velocity[j];
-    if constexpr (L == Level::kAcceleration)
-      data.origin_acceleration[k] = data.origin_acceleration[j];
-    return;
-  }
-  data.origin[k] = data.origin[j] + t.d;  // doc/method.md 4, eq. 4.6.2: o_k = o_j + d_k
-  if constexpr (L != Level::kPose) {
-    const Vec3<S>& omega_j = data.omega[j];
-    const Vec3<S> omega_j_d = omega_j.cross(t.d);
-    Vec3<S>& vo = data.origin_velocity[k];
-    vo = data.origin_velocity[j] + omega_j_d;  // doc/method.md 4, origin velocity
-    if constexpr (kTranslates) vo += t.sd;
-    if constexpr (L == Level::kAcceleration) {
-      Vec3<S>& ao = data.origin_acceleration[k];  // doc/method.md 4, origin acceleration
-      ao = data.origin_acceleration[j] + data.alpha[j].cross(t.d) + omega_j.cross(omega_j_d);
-      if constexpr (kTranslates) ao += S(2) * omega_j.cross(t.sd) + t.sdd;
-    }
-  }
-}
-
-// G_k and its velocity and acceleration from O_k's, rho = S0K r_k (doc/method.md 4): r_k = 0
-// leaves them O_k's.
-template <Level L, typename S>
-void mass_center_update(const BodyStep& b, int k, const DataView<S>& data) {
-  if (b.mass_center_shape == VectorShape::kZero) {
-    data.mass_center[k] = data.origin[k];
-    if constexpr (L != Level::kPose) data.mass_center_velocity[k] = data.origin_velocity[k];
-    if constexpr (L == Level::kAcceleration)
-      data.mass_center_acceleration[k] = data.origin_acceleration[k];
-    return;
-  }
-  const Vec3<S> rho = times_constant(data.rotation[k], b.mass_center, b.mass_center_shape);
-  data.mass_center[k] = data.origin[k] + rho;  // doc/method.md 4, mass center
-  if constexpr (L != Level::kPose) {
-    const Vec3<S>& omega_k = data.omega[k];
-    const Vec3<S> omega_k_rho = omega_k.cross(rho);
-    data.mass_center_velocity[k] = data.origin_velocity[k] + omega_k_rho;
-    if constexpr (L == Level::kAcceleration)
-      data.mass_center_acceleration[k] =
-          data.origin_acceleration[k] + data.alpha[k].cross(rho) + omega_k.cross(omega_k_rho);
-  }
-}
-
-// Body k from its lower body once S0K = S0J SJK is in data.rotation[k] (doc/method.md 4).
-// kRotates, kTranslates: whether the joint turns (w, wd used) and translates (sd, sdd used).
-template <Level L, bool kRotates, bool kTranslates, typename S>
-void body_update(const BodyStep& b, int k, const JointTerms<S>& t, const DataView<S>& data) {
-  const int j = b.lower;
-  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);  // doc/method.md 4, orientation
-  if constexpr (L != Level::kPose) {
-    const Vec3<S>& omega_j = data.omega[j];
-    Vec3<S>& omega_k = data.omega[k];
-    omega_k = omega_j;
-    if constexpr (kRotates) omega_k += t.w;  // doc/method.md 4, eq. 4.4.6
-    if constexpr (L == Level::kAcceleration) {
-      if constexpr (kRotates)
-        data.alpha[k] = data.alpha[j] + t.wd + omega_j.cross(t.w);  // doc/method.md 4, eq. 4.5.1
-      else
-        data.alpha[k] = data.alpha[j];
-    }
-  }
-  origin_update<L, kTranslates>(b, k, t, data);
-  mass_center_update<L>(b, k, data);
-}
-
-// Any joint from its joint_motion.
-template <typename S>
-void motion_pose(const BodyStep& b, int k, const JointMotion<S>& m, const DataView<S>& data,
-                 Vec3<S>& d) {
-  const Mat3<S>& s0j = data.rotation[b.lower];
-  data.rotation[k] = s0j * m.rotation;             // doc/method.md 4, S0K = S0J SJK
-  d = s0j * (b.offset.cast<S>() + m.translation);  // doc/method.md 4, eq. 4.6.2: d_k
-}
-
-// Any joint through joint_motion, column by column: the generic path (JointKernel::kGeneric),
-// and the folded joints of a reference build.
-template <Level L, typename S>
-void motion_step(const Model& model, int k, const StateView<S>& state, const DataView<S>& data) {
-  const Body& body = model.bodies[k];
-  const BodyStep& b = model.steps.steps[k];
-  const S* y = L == Level::kPose ? nullptr : state.y + body.v_index;
-  JointMotion<S> m;
-  joint_motion(body.joint, model.speeds, state.q + body.q_index, y, m);
-  JointTerms<S> t;
-  motion_pose(b, k, m, data, t.d);
-  const Mat3<S>& s0j = data.rotation[b.lower];
-  if constexpr (L != Level::kPose) {
-    Vec3<S> w = Vec3<S>::Zero(), sd = Vec3<S>::Zero();  // doc/method.md 4: w_k, s_k' in Bj
-    for (int c = m.linear_speeds; c < m.speeds; ++c) w += m.angular[c] * y[c];
-    for (int c = 0; c < m.linear_speeds; ++c) sd += m.linear[c] * y[c];
-    t.w = s0j * w;
-    t.sd = s0j * sd;
-    if constexpr (L == Level::kAcceleration) {
-      const S* yd = state.yd + body.v_index;
-      Vec3<S> wd = Vec3<S>::Zero(), sdd = Vec3<S>::Zero();  // doc/method.md 4: w_k', s_k''
-      for (int c = m.linear_speeds; c < m.speeds; ++c)
-        wd += m.angular[c] * yd[c] + m.angular_dot[c] * y[c];
-      for (int c = 0; c < m.linear_speeds; ++c) sdd += m.linear[c] * yd[c];
-      t.wd = s0j * wd;
-      t.sdd = s0j * sdd;
-    }
-  }
-  if (m.linear_speeds > 0)  // the s_k' terms vanish otherwise
-    body_update<L, true, true>(b, k, t, data);
-  else
-    body_update<L, true, false>(b, k, t, data);
-}
-
-// Body k by its joint's kernel: fast_kernels.h, included at the end of this file.
-template <Level L, bool kAvx2, typename S>
-void kernel_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                 const DataView<S>& data);
 
 // The loop over bodies. kAvx2: the AVX2 copy's (forward_kinematics_avx2), double only.
 template <Level L, typename S, bool kAvx2 = false>
@@ -222,6 +91,3 @@ void forward_kinematics(const Model& model, const JointState<S>& state, Data<S>&
 }
 
 }  // namespace mbk
-
-// kernel_step, and the kernels it runs (they call body_update and motion_step above).
-#include "mb_kinematics/core/fast_kernels.h"

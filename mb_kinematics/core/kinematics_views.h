@@ -9,6 +9,7 @@
 #include "mb_kinematics/core/body_step.h"
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/point_kinematics.h"
 #include "mb_kinematics/core/sincos.h"
 #include "mb_kinematics/core/state.h"
 
@@ -44,6 +45,29 @@ void reorthonormalize(Mat3<S>& r) {
   r = r * (S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
 }
 
+// Where Data keeps a point's motion (the origins', or the mass centers').
+template <typename S>
+struct PointArrays {
+  Vec3<S>*position, *velocity, *acceleration;
+};
+
+// The point of body k at level L (the parts L leaves out are neither read nor written).
+template <Level L, typename S>
+PointMotion<Vec3<S>> point_at(const PointArrays<S>& arrays, int k) {
+  PointMotion<Vec3<S>> m;
+  m.position = arrays.position[k];
+  if constexpr (L != Level::kPose) m.velocity = arrays.velocity[k];
+  if constexpr (L == Level::kAcceleration) m.acceleration = arrays.acceleration[k];
+  return m;
+}
+
+template <Level L, typename S>
+void set_point(const PointArrays<S>& arrays, int k, const PointMotion<Vec3<S>>& m) {
+  arrays.position[k] = m.position;
+  if constexpr (L != Level::kPose) arrays.velocity[k] = m.velocity;
+  if constexpr (L == Level::kAcceleration) arrays.acceleration[k] = m.acceleration;
+}
+
 // Data's arrays as raw pointers, and the state's: the loop over bodies keeps them in registers
 // instead of reloading each std::vector's and Eigen vector's start at every access.
 template <typename S>
@@ -64,6 +88,10 @@ struct DataView {
         origin_acceleration(d.origin_acceleration.data()),
         sine(d.sine.data()),
         cosine(d.cosine.data()) {}
+  PointArrays<S> origins() const { return {origin, origin_velocity, origin_acceleration}; }
+  PointArrays<S> centers() const {
+    return {mass_center, mass_center_velocity, mass_center_acceleration};
+  }
 };
 
 // q, y and y' of a JointState (doc/method.md 8).

@@ -54,6 +54,10 @@ struct Model {
   int speed_index(const std::string& name) const;       // -1 if absent
 };
 
+// The steps of a model whose bodies, joints and indices are final (finalize_model calls it;
+// body_step.cc).
+BodySteps make_body_steps(const Model& model, KernelChoice choice = KernelChoice::kFast);
+
 // Validates a model whose bodies[1..N] (name, lower, joint, mass_center, mass) and mimics are
 // filled in, normalizes joint axes and assigns coordinate/speed indices and names. Throws
 // std::invalid_argument with a one-line message naming the body and the field at fault.

@@ -10,6 +10,7 @@
 
 #include "mb_kinematics/core/data.h"
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/core/point_kinematics.h"
 
 namespace mbk {
 
@@ -29,15 +30,14 @@ std::vector<std::string> bodies_without_inertia(const Model& model);
 bool inertias_known(const Model& model);  // bodies_without_inertia is empty (no allocation)
 
 // The mass center of bodies[0] (a URDF's root link, fixed in R's frame; that frame moves as
-// data's index 0 says when apply_floating_base set it): p_0 = O_0 + S00 r_0, its velocity
-// v_O0 + w_0 x S00 r_0 and acceleration a_O0 + alpha_0 x S00 r_0 + w_0 x (w_0 x S00 r_0).
+// data's index 0 says when apply_floating_base set it): the point r_0 of index 0 (body_point).
 template <typename S>
 void root_mass_center(const Model& model, const Data<S>& data, Vec3<S>& p, Vec3<S>& v, Vec3<S>& a) {
-  const Vec3<S> r = data.rotation[0] * model.bodies[0].mass_center.template cast<S>();
-  p = data.origin[0] + r;
-  v = data.origin_velocity[0] + data.omega[0].cross(r);
-  a = data.origin_acceleration[0] + data.alpha[0].cross(r) +
-      data.omega[0].cross(data.omega[0].cross(r));
+  const PointMotion<Vec3<S>> g =
+      body_point(data, 0, Vec3<S>(model.bodies[0].mass_center.template cast<S>()));
+  p = g.position;
+  v = g.velocity;
+  a = g.acceleration;
 }
 
 // Fills `out` from `data` at `level` (kPose: M and p_G; kVelocity adds v_G, M v_G and H_G;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "mb_kinematics/core/base_joint.h"
+#include "mb_kinematics/core/point_kinematics.h"
 #include "mb_kinematics/estimation/base_accelerations.h"
 #include "mb_kinematics/offline/recording_states.h"
 
@@ -40,12 +41,10 @@ void with_base_body(const Model& base_model, const Data<double>& data, Data<doub
     out.mass_center_velocity[k + 1] = data.mass_center_velocity[k];
     out.mass_center_acceleration[k + 1] = data.mass_center_acceleration[k];
   }
-  const Vec3<double> r = out.rotation[1] * base_model.bodies[1].mass_center;
-  const Vec3<double>&w = out.omega[1], &alpha = out.alpha[1];
-  out.mass_center[1] = out.origin[1] + r;  // p = O + S0K r
-  out.mass_center_velocity[1] = out.origin_velocity[1] + w.cross(r);
-  out.mass_center_acceleration[1] =
-      out.origin_acceleration[1] + alpha.cross(r) + w.cross(w.cross(r));
+  const PointMotion<Vec3<double>> g = body_point(out, 1, base_model.bodies[1].mass_center);
+  out.mass_center[1] = g.position;
+  out.mass_center_velocity[1] = g.velocity;
+  out.mass_center_acceleration[1] = g.acceleration;
 }
 
 void recording_rows(const Model& model, const Recording& recording,
