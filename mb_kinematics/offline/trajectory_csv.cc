@@ -147,7 +147,7 @@ void read_trajectory_csv(const std::string& path, RecordingBuilder& builder) {
       char* end = nullptr;
       const double x = std::strtod(cells[i].c_str(), &end);
       if (cells[i].empty() || end != cells[i].c_str() + cells[i].size())  // a NUL inside too
-        throw std::invalid_argument(where + ": column '" + header[i] + "': '" +
+        throw std::invalid_argument(where + ": column '" + printable(header[i]) + "': '" +
                                     printable(cells[i]) + "' is not a number");
       if (i == 0) {  // to the nanosecond, from 1e6 s on after the first whole second
         const CellTime time = cell_time(cells[0], x);
