@@ -139,6 +139,7 @@ void KinematicsNode::make_outputs_in_r() {
 // topics once the new ones are advertised (`retired`), so that subscribers stay connected.
 bool KinematicsNode::on_reload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   std::lock_guard<std::mutex> lock(queue_.mutex());
+  for (auto& o : outputs_) o->cancel_calls();  // ending a service waits for its calls
   const NodeParams running_params = params_;
   const mbk::Model running = input_.loaded();
   const std::vector<std::string> running_missing = missing_segments_;

@@ -66,6 +66,10 @@ class Output {
   // True if it advertises a service: a node advertises one name once, so ~reload ends the old
   // one before making the new (topics: the other way round, so that subscribers stay connected).
   virtual bool is_service() const { return false; }
+  // A service: end the calls in progress at once and refuse new ones (~reload is about to end
+  // it, and waits for its calls meanwhile, holding the input: in a nodelet, the manager's
+  // network thread and its bond).
+  virtual void cancel_calls() {}
   // Whether anybody listens now; asked once per sample, before the computation.
   virtual bool active() = 0;
   // Called after active() returned true, when the sample reached level().

@@ -15,6 +15,8 @@ geometry_msgs::Vector3 vector3(const mbk::Vec3<double>& v) {
   return out;
 }
 
+constexpr char kCancelled[] = "cancelled: the node is reloading its model (~reload); call again";
+
 // Body k's columns into `out`; false if one is not finite.
 bool fill_body(const mbk::Model& model, int k, const std::vector<mbk::SpeedColumn>& columns,
                mb_kinematics_msgs::BodyPartialVelocities& out) {
@@ -100,6 +102,10 @@ bool PartialVelocitiesService::within_limit(const Request& request, const std::v
 }
 
 bool PartialVelocitiesService::answer(Request& request, Response& response) {
+  if (cancelled_) {
+    response.message = kCancelled;
+    return true;
+  }
   Latest latest(model_);
   {
     std::lock_guard<std::mutex> lock(latest_mutex_);  // a copy: the outputs go on meanwhile
@@ -117,6 +123,11 @@ bool PartialVelocitiesService::answer(Request& request, Response& response) {
     return true;
   const auto columns = mbk::chain_partial_velocities(model_, latest.state, asked);
   for (size_t i = 0; i < asked.size(); ++i) {
+    if (cancelled_) {
+      response.partials.clear();
+      response.message = kCancelled;
+      return true;
+    }
     response.partials.emplace_back();
     if (!fill_body(model_, asked[i], columns[i], response.partials.back())) {
       response.partials.clear();

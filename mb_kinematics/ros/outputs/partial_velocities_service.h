@@ -6,6 +6,7 @@
 // each takes a copy of that sample under a short lock of its own, then computes the requested
 // bodies' chains only (core/chain_partial_velocity.h), so /tf keeps its rate during a long call.
 // A request needing more than ~partial_velocities_max_entries columns is refused, naming both.
+// A ~reload cancels a call in progress (success false, saying so) rather than wait for it.
 #pragma once
 
 #include <mb_kinematics_msgs/GetPartialVelocities.h>
@@ -13,6 +14,7 @@
 #include <ros/service_server.h>
 #include <ros/spinner.h>
 
+#include <atomic>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -32,6 +34,7 @@ class PartialVelocitiesService : public Output {
   bool uses_data() const override { return false; }
   bool active() override { return true; }
   bool is_service() const override { return true; }
+  void cancel_calls() override { cancelled_ = true; }
   void publish(const ros::Time& stamp, const Sample& sample) override;
 
  private:
@@ -58,8 +61,9 @@ class PartialVelocitiesService : public Output {
   const mbk::Model& model_;
   std::string frame_;
   long max_entries_;
-  std::vector<long> chain_speeds_;  // per body: the columns a request for it costs
-  std::mutex latest_mutex_;         // publish() and the copy a call takes; nothing else
+  std::vector<long> chain_speeds_;      // per body: the columns a request for it costs
+  std::mutex latest_mutex_;             // publish() and the copy a call takes; nothing else
+  std::atomic<bool> cancelled_{false};  // by ~reload: calls end with an empty answer
   Latest latest_;
   ros::CallbackQueue queue_;  // the service's callbacks, on spinner_'s thread
   ros::AsyncSpinner spinner_;
