@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace mbk {
 namespace {
@@ -72,23 +73,28 @@ Vec3<double> euler_angles_near(const Mat3<double>& r, EulerOrder order,
   return (y - previous).squaredNorm() < (x - previous).squaredNorm() ? y : x;
 }
 
+EulerAngleTrack::EulerAngleTrack(std::vector<EulerOrder> orders)
+    : orders_(std::move(orders)),
+      angles_(orders_.size(), Vec3<double>::Zero()),
+      started_(orders_.size(), 0) {}
+
+const Vec3<double>& EulerAngleTrack::next(std::size_t s, const Mat3<double>& r) {
+  angles_[s] =
+      started_[s] ? euler_angles_near(r, orders_[s], angles_[s]) : euler_angles(r, orders_[s]);
+  started_[s] = 1;
+  return angles_[s];
+}
+
 void euler_angle_series(const double* rotations, std::size_t samples, std::size_t series,
                         const std::vector<EulerOrder>& orders, double* angles) {
   if (orders.size() != 1 && orders.size() != series)
     throw std::invalid_argument("euler_angle_series: " + std::to_string(orders.size()) +
                                 " orders for " + std::to_string(series) + " series");
-  for (std::size_t i = 0; i < samples; ++i)
-    for (std::size_t s = 0; s < series; ++s) {
-      const std::size_t at = i * series + s;
-      const EulerOrder order = orders[orders.size() == 1 ? 0 : s];
-      const Mat3<double> r =
-          Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rotations + 9 * at);
-      const Vec3<double> x =
-          i == 0 ? euler_angles(r, order)
-                 : euler_angles_near(r, order,
-                                     Eigen::Map<const Vec3<double>>(angles + 3 * (at - series)));
-      Eigen::Map<Vec3<double>>(angles + 3 * at) = x;
-    }
+  EulerAngleTrack track(orders.size() == 1 ? std::vector<EulerOrder>(series, orders[0]) : orders);
+  for (std::size_t at = 0; at < samples * series; ++at)
+    Eigen::Map<Vec3<double>>(angles + 3 * at) = track.next(
+        at % series,
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(rotations + 9 * at));
 }
 
 Mat3<double> rotation_from_euler_angles(const Vec3<double>& angles, EulerOrder order) {

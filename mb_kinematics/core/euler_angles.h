@@ -28,6 +28,25 @@ Vec3<double> euler_angles(const Mat3<double>& r, EulerOrder order);
 Vec3<double> euler_angles_near(const Mat3<double>& r, EulerOrder order,
                                const Vec3<double>& previous);
 
+// The angles of several series of rotations (a body's joint rotations, row after row), each
+// series' first principal (euler_angles), each next one nearest the series' last
+// (euler_angles_near): continuous, as mbk bag's --angles and --mot write them.
+class EulerAngleTrack {
+ public:
+  // orders[s]: series s's order.
+  explicit EulerAngleTrack(std::vector<EulerOrder> orders);
+  // Series s's angles at its next rotation `r` (kept as its last).
+  const Vec3<double>& next(std::size_t s, const Mat3<double>& r);
+  const Vec3<double>& last(std::size_t s) const { return angles_[s]; }
+  EulerOrder order(std::size_t s) const { return orders_[s]; }
+  std::size_t size() const { return orders_.size(); }
+
+ private:
+  std::vector<EulerOrder> orders_;
+  std::vector<Vec3<double>> angles_;
+  std::vector<char> started_;  // per series: a rotation was given
+};
+
 // Row-major rotations (samples, series, 3, 3) into angles (samples, series, 3): the first sample's
 // principal, each next one euler_angles_near the sample before, series s in orders[s] (one order
 // for all when orders has one entry).

@@ -18,7 +18,7 @@ TidyCsvWriter::TidyCsvWriter(const std::string& path, const Model& model, bool e
       file_(path),
       errors_(errors),
       extras_(extras),
-      angles_(model.bodies.size(), Vec3<double>::Zero()),
+      angles_(extras.angles),
       body_cells_(model.bodies.size()),
       system_cells_("," + system + ",0,0") {
   for (int k = 0; k <= model.body_count(); ++k) total_mass_ += model.bodies[k].mass;
@@ -89,10 +89,9 @@ class Cells {
   char* end_ = cells_;
 };
 
-// The extras' cells of body k (TidyCsvExtras); with angles, angles[k] becomes this row's (near
-// the last row's when `continued`).
+// The extras' cells of body k (TidyCsvExtras); with angles, the track's next for body k.
 void extra_cells(const Model& model, const TidyCsvExtras& extras, const Data<double>& d, int k,
-                 std::vector<Vec3<double>>& angles, bool continued, Cells& cells) {
+                 EulerAngleTrack& angles, Cells& cells) {
   if (extras.body_axes)
     for (const auto* v :
          {&d.omega, &d.alpha, &d.mass_center_velocity, &d.mass_center_acceleration}) {
@@ -100,12 +99,9 @@ void extra_cells(const Model& model, const TidyCsvExtras& extras, const Data<dou
       for (int i = 0; i < 3; ++i) cells.number(x[i]);
     }
   if (extras.angles.empty()) return;
-  const EulerOrder order = extras.angles[k];
   const RelativeMotion<double> m = relative_motion(model, d, k);
-  angles[k] =
-      continued ? euler_angles_near(m.rotation, order, angles[k]) : euler_angles(m.rotation, order);
-  cells.text(to_string(order));
-  const Vec3<double>& x = angles[k];
+  const Vec3<double>& x = angles.next(k, m.rotation);
+  cells.text(to_string(angles.order(k)));
   for (const Vec3<double>* v : {&x, &m.omega, &m.alpha})
     for (int i = 0; i < 3; ++i) cells.number((*v)[i]);
 }
@@ -132,10 +128,9 @@ void TidyCsvWriter::format(double stamp, const Data<double>& d, std::string& tex
         for (int i = 0; i < 3; ++i) cells.number((*v)[k][i]);
     else if (errors_)
       cells.empty(6);
-    extra_cells(model_, extras_, d, k, angles_, have_angles_, cells);
+    extra_cells(model_, extras_, d, k, angles_, cells);
     cells.end_row(text);
   }
-  have_angles_ = !extras_.angles.empty();
   if (total_mass_ <= 0) return;
   SystemKinematics<double> system;  // every link with mass, the root link included
   system_kinematics(model_, d, system, Level::kAcceleration);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/euler_angles.h"
 #include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/io/block_file.h"
@@ -49,6 +50,8 @@ class TidyCsvWriter {
   // With angles the rows must be formatted in sample order by one thread (each sample's angles
   // continue the last one's): not by the computing threads.
   bool sequential() const { return !extras_.angles.empty(); }
+  // With angles: the last row's (per body k, index k; [0] unused).
+  const EulerAngleTrack& angles() const { return angles_; }
   // alpha_se, acceleration_se: per body, or nullptr (empty cells) when the writer has errors.
   void write(double stamp, const Data<double>& data,
              const std::vector<Vec3<double>>* alpha_se = nullptr,
@@ -72,8 +75,7 @@ class TidyCsvWriter {
   double origin_ = 0;
   bool errors_ = false;
   TidyCsvExtras extras_;
-  mutable std::vector<Vec3<double>> angles_;  // the last row's angles per body (sequential())
-  mutable bool have_angles_ = false;
+  mutable EulerAngleTrack angles_;       // per body, the joint angles (sequential())
   std::vector<std::string> body_cells_;  // per body k: ",name,k,L(k)"
   std::string system_cells_;             // ",system,0,0"
   std::string buffer_;                   // one sample's rows (write)

@@ -154,7 +154,7 @@ struct Outputs {
       csv->write(row.stamp, *data, errors ? &row.alpha_se : nullptr,
                  errors ? &row.acceleration_se : nullptr);
     if (h5) h5->write(row, *data);
-    if (mot) mot->write(row, *data);
+    if (mot) mot->write(row, *data, csv && csv->sequential() ? &csv->angles() : nullptr);
   }
   // A bag holds stamps from ros::TIME_MIN (1 ns; 0 means "no stamp") to ros::TIME_MAX only.
   void check_bag_stamp(double t) const {

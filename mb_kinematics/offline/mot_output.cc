@@ -66,7 +66,7 @@ MotOutput::MotOutput(const std::string& path, const std::string& shown, const mb
     : shown_(shown),
       bodies_(bodies),
       columns_(columns),
-      angles_(bodies.bodies.size(), mbk::Vec3<double>::Zero()),
+      angles_(columns.angles),
       scale_(columns.coordinates ? model.nq : 0, 1.0) {
   if (!columns.angles.empty() && columns.angles.size() != bodies.bodies.size())
     throw std::invalid_argument(shown + ": " + std::to_string(columns.angles.size()) +
@@ -92,22 +92,20 @@ MotOutput::~MotOutput() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-void MotOutput::write(const mbk::OfflineRow& row, const mbk::Data<double>& data) {
+void MotOutput::write(const mbk::OfflineRow& row, const mbk::Data<double>& data,
+                      const mbk::EulerAngleTrack* angles) {
   char stamp[mbk::kMaxStampChars];  // as the CSV writes it
   buffer_.append(stamp, mbk::write_stamp(stamp, origin_, row.stamp));
   char cells[mbk::kMaxDoubleChars + 1];
   cells[0] = '\t';
   if (!columns_.angles.empty())
     for (int k = 1; k <= bodies_.body_count(); ++k) {
-      // the CSV's --angles (io/tidy_csv.cc): SJK's angles nearest the row before's
-      const mbk::Mat3<double> sjk = mbk::relative_motion(bodies_, data, k).rotation;
-      const mbk::EulerOrder order = columns_.angles[k];
-      angles_[k] = continued_ ? mbk::euler_angles_near(sjk, order, angles_[k])
-                              : mbk::euler_angles(sjk, order);
+      const mbk::Vec3<double>& x =
+          angles ? angles->last(k)
+                 : angles_.next(k, mbk::relative_motion(bodies_, data, k).rotation);  // SJK's
       for (int i = 0; i < 3; ++i)
-        buffer_.append(cells, mbk::write_shortest(cells + 1, angles_[k][i] * kDegrees));
+        buffer_.append(cells, mbk::write_shortest(cells + 1, x[i] * kDegrees));
     }
-  continued_ = true;
   for (std::size_t c = 0; c < scale_.size(); ++c)
     buffer_.append(cells, mbk::write_shortest(cells + 1, row.state.position[c] * scale_[c]));
   buffer_ += '\n';

@@ -10,14 +10,15 @@
 // (OpenSim splits labels at both). Angles in degrees (the joint angles; the coordinates of
 // revolute joints and the angles of ball, free, planar and universal joints), translations in
 // metres, Euler parameters as they are; the stamp as the CSV writes it, numbers in their shortest
-// round-trip form (io/number_format.h). nRows is counted as the rows are written and set in the header at
-// close(): the file must be seekable (a regular file, or /dev/null). ROS-free.
+// round-trip form (io/number_format.h). nRows is counted as the rows are written and set in the
+// header at close(): the file must be seekable (a regular file, or /dev/null). ROS-free.
 #pragma once
 
 #include <array>
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/core/euler_angles.h"
 #include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/types.h"
@@ -44,8 +45,10 @@ class MotOutput {
   MotOutput& operator=(const MotOutput&) = delete;
 
   // Row `row` (its stamp and coordinates), `data` its kinematics for `bodies`; rows in order
-  // (each row's angles continue the row before's).
-  void write(const mbk::OfflineRow& row, const mbk::Data<double>& data);
+  // (each row's angles continue the row before's). `angles`: this row's, computed already in
+  // the same orders (the CSV's --angles: TidyCsvWriter::angles()), or nullptr.
+  void write(const mbk::OfflineRow& row, const mbk::Data<double>& data,
+             const mbk::EulerAngleTrack* angles = nullptr);
   // The stamps' origin (Recording::origin): times written as the CSV writes them (whole seconds
   // and nanoseconds of origin + stamp).
   void set_time_origin(double seconds) { origin_ = seconds; }
@@ -68,9 +71,8 @@ class MotOutput {
   double origin_ = 0;
   const mbk::Model& bodies_;
   MotColumns columns_;
-  std::vector<mbk::Vec3<double>> angles_;  // the last row's angles per body
-  bool continued_ = false;                 // a row was written: the next continues its angles
-  std::vector<double> scale_;              // per coordinate: 180 / pi for angles, else 1
+  mbk::EulerAngleTrack angles_;  // per body, when no angles are given to write()
+  std::vector<double> scale_;    // per coordinate: 180 / pi for angles, else 1
   std::string buffer_;
   long rows_ = 0;
   int error_ = 0;  // the first write's errno

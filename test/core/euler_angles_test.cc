@@ -179,4 +179,20 @@ TEST(EulerAngles, OneOrderPerSeries) {
                std::invalid_argument);
 }
 
+// EulerAngleTrack (mbk bag's --angles and --mot): each series continues its own last angles, its
+// first rotation principal, whenever it comes.
+TEST(EulerAngles, TrackContinuesEachSeriesOnItsOwn) {
+  const M turn_far = (Eigen::AngleAxisd(3.0, V::UnitZ())).toRotationMatrix();
+  const M turn_past = (Eigen::AngleAxisd(3.3, V::UnitZ())).toRotationMatrix();  // past pi
+  mbk::EulerAngleTrack track({EulerOrder::kXYZ, EulerOrder::kZXY});
+  EXPECT_EQ(track.next(0, turn_far), mbk::euler_angles(turn_far, EulerOrder::kXYZ));
+  const V continued = track.next(0, turn_past);
+  EXPECT_NEAR(continued[2], 3.3, 1e-12);  // not 3.3 - 2 pi
+  EXPECT_EQ(track.last(0), continued);
+  // series 1 starts now, at the rotation series 0 continued through: principal, in ZXY
+  EXPECT_EQ(track.next(1, turn_past), mbk::euler_angles(turn_past, EulerOrder::kZXY));
+  EXPECT_NEAR(track.last(1)[0], 3.3 - 2 * M_PI, 1e-12);
+  EXPECT_EQ(track.order(1), EulerOrder::kZXY);
+}
+
 }  // namespace
