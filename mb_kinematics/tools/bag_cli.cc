@@ -62,7 +62,7 @@ const Option kOptions[] = {
        r.line.h5_compression = static_cast<int>(level);
      }},
     {"--mot", "OUT.mot", kOwn, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
-    {"--mot-coordinates", "", kOwn,
+    {"--mot-coordinates", "", kJob,
      [](Reading& r, const std::string&) { r.line.mot_coordinates = true; }},
     {"--summary-json", "FILE", kOwn,
      [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
@@ -81,8 +81,8 @@ const Option kOptions[] = {
     {"--segments", "MAP.yaml", kBvh, [](Reading& r, const std::string& v) { r.segments = v; }},
     {"--anthropometry", "de_leva|dempster", kBvh,
      [](Reading& r, const std::string& v) { r.anthropometry = v; }},
-    {"--body-axes", "", kOwn, [](Reading& r, const std::string&) { r.line.body_axes = true; }},
-    {"--angles", "ORDER|ORDERS.yaml", kOwn,
+    {"--body-axes", "", kJob, [](Reading& r, const std::string&) { r.line.body_axes = true; }},
+    {"--angles", "ORDER|ORDERS.yaml", kJob,
      [](Reading& r, const std::string& v) {
        if (!ends_with(v, ".yaml") && !ends_with(v, ".yml"))
          mbk::euler_order_from_string(v);  // a bad order refused before anything is read

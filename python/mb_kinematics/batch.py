@@ -244,7 +244,7 @@ class _Stop:
 def _bag_options(model, options):
     """mbk bag's options from run()'s keywords: max_gap=0.1 -> {"--max-gap": "0.1"}."""
     named = {"--" + name.replace("_", "-"): value for name, value in options.items()
-             if value is not None}
+             if value is not None and value is not False}
     unknown = sorted(set(named) - set(COMMON_OPTIONS) - set(BVH_OPTIONS))
     if unknown:
         raise BatchError("unknown option %s" % ", ".join(u[2:].replace("-", "_") for u in unknown))
@@ -253,7 +253,23 @@ def _bag_options(model, options):
     for name in ("--model", "--segments"):  # a worker's working directory is not ours
         if name in named:
             named[name] = os.path.abspath(named[name])
+    if str(named.get("--angles", "")).endswith((".yaml", ".yml")):
+        named["--angles"] = os.path.abspath(named["--angles"])
     return named
+
+
+# The options that add columns to an output, and the outputs they need (mbk bag's rule).
+COLUMN_OPTIONS = {"--body-axes": ("csv",), "--angles": ("csv", "mot"), "--mot-coordinates": ("mot",)}
+
+
+def _check_columns(named, kinds):
+    """BatchError if an option adds columns to none of the outputs `kinds` (as mbk bag refuses
+    it), before any job runs."""
+    for name, needs in COLUMN_OPTIONS.items():
+        if name in named and not set(needs) & set(kinds):
+            raise BatchError("%s adds columns to %s: give %s" % (
+                name, " or ".join("the " + k.upper() + " file" for k in needs),
+                " or ".join("--" + k for k in needs)))
 
 
 def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, progress=False,
@@ -280,7 +296,9 @@ def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, pro
         subjects = os.fspath(subjects)
         found = [f for f in found if os.path.realpath(f[0]) != os.path.realpath(subjects)]
         chosen = subject_options(read_subjects(subjects), found)
-    planned = plan(found, out_dir, _bag_options(model, options), kinds, mbk_bag, threads, chosen)
+    named = _bag_options(model, options)
+    _check_columns(named, kinds)
+    planned = plan(found, out_dir, named, kinds, mbk_bag, threads, chosen)
     results, todo = {}, []
     for job in planned:
         earlier = finished(job)
@@ -345,8 +363,11 @@ def _parser():
                    help="per .bvh input (columns path or glob, scale, body_mass, sex): its "
                    "subject's options")
     for name, metavar in list(COMMON_OPTIONS.items()) + list(BVH_OPTIONS.items()):
-        p.add_argument(name, metavar=metavar,
-                       help="as mbk bag's" + (" (.bvh inputs)" if name in BVH_OPTIONS else ""))
+        shown = "as mbk bag's" + (" (.bvh inputs)" if name in BVH_OPTIONS else "")
+        if metavar:
+            p.add_argument(name, metavar=metavar, help=shown)
+        else:  # a flag
+            p.add_argument(name, action="store_true", default=None, help=shown)
     return p
 
 

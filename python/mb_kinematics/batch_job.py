@@ -166,15 +166,19 @@ def _arguments(options, is_bvh):
     names += list(BVH_OPTIONS) if is_bvh else ["--model"]
     for name in names:
         value = options.get(name)
-        if value is not None:
+        if COMMON_OPTIONS.get(name) == "":  # a flag
+            arguments += [name] if value else []
+        elif value is not None:
             arguments += [name, str(value)]
     return arguments
 
 
 def _files_of(arguments):
-    """The files options name (--model, --segments): their identity is part of the key."""
+    """The files options name (--model, --segments, --angles ORDERS.yaml): their identity is
+    part of the key."""
     return {name: _file_identity(value) if os.path.exists(value) else None
-            for name, value in zip(arguments, arguments[1:]) if name in ("--model", "--segments")}
+            for name, value in zip(arguments, arguments[1:])
+            if name in ("--model", "--segments", "--angles")}
 
 
 def plan(inputs, out_dir, options, kinds=("csv",), mbk_bag=None, threads=1, subjects=None):
