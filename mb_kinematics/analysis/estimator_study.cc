@@ -22,8 +22,9 @@ std::string stream_name(double rate, double jitter, double noise) {
   return stream;
 }
 
-// The stream's stamps t and noisy samples x[i * m + c] (the same for every estimator).
-void make_stream(const std::vector<Wave>& waves, double rate, double jitter, double noise,
+}  // namespace
+
+void study_stream(const std::vector<Wave>& waves, double rate, double jitter, double noise,
                  double seconds, std::vector<double>& t, std::vector<double>& x) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -37,12 +38,10 @@ void make_stream(const std::vector<Wave>& waves, double rate, double jitter, dou
   }
 }
 
-}  // namespace
-
 EstimatorResult run_estimator(const std::string& name, const std::vector<Wave>& waves, double rate,
                               double jitter, double noise, double seconds, int repetitions) {
   std::vector<double> t, x;
-  make_stream(waves, rate, jitter, noise, seconds, t, x);
+  study_stream(waves, rate, jitter, noise, seconds, t, x);
   const int count = static_cast<int>(t.size()), m = static_cast<int>(waves.size());
   std::vector<std::unique_ptr<DerivativeEstimator>> estimators;
   for (int c = 0; c < m; ++c) estimators.push_back(make_derivative_estimator(name));
@@ -134,7 +133,7 @@ OfflineAccuracy offline_accuracy(const std::vector<Wave>& waves, const std::vect
 OfflineAccuracy offline_accuracy(const std::string& name, const std::vector<Wave>& waves,
                                  double rate, double jitter, double noise, double seconds) {
   std::vector<double> t, x;
-  make_stream(waves, rate, jitter, noise, seconds, t, x);
+  study_stream(waves, rate, jitter, noise, seconds, t, x);
   AutoEstimate a;
   offline_derivatives(make_offline_estimator(name), t, x, static_cast<int>(waves.size()), a);
   return offline_accuracy(waves, t, a);
@@ -144,7 +143,7 @@ EstimatorResult run_offline_estimator(const std::string& name, const std::vector
                                       double rate, double jitter, double noise, double seconds,
                                       int repetitions) {
   std::vector<double> t, x;
-  make_stream(waves, rate, jitter, noise, seconds, t, x);
+  study_stream(waves, rate, jitter, noise, seconds, t, x);
   const int count = static_cast<int>(t.size()), m = static_cast<int>(waves.size());
   const OfflineEstimator e = make_offline_estimator(name);
   AutoEstimate a;  // the estimates of every sample and coordinate (a.first, a.second)

@@ -31,6 +31,12 @@ std::vector<EstimatorResult> estimator_study(const std::vector<Wave>& waves, boo
 // 0.4 rad, 0.05 m, 0.2 below).
 std::vector<Wave> human_like_waves(const Model& model);
 
+// A study stream's stamps t and noisy samples x[i * m + c]: `rate` Hz over `seconds`, stamps
+// jittered uniformly by +-jitter/rate, Gaussian position noise of standard deviation `noise` (the
+// same stamps for any noise; the same noise for any waves of the same count).
+void study_stream(const std::vector<Wave>& waves, double rate, double jitter, double noise,
+                 double seconds, std::vector<double>& t, std::vector<double>& x);
+
 // One stream: samples at `rate` Hz over `seconds`, stamps jittered uniformly by +-jitter/rate
 // (exact stamps), Gaussian position noise of standard deviation `noise`; the run time is the
 // median over `repetitions`.
