@@ -1,0 +1,63 @@
+// Auto lengths of the glyph picture (doc/rviz.md#arrow-lengths), shared by the rviz display and
+// the node's markers: each quantity's longest arrow is a fixed fraction of the robot's size, on
+// robots of any size, angular and linear quantities alike. The robot's size is the diagonal of
+// the box around the joint points O_k and mass centers G_k drawn (its largest over the last
+// kAutoWindow seconds); a quantity's range is a robust running maximum of its largest value per
+// message (their kAutoQuantile quantile over the last kAutoWindow seconds), so that a few
+// messages' spikes (an estimator's outliers) do not shrink every other arrow; arrows above that
+// range are drawn at most kAutoCap times the longest length.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <deque>
+#include <utility>
+#include <vector>
+
+#include "mb_kinematics/viz/glyphs.h"
+
+namespace mbk {
+
+constexpr double kDefaultLengthFraction = 0.4;  // the longest arrow, a fraction of the size
+constexpr double kAutoWindow = 5;               // s of messages the ranges look back
+constexpr double kAutoQuantile = 0.9;           // of each message's largest value, in the window
+constexpr double kAutoCap = 2;                  // arrows at most this times the longest length
+constexpr double kPointRobotSize = 1;           // m: the size of a robot whose box is a point
+
+// The diagonal of the box around the joint points O_k and mass centers G_k of `bodies` (m); 0
+// when that box is a point or empty (AutoLengths then keeps the size it had, at first
+// kPointRobotSize).
+double robot_size(const std::vector<GlyphBody>& bodies);
+
+// The `quantile` (0..1; 1: the maximum) of the values of the last `window` seconds, a value per
+// time. A time before the previous one (a bag played again) starts over. At most kMaxValues
+// values are kept (the newest), whatever the rate (and for unstamped messages, all at time 0).
+class RunningQuantile {
+ public:
+  static constexpr size_t kMaxValues = 4096;
+  RunningQuantile(double window, double quantile) : window_(window), quantile_(quantile) {}
+  double update(double time, double value);
+
+ private:
+  double window_, quantile_;
+  std::deque<std::pair<double, double>> values_;  // (time, value), oldest first
+  std::vector<double> scratch_;
+};
+
+// The scales of the glyphs, message after message (time: the message's stamp, s).
+class AutoLengths {
+ public:
+  AutoLengths();
+  // Sets style.scale (m per unit) of every quantity, so that its robust maximum is drawn
+  // `fraction` times the robot's size long, and style.max_length (kAutoCap times that).
+  void update(double time, const BodySelection& drawn, double fraction, GlyphStyle& style);
+  double size() const { return size_; }                               // the robot's size in use (m)
+  double longest(double fraction) const { return fraction * size_; }  // m
+
+ private:
+  RunningQuantile sizes_;
+  std::array<RunningQuantile, GlyphQuantity::kCount> ranges_;
+  double size_ = kPointRobotSize;
+};
+
+}  // namespace mbk
