@@ -297,8 +297,9 @@ void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& drawn
       !context_->getFrameManager()->transform(header, pose(box.center()), center, orientation))
     return;
   const double size = mbk::robot_size(drawn);
-  const double radius =
-      0.5 * size + length_fraction_->getFloat() * (size > 0 ? size : mbk::kPointRobotSize);
+  const double radius = 0.5 * size + mbk::auto_longest(length_fraction_->getFloat(),
+                                                       size > 0 ? size : mbk::kPointRobotSize,
+                                                       style_);
   const double half_fov = 0.5 * view->getCamera()->getFOVy().valueRadians();
   rviz::Property* target = view->subProp("Target Frame");  // Orbit and the other tracking views
   const std::string follow = followFrame(msg, target->getValue().toString());

@@ -11,6 +11,11 @@ double robot_size(const std::vector<GlyphBody>& bodies) {
   return box.isEmpty() ? 0 : box.diagonal().norm();
 }
 
+double auto_longest(double fraction, double size, const GlyphStyle& style) {
+  return std::max(fraction * size,
+                  kMinLongestRadii * std::max(style.sphere_radius, style.arc_radius));
+}
+
 double RunningQuantile::update(double time, double value) {
   if (!values_.empty() && time < values_.back().first) values_.clear();
   values_.emplace_back(time, value);
@@ -36,12 +41,13 @@ void AutoLengths::update(double time, const BodySelection& drawn, double fractio
                          GlyphStyle& style) {
   const double size = robot_size(drawn.drawn());
   if (size > 0) size_ = sizes_.update(time, size);
-  const double longest = fraction * size_;
+  const double longest = auto_longest(fraction, size_, style);
   for (int q = 0; q < GlyphQuantity::kCount; ++q) {
     const double largest = max_norm(drawn, q);
     double range = ranges_[q].update(time, largest);
     if (!(range > 0)) range = largest;  // a motion that starts after a standstill
-    style.scale[q] = range > 0 ? longest / range : 0;
+    const double scale = longest / range;
+    if (std::isfinite(scale) && scale > 0) style.scale[q] = scale;
   }
   style.max_length = kAutoCap * longest;
 }

@@ -4,7 +4,9 @@
 // is Length Fraction of the robot's size, on both robots and for angular and linear quantities
 // alike; a few messages' spikes do not shrink the other arrows and are drawn at most kAutoCap
 // times as long; a larger motion is followed within the window; a robot twice as large moving
-// alike is drawn twice as large.
+// alike is drawn twice as large; the hostile scene of the rviz tests (10,000 bodies far from R's
+// origin, the first Max Bodies of them drawn a few centimetres large) shows every quantity's
+// arrows clear of the mass-center spheres; a value whose norm overflows leaves the scales finite.
 #include "mb_kinematics/viz/auto_lengths.h"
 
 #include <gtest/gtest.h>
@@ -212,6 +214,73 @@ TEST(AutoLengths, ArcsGrowWithTheirArrowUpToArcRadius) {
   const Vec3<double> center_omega(0, 0, 0.03), center_alpha(0, 0, 0.3);
   EXPECT_NEAR((g.arcs[0].points[0] - center_omega).norm(), 0.02, 1e-12);  // 0.06 m / 3
   EXPECT_NEAR((g.arcs[1].points[0] - center_alpha).norm(), style.arc_radius, 1e-12);
+}
+
+// test/rviz/hostile_bodies.py's message (rviz_hostile_many): `n` bodies in a ring of 1 m diameter
+// around UTM coordinates (x 500000, y 5000000), their joint points at z 0.5 and mass centers at
+// 0.6, velocity and acceleration of norm 1 (along and across the ring), omega_k 1 + 0.1 k about
+// z, alpha_k 1 about x; masses unknown.
+std::vector<GlyphBody> hostile_ring(int n) {
+  std::vector<GlyphBody> bodies(n);
+  for (int k = 0; k < n; ++k) {
+    GlyphBody& b = bodies[k];
+    const double angle = 2 * M_PI * k / n, c = std::cos(angle), s = std::sin(angle);
+    b.name = "body" + std::to_string(k);
+    b.index = k + 1;
+    b.lower = k;
+    b.origin = {500000 + 0.5 * c, 5000000 + 0.5 * s, 0.5};
+    b.mass_center = {b.origin.x(), b.origin.y(), 0.6};
+    b.vectors = {{Vec3<double>(-s, c, 0), Vec3<double>(-c, -s, 0), Vec3<double>(0, 0, 1 + 0.1 * k),
+                  Vec3<double>(1, 0, 0)}};
+  }
+  return bodies;
+}
+
+// The hostile scene at its 5 Hz for 10 s: the first Max Bodies (100) of the 10,000 bodies are
+// drawn, an arc of 3 cm of the ring (the robot's size 0.105 m). Each quantity's longest arrow
+// reaches a sphere radius or more past every mass-center sphere drawn (its tip at least two
+// radii from each G_k), and no arrow is longer than kAutoCap times auto_longest. (With 0.4 of
+// the robot's size alone, the longest arrows were 0.042 m, inside the row of spheres of radius
+// 0.035 m: the velocity arrows, which run along the row, showed no pixel in rviz.)
+TEST(AutoLengths, HostileManyBodiesShowEveryQuantityClearOfTheSpheres) {
+  const std::vector<GlyphBody> bodies = hostile_ring(10000);
+  mbk::AutoLengths lengths;
+  GlyphStyle style;
+  for (double t = 0; t < 10; t += 0.2)
+    lengths.update(t, mbk::select_bodies(bodies, style), mbk::kDefaultLengthFraction, style);
+  const mbk::BodySelection drawn = mbk::select_bodies(bodies, style);
+  ASSERT_EQ(drawn.drawn().size(), style.max_bodies);
+  EXPECT_NEAR(lengths.size(), 0.105, 5e-4);
+  const double longest = mbk::auto_longest(mbk::kDefaultLengthFraction, lengths.size(), style);
+  const mbk::Glyphs glyphs = mbk::make_glyphs(drawn, style);
+  std::array<double, GlyphQuantity::kCount> clearance{};  // of each quantity's farthest tip
+  for (const mbk::GlyphArrow& a : glyphs.arrows) {
+    ASSERT_LE(a.vector.norm(), mbk::kAutoCap * longest * (1 + 1e-12));
+    double nearest = INFINITY;  // the tip's distance to the nearest G_k
+    for (const GlyphBody& b : drawn.drawn())
+      nearest = std::min(nearest, (a.start + a.vector - b.mass_center).norm());
+    clearance[a.quantity] = std::max(clearance[a.quantity], nearest);
+  }
+  for (int q = 0; q < GlyphQuantity::kCount; ++q)
+    EXPECT_GE(clearance[q], 2 * style.sphere_radius) << mbk::glyph_quantity_name(q);
+}
+
+// A body whose velocity's norm overflows a double (components of 1e200, finite) beside bodies
+// moving at 1 m/s: the velocity scale stays finite and non-zero, so that the other bodies'
+// velocity arrows are still drawn (a scale of 0, longest / infinity, left none).
+TEST(AutoLengths, AnOverflowingNormLeavesTheOtherArrowsDrawn) {
+  std::vector<GlyphBody> bodies = hostile_ring(40);
+  bodies[0].vectors[GlyphQuantity::kVelocity] = {1e200, 1e200, 0};
+  mbk::AutoLengths lengths;
+  GlyphStyle style;
+  for (double t = 0; t < 2; t += 0.1)
+    lengths.update(t, mbk::select_bodies(bodies, style), mbk::kDefaultLengthFraction, style);
+  const double scale = style.scale[GlyphQuantity::kVelocity];
+  EXPECT_TRUE(std::isfinite(scale) && scale > 0) << scale;
+  int velocity_arrows = 0;
+  for (const mbk::GlyphArrow& a : mbk::make_glyphs(bodies, style).arrows)
+    velocity_arrows += a.quantity == GlyphQuantity::kVelocity;
+  EXPECT_EQ(velocity_arrows, 39);
 }
 
 }  // namespace
