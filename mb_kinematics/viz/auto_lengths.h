@@ -3,8 +3,10 @@
 // robots of any size, angular and linear quantities alike. The robot's size is the diagonal of
 // the box around the joint points O_k and mass centers G_k drawn (its largest over the last
 // kAutoWindow seconds); a quantity's range is a robust running maximum of its largest value per
-// message (their kAutoQuantile quantile over the last kAutoWindow seconds), so that a few
-// messages' spikes (an estimator's outliers) do not shrink every other arrow; arrows above that
+// message (their kAutoQuantile quantile over the last kAutoWindow seconds), so that messages'
+// spikes (an estimator's outliers: on motion capture, finite differences of light distal
+// segments spike in many messages) do not shrink every other arrow, and a robot that stops after
+// a fast motion has its arrows back at full length kAutoWindow seconds later; arrows above that
 // range are drawn at most kAutoCap times the longest length. The longest length is never below
 // what the glyphs' own sizes need to show (auto_longest): a robot drawn a few centimetres large
 // (the first Max Bodies of many bodies close together) would otherwise hide its arrows inside
@@ -22,8 +24,8 @@
 namespace mbk {
 
 constexpr double kDefaultLengthFraction = 0.4;  // the longest arrow, a fraction of the size
-constexpr double kAutoWindow = 5;               // s of messages the ranges look back
-constexpr double kAutoQuantile = 0.9;           // of each message's largest value, in the window
+constexpr double kAutoWindow = 2;               // s of messages the ranges look back
+constexpr double kAutoQuantile = 0.75;          // of each message's largest value, in the window
 constexpr double kAutoCap = 2;                  // arrows at most this times the longest length
 constexpr double kPointRobotSize = 1;           // m: the size of a robot whose box is a point
 constexpr double kMinLongestRadii = 3;  // the longest arrow, at least this many sphere/arc radii
