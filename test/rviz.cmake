@@ -78,8 +78,8 @@ mbk_rviz_moving_test(rviz_moving_base LAUNCH=moving_base.launch EXPECT_FRAME=odo
 # Arrow lengths on robots of different sizes (doc/rviz.md#arrow-lengths): Solo 12 (0.58 m, the
 # box around its joint points and mass centers) and Baxter (2.58 m). After 12 s of motion, over
 # 12 screenshots, the longest velocity and acceleration arrows are 0.16 to 0.6 of the robot's size
-# on screen (test/rviz/arrow_lengths.py; measured 0.24 to 0.29 on Solo 12, 0.39 and 0.42 on
-# Baxter). With 0.3 m for every robot's longest arrow, Baxter's were 0.10 and 0.14.
+# on screen (test/rviz/arrow_lengths.py; measured over 3 runs 0.21 to 0.32 on Solo 12, 0.32 to 0.59
+# on Baxter). With 0.3 m for every robot's longest arrow, Baxter's were 0.10 and 0.14.
 foreach(robot solo12:base_link baxter:base)
   string(REPLACE ":" ";" robot ${robot})
   list(GET robot 0 name)
