@@ -41,6 +41,11 @@ target_compile_definitions(kinematics_markers_test PRIVATE MBK_SOURCE_DIR="${PRO
 catkin_add_gtest(glyph_limits_test test/viz/glyph_limits_test.cc)
 target_link_libraries(glyph_limits_test mbk_viz gtest_main)
 
+# Its auto lengths on two robots of test/robots/ (ROS-free).
+catkin_add_gtest(auto_lengths_test test/viz/auto_lengths_test.cc)
+target_link_libraries(auto_lengths_test mbk_viz mbk_io mbk_core gtest_main)
+target_compile_definitions(auto_lengths_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+
 # The rviz display's legend: its colors named (no master needed).
 catkin_add_gtest(legend_test test/viz/legend_test.cc)
 target_link_libraries(legend_test mbk_viz gtest_main)
@@ -107,7 +112,7 @@ mbk_test_compile(mbk_ros_test_headers joint_state_input_test node_input_test
   kinematics_markers_test glyph_limits_test legend_test node_test pairing_test rsp_compare_test
   markers_test hostile_test frame_prefix_test system_test base_odometry_test reload_test
   two_robots_test missing_test deep_partials_test bvh_launch_test real_robots_test
-  nodelet_load_test bag_test output_file_test)
+  nodelet_load_test bag_test output_file_test auto_lengths_test)
 
 # scripts/node_load.sh end to end on its own master (port 11523), the node and transport_floor
 # (MBK_WORKSPACE: test/tests.cmake).

@@ -75,3 +75,28 @@ mbk_rviz_moving_test(rviz_moving_walk LAUNCH=bvh.launch
 # Frame), so after 20 s the robot is still in the middle of the view.
 mbk_rviz_moving_test(rviz_moving_base LAUNCH=moving_base.launch EXPECT_FRAME=odom
   EXPECT_FOLLOW=base_link)
+# Arrow lengths on robots of different sizes (doc/rviz.md#arrow-lengths): Solo 12 (0.58 m, the
+# box around its joint points and mass centers) and Baxter (2.58 m). After 12 s of motion, over
+# 12 screenshots, the longest velocity and acceleration arrows are 0.16 to 0.6 of the robot's size
+# on screen (test/rviz/arrow_lengths.py; measured over 3 runs 0.21 to 0.32 on Solo 12, 0.32 to 0.59
+# on Baxter). With 0.3 m for every robot's longest arrow, Baxter's were 0.10 and 0.14.
+foreach(robot solo12:base_link baxter:base)
+  string(REPLACE ":" ";" robot ${robot})
+  list(GET robot 0 name)
+  list(GET robot 1 frame)
+  mbk_rviz_robot_test(rviz_arrows_${name} ${name} ${frame} 240 SHOT_NAME=rviz_arrows_${name}
+    SETTLE=12 TIMEOUT=40 ARROW_FRACTION=0.16,0.6)
+endforeach()
+
+# The display's Legend in a real rviz (test/rviz/legend_reset_test.cc): shown at start and again
+# after each of rviz's resets (a change of the Fixed Frame, the Reset button), which clear a
+# display's statuses; each row fits the Displays panel whole.
+catkin_add_executable_with_gtest(legend_reset_test test/rviz/legend_reset_test.cc)
+target_include_directories(legend_reset_test SYSTEM PRIVATE ${rviz_INCLUDE_DIRS})
+target_compile_definitions(legend_reset_test PRIVATE QT_NO_KEYWORDS)
+target_link_libraries(legend_reset_test ${rviz_LIBRARIES} Qt5::Widgets ${catkin_LIBRARIES})
+add_dependencies(legend_reset_test mbk_rviz)
+add_test(NAME rviz_legend_reset
+  COMMAND ${CATKIN_DEVEL_PREFIX}/env.sh ${PROJECT_SOURCE_DIR}/test/rviz/legend_reset_test.sh
+    $<TARGET_FILE:legend_reset_test>)
+set_tests_properties(rviz_legend_reset PROPERTIES TIMEOUT 60)

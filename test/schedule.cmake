@@ -32,7 +32,7 @@ endfunction()
 mbk_test_cost("^fuzz_smoke$" 400)  # the harnesses' clang build, then the runs
 mbk_test_cost("^doc_pages$" 150)
 mbk_test_cost("^python_batch$" 150)
-mbk_test_cost("^rviz_moving_" 25)
+mbk_test_cost("^rviz_moving_|^rviz_arrows_" 25)
 mbk_test_cost("rostest_test_ros_hostile\\.test$" 24)
 mbk_test_cost("rostest_test_ros_missing\\.test$" 21)
 mbk_test_cost("rostest_test_ros_base_odometry\\.test$" 20)

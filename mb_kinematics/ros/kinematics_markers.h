@@ -13,7 +13,6 @@
 namespace mbk_ros {
 
 // The picture's vocabulary, in the namespace of its ROS users.
-using mbk::AutoScale;
 using mbk::GlyphArc;
 using mbk::GlyphArrow;
 using mbk::GlyphQuantity;

@@ -69,12 +69,16 @@ BodyKinematicsDisplay::BodyKinematicsDisplay() {
     makeQuantityProperties(q, qcolor(d.color[q]), d.scale[q], units[q]);
   auto_scale_ = new rviz::BoolProperty(
       "Auto Scale", true,
-      "Scale each quantity so that its largest vector is Auto Length long (the Scale "
-      "properties are then not used).",
+      "Scale each quantity so that its longest arrow (its largest value over the last seconds, "
+      "robustly) is Length Fraction of the robot's size (the Scale properties are then not "
+      "used).",
       this, SLOT(updateStyle()));
-  auto_length_ = new rviz::FloatProperty("Auto Length", 0.3, "Length (m) of the largest vector.",
-                                         auto_scale_, SLOT(updateStyle()), this);
-  auto_length_->setMin(0);
+  length_fraction_ = new rviz::FloatProperty(
+      "Length Fraction", mbk::kDefaultLengthFraction,
+      "Length of each quantity's longest arrow, as a fraction of the robot's size (the diagonal "
+      "of the box around its joint points and mass centers).",
+      auto_scale_, SLOT(updateStyle()), this);
+  length_fraction_->setMin(0);
   mass_centers_ = new rviz::BoolProperty("Mass Centers", true, "A sphere at each mass center.",
                                          this, SLOT(updateStyle()));
   mass_center_color_ =
@@ -238,6 +242,7 @@ void BodyKinematicsDisplay::reset() {
   visuals_.clear();
   pending_.clear();
   system_visual_.reset();
+  auto_lengths_ = mbk::AutoLengths();
   showLegend();
 }
 
@@ -291,7 +296,10 @@ void BodyKinematicsDisplay::frameCamera(const std::vector<mbk::GlyphBody>& drawn
   if (!view || box.isEmpty() ||
       !context_->getFrameManager()->transform(header, pose(box.center()), center, orientation))
     return;
-  const double radius = 0.5 * box.diagonal().norm() + auto_length_->getFloat();
+  const double size = mbk::robot_size(drawn);
+  const double radius = 0.5 * size + mbk::auto_longest(length_fraction_->getFloat(),
+                                                       size > 0 ? size : mbk::kPointRobotSize,
+                                                       style_);
   const double half_fov = 0.5 * view->getCamera()->getFOVy().valueRadians();
   rviz::Property* target = view->subProp("Target Frame");  // Orbit and the other tracking views
   const std::string follow = followFrame(msg, target->getValue().toString());
@@ -354,20 +362,22 @@ void BodyKinematicsDisplay::updateStyle() {
   style_.skeleton_color = rgba(skeleton_color_->getColor());
   style_.width = width_->getFloat();
   style_.arc_radius = arc_radius_->getFloat();
+  style_.max_length = mbk::kMaxGlyphDistance;  // autoScale's when on
   style_.min_mass_fraction = min_mass_fraction_->getFloat();
   style_.max_bodies = static_cast<size_t>(std::max(0, max_bodies_->getInt()));
   showLegend();
 }
 
-// The status panel's legend, a row per color ("Legend: cyan", "velocity of G_k (m/s)"): which
-// color is which quantity, as the properties set them. Two quantities of one color share a row.
+// The status panel's legend, a row per color named by it ("cyan", "velocity of G_k, m/s"):
+// which color is which quantity, as the properties set them; names this short show whole in the
+// Displays panel's name column at a status row's depth. Two quantities of one color share a row.
 void BodyKinematicsDisplay::showLegend() {
   for (const QString& name : legend_rows_) deleteStatus(name);
   legend_rows_.clear();
   std::map<QString, QString> rows;
   for (const std::string& entry : mbk::glyph_legend(style_)) {
     const std::size_t colon = entry.find(": ");
-    QString& text = rows["Legend: " + QString::fromStdString(entry.substr(0, colon))];
+    QString& text = rows[QString::fromStdString(entry.substr(0, colon))];
     text += (text.isEmpty() ? "" : "; ") + QString::fromStdString(entry.substr(colon + 2));
   }
   if (rows.empty()) rows["Legend"] = "nothing shown";
@@ -396,10 +406,9 @@ void BodyKinematicsDisplay::updateHistoryLength() {
   visuals_.rset_capacity(history_length_->getInt());
 }
 
-void BodyKinematicsDisplay::autoScale(const mbk::BodySelection& drawn) {
-  if (!auto_scale_->getBool()) return;
-  for (int q = 0; q < mbk::GlyphQuantity::kCount; ++q)
-    style_.scale[q] = auto_scales_[q].update(mbk::max_norm(drawn, q), auto_length_->getFloat());
+void BodyKinematicsDisplay::autoScale(double time, const mbk::BodySelection& drawn) {
+  if (auto_scale_->getBool())
+    auto_lengths_.update(time, drawn, length_fraction_->getFloat(), style_);
 }
 
 namespace {
@@ -474,7 +483,7 @@ void BodyKinematicsDisplay::draw(const mb_kinematics_msgs::BodyKinematicsArray& 
     frameCamera(drawn.drawn(), msg);
     framed_ = true;
   }
-  autoScale(drawn);
+  autoScale(msg.header.stamp.toSec(), drawn);
   const mbk::Glyphs glyphs = mbk::make_glyphs(drawn, style_);
   reportSkipped(glyphs);
   const mbk::Vec3<double> anchor = mbk::glyph_anchor(glyphs);

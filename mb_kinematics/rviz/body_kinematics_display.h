@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "mb_kinematics/viz/auto_lengths.h"
 #include "mb_kinematics/viz/glyphs.h"
 #endif
 
@@ -74,7 +75,8 @@ class BodyKinematicsDisplay
   void processMessage(const mb_kinematics_msgs::BodyKinematicsArray::ConstPtr& msg) override;
   void draw(const mb_kinematics_msgs::BodyKinematicsArray& msg);
   void makeQuantityProperties(int q, const QColor& color, double scale, const QString& unit);
-  void autoScale(const mbk::BodySelection& drawn);
+  // Auto Scale: the scales of the message stamped `time` (s), mbk::AutoLengths' rule.
+  void autoScale(double time, const mbk::BodySelection& drawn);
   void reportSkipped(const mbk::Glyphs& glyphs);  // bodies left out, a status per reason
   void reportLeftOut(const char* status, size_t count, const QString& what);
   void showLegend();
@@ -98,7 +100,7 @@ class BodyKinematicsDisplay
 
   std::array<QuantityProperties, mbk::GlyphQuantity::kCount> quantity_;
   rviz::BoolProperty *auto_scale_, *mass_centers_, *skeleton_;
-  rviz::FloatProperty *auto_length_, *alpha_, *width_, *arc_radius_, *sphere_radius_;
+  rviz::FloatProperty *length_fraction_, *alpha_, *width_, *arc_radius_, *sphere_radius_;
   rviz::ColorProperty *mass_center_color_, *skeleton_color_;
   rviz::StringProperty *filter_, *exclude_, *robot_description_;
   rviz::FloatProperty* min_mass_fraction_;
@@ -113,7 +115,7 @@ class BodyKinematicsDisplay
 
   mbk::GlyphStyle style_;
   bool filter_ok_ = true;
-  std::array<mbk::AutoScale, mbk::GlyphQuantity::kCount> auto_scales_;
+  mbk::AutoLengths auto_lengths_;
   boost::circular_buffer<std::shared_ptr<BodyKinematicsVisual>> visuals_;
   std::vector<mb_kinematics_msgs::BodyKinematicsArray::ConstPtr> pending_;
 

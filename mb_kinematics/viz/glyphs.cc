@@ -21,7 +21,8 @@ bool near(const GlyphBody& b) {
          b.mass_center.lpNorm<Eigen::Infinity>() <= kMaxGlyphDistance;
 }
 
-// A 3/4 arc about the arrow's axis, centred half-way along it, turning the right-hand way.
+// A 3/4 arc about the arrow's axis, centred half-way along it, turning the right-hand way; its
+// radius grows with the arrow up to the style's (a short arrow does not wear a large arc).
 GlyphArc make_arc(int q, const Vec3<double>& start, const Vec3<double>& v, double length,
                   const GlyphStyle& style) {
   GlyphArc arc;
@@ -29,7 +30,7 @@ GlyphArc make_arc(int q, const Vec3<double>& start, const Vec3<double>& v, doubl
   const Vec3<double> n = v.normalized();
   const Vec3<double> u = n.unitOrthogonal(), w = n.cross(u);
   const Vec3<double> center = start + 0.5 * length * n;
-  const double r = style.arc_radius;
+  const double r = std::min(style.arc_radius, length / 3);
   for (int i = 0; i <= kArcSegments; ++i) {
     const double t = kArcSweep * i / kArcSegments;
     arc.points.push_back(center + r * (std::cos(t) * u + std::sin(t) * w));
@@ -45,8 +46,9 @@ void add_vectors(const GlyphBody& b, const GlyphStyle& style, Glyphs& out) {
   for (int q = 0; q < GlyphQuantity::kCount; ++q) {
     if (!style.show[q]) continue;
     const Vec3<double>& v = b.vectors[q];
-    const double length = style.scale[q] * v.norm();
-    if (!(length >= style.min_length && length <= kMaxGlyphDistance)) continue;
+    const double scaled = style.scale[q] * v.norm();
+    if (!(scaled >= style.min_length && scaled <= kMaxGlyphDistance)) continue;
+    const double length = std::min(scaled, style.max_length);
     out.arrows.push_back({q, g, length * v.normalized()});
     if (q == GlyphQuantity::kOmega || q == GlyphQuantity::kAlpha)
       out.arcs.push_back(make_arc(q, g, v, length, style));
@@ -152,11 +154,6 @@ double max_norm(const BodySelection& selection, int q) {
 
 double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, int q) {
   return max_norm(select_bodies(bodies, style), q);
-}
-
-double AutoScale::update(double max, double length, double decay) {
-  max_ = std::max(max, max_ * decay);
-  return max_ > 0 ? length / max_ : 1.0;
 }
 
 Glyphs make_glyphs(const BodySelection& selection, const GlyphStyle& style) {

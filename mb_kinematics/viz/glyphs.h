@@ -55,9 +55,10 @@ struct GlyphStyle {
   Rgba skeleton_color{0.85f, 0.85f, 0.85f, 1.0f};
   bool mass_centers = true, skeleton = false;
   double width = 0.012;          // arrow shaft diameter (m); heads, arcs and lines follow it
-  double arc_radius = 0.05;      // m
+  double arc_radius = 0.05;      // m, the largest (an arc's is at most its arrow's length / 3)
   double sphere_radius = 0.035;  // m
   double min_length = 1e-3;      // arrows shorter than this (m) are left out
+  double max_length = kMaxGlyphDistance;  // longer arrows are drawn this long (m), their way
   BodyFilter filter;             // bodies drawn by name (the default: names without "__")
   // Bodies lighter than this fraction of the heaviest body (of those with a
   // known mass) are left out (sensor frames,
@@ -148,16 +149,6 @@ double max_norm(const std::vector<GlyphBody>& bodies, const GlyphStyle& style, i
 // min_mass_fraction of the heaviest body. Says nothing of non-finite values, distance or
 // max_bodies.
 std::vector<char> selected_bodies(const std::vector<GlyphBody>& bodies, const GlyphStyle& style);
-
-// Auto-scale: the largest vector of a quantity drawn `length` m long; the maximum follows rises
-// at once and falls slowly (by `decay` per message), so arrows do not flicker.
-class AutoScale {
- public:
-  double update(double max, double length, double decay = 0.98);
-
- private:
-  double max_ = 0;
-};
 
 // The glyphs of the bodies drawn, with the selection's report.
 Glyphs make_glyphs(const BodySelection& selection, const GlyphStyle& style);

@@ -20,7 +20,7 @@ std::string color_name(const Rgba& color);
 constexpr std::size_t kMaxLegendText = 21;
 
 // An entry per shown quantity and for the mass centers, e.g. "cyan: velocity of G_k, m/s";
-// the rviz display shows each as a status row (name "Legend: cyan", the text after ": ").
+// the rviz display shows each as a status row (name "cyan", the text after ": ").
 std::vector<std::string> glyph_legend(const GlyphStyle& style);
 
 }  // namespace mbk

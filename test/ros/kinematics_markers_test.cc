@@ -70,14 +70,18 @@ TEST(KinematicsMarkers, ArrowsAtMassCentersScaledPerQuantity) {
   EXPECT_TRUE(g.skipped.empty());
 }
 
+// An arc's radius is Arc Radius, or its arrow's length / 3 when that is less.
 TEST(KinematicsMarkers, ArcsTurnTheRightHandWay) {
   GlyphStyle style;
   const Glyphs g = mbk_ros::make_glyphs(message(), style);
+  auto radius = [&](const mbk_ros::GlyphArrow& a) {
+    return std::min(style.arc_radius, a.vector.norm() / 3);
+  };
   for (const auto& arc : g.arcs) {
     const mbk_ros::GlyphArrow* arrow = nullptr;  // the arrow the arc is centred on
     for (const auto& a : g.arrows) {
       const Vec3<double> d = arc.points[0] - (a.start + 0.5 * a.vector);
-      if (a.quantity == arc.quantity && std::abs(d.norm() - style.arc_radius) < 1e-12 &&
+      if (a.quantity == arc.quantity && std::abs(d.norm() - radius(a)) < 1e-12 &&
           std::abs(d.dot(a.vector.normalized())) < 1e-12)
         arrow = &a;
     }
@@ -87,7 +91,7 @@ TEST(KinematicsMarkers, ArcsTurnTheRightHandWay) {
     ASSERT_GT(arc.points.size(), 10u);
     for (size_t i = 0; i + 1 < arc.points.size(); ++i) {
       const Vec3<double> p = arc.points[i] - c, q = arc.points[i + 1] - c;
-      EXPECT_NEAR(p.norm(), style.arc_radius, 1e-12);
+      EXPECT_NEAR(p.norm(), radius(*arrow), 1e-12);
       EXPECT_NEAR(p.dot(n), 0, 1e-12);
       EXPECT_GT(p.cross(q).dot(n), 0) << "arc " << arc.quantity << " turns the wrong way";
     }
@@ -257,13 +261,6 @@ TEST(KinematicsMarkers, PandaDefaultLeavesOutFingersAndFrames) {
 TEST(KinematicsMarkers, UrdfMassesRefuseWhatIsNotAUrdf) {
   EXPECT_THROW(mbk::urdf_link_masses("<robot name='r'><link></robot>"), std::runtime_error);
   EXPECT_EQ(mbk::urdf_link_masses("<robot name='r'><link name='a'/></robot>").at("a"), 0.0);
-}
-
-TEST(KinematicsMarkers, AutoScaleFollowsTheLargestVector) {
-  mbk_ros::AutoScale s;
-  EXPECT_DOUBLE_EQ(s.update(2.0, 0.3), 0.15);
-  EXPECT_DOUBLE_EQ(s.update(4.0, 0.3), 0.075);       // rises at once
-  EXPECT_DOUBLE_EQ(s.update(1.0, 0.3), 0.3 / 3.92);  // falls slowly
 }
 
 }  // namespace

@@ -12,7 +12,10 @@
 # the centroid of the arrows' pixels must be within TOL pixels of X,Y in each direction (the
 # camera frames the robot); SHOT_NAME: the name of the kept files; SETTLE=S: screenshots count
 # only after S s of motion (the camera must keep the moving robot in view; TIMEOUT counts on);
-# EXPECT_FOLLOW=FRAME: the display must have made the view follow FRAME.
+# EXPECT_FOLLOW=FRAME: the display must have made the view follow FRAME; ARROW_FRACTION=LO,HI: over
+# SHOTS (default 12) more screenshots 1 s apart, the longest velocity and acceleration arrows must
+# be LO to HI of the robot's size on screen (test/rviz/arrow_lengths.py, in the 3D view: the 75th
+# percentile over the screenshots).
 # Hostile runs (LAUNCH=hostile_bodies.launch, test/rviz.cmake): READY: the launch's line that says
 # it is up (default: the node's "coordinates, max depth"); MAX_RSS_MB: rviz may hold at most this
 # resident memory at the end; SIGINT_WITHIN=S: rviz must exit within S s of a SIGINT; HOLD=S:
@@ -89,6 +92,21 @@ if [ -n "${EXPECT_FOLLOW:-}" ]; then
     fail "the display did not make the view follow '$EXPECT_FOLLOW'"
 fi
 $passed || fail "the display's arrow colors did not show${REGION:+ in $REGION}${CENTER:+ centred on $CENTER} within $TIMEOUT s${SETTLE:+ (from $SETTLE s on)}"
+if [ -n "${ARROW_FRACTION:-}" ]; then
+  shots=()
+  for i in $(seq "${SHOTS:-12}"); do
+    sleep 1
+    import -window root "$tmp/arrows_$i.png" 2>/dev/null && shots+=("$tmp/arrows_$i.png")
+  done
+  [ ${#shots[@]} -gt 0 ] || fail "no screenshot for the arrow lengths"
+  /usr/bin/python3 "$src/test/rviz/arrow_lengths.py" "${shots[@]}" --region 364,62,1264,802 \
+    --check "$ARROW_FRACTION" >"$tmp/arrows"
+  fits=$?
+  cp "${shots[-1]}" "$out_dir/${SHOT_NAME}_arrows.png"
+  echo "longest arrow per color over ${#shots[@]} screenshots (px; fraction of the robot's size on screen):"
+  sed 's/^/  /' "$tmp/arrows"
+  [ "$fits" = 0 ] || fail "the longest velocity or acceleration arrow is not $ARROW_FRACTION of the robot's size on screen"
+fi
 # rviz's CPU time (user + system, clock ticks) and the wall time, for its CPU % over HOLD.
 cpu_ticks() { awk '{ print $14 + $15 }' "/proc/$rviz_pid/stat"; }
 if [ "$HOLD" -gt 0 ]; then

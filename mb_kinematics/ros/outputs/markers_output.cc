@@ -20,8 +20,7 @@ void MarkersOutput::publish(const ros::Time& stamp, const Sample& sample) {
   }
   mbk_messages::fill_body_kinematics(stamp, sample.data, kinematics_);
   const mbk::BodySelection drawn = mbk::select_bodies(kinematics_, {}, style_);
-  for (int q = 0; q < GlyphQuantity::kCount; ++q)
-    style_.scale[q] = scales_[q].update(mbk::max_norm(drawn, q), 0.3);
+  lengths_.update(stamp.toSec(), drawn, mbk::kDefaultLengthFraction, style_);
   const Glyphs glyphs = mbk::make_glyphs(drawn, style_);
   if (glyphs.over_max_bodies > 0)
     ROS_WARN_STREAM_ONCE("body_kinematics/markers: " << glyphs.over_max_bodies

@@ -1,16 +1,17 @@
 // body_kinematics/markers (~publish_markers): the rviz display's picture of body_kinematics as
-// a visualization_msgs/MarkerArray (kinematics_markers.h), each quantity auto-scaled so that
-// its largest arrow is 0.3 m long.
+// a visualization_msgs/MarkerArray (kinematics_markers.h), each quantity auto-scaled as the
+// display's default (mb_kinematics/viz/auto_lengths.h): its longest arrow 0.4 of the robot's
+// size.
 #pragma once
 
 #include <mb_kinematics_msgs/BodyKinematicsArray.h>
 #include <ros/publisher.h>
 
-#include <array>
 #include <vector>
 
 #include "mb_kinematics/ros/kinematics_markers.h"
 #include "mb_kinematics/ros/outputs/output.h"
+#include "mb_kinematics/viz/auto_lengths.h"
 
 namespace mbk_ros {
 
@@ -27,7 +28,7 @@ class MarkersOutput : public Output {
   mb_kinematics_msgs::BodyKinematicsArray kinematics_;  // what the picture shows
   std::vector<char> shown_;  // per body: in kinematics_ (~missing_coordinates skip)
   GlyphStyle style_;
-  std::array<AutoScale, GlyphQuantity::kCount> scales_;
+  mbk::AutoLengths lengths_;
 };
 
 }  // namespace mbk_ros
