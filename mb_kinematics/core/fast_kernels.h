@@ -8,7 +8,8 @@
 // about x, y or z turns two columns of S0J (a ball or free joint's angles three column turns, in
 // any Euler order), C_k and the axis are folded into constants at load (P0 + cos q P1 + sin q P2),
 // and S0J w_k is a column of S0J, so the update does neither joint_motion nor SJK (doc/speed.md,
-// "How the update is fast"). On AVX2 CPUs the revolute rows run fast_kernels_avx2.h's copy.
+// "How the update is fast"). On AVX2 CPUs the revolute joints' terms are four-lane vectors
+// (fast_kernels_avx2.h), and body_update runs on them.
 // How they are checked: test/core/generic_kernel_test.cc runs every joint type, with and without
 // offset rotations, through its kernel and through the generic path
 // (make_body_steps(model, KernelChoice::kGenericOnly)), at every level and in both formulations,
@@ -44,7 +45,7 @@ void motion_step(const Model& model, int k, const StateView<S>& state, const Dat
   const S* y = L == Level::kPose ? nullptr : state.y + body.v_index;
   JointMotion<S> m;
   joint_motion(body.joint, model.speeds, state.q + body.q_index, y, m);
-  JointTerms<S> t;
+  JointTerms<Vec3<S>> t;
   motion_pose(b, k, m, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (L != Level::kPose) {
@@ -275,7 +276,7 @@ MBK_FLATTEN void pose_step(const Model& model, int k, const S* q, const JointMot
 // Revolute joint about coordinate axis I, C_k = I: w_k = e_I q', so S0J w_k = column I of S0J q'.
 template <Level L, int I, typename S>
 void axis_terms(const BodyStep& b, int k, const StateView<S>& state, const DataView<S>& data,
-                JointTerms<S>& t) {
+                JointTerms<Vec3<S>>& t) {
   axis_pose<I>(b, k, data, t.d);
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (L != Level::kPose) t.w = s0j.col(I) * state.y[b.v_index];
@@ -285,7 +286,7 @@ void axis_terms(const BodyStep& b, int k, const StateView<S>& state, const DataV
 // Revolute joint about any axis: S0J w_k = S0J (C_k a) q'.
 template <Level L, typename S>
 void revolute_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                    const DataView<S>& data, JointTerms<S>& t) {
+                    const DataView<S>& data, JointTerms<Vec3<S>>& t) {
   revolute_pose(model, b, k, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
@@ -297,7 +298,7 @@ void revolute_terms(const Model& model, const BodyStep& b, int k, const StateVie
 // Prismatic joint: s_k' = (C_k a) q'.
 template <Level L, bool kRotated, typename S>
 void prismatic_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                     const DataView<S>& data, JointTerms<S>& t) {
+                     const DataView<S>& data, JointTerms<Vec3<S>>& t) {
   rigid_pose<kRotated, true>(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
     const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
@@ -314,7 +315,7 @@ void prismatic_terms(const Model& model, const BodyStep& b, int k, const StateVi
 // (proper Euler); linear in M, as C_k (angular_dot) carries them in joint_motion. Each sign is a
 // constant: a sum or a difference.
 template <Level L, EulerOrder O, typename S>
-void angles_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>& t) {
+void angles_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<Vec3<S>>& t) {
   constexpr EulerTurns o = euler_turns(O);
   const Vec3<S> u0 = f.m.col(o.a1), u1 = f.ma.col(o.a2), u2 = f.mab.col(o.a3);
   t.w = u0 * y[0] + u1 * y[1] + u2 * y[2];
@@ -335,7 +336,7 @@ void angles_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<S>&
 // ball_pose.
 template <Level L, JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
 void ball_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                const DataView<S>& data, JointTerms<S>& t) {
+                const DataView<S>& data, JointTerms<Vec3<S>>& t) {
   BallFrame<S> f;
   ball_pose<K, O>(model, b, k, state.q, data, f, t.d);
   if constexpr (L != Level::kPose) {
@@ -380,7 +381,7 @@ Vec3<S> ball_column(const BodyStep& b, SpeedKind speeds, const BallFrame<S>& f, 
 // Planar joint (planar_pose): w = (S0J C a) gamma', s_k' = S0J (C u1 x' + C u2 y').
 template <Level L, typename S>
 void planar_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                  const DataView<S>& data, JointTerms<S>& t) {
+                  const DataView<S>& data, JointTerms<Vec3<S>>& t) {
   planar_pose(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
     const Mat3<S>& s0j = data.rotation[b.lower];
@@ -408,7 +409,7 @@ template <Level L, bool kAvx2, typename S>
 void kernel_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                  const DataView<S>& data) {
   constexpr bool kVec4 = kAvx2 && L != Level::kPose;
-  JointTerms<S> t;
+  JointTerms<Vec3<S>> t;
   switch (b.kernel) {
     case JointKernel::kRevoluteX:
       if constexpr (kVec4) return v4::revolute_axis_step<L, 0>(b, k, state, data);

@@ -12,44 +12,14 @@
 // forward_kinematics runs on this machine), against the generic path (motion_step).
 #pragma once
 
-#include "mb_kinematics/core/kinematics_views.h"  // first: MBK_AVX2_DISPATCH, which vec4.h reads
+#include "mb_kinematics/core/body_update.h"  // first: MBK_AVX2_DISPATCH, which vec4.h reads
 #include "mb_kinematics/core/vec4.h"
 
 namespace mbk {
 namespace detail {
 
 #ifdef MBK_VEC4
-template <>
-struct CrossProduct<v4::V4> {  // fixed_point's (point_kinematics.h)
-  MBK_AVX2 static void of(const v4::V4& a, const v4::V4& b, v4::V4& out) { out = v4::cross(a, b); }
-};
-
-// The revolute kernels of the AVX2 copy on four-lane vectors (vec4.h): the sums of the kernels
-// of fast_kernels.h, term for term and in the same order, so the same results bit for bit, in fewer
-// instructions.
 namespace v4 {
-
-// A body's omega and alpha, in registers.
-struct BodySpin {
-  V4 omega{}, alpha{};
-};
-
-// A point's motion (PointArrays, kinematics_views.h) in registers, and back.
-template <Level L>
-MBK_AVX2 PointMotion<V4> load_point(const PointArrays<double>& arrays, int k) {
-  PointMotion<V4> m;
-  m.position = load3(arrays.position[k].data());
-  if constexpr (L != Level::kPose) m.velocity = load3(arrays.velocity[k].data());
-  if constexpr (L == Level::kAcceleration) m.acceleration = load3(arrays.acceleration[k].data());
-  return m;
-}
-
-template <Level L>
-MBK_AVX2 void store_point(const PointArrays<double>& arrays, int k, const PointMotion<V4>& m) {
-  store3(arrays.position[k].data(), m.position);
-  if constexpr (L != Level::kPose) store3(arrays.velocity[k].data(), m.velocity);
-  if constexpr (L == Level::kAcceleration) store3(arrays.acceleration[k].data(), m.acceleration);
-}
 
 // m v for a constant v of the given shape (times_constant, kinematics_views.h).
 MBK_AVX2 inline V4 times_constant(const Cols& m, const Vec3<double>& v, VectorShape shape) {
@@ -69,50 +39,43 @@ MBK_AVX2 inline V4 times_constant(const Cols& m, const Vec3<double>& v, VectorSh
   return times(m, v.data());
 }
 
-// omega_k = omega_j + w (eq. 4.4.6), alpha_k = alpha_j + wd + omega_j x w (eq. 4.5.1), with
-// w = u q', wd = u q'': u = S0J w_k / q', the joint's axis in R; v: the joint's speed.
-template <Level L>
-MBK_AVX2 BodySpin turned_spin(const BodySpin& j, V4 u, const StateView<double>& state, int v) {
-  BodySpin k;
-  if constexpr (L != Level::kPose) {
-    const V4 w = u * splat_at(state.y + v);
-    k.omega = j.omega + w;
-    if constexpr (L == Level::kAcceleration)
-      k.alpha = (j.alpha + u * splat_at(state.yd + v)) + cross(j.omega, w);
+}  // namespace v4
+
+template <>
+struct CrossProduct<v4::V4> {  // fixed_point's (point_kinematics.h) and body_update's
+  MBK_AVX2 static void of(const v4::V4& a, const v4::V4& b, v4::V4& out) { out = v4::cross(a, b); }
+};
+
+template <>
+struct Lanes<v4::V4> {  // body_update's registers: a 3-vector in four lanes, S0K in three
+  using S = double;
+  using Rotation = v4::Cols;
+  MBK_AVX2 static void load(const Vec3<double>& x, v4::V4& out) { out = v4::load3(x.data()); }
+  MBK_AVX2 static void store(Vec3<double>& x, const v4::V4& v) { v4::store3(x.data(), v); }
+  // rho = S0K r_k from the registers, or from Data where body_update reorthonormalized S0K.
+  MBK_AVX2 static void mass_center_offset(const BodyStep& b, const Mat3<double>& s0k,
+                                          const v4::Cols& turned, v4::V4& rho) {
+    rho = v4::times_constant(b.reorthonormalize ? v4::load_cols(s0k) : turned, b.mass_center,
+                             b.mass_center_shape);
   }
-  return k;
-}
+};
 
-// Stores S0K (reorthonormalized at its depth, body_update) and returns S0K r_k.
-MBK_AVX2 inline V4 store_rotation(const BodyStep& b, int k, const Cols& s0k,
-                                  const DataView<double>& data) {
-  store_cols(data.rotation[k], s0k);
-  if (!b.reorthonormalize) return times_constant(s0k, b.mass_center, b.mass_center_shape);
-  reorthonormalize(data.rotation[k]);
-  return times_constant(load_cols(data.rotation[k]), b.mass_center, b.mass_center_shape);
-}
+// The revolute kernels' terms on four-lane vectors (vec4.h): the sums of the kernels of
+// fast_kernels.h, term for term and in the same order, so the same results bit for bit, in fewer
+// instructions; body_update then runs on them.
+namespace v4 {
 
-// Body k of a revolute joint (body_update): S0K, its spin from u (turned_spin), O_k = O_j +
-// S0J q_k and G_k = O_k + S0K r_k with their motion (fixed_point; r = 0 leaves the point's).
+// w = u q', wd = u q'' with u = S0J w_k / q', the joint's axis in R; S0K stored and kept in t,
+// d = S0J q_k.
 template <Level L>
-MBK_AVX2 void revolute_update(const BodyStep& b, int k, const Cols& s0j, const Cols& s0k, V4 u,
-                              const StateView<double>& state, const DataView<double>& data) {
-  const int j = b.lower;
-  const V4 rho = store_rotation(b, k, s0k, data);
-  BodySpin spin_j;
-  if constexpr (L != Level::kPose) spin_j.omega = load3(data.omega[j].data());
-  if constexpr (L == Level::kAcceleration) spin_j.alpha = load3(data.alpha[j].data());
-  const BodySpin spin_k = turned_spin<L>(spin_j, u, state, b.v_index);
-  if constexpr (L != Level::kPose) store3(data.omega[k].data(), spin_k.omega);
-  if constexpr (L == Level::kAcceleration) store3(data.alpha[k].data(), spin_k.alpha);
-  PointMotion<V4> point = load_point<L>(data.origins(), j);
-  if (b.offset_shape != VectorShape::kZero)  // fixed_point: point_kinematics.h
-    point = fixed_point<L>(point, spin_j.omega, spin_j.alpha,
-                           times_constant(s0j, b.offset, b.offset_shape));
-  store_point<L>(data.origins(), k, point);
-  if (b.mass_center_shape != VectorShape::kZero)
-    point = fixed_point<L>(point, spin_k.omega, spin_k.alpha, rho);
-  store_point<L>(data.centers(), k, point);
+MBK_AVX2 void turn_terms(const BodyStep& b, int k, const Cols& s0j, const Cols& s0k, V4 u,
+                         const StateView<double>& state, const DataView<double>& data,
+                         JointTerms<V4>& t) {
+  store_cols(data.rotation[k], s0k);
+  t.s0k = s0k;
+  t.d = times_constant(s0j, b.offset, b.offset_shape);
+  if constexpr (L != Level::kPose) t.w = u * splat_at(state.y + b.v_index);
+  if constexpr (L == Level::kAcceleration) t.wd = u * splat_at(state.yd + b.v_index);
 }
 
 // S0K = S0J SJK for a turn (cos, sin at c, s) about coordinate axis I (turn_columns).
@@ -140,24 +103,28 @@ MBK_AVX2 inline Cols folded_turn(const PaddedMat3* p, const Cols& s0j, const dou
           folded_column(p, 2, s0j, cos, sin)};
 }
 
-// Revolute joint about coordinate axis I, C_k = I: u = column I of S0J.
+// Revolute joint about coordinate axis I, C_k = I: u = column I of S0J (axis_terms).
 template <Level L, int I>
 MBK_AVX2 void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
                                  const DataView<double>& data) {
   const Cols s0j = load_cols(data.rotation[b.lower]);
-  const Cols s0k = turn_columns<I>(s0j, data.cosine + b.angle, data.sine + b.angle);
-  revolute_update<L>(b, k, s0j, s0k, col<I>(s0j), state, data);
+  JointTerms<V4> t;
+  turn_terms<L>(b, k, s0j, turn_columns<I>(s0j, data.cosine + b.angle, data.sine + b.angle),
+                col<I>(s0j), state, data, t);
+  body_update<L, JointMoves::kTurns>(b, k, t, data);
 }
 
-// Revolute joint about any axis with any C_k: u = S0J (C_k a).
+// Revolute joint about any axis with any C_k: u = S0J (C_k a) (revolute_terms).
 template <Level L>
 MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
                             const StateView<double>& state, const DataView<double>& data) {
   const Cols s0j = load_cols(data.rotation[b.lower]);
-  const Cols s0k = folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
-                               data.sine + b.angle);
-  const V4 u = L == Level::kPose ? V4{} : times(s0j, b.axis.data());
-  revolute_update<L>(b, k, s0j, s0k, u, state, data);
+  JointTerms<V4> t;
+  turn_terms<L>(b, k, s0j,
+                folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
+                            data.sine + b.angle),
+                L == Level::kPose ? V4{} : times(s0j, b.axis.data()), state, data, t);
+  body_update<L, JointMoves::kTurns>(b, k, t, data);
 }
 
 }  // namespace v4

@@ -51,23 +51,6 @@ struct PointArrays {
   Vec3<S>*position, *velocity, *acceleration;
 };
 
-// The point of body k at level L (the parts L leaves out are neither read nor written).
-template <Level L, typename S>
-PointMotion<Vec3<S>> point_at(const PointArrays<S>& arrays, int k) {
-  PointMotion<Vec3<S>> m;
-  m.position = arrays.position[k];
-  if constexpr (L != Level::kPose) m.velocity = arrays.velocity[k];
-  if constexpr (L == Level::kAcceleration) m.acceleration = arrays.acceleration[k];
-  return m;
-}
-
-template <Level L, typename S>
-void set_point(const PointArrays<S>& arrays, int k, const PointMotion<Vec3<S>>& m) {
-  arrays.position[k] = m.position;
-  if constexpr (L != Level::kPose) arrays.velocity[k] = m.velocity;
-  if constexpr (L == Level::kAcceleration) arrays.acceleration[k] = m.acceleration;
-}
-
 // Data's arrays as raw pointers, and the state's: the loop over bodies keeps them in registers
 // instead of reloading each std::vector's and Eigen vector's start at every access.
 template <typename S>
