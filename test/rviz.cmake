@@ -77,15 +77,16 @@ mbk_rviz_moving_test(rviz_moving_base LAUNCH=moving_base.launch EXPECT_FRAME=odo
   EXPECT_FOLLOW=base_link)
 # Arrow lengths on robots of different sizes (doc/rviz.md#arrow-lengths): Solo 12 (0.58 m, the
 # box around its joint points and mass centers) and Baxter (2.58 m). After 12 s of motion, over
-# 12 screenshots, the longest velocity and acceleration arrows are 0.16 to 0.6 of the robot's size
-# on screen (test/rviz/arrow_lengths.py; measured over 3 runs 0.21 to 0.32 on Solo 12, 0.32 to 0.59
-# on Baxter). With 0.3 m for every robot's longest arrow, Baxter's were 0.10 and 0.14.
+# 12 screenshots, the longest velocity and acceleration arrows are 0.16 to 0.8 of the robot's size
+# on screen (test/rviz/arrow_lengths.py): at most the rule's cap, 2 L = 0.8 s (doc/rviz.md), at
+# least 0.4 of L. Measured over 3 runs 0.21 to 0.32 on Solo 12, 0.32 to 0.59 on Baxter; with 0.3 m
+# for every robot's longest arrow, Baxter's were 0.10 and 0.14.
 foreach(robot solo12:base_link baxter:base)
   string(REPLACE ":" ";" robot ${robot})
   list(GET robot 0 name)
   list(GET robot 1 frame)
   mbk_rviz_robot_test(rviz_arrows_${name} ${name} ${frame} 240 SHOT_NAME=rviz_arrows_${name}
-    SETTLE=12 TIMEOUT=40 ARROW_FRACTION=0.16,0.6)
+    SETTLE=12 TIMEOUT=40 ARROW_FRACTION=0.16,0.8)
 endforeach()
 
 # The display's Legend in a real rviz (test/rviz/legend_reset_test.cc): shown at start and again
