@@ -39,6 +39,12 @@ struct JointTerms {
 // What a joint's terms hold: whether it turns body k (w, wd) and translates it (sd, sdd).
 enum class JointMoves { kNone, kTurns, kTranslates, kTurnsAndTranslates };
 
+// The coordinate axis (0, 1, 2: x, y, z) of a revolute joint's kernel kRevoluteX, Y or Z.
+template <JointKernel K>
+constexpr int kAxis = K == JointKernel::kRevoluteX   ? 0
+                      : K == JointKernel::kRevoluteY ? 1
+                                                     : 2;
+
 // The point of body k (origin or mass center) at level L from Data, and back (the parts L leaves
 // out are neither read nor written).
 template <Level L, typename V, typename S>

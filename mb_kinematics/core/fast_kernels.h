@@ -1,8 +1,8 @@
 // The joints' kernels of the recursion: for body k, its joint's share (JointTerms: S0K into
 // data.rotation[k], d, S0J w_k, S0J w_k', S0J s_k', S0J s_k''), then the one-body update
-// (body_update.h). kernel_step is the one table over JointKernel (chosen for each body when the
-// model is finalized: body_step.cc kernel_of); pose_step gives the pose part of each to
-// partial_velocity_kinematics.
+// (body_update.h). with_kernel is the one table over JointKernel (chosen for each body when the
+// model is finalized: body_step.cc kernel_of), joint_terms each kernel's terms; kernel_step runs
+// them for the recursion, pose_step gives their pose part to partial_velocity_kinematics.
 // The generic kernel (motion_step) takes any joint's terms from joint_motion's SJK, W_r and s_k
 // and full 3x3 products. The fast ones get the same terms with fewer operations: a revolute joint
 // about x, y or z turns two columns of S0J (a ball or free joint's angles three column turns, in
@@ -19,6 +19,7 @@
 
 #include <array>
 #include <limits>
+#include <type_traits>
 
 #include "mb_kinematics/core/body_update.h"
 #include "mb_kinematics/core/fast_kernels_avx2.h"
@@ -193,84 +194,11 @@ constexpr bool kFolded = std::numeric_limits<S>::digits <= std::numeric_limits<d
 
 // Whether body k's kernel runs through joint_motion.
 template <typename S>
-bool uses_joint_motion(JointKernel kernel) {
+constexpr bool uses_joint_motion(JointKernel kernel) {
   return kernel == JointKernel::kGeneric ||
          (!kFolded<S> &&
           (kernel == JointKernel::kRevolute || kernel == JointKernel::kPrismaticRotated ||
            kernel == JointKernel::kPlanar));
-}
-
-// Orientation, origin and mass center of body k by its kernel (m: its joint_motion, used when
-// uses_joint_motion); also returns d = S0J (q_k + s_k), rho = S0K r_k and, for ball and free
-// joints, their frames f. For partial_velocity_kinematics.
-template <typename S>
-MBK_FLATTEN void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m,
-                           Data<S>& all, Vec3<S>& d, Vec3<S>& rho, BallFrame<S>& f) {
-  const DataView<S> data(all);
-  const BodyStep& b = model.steps.steps[k];
-  if (uses_joint_motion<S>(b.kernel)) {
-    motion_pose(b, k, m, data, d);
-  } else {
-    switch (b.kernel) {
-      case JointKernel::kRevoluteX:
-        axis_pose<0>(b, k, data, d);
-        break;
-      case JointKernel::kRevoluteY:
-        axis_pose<1>(b, k, data, d);
-        break;
-      case JointKernel::kRevoluteZ:
-        axis_pose<2>(b, k, data, d);
-        break;
-      case JointKernel::kRevolute:
-        revolute_pose(model, b, k, data, d);
-        break;
-      case JointKernel::kPrismatic:
-        rigid_pose<false, true>(model, b, k, q, data, d);
-        break;
-      case JointKernel::kPrismaticRotated:
-        rigid_pose<true, true>(model, b, k, q, data, d);
-        break;
-      case JointKernel::kFixed:
-        rigid_pose<false, false>(model, b, k, q, data, d);
-        break;
-      case JointKernel::kFixedRotated:
-        rigid_pose<true, false>(model, b, k, q, data, d);
-        break;
-      case JointKernel::kBall123:
-        ball_pose<JointKernel::kBall123>(model, b, k, q, data, f, d);
-        break;
-      case JointKernel::kBallEuler:
-        ball_pose<JointKernel::kBallEuler>(model, b, k, q, data, f, d);
-        break;
-      case JointKernel::kFree123:
-        ball_pose<JointKernel::kFree123>(model, b, k, q, data, f, d);
-        break;
-      case JointKernel::kFreeEuler:
-        ball_pose<JointKernel::kFreeEuler>(model, b, k, q, data, f, d);
-        break;
-      case JointKernel::kBallOrdered:
-        with_euler_order(b.euler_order, [&](auto o) {
-          ball_pose<JointKernel::kBall123, decltype(o)::value>(model, b, k, q, data, f, d);
-        });
-        break;
-      case JointKernel::kFreeOrdered:
-        with_euler_order(b.euler_order, [&](auto o) {
-          ball_pose<JointKernel::kFree123, decltype(o)::value>(model, b, k, q, data, f, d);
-        });
-        break;
-      case JointKernel::kPlanar:
-        planar_pose(model, b, k, q, data, d);
-        break;
-      case JointKernel::kGeneric:  // uses_joint_motion
-        motion_pose(b, k, m, data, d);
-        break;
-    }
-  }
-  const int j = b.lower;
-  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
-  data.origin[k] = data.origin[j] + d;                                         // eq. 4.6.2
-  rho = times_constant(data.rotation[k], b.mass_center, b.mass_center_shape);  // S0K r_k
-  data.mass_center[k] = data.origin[k] + rho;
 }
 
 // Revolute joint about coordinate axis I, C_k = I: w_k = e_I q', so S0J w_k = column I of S0J q'.
@@ -336,8 +264,7 @@ void angles_rates(const BallFrame<S>& f, const S* y, const S* yd, JointTerms<Vec
 // ball_pose.
 template <Level L, JointKernel K, EulerOrder O = EulerOrder::kXYZ, typename S>
 void ball_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
-                const DataView<S>& data, JointTerms<Vec3<S>>& t) {
-  BallFrame<S> f;
+                const DataView<S>& data, JointTerms<Vec3<S>>& t, BallFrame<S>& f) {
   ball_pose<K, O>(model, b, k, state.q, data, f, t.d);
   if constexpr (L != Level::kPose) {
     constexpr int kAngular = kFreeJoint<K> ? 3 : 0;  // the angles' first coordinate and speed
@@ -399,77 +326,138 @@ void planar_terms(const Model& model, const BodyStep& b, int k, const StateView<
   }
 }
 
-// Body k by its joint's kernel (body_step.h JointKernel), one row per kernel: the joint's terms,
-// then body_update with what the joint moves. The generic kernel (motion_step) serves kGeneric
-// and, in reference builds (not kFolded), the joints whose constants are folded in double.
-// kAvx2: in the AVX2 copy (double only), whose revolute rows at velocity and acceleration level
-// run on four-lane vectors (fast_kernels_avx2.h); the pose alone (two columns turned, a column or
-// two added) takes fewer instructions in Eigen's code, which GCC vectorizes itself.
+// The one table over JointKernel (body_step.h): f(kernel) with body k's kernel as a compile-time
+// constant (std::integral_constant), for the recursion (kernel_step) and the partial velocities'
+// pose (pose_step).
+template <typename F>
+void with_kernel(JointKernel kernel, F&& f) {
+  using K = JointKernel;
+  switch (kernel) {
+    case K::kFixed:
+      return f(std::integral_constant<K, K::kFixed>{});
+    case K::kFixedRotated:
+      return f(std::integral_constant<K, K::kFixedRotated>{});
+    case K::kRevoluteX:
+      return f(std::integral_constant<K, K::kRevoluteX>{});
+    case K::kRevoluteY:
+      return f(std::integral_constant<K, K::kRevoluteY>{});
+    case K::kRevoluteZ:
+      return f(std::integral_constant<K, K::kRevoluteZ>{});
+    case K::kRevolute:
+      return f(std::integral_constant<K, K::kRevolute>{});
+    case K::kPrismatic:
+      return f(std::integral_constant<K, K::kPrismatic>{});
+    case K::kPrismaticRotated:
+      return f(std::integral_constant<K, K::kPrismaticRotated>{});
+    case K::kBall123:
+      return f(std::integral_constant<K, K::kBall123>{});
+    case K::kBallEuler:
+      return f(std::integral_constant<K, K::kBallEuler>{});
+    case K::kFree123:
+      return f(std::integral_constant<K, K::kFree123>{});
+    case K::kFreeEuler:
+      return f(std::integral_constant<K, K::kFreeEuler>{});
+    case K::kBallOrdered:
+      return f(std::integral_constant<K, K::kBallOrdered>{});
+    case K::kFreeOrdered:
+      return f(std::integral_constant<K, K::kFreeOrdered>{});
+    case K::kPlanar:
+      return f(std::integral_constant<K, K::kPlanar>{});
+    case K::kGeneric:
+      return f(std::integral_constant<K, K::kGeneric>{});
+  }
+}
+
+// What the joint of kernel K moves (body_update).
+template <JointKernel K>
+constexpr JointMoves kMoves =
+    K == JointKernel::kFixed || K == JointKernel::kFixedRotated           ? JointMoves::kNone
+    : K == JointKernel::kPrismatic || K == JointKernel::kPrismaticRotated ? JointMoves::kTranslates
+    : kFreeJoint<K> || K == JointKernel::kPlanar ? JointMoves::kTurnsAndTranslates
+                                                 : JointMoves::kTurns;
+
+// The joint's terms of body k by its kernel K (not the generic one: motion_step), at level L; at
+// Level::kPose, S0K and d alone (and a ball or free joint's frames f).
+template <Level L, JointKernel K, typename S>
+void joint_terms(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
+                 const DataView<S>& data, JointTerms<Vec3<S>>& t, BallFrame<S>& f) {
+  using JK = JointKernel;
+  if constexpr (K == JK::kRevoluteX || K == JK::kRevoluteY || K == JK::kRevoluteZ)
+    axis_terms<L, kAxis<K>>(b, k, state, data, t);
+  else if constexpr (K == JK::kRevolute)
+    revolute_terms<L>(model, b, k, state, data, t);
+  else if constexpr (K == JK::kPrismatic || K == JK::kPrismaticRotated)
+    prismatic_terms<L, K == JK::kPrismaticRotated>(model, b, k, state, data, t);
+  else if constexpr (K == JK::kFixed || K == JK::kFixedRotated)
+    rigid_pose<K == JK::kFixedRotated, false>(model, b, k, state.q, data, t.d);
+  else if constexpr (K == JK::kBallOrdered || K == JK::kFreeOrdered)
+    with_euler_order(b.euler_order, [&](auto o) {
+      constexpr JK kAngles123 = K == JK::kBallOrdered ? JK::kBall123 : JK::kFree123;
+      ball_terms<L, kAngles123, decltype(o)::value>(model, b, k, state, data, t, f);
+    });
+  else if constexpr (K == JK::kPlanar)
+    planar_terms<L>(model, b, k, state, data, t);
+  else
+    ball_terms<L, K>(model, b, k, state, data, t, f);
+}
+
+// Whether the AVX2 copy runs kernel K at level L on four-lane vectors (fast_kernels_avx2.h): the
+// revolute joints at velocity and acceleration level, and at every level those about any axis; the
+// pose alone of one about a coordinate axis (two columns turned, a column or two added) takes fewer
+// instructions in Eigen's code, which GCC vectorizes itself.
+template <Level L, JointKernel K>
+constexpr bool kFourLanes = K == JointKernel::kRevolute ||
+                            (L != Level::kPose &&
+                             (K == JointKernel::kRevoluteX || K == JointKernel::kRevoluteY ||
+                              K == JointKernel::kRevoluteZ));
+
+// Body k by its joint's kernel: the joint's terms, then body_update with what the joint moves. The
+// generic kernel (motion_step) serves kGeneric and, in reference builds (not kFolded), the joints
+// whose constants are folded in double. kAvx2: the AVX2 copy (double only), whose revolute joints'
+// terms are four-lane vectors (kFourLanes).
 template <Level L, bool kAvx2, typename S>
 void kernel_step(const Model& model, const BodyStep& b, int k, const StateView<S>& state,
                  const DataView<S>& data) {
-  constexpr bool kVec4 = kAvx2 && L != Level::kPose;
-  JointTerms<Vec3<S>> t;
-  switch (b.kernel) {
-    case JointKernel::kRevoluteX:
-      if constexpr (kVec4) return v4::revolute_axis_step<L, 0>(b, k, state, data);
-      axis_terms<L, 0>(b, k, state, data, t);
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kRevoluteY:
-      if constexpr (kVec4) return v4::revolute_axis_step<L, 1>(b, k, state, data);
-      axis_terms<L, 1>(b, k, state, data, t);
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kRevoluteZ:
-      if constexpr (kVec4) return v4::revolute_axis_step<L, 2>(b, k, state, data);
-      axis_terms<L, 2>(b, k, state, data, t);
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kRevolute:
-      if constexpr (kAvx2) return v4::revolute_step<L>(model, b, k, state, data);
-      if constexpr (!kFolded<S>) return motion_step<L>(model, k, state, data);
-      revolute_terms<L>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kPrismatic:
-      prismatic_terms<L, false>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTranslates>(b, k, t, data);
-    case JointKernel::kPrismaticRotated:
-      if constexpr (!kFolded<S>) return motion_step<L>(model, k, state, data);
-      prismatic_terms<L, true>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTranslates>(b, k, t, data);
-    case JointKernel::kFixed:
-      rigid_pose<false, false>(model, b, k, state.q, data, t.d);
-      return body_update<L, JointMoves::kNone>(b, k, t, data);
-    case JointKernel::kFixedRotated:
-      rigid_pose<true, false>(model, b, k, state.q, data, t.d);
-      return body_update<L, JointMoves::kNone>(b, k, t, data);
-    case JointKernel::kBall123:
-      ball_terms<L, JointKernel::kBall123>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kBallEuler:
-      ball_terms<L, JointKernel::kBallEuler>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kFree123:
-      ball_terms<L, JointKernel::kFree123>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
-    case JointKernel::kFreeEuler:
-      ball_terms<L, JointKernel::kFreeEuler>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
-    case JointKernel::kBallOrdered:
-      with_euler_order(b.euler_order, [&](auto o) {
-        ball_terms<L, JointKernel::kBall123, decltype(o)::value>(model, b, k, state, data, t);
-      });
-      return body_update<L, JointMoves::kTurns>(b, k, t, data);
-    case JointKernel::kFreeOrdered:
-      with_euler_order(b.euler_order, [&](auto o) {
-        ball_terms<L, JointKernel::kFree123, decltype(o)::value>(model, b, k, state, data, t);
-      });
-      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
-    case JointKernel::kPlanar:
-      if constexpr (!kFolded<S>) return motion_step<L>(model, k, state, data);
-      planar_terms<L>(model, b, k, state, data, t);
-      return body_update<L, JointMoves::kTurnsAndTranslates>(b, k, t, data);
-    case JointKernel::kGeneric:
-      return motion_step<L>(model, k, state, data);
+  with_kernel(b.kernel, [&](auto kernel) {
+    constexpr JointKernel K = decltype(kernel)::value;
+    if constexpr (uses_joint_motion<S>(K)) {
+      motion_step<L>(model, k, state, data);
+    } else if constexpr (kAvx2 && kFourLanes<L, K>) {
+      v4::revolute_step<L, K>(model, b, k, state, data);
+    } else {
+      JointTerms<Vec3<S>> t;
+      BallFrame<S> f;
+      joint_terms<L, K>(model, b, k, state, data, t, f);
+      body_update<L, kMoves<K>>(b, k, t, data);
+    }
+  });
+}
+
+// Orientation, origin and mass center of body k by its kernel (m: its joint_motion, used when
+// uses_joint_motion); also returns d = S0J (q_k + s_k), rho = S0K r_k and, for ball and free
+// joints, their frames f. For partial_velocity_kinematics: the pose part of kernel_step's.
+template <typename S>
+MBK_FLATTEN void pose_step(const Model& model, int k, const S* q, const JointMotion<S>& m,
+                           Data<S>& all, Vec3<S>& d, Vec3<S>& rho, BallFrame<S>& f) {
+  const DataView<S> data(all);
+  const BodyStep& b = model.steps.steps[k];
+  if (uses_joint_motion<S>(b.kernel)) {
+    motion_pose(b, k, m, data, d);
+  } else {
+    with_kernel(b.kernel, [&](auto kernel) {
+      constexpr JointKernel K = decltype(kernel)::value;
+      if constexpr (!uses_joint_motion<S>(K)) {
+        JointTerms<Vec3<S>> t;
+        joint_terms<Level::kPose, K>(model, b, k, StateView<S>(q), data, t, f);
+        d = t.d;
+      }
+    });
   }
+  const int j = b.lower;
+  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);
+  data.origin[k] = data.origin[j] + d;                                         // eq. 4.6.2
+  rho = times_constant(data.rotation[k], b.mass_center, b.mass_center_shape);  // S0K r_k
+  data.mass_center[k] = data.origin[k] + rho;
 }
 
 }  // namespace detail

@@ -103,37 +103,31 @@ MBK_AVX2 inline Cols folded_turn(const PaddedMat3* p, const Cols& s0j, const dou
           folded_column(p, 2, s0j, cos, sin)};
 }
 
-// Revolute joint about coordinate axis I, C_k = I: u = column I of S0J (axis_terms).
-template <Level L, int I>
-MBK_AVX2 void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
-                                 const DataView<double>& data) {
-  const Cols s0j = load_cols(data.rotation[b.lower]);
-  JointTerms<V4> t;
-  turn_terms<L>(b, k, s0j, turn_columns<I>(s0j, data.cosine + b.angle, data.sine + b.angle),
-                col<I>(s0j), state, data, t);
-  body_update<L, JointMoves::kTurns>(b, k, t, data);
-}
-
-// Revolute joint about any axis with any C_k: u = S0J (C_k a) (revolute_terms).
-template <Level L>
+// Body k of a revolute joint (kernel K; fast_kernels.h kFourLanes): about coordinate axis I with
+// C_k = I, S0K turns two columns of S0J and u is column I of S0J (axis_terms); about any axis
+// with any C_k, S0K = S0J (P0 + c P1 + s P2) and u = S0J (C_k a) (revolute_terms). Then
+// body_update on the four-lane terms.
+template <Level L, JointKernel K>
 MBK_AVX2 void revolute_step(const Model& model, const BodyStep& b, int k,
                             const StateView<double>& state, const DataView<double>& data) {
   const Cols s0j = load_cols(data.rotation[b.lower]);
   JointTerms<V4> t;
-  turn_terms<L>(b, k, s0j,
-                folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
-                            data.sine + b.angle),
-                L == Level::kPose ? V4{} : times(s0j, b.axis.data()), state, data, t);
+  if constexpr (K == JointKernel::kRevolute)
+    turn_terms<L>(b, k, s0j,
+                  folded_turn(model.steps.padded.data() + b.matrices, s0j, data.cosine + b.angle,
+                              data.sine + b.angle),
+                  L == Level::kPose ? V4{} : times(s0j, b.axis.data()), state, data, t);
+  else
+    turn_terms<L>(b, k, s0j,
+                  turn_columns<kAxis<K>>(s0j, data.cosine + b.angle, data.sine + b.angle),
+                  col<kAxis<K>>(s0j), state, data, t);
   body_update<L, JointMoves::kTurns>(b, k, t, data);
 }
 
 }  // namespace v4
 #else
 namespace v4 {  // declared only: without MBK_VEC4 no copy with kAvx2 is instantiated
-template <Level L, int I>
-void revolute_axis_step(const BodyStep& b, int k, const StateView<double>& state,
-                        const DataView<double>& data);
-template <Level L>
+template <Level L, JointKernel K>
 void revolute_step(const Model& model, const BodyStep& b, int k, const StateView<double>& state,
                    const DataView<double>& data);
 }  // namespace v4

@@ -83,6 +83,7 @@ struct StateView {
   const S *q, *y, *yd;
   explicit StateView(const JointState<S>& s)
       : q(s.position.data()), y(s.velocity.data()), yd(s.acceleration.data()) {}
+  explicit StateView(const S* positions) : q(positions), y(nullptr), yd(nullptr) {}  // poses
 };
 
 // The sines and cosines of every angle the kernels turn by (BodySteps::angles), together in one
