@@ -72,31 +72,46 @@ symbolizer=/usr/lib/llvm-14/bin/llvm-symbolizer
 [ -x "$symbolizer" ] && export ASAN_SYMBOLIZER_PATH=$symbolizer
 export LSAN_OPTIONS=suppressions=$MBK_SRC/test/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-set +e
-failed=0
-for h in "${harnesses[@]}"; do
-  corpus="$dir/corpus/$h"  # grows from run to run; the smoke starts from the seeds each time
-  limits=(-max_total_time="$seconds")
+# fuzz_one HARNESS: runs it, writes its line of the summary to <fuzz dir>/HARNESS.result; fails
+# on a finding.
+fuzz_one() {
+  local h=$1 corpus="$dir/corpus/$1"  # grows from run to run; the smoke starts from the seeds
+  local limits=(-max_total_time="$seconds") log="$dir/$1.log" status runs
   if [ "$mode" = smoke ]; then
     corpus="$dir/smoke/$h" && rm -rf "$corpus"
     limits+=(-seed=1 -runs="$(smoke_runs "$h")")
   fi
   mkdir -p "$corpus"
   seeds "$h" | xargs -I{} cp {} "$corpus/"
-  regressions="$MBK_SRC/test/fuzz/regressions/$h"
+  local regressions="$MBK_SRC/test/fuzz/regressions/$h"
   [ -d "$regressions" ] && cp "$regressions"/* "$corpus/" 2>/dev/null
-  log="$dir/$h.log"
   "$dir/build/${h}_fuzzer" "$corpus" "${limits[@]}" -timeout=10 -rss_limit_mb=2048 \
     -max_len=65536 -print_final_stats=1 -artifact_prefix="$dir/findings/$h-" >"$log" 2>&1
   status=$?
   runs=$(awk '/stat::number_of_executed_units/ {print $2}' "$log")
   if [ "$status" -ne 0 ]; then
-    failed=$((failed + 1))
-    echo "fuzz $h: FINDING after ${runs:-?} runs (exit $status): $(grep -m1 -E 'ERROR|finding|deadly|timeout|leak' "$log")"
-    echo "  log: $log; input: $(ls -t "$dir"/findings/"$h"-* 2>/dev/null | head -n 1)"
-  else
-    echo "fuzz $h: ${runs:-?} runs, corpus $(ls "$corpus" | wc -l) inputs, no finding"
+    { echo "fuzz $h: FINDING after ${runs:-?} runs (exit $status): $(grep -m1 -E 'ERROR|finding|deadly|timeout|leak' "$log")"
+      echo "  log: $log; input: $(ls -t "$dir"/findings/"$h"-* 2>/dev/null | head -n 1)"
+    } >"$dir/$h.result"
+    return 1
   fi
+  echo "fuzz $h: ${runs:-?} runs, corpus $(ls "$corpus" | wc -l) inputs, no finding" >"$dir/$h.result"
+}
+
+set +e
+# Two harnesses at a time (each is one process on one core; MBK_FUZZ_JOBS to change), their
+# lines in the harnesses' order.
+jobs_at_once=${MBK_FUZZ_JOBS:-2}
+for h in "${harnesses[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs_at_once" ]; do wait -n; done
+  rm -f "$dir/$h.result"
+  fuzz_one "$h" &
+done
+wait
+failed=0
+for h in "${harnesses[@]}"; do
+  cat "$dir/$h.result" 2>/dev/null || echo "fuzz $h: no result (see $dir/$h.log)"
+  grep -q "no finding$" "$dir/$h.result" 2>/dev/null || failed=$((failed + 1))
 done
 # The Python module's out= arrays (test/fuzz/python_out_fuzz.py): a random search of its own on
 # the workspace's package (the module is not instrumented); the smoke a fixed seed and count.

@@ -21,7 +21,7 @@ constexpr double kStepTop = 0.9;  // of C x Nyquist: the highest cutoff of the b
 constexpr int kFitPoints = 10;    // residuals on the noise line's range
 constexpr int kBisections = 30;   // of log(cutoff), for R(cutoff) = intercept
 constexpr double kDecay = 12;     // responses counted over 12 / (1 - r) samples: r^d < 7e-6
-constexpr int kSeriesPerThread = 4;
+constexpr int kFilterSeriesPerThread = 4;
 
 // One pass in place over v[0..n), from the state zi * v[0] (forward) or zi * v[n - 1] (backward).
 void pass(const Butterworth2& f, double* v, int n, bool backward) {
@@ -428,7 +428,7 @@ void estimate_butterworth(const OfflineEstimator& e, const std::vector<double>& 
   const double dt = default_max_gap(t) / 5;
   if (!(dt > 0)) return;
   const Segments segments = find_segments(t, max_gap);
-  const int workers = std::max(1, std::min(threads, m / kSeriesPerThread));
+  const int workers = std::max(1, std::min(threads, m / kFilterSeriesPerThread));
   auto share = [&](int w) {
     for (int c = w; c < m; c += workers) estimate_series(e, t, segments, 1 / dt, x, ld, m, c, out);
   };

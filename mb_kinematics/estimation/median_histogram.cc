@@ -8,14 +8,14 @@ namespace mbk {
 namespace {
 
 constexpr int kShift = 52 - MedianHistogram::kMantissaBits;
-constexpr std::uint64_t kSign = std::uint64_t{1} << 63;
+constexpr std::uint64_t kSignBit = std::uint64_t{1} << 63;
 
 // The value's bits as an unsigned integer in the values' order (negatives reversed below the
 // positives).
 std::uint64_t ordered_bits(double value) {
   std::uint64_t bits;
   std::memcpy(&bits, &value, sizeof bits);
-  return bits & kSign ? ~bits : bits | kSign;
+  return bits & kSignBit ? ~bits : bits | kSignBit;
 }
 
 }  // namespace

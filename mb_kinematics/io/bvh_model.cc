@@ -21,7 +21,6 @@ namespace mbk {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kHumanHeight[2] = {0.5, 2.5};  // metres: outside, the scale is likely wrong
 
 [[noreturn]] void fail(const BvhFile& bvh, const BvhSegment& segment, const std::string& what) {
   throw std::invalid_argument(printable(bvh.path + ":" + std::to_string(segment.line) + ": " +

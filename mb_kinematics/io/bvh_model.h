@@ -29,6 +29,9 @@
 
 namespace mbk {
 
+// A standing human's height, metres: outside it, a recording's scale is likely wrong.
+inline constexpr double kHumanHeight[2] = {0.5, 2.5};
+
 struct BvhModelOptions {
   double scale = 1.0;        // metres per file unit (0.01 for centimetres, 0.0254 for inches)
   double body_mass = 0.0;    // kg; 0 = massless segments

@@ -13,7 +13,6 @@
 namespace mbk {
 namespace {
 
-constexpr double kHumanHeight[2] = {0.5, 2.5};         // metres
 constexpr double kMassCenterHeight[2] = {0.35, 0.75};  // of the height, above the lowest joint
 constexpr double kSpeedMismatch = 0.25;                // relative
 constexpr double kTravelling = 0.3;                    // m/s of the pelvis

@@ -18,7 +18,7 @@
 namespace mbk_ros {
 namespace {
 
-constexpr double kThrottle = 5.0;        // seconds between repeats of the estimating notice
+constexpr double kNoticeThrottle = 5.0;  // seconds between repeats of the estimating notice
 constexpr double kPairingPeriod = 0.05;  // seconds between looks for joint_accelerations publishers
 
 // The lower body arrays table has N columns and (max depth + 1) rows: logged whole up to this
@@ -253,7 +253,7 @@ void KinematicsNode::emit(const ros::Time& stamp, mbk::Level level, mbk::Level w
   if (!compute(level)) return;
   publish(stamp, sample, true);
   if (level < wanted)
-    ROS_INFO_STREAM_THROTTLE(kThrottle,
+    ROS_INFO_STREAM_THROTTLE(kNoticeThrottle,
                              "mb_kinematics: estimating derivatives, "
                              "velocities/accelerations follow after 3 samples");
   input_.tally().published(std::chrono::duration<double>(NodeInput::Clock::now() - start).count());
