@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 
 namespace mbk {
 
@@ -17,17 +19,42 @@ double auto_longest(double fraction, double size, const GlyphStyle& style) {
 }
 
 double RunningQuantile::update(double time, double value) {
-  if (!values_.empty() && time < values_.back().first) values_.clear();
+  if (std::isnan(value)) value = std::numeric_limits<double>::infinity();
+  if (!values_.empty() && time < values_.back().first) {
+    values_.clear();
+    low_.clear();
+    high_.clear();
+  }
   values_.emplace_back(time, value);
-  while (values_.size() > kMaxValues || values_.front().first < time - window_) values_.pop_front();
-  scratch_.clear();
-  for (const auto& v : values_) scratch_.push_back(v.second);
-  // The smallest value with at least `quantile` of them at or below it.
-  const size_t n = scratch_.size();
+  (low_.empty() || value <= *low_.rbegin() ? low_ : high_).insert(value);
+  while (values_.size() > kMaxValues || values_.front().first < time - window_) {
+    erase(values_.front().second);
+    values_.pop_front();
+  }
+  balance();
+  return *low_.rbegin();
+}
+
+// Removes one copy of `value` from the half that holds it.
+void RunningQuantile::erase(double value) {
+  std::multiset<double>& half = !low_.empty() && value <= *low_.rbegin() ? low_ : high_;
+  half.erase(half.find(value));
+}
+
+// Moves values between the halves until low_ holds the `at` + 1 smallest, where `at` is the
+// quantile's index in the sorted window.
+void RunningQuantile::balance() {
+  const size_t n = values_.size();
   const size_t at =
       std::min(n - 1, static_cast<size_t>(std::max(0.0, std::ceil(quantile_ * n) - 1)));
-  std::nth_element(scratch_.begin(), scratch_.begin() + at, scratch_.end());
-  return scratch_[at];
+  while (low_.size() > at + 1) {
+    high_.insert(high_.begin(), *low_.rbegin());
+    low_.erase(std::prev(low_.end()));
+  }
+  while (low_.size() < at + 1) {
+    low_.insert(low_.end(), *high_.begin());
+    high_.erase(high_.begin());
+  }
 }
 
 AutoLengths::AutoLengths()

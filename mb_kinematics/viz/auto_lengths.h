@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <deque>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -41,8 +42,10 @@ double robot_size(const std::vector<GlyphBody>& bodies);
 double auto_longest(double fraction, double size, const GlyphStyle& style);
 
 // The `quantile` (0..1; 1: the maximum) of the values of the last `window` seconds, a value per
-// time. A time before the previous one (a bag played again) starts over. At most kMaxValues
-// values are kept (the newest), whatever the rate (and for unstamped messages, all at time 0).
+// time: the smallest value with at least `quantile` of them at or below it. A time before the
+// previous one (a bag played again) starts over. At most kMaxValues values are kept (the
+// newest), whatever the rate (and for unstamped messages, all at time 0). NaN counts as +inf.
+// O(log n) an update: the window is kept split in two ordered halves at the quantile.
 class RunningQuantile {
  public:
   static constexpr size_t kMaxValues = 4096;
@@ -50,9 +53,12 @@ class RunningQuantile {
   double update(double time, double value);
 
  private:
+  void erase(double value);
+  void balance();
+
   double window_, quantile_;
   std::deque<std::pair<double, double>> values_;  // (time, value), oldest first
-  std::vector<double> scratch_;
+  std::multiset<double> low_, high_;  // the window's values up to the quantile's, and above
 };
 
 // The scales of the glyphs, message after message (time: the message's stamp, s).

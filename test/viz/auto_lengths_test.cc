@@ -14,7 +14,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mb_kinematics/core/kinematics.h"
@@ -281,6 +284,47 @@ TEST(AutoLengths, AnOverflowingNormLeavesTheOtherArrowsDrawn) {
   for (const mbk::GlyphArrow& a : mbk::make_glyphs(bodies, style).arrows)
     velocity_arrows += a.quantity == GlyphQuantity::kVelocity;
   EXPECT_EQ(velocity_arrows, 39);
+}
+
+// The quantile of a window, by partial sorting: the oracle of RunningQuantile.
+double sorted_quantile(std::vector<double> window, double quantile) {
+  const size_t n = window.size();
+  const auto at =
+      window.begin() + static_cast<std::ptrdiff_t>(std::min(
+                           n - 1, static_cast<size_t>(std::max(0.0, std::ceil(quantile * n) - 1))));
+  std::nth_element(window.begin(), at, window.end());
+  return *at;
+}
+
+// RunningQuantile equals the sorted window's quantile at every update: values with many ties
+// (a few distinct levels), windows that slide by time and by the kMaxValues cap, a time going
+// back (a bag played again: starts over), infinities and NaN (counted as +inf).
+TEST(RunningQuantile, EqualsTheSortedWindowAtEveryUpdate) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const double step : {0.002, 0.0002})  // the second fills the cap
+    for (const double quantile : {0.0, 0.5, 0.75, 1.0}) {
+      mbk::RunningQuantile running(2.0, quantile);
+      std::vector<std::pair<double, double>> window;
+      double time = 0;
+      for (int i = 0; i < 6000; ++i) {
+        const double u = unit(rng);
+        time = u < 0.0002 ? time - 1 : time + (u < 0.3 ? 0.0 : step * (0.2 + unit(rng)));
+        double value = std::floor(8 * unit(rng)) / 4;  // ties
+        if (u > 0.995) value = std::numeric_limits<double>::infinity();
+        if (u > 0.998) value = std::nan("");
+        if (!window.empty() && time < window.back().first) window.clear();
+        window.emplace_back(time,
+                            std::isnan(value) ? std::numeric_limits<double>::infinity() : value);
+        while (window.size() > mbk::RunningQuantile::kMaxValues ||
+               window.front().first < time - 2.0)
+          window.erase(window.begin());
+        std::vector<double> values;
+        for (const auto& v : window) values.push_back(v.second);
+        ASSERT_EQ(running.update(time, value), sorted_quantile(values, quantile))
+            << "quantile " << quantile << ", update " << i << ", " << values.size() << " values";
+      }
+    }
 }
 
 }  // namespace
