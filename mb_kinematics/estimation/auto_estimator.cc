@@ -446,8 +446,12 @@ OfflineReach AutoChoice::reach() const {
   };
   for (const std::vector<int>& c : choice)
     for (int v : c) add(candidates[v]);
-  for (int v : centred_choice)
-    if (v >= 0) add(centred_candidates[v]);
+  for (int v : centred_choice) {
+    if (v < 0) continue;
+    add(centred_candidates[v]);
+    // The next window, whose step gives the bias (centred_accelerations).
+    if (bias_growth(centred_candidates, v) > 0) add(centred_candidates[v + 1]);
+  }
   return out;
 }
 

@@ -56,7 +56,8 @@ struct AutoChoice {
   std::vector<double> noise;
   std::vector<int> choice[2], centred_choice;  // centred_choice -1: the first chain's alone
   std::vector<double> bias2[2], centred_bias2;
-  // How far the chosen windows reach (the estimating pass's reach).
+  // How far the chosen windows reach, with the next window of each centred choice that
+  // centred_accelerations steps to (the estimating pass's reach).
   OfflineReach reach() const;
 };
 
