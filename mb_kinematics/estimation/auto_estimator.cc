@@ -13,8 +13,16 @@ namespace {
 // A window is kept while the squared change of its estimates stays within this many times what
 // the noise explains.
 constexpr double kLepski = 2.0;
+// The same of the centred chain's long windows (auto_centred_candidates: 61 median intervals and
+// more): stricter, so that the chosen window's bias stays where it grows as bias_growth says
+// (further on, order 6's bias grows slower than L^6 and the bias taken from the next step would
+// be too small: 87 % of the accelerations covered by the 2-sigma bars at 1 kHz and 1e-2 rad in
+// test/estimation/auto_estimator_test.cc with kLepski).
+constexpr double kCentredLepski = 1.5;
 // At the ends and gaps, the accelerations' order at most.
 constexpr int kEndOrder = 4;
+// Away from them, the long windows' order (auto_centred_candidates).
+constexpr int kCentredOrder = 6, kCentredTail = 2;
 // The choice looks at every stride-th sample: n / kSelectionSamples, within [1, kMaxStride].
 constexpr int kSelectionSamples = 1000, kMaxStride = 8;
 // The estimating pass takes a thread more per this many samples at least, the choice pass per
@@ -128,17 +136,45 @@ void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vect
 // Lepski's choice per series: the longest window before the first whose estimates moved more
 // than the noise explains, sum_i (x_k,i - x_k-1,i)^2 <= kLepski sigma^2 sum_i |w_k,i - w_k-1,i|^2;
 // bias2: the squared bias per sample its last step showed beyond the noise (for the error bar).
+// centred: the centred chain's candidates, whose long windows (of another degree than the first
+// ones) take kCentredLepski.
 void choose(const Statistics& s, const std::vector<double>& sigma, std::vector<int>& choice,
-            std::vector<double>& bias2) {
+            std::vector<double>& bias2, const std::vector<OfflineEstimator>* centred = nullptr) {
   const int m = static_cast<int>(sigma.size()), kc = static_cast<int>(s.change.size());
   choice.assign(m, 0), bias2.assign(m, 0.0);
   for (int c = 0; c < m; ++c)
     for (int k = 1; k < kc; ++k) {
       const double moved = s.moved[k * m + c], explained = sigma[c] * sigma[c] * s.change[k];
-      if (!(moved <= kLepski * explained)) break;  // Lepski's test
+      const bool strict = centred && (*centred)[k].order != centred->front().order;
+      const double lepski = strict ? kCentredLepski : kLepski;
+      if (!(moved <= lepski * explained)) break;  // Lepski's test
       choice[c] = k;
       bias2[c] = s.count[k] > 0 ? std::max(0.0, moved - explained) / s.count[k] : 0.0;
     }
+}
+
+// Lepski's choice of the accelerations among the centred windows (choose's) and, where the
+// chosen window k and the next, k + 1, have one degree, k's squared bias per sample from that
+// step, the first it failed: its bias is b_k+1 - b_k = b_k bias_growth(k), so
+//   b_k^2 = (sum_i (x_k+1,i - x_k,i)^2 - sigma^2 sum_i |w_k+1,i - w_k,i|^2) / count / growth^2
+// (the mean: where the next window is not centred; each sample takes its own step,
+// centred_accelerations). The steps accepted before k mostly measure noise: the shorter
+// window's weights are the larger (|w''|^2 grows as L^-5), so their excess beyond the noise
+// overstates k's bias several times over (the 2-sigma bars of
+// test/estimation/auto_estimator_test.cc would cover 99 % of the accelerations).
+void choose_centred(const Statistics& s, const std::vector<double>& sigma,
+                    const std::vector<OfflineEstimator>& candidates, std::vector<int>& choice,
+                    std::vector<double>& bias2) {
+  choose(s, sigma, choice, bias2, &candidates);
+  const int m = static_cast<int>(sigma.size());
+  for (int c = 0; c < m; ++c) {
+    const int k = choice[c];
+    const double growth = bias_growth(candidates, k);
+    if (!(growth > 0) || s.count[k + 1] <= 0) continue;
+    const double moved = s.moved[(k + 1) * m + c],
+                 explained = sigma[c] * sigma[c] * s.change[k + 1];
+    bias2[c] = std::max(0.0, moved - explained) / s.count[k + 1] / (growth * growth);
+  }
 }
 
 // Every series' estimates of both derivatives at a sample from an AutoSampleWeights' windows (each
@@ -175,15 +211,48 @@ void final_estimate(const AutoSampleWeights& s, const SampleEstimates& e, int c,
   se = std::max(se, sigma * s.end_norm);
 }
 
-// Samples [begin, end)'s estimates of both derivatives with the chosen windows (in_use: their
-// indices): the weights of each window in use once per sample, for every series that uses it.
+// Sample i's accelerations where the window of the centred choice (centred_in_use: its indices)
+// and the next one are centred, in place of final_rows' (the weights of each such window once):
+// the standard error from the noise and the bias the sample's own step to the next window shows
+// beyond the noise, divided by bias_growth (choose_centred); where the chosen window is the
+// chain's last of its degree, the mean bias of its last accepted step.
+void centred_accelerations(const AutoChoice& chosen, const std::vector<int>& centred_in_use,
+                           const std::vector<double>& t, const Segments& segments, const double* x,
+                           int ld, int m, int i, AutoSampleWeights& w, SampleEstimates& estimates,
+                           AutoEstimate& out) {
+  for (const int k : centred_in_use) {
+    if (k < 0) continue;  // series of the first chain alone
+    w.load_centred(chosen.centred_candidates, t, segments, i, k);
+    if (!w.centred) continue;
+    apply_weights(w.w, x, ld, m, estimates.w[0].data(), estimates.w[1].data());
+    if (w.has_longer)  // the next window's estimates, in the `shorter` scratch
+      apply_weights(w.longer, x, ld, m, estimates.shorter[0].data(), estimates.shorter[1].data());
+    for (int c = 0; c < m; ++c) {
+      if (chosen.centred_choice[c] != k) continue;
+      const size_t at = static_cast<size_t>(i) * m + c;
+      const double sigma = chosen.noise[c], estimate = estimates.w[1][c];
+      double bias2 = chosen.centred_bias2[c];
+      if (w.has_longer) {
+        const double step = estimates.shorter[1][c] - estimate;
+        bias2 = std::max(0.0, step * step - sigma * sigma * w.step2_longer) / (w.growth * w.growth);
+      }
+      out.second[at] = estimate;
+      out.second_se[at] = std::sqrt(sigma * sigma * w.norm2_w[1] + bias2);
+    }
+  }
+}
+
+// Samples [begin, end)'s estimates of both derivatives with the chosen windows (in_use,
+// centred_in_use: their indices): the weights of each window in use once per sample, for every
+// series that uses it.
 void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
-                const std::vector<double>& t, const Segments& segments, const double* x, int ld,
-                int m, size_t begin, size_t end, AutoEstimate& out) {
+                const std::vector<int>& centred_in_use, const std::vector<double>& t,
+                const Segments& segments, const double* x, int ld, int m, size_t begin, size_t end,
+                AutoEstimate& out) {
   const std::vector<int>(&choice)[2] = chosen.choice;
   AutoSampleWeights both[2];  // this window's, and the one before in in_use (ascending)
   SampleEstimates estimates(m);
-  for (size_t i = begin; i < end; ++i)
+  for (size_t i = begin; i < end; ++i) {
     for (size_t u = 0; u < in_use.size(); ++u) {
       const int k = in_use[u];
       AutoSampleWeights &w = both[u % 2], &before = both[(u + 1) % 2];
@@ -203,6 +272,9 @@ void final_rows(const AutoChoice& chosen, const std::vector<int>& in_use,
                          out.second_se[at]);
       }
     }
+    centred_accelerations(chosen, centred_in_use, t, segments, x, ld, m, static_cast<int>(i),
+                          both[0], estimates, out);
+  }
 }
 
 // Every sample's estimates (final_rows), the samples shared out in runs among `threads` threads:
@@ -212,13 +284,18 @@ void final_pass(const AutoChoice& chosen, const std::vector<double>& t, const Se
   const size_t n = t.size(), size = n * m;
   out.first.assign(size, 0.0), out.second.assign(size, 0.0);
   out.first_se.assign(size, 0.0), out.second_se.assign(size, 0.0), out.valid.assign(size, 2);
+  auto distinct = [](std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    return v;
+  };
   std::vector<int> in_use = chosen.choice[0];
   in_use.insert(in_use.end(), chosen.choice[1].begin(), chosen.choice[1].end());
-  std::sort(in_use.begin(), in_use.end());
-  in_use.erase(std::unique(in_use.begin(), in_use.end()), in_use.end());
+  in_use = distinct(in_use);
+  const std::vector<int> centred_in_use = distinct(chosen.centred_choice);
   const size_t runs = std::clamp<size_t>(threads, 1, std::max<size_t>(1, n / kRowsPerThread));
   split_runs(n, static_cast<int>(runs), [&](size_t, size_t begin, size_t end) {
-    final_rows(chosen, in_use, t, segments, x, ld, m, begin, end, out);
+    final_rows(chosen, in_use, centred_in_use, t, segments, x, ld, m, begin, end, out);
   });
 }
 
@@ -229,7 +306,8 @@ void AutoSampleWeights::load(const std::vector<OfflineEstimator>& candidates,
                              const DerivativeWeights* known) {
   derivative_weights(candidates[k], t, segments, i, w);
   for (int d = 1; d <= 2; ++d) norm2_w[d - 1] = norm2(weights_of(w, d), w.count);
-  shifted = k > 0 && w.valid == 2 && !centred_window(t, i, w);
+  centred = w.valid == 2 && centred_window(t, i, w);
+  shifted = k > 0 && w.valid == 2 && !centred;
   has_shorter = k > 0 && w.valid == 2;
   if (!has_shorter) return;
   if (known)
@@ -244,8 +322,49 @@ void AutoSampleWeights::load(const std::vector<OfflineEstimator>& candidates,
   end_norm = std::sqrt(norm2(end.second, end.count));
 }
 
+void AutoSampleWeights::load_centred(const std::vector<OfflineEstimator>& candidates,
+                                     const std::vector<double>& t, const Segments& segments, int i,
+                                     int k) {
+  derivative_weights(candidates[k], t, segments, i, w);
+  norm2_w[1] = norm2(w.second, w.count);
+  centred = w.valid == 2 && centred_window(t, i, w);
+  shifted = has_shorter = false;
+  growth = bias_growth(candidates, k);
+  has_longer = false;
+  if (centred && growth > 0) {
+    derivative_weights(candidates[k + 1], t, segments, i, longer);
+    has_longer = longer.valid == 2 && centred_window(t, i, longer);
+    if (has_longer) step2_longer = difference2(w, longer, 2);
+  }
+  centred = has_longer;
+}
+
+double bias_growth(const std::vector<OfflineEstimator>& candidates, int k) {
+  if (k + 1 >= static_cast<int>(candidates.size())) return 0;
+  const OfflineEstimator &e = candidates[k], &next = candidates[k + 1];
+  if (next.order != e.order || !(e.window_seconds > 0)) return 0;
+  const int power = 2 * ((e.order - 2) / 2) + 2;
+  return std::pow(next.window_seconds / e.window_seconds, power) - 1;
+}
+
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t) {
   return auto_candidates(default_max_gap(t) / 5);  // the median interval
+}
+
+std::vector<OfflineEstimator> auto_centred_candidates(double dt) {
+  const std::vector<OfflineEstimator> plain = auto_candidates(dt);
+  std::vector<OfflineEstimator> out = plain;
+  for (OfflineEstimator& e : out) {
+    if (e.order != 4) continue;
+    e.order = kCentredOrder;
+    char name[48];
+    std::snprintf(name, sizeof name, "centered_%gs_%d", e.window_seconds, e.order);
+    e.name = name;
+  }
+  // Then the longest at order 4 again: less noise than the longest at order 6 (at most
+  // kMaxOfflineWindow samples fitted), for slow motion.
+  out.insert(out.end(), plain.end() - kCentredTail, plain.end());
+  return out;
 }
 
 std::vector<OfflineEstimator> auto_candidates(double dt) {
@@ -267,18 +386,26 @@ std::vector<OfflineEstimator> auto_candidates(double dt) {
 
 AutoChooser::AutoChooser(double median_interval, long rows, int m, int threads)
     : candidates_(auto_candidates(median_interval)),
+      centred_(auto_centred_candidates(median_interval)),
       stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
       m_(m),
       threads_(std::clamp(threads, 1, std::max(1, m / kSeriesPerThread))),
       residuals_{std::vector<double>(m, 0.0)} {
-  const size_t kc = candidates_.size();
-  for (Statistics& s : stats_)
-    s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
+  for (int chain = 0; chain < 2; ++chain) {
+    const size_t kc = (chain == 0 ? candidates_ : centred_).size();
+    for (Statistics& s : chain == 0 ? stats_ : centred_stats_)
+      s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
+  }
 }
 
 OfflineReach AutoChooser::reach() const {
-  OfflineReach reach;
-  offline_reach(candidates_.back(), reach);
+  OfflineReach reach, one;
+  for (const std::vector<OfflineEstimator>* chain : {&candidates_, &centred_})
+    for (const OfflineEstimator& e : *chain) {
+      offline_reach(e, one);
+      reach.seconds = std::max(reach.seconds, one.seconds);
+      reach.samples = std::max(reach.samples, one.samples);
+    }
   return reach;
 }
 
@@ -293,6 +420,8 @@ void AutoChooser::add(const std::vector<double>& t, const Segments& segments, co
       if ((first + i) % stride_ != 0) continue;
       add_residuals(candidates_.front(), t, segments, x, ld, i, share, w[0], residuals_);
       add_lepski(candidates_, t, segments, x, ld, m_, i, share, w, estimate, stats_);
+      derivative_weights(centred_.front(), t, segments, i, w[0]);
+      add_lepski(centred_, t, segments, x, ld, m_, i, share, w, estimate, centred_stats_);
     }
   });
 }
@@ -303,14 +432,27 @@ AutoChoice AutoChooser::choice() const {
   out.noise = noise_levels(residuals_);
   for (int d = 1; d <= 2; ++d)
     choose(stats_[d - 1], out.noise, out.choice[d - 1], out.bias2[d - 1]);
+  out.centred_candidates = centred_;
+  choose_centred(centred_stats_[1], out.noise, centred_, out.centred_choice, out.centred_bias2);
   return out;
 }
 
-int AutoChoice::longest() const {
-  int k = 0;
+OfflineReach AutoChoice::reach() const {
+  OfflineReach out, one;
+  auto add = [&](const OfflineEstimator& e) {
+    offline_reach(e, one);
+    out.seconds = std::max(out.seconds, one.seconds);
+    out.samples = std::max(out.samples, one.samples);
+  };
   for (const std::vector<int>& c : choice)
-    for (int v : c) k = std::max(k, v);
-  return k;
+    for (int v : c) add(candidates[v]);
+  for (int v : centred_choice) {
+    if (v < 0) continue;
+    add(centred_candidates[v]);
+    // The next window, whose step gives the bias (centred_accelerations).
+    if (bias_growth(centred_candidates, v) > 0) add(centred_candidates[v + 1]);
+  }
+  return out;
 }
 
 void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,

@@ -8,8 +8,13 @@
 // that is while the smoothing adds less bias than the noise it removes (the sums run over the
 // samples away from the ends, every stride-th one of a long recording). At the ends and gaps the
 // accelerations come from the window one shorter at order 4 at most: a one-sided fit's bias and
-// variance grow faster with its length and order. sigma, each series' noise level, comes from
-// the shortest window's residuals (Craven & Wahba 1979):
+// variance grow faster with its length and order. Where the window is centred, the accelerations
+// come from a second choice the same way among auto_centred_candidates (long windows at order 6,
+// kept while their estimates moved by at most 1.5 times what the noise explains), their error
+// bars' bias from each sample's step to the next window divided by how much faster that one's
+// bias grows (bias_growth).
+// sigma, each series' noise level, comes from the shortest window's residuals (Craven & Wahba
+// 1979):
 //   sigma^2 = sum_i (x_i - x^_i)^2 / (n - tr H),  tr H = sum_i h_ii,
 // h_ii being the fit's own weight on x_i. The standard errors follow from the weights:
 // se(x'_i) = sigma |w'_i|, se(x''_i) = sigma |w''_i| (white noise), widened by the squared bias
@@ -29,16 +34,31 @@ namespace mbk {
 // The windows tried on the stamps t, shortest first; on stamps of median interval dt.
 std::vector<OfflineEstimator> auto_candidates(const std::vector<double>& t);
 std::vector<OfflineEstimator> auto_candidates(double dt);
+// The windows tried for the accelerations away from the ends and gaps: the same lengths, those
+// of 61 median intervals and more at order 6 (for a centred window, the same accelerations as
+// order 7): less noise and bias than order 4 at the length where both balance; then the longest
+// two at order 4 again (slow motion: at most kMaxOfflineWindow samples fitted, a longer window
+// at order 4 is less noisy than the longest at order 6). Not at the ends, where a one-sided
+// fit's variance grows fast with its order.
+std::vector<OfflineEstimator> auto_centred_candidates(double dt);
+// How much more bias candidate k + 1's accelerations have than candidate k's, both centred, of
+// one degree p: (L_k+1 / L_k)^q - 1, the bias growing as the window's length L to the power q =
+// p + 1 - 2, one more where p is even (the next odd term of the signal's expansion has zero
+// weight); 0 where k + 1 does not exist or has another degree.
+double bias_growth(const std::vector<OfflineEstimator>& candidates, int k);
 
 // What the choice pass found for m series: the windows tried, each series' noise level sigma and,
 // per derivative d at [d - 1], its window (index in candidates) and the squared bias per sample
-// its last accepted step showed beyond the noise.
+// its last accepted step showed beyond the noise; the same of the accelerations where the window
+// of centred_candidates is centred (not shifted at an end or a gap).
 struct AutoChoice {
-  std::vector<OfflineEstimator> candidates;
+  std::vector<OfflineEstimator> candidates, centred_candidates;
   std::vector<double> noise;
-  std::vector<int> choice[2];
-  std::vector<double> bias2[2];
-  int longest() const;  // the longest window chosen (its reach is the estimating pass's)
+  std::vector<int> choice[2], centred_choice;  // centred_choice -1: the first chain's alone
+  std::vector<double> bias2[2], centred_bias2;
+  // How far the chosen windows reach, with the next window of each centred choice that
+  // centred_accelerations steps to (the estimating pass's reach).
+  OfflineReach reach() const;
 };
 
 // The choice pass over a recording of `rows` samples of median interval dt (default_max_gap / 5),
@@ -70,10 +90,11 @@ class AutoChooser {
   };
 
  private:
-  std::vector<OfflineEstimator> candidates_;
+  std::vector<OfflineEstimator> candidates_, centred_;
   int stride_, m_, threads_;
   Residuals residuals_;
-  Statistics stats_[2];  // per derivative d at [d - 1]
+  Statistics stats_[2];          // per derivative d at [d - 1]
+  Statistics centred_stats_[2];  // of centred_ ([1]: the accelerations')
 };
 
 // At sample i, the weights of candidate k (`w`), of the candidate before it (`shorter`, when
@@ -83,10 +104,22 @@ class AutoChooser {
 struct AutoSampleWeights {
   DerivativeWeights w, shorter, end;
   bool shifted = false, has_shorter = false;
+  // w is centred on the sample (not shifted); of load_centred: and so is `longer` where
+  // bias_growth > 0 (its accelerations replace the first chain's there)
+  bool centred = false;
   double norm2_w[2] = {0, 0}, step2[2] = {0, 0}, end_norm = 0;
+  // The centred chain's candidate k (auto_centred_candidates, load_centred): where candidate
+  // k + 1 has k's degree (bias_growth > 0) and is centred at the sample too, its weights
+  // (`longer`, has_longer), |w'' - longer''|^2 and bias_growth(candidates, k).
+  DerivativeWeights longer;
+  bool has_longer = false;
+  double step2_longer = 0, growth = 0;
   // known: candidate k - 1's weights at this sample when already computed (else nullptr).
   void load(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
             const Segments& segments, int i, int k, const DerivativeWeights* known = nullptr);
+  // w, centred, norm2_w and the longer window's weights of the centred chain's candidate k.
+  void load_centred(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+                    const Segments& segments, int i, int k);
   // The weights the estimate of derivative d applies.
   const DerivativeWeights& used(int d) const { return d == 2 && shifted ? end : w; }
 };

@@ -13,7 +13,8 @@
 namespace mbk {
 namespace {
 
-constexpr int kMaxOrder = 5;
+// The fits' order at most (auto's centred long windows, auto_estimator.h); --estimator's.
+constexpr int kMaxOrder = 6, kMaxNamedOrder = 5;
 
 // The window [begin, end) for sample i inside segment [sb, se): centred where it can be,
 // shifted to one side near the segment's ends.
@@ -91,7 +92,7 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
   const bool window_ok = e.window_seconds != 0
                              ? std::isfinite(seconds) && seconds > 0
                              : samples % 2 == 1 && samples > order && samples <= kMaxOfflineWindow;
-  if (order < 2 || order > kMaxOrder || !window_ok)
+  if (order < 2 || order > kMaxNamedOrder || !window_ok)
     throw std::invalid_argument("offline estimator '" + name +
                                 "': need 2 <= order <= 5 and an odd sample window above the "
                                 "order (at most 41) or a positive time window");
@@ -135,7 +136,7 @@ double default_max_gap(const std::vector<double>& t) {
 // Least squares in s = (t_j - t_i) / scale: c = N^-1 A^T x with A_jc = s_j^c and the normal
 // matrix N = A^T A, N_ab = sum_j s_j^(a + b); x'(t_i) = c1 / scale, x''(t_i) = 2 c2 / scale^2, so
 // the weights are A N^-1 e1 / scale and 2 A N^-1 e2 / scale^2 (and the fitted value's A N^-1 e0). N
-// is solved by Cholesky in fixed arrays (order <= 5): no allocation, no general-size Eigen solver.
+// is solved by Cholesky in fixed arrays (order <= 6): no allocation, no general-size Eigen solver.
 namespace {
 
 // Row j's weights from s_j (in w.first[j]) and g[m] = N^-1 e_m (derivative_weights): value =

@@ -16,7 +16,7 @@ struct OfflineEstimator {
   int window_samples = 0;     // > 0: the window holds this many samples (odd)
   double window_seconds = 0;  // > 0: the window spans this many seconds, centred on the sample,
                               // widened to hold order + 3 samples where the samples are sparse
-  int order = 2;              // degree of the polynomial (2..5)
+  int order = 2;              // degree of the polynomial (2..5; auto's: up to 6)
   bool automatic = false;     // "auto": chosen per series (estimation/auto_estimator.h)
   bool butterworth = false;   // "butterworth:FC" (estimation/butterworth_estimator.h)
   double cutoff = 0;          // its FC, Hz; 0: "butterworth:auto" (Winter's residual analysis)

@@ -84,7 +84,8 @@ void OfflineStates::fit_automatic(int threads) {
   if (!full_.empty() && estimator_.automatic && !positions_choice_) {  // kept for the error bars
     AutoChooser chooser(default_max_gap(rec_.stamp) / 5, rec_.rows(), nq, threads);
     chooser.add(rec_.stamp, segments_, rec_.position.data(), nq, 0, 0, rec_.rows());
-    positions_choice_ = std::make_shared<const AutoChoice>(chooser.choice());
+    positions_choice_ = std::make_shared<const AutoChoice>(
+        angles_first_chain(chooser.choice(), angle_joints(model_)));
   }
   if (!full_.empty()) positions_fit_ = fit(rec_.position, positions_choice_.get());
   find_rotations();

@@ -174,15 +174,18 @@ void AutoChoosePass::take(int end) {
 
 WholeRecording AutoChoosePass::finish(OfflineReach& reach) {
   if (next_ < static_cast<int>(t_.size())) take(static_cast<int>(t_.size()));
-  WholeRecording out{velocity_everywhere_, std::make_shared<const AutoChoice>(positions_.choice()),
+  WholeRecording out{velocity_everywhere_,
+                     std::make_shared<const AutoChoice>(
+                         angles_first_chain(positions_.choice(), rotations_.joints())),
                      nullptr,
                      std::make_shared<const std::vector<Mat3<double>>>(rotations_.covariance())};
-  int longest = out.positions->longest();
+  reach = out.positions->reach();
   if (velocities_) {
     out.velocities = std::make_shared<const AutoChoice>(velocities_->choice());
-    longest = std::max(longest, out.velocities->longest());
+    const OfflineReach of_velocities = out.velocities->reach();
+    reach.seconds = std::max(reach.seconds, of_velocities.seconds);
+    reach.samples = std::max(reach.samples, of_velocities.samples);
   }
-  offline_reach(out.positions->candidates[longest], reach);
   return out;
 }
 

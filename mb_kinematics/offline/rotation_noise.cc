@@ -20,6 +20,12 @@ std::vector<AngleJoint> angle_joints(const Model& model) {
   return out;
 }
 
+AutoChoice angles_first_chain(AutoChoice choice, const std::vector<AngleJoint>& joints) {
+  for (const AngleJoint& j : joints)
+    for (int a = 0; a < 3; ++a) choice.centred_choice[j.coordinate + a] = -1;
+  return choice;
+}
+
 RotationNoise::RotationNoise(const Model& model, double dt)
     : model_(model),
       joints_(angle_joints(model)),

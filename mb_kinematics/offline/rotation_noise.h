@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/model.h"
+#include "mb_kinematics/estimation/auto_estimator.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 
 namespace mbk {
@@ -21,6 +22,12 @@ struct AngleJoint {
   int body = 0, coordinate = 0;
 };
 std::vector<AngleJoint> angle_joints(const Model& model);
+// `choice` with the accelerations of the angles of `joints` from "auto"'s first chain alone
+// (AutoChoice::centred_choice -1): their error bars are carried on the rotation, and an angle's
+// own noise level, near gimbal lock far above the rotation's, says nothing of the bias the
+// centred chain's steps show (its error bars would cover 46 % of the spine's alpha errors of
+// test/offline/gimbal_lock_errors_test.cc).
+AutoChoice angles_first_chain(AutoChoice choice, const std::vector<AngleJoint>& joints);
 
 class RotationNoise {
  public:
