@@ -16,6 +16,7 @@ import json
 import os
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -197,12 +198,27 @@ def main():
     chunk_rows(n)
 
 
+def parallel_copy(to, source, threads=2):
+    """Each array of `source` copied into `to`'s of the same name, the rows split over `threads`
+    threads as Model.kinematics splits its samples (numpy's copy releases the GIL)."""
+    def run(t):
+        for name, x in to.items():
+            begin, end = len(x) * t // threads, len(x) * (t + 1) // threads
+            np.copyto(x[begin:end], source[name][begin:end])
+    pool = [threading.Thread(target=run, args=(t,)) for t in range(threads)]
+    for thread in pool:
+        thread.start()
+    for thread in pool:
+        thread.join()
+
+
 def chunk_rows(n):
     """Human, 2 threads, the full and the all outputs, best (median) of 5: batch_benchmark's
     plain copy of the same bytes, its computation alone (compute/) and its batch into arrays
-    touched before; out= against the copy, fresh arrays against out=, chunks of 10,000 rows
-    (kinematics_chunks) against one call, and the chunks' peak memory against one chunk's
-    arrays. The load average before and after."""
+    touched before; then five rounds of a 2-thread numpy copy of the same bytes into the out=
+    arrays, out= (against that copy), fresh arrays (against out=) and chunks of 10,000 rows
+    (kinematics_chunks, against out=); the chunks' peak memory against one chunk's arrays. The
+    load average before and after."""
     load = os.getloadavg()
     cpp = cpp_rows("human/(full|all)/threads:2", 5)
     model = mb_kinematics.load(os.path.join(ROOT, MODELS["human"]))
@@ -213,14 +229,19 @@ def chunk_rows(n):
         out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
         r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
              for what in ("copy", "compute", "batch")}
-        r["out"] = timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2, out=out), 5)
-        out = None  # its memory back before the fresh arrays
-        r["fresh"] = timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 5)
+        source = {k: np.ones_like(x) for k, x in out.items()}
+        r.update(numpy_copy=[], out=[], fresh=[], chunks=[])
 
         def chunks():
             for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000):
                 pass
-        r["chunks"] = timings(chunks, 5)
+        for _ in range(5):  # one of each per round: the load drifts alike for all four
+            r["numpy_copy"] += timings(lambda: parallel_copy(out, source), 1)
+            r["out"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2,
+                                                         out=out), 1)
+            r["fresh"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 1)
+            r["chunks"] += timings(chunks, 1)
+        out = source = None  # their memory back
         r["memory"] = chunk_memory(n, names)
         r["bytes"] = sum(x.nbytes for x in fresh0.values())
         rows[kind] = r
@@ -232,9 +253,11 @@ def chunk_rows(n):
               rows[k]["bytes"] / 1e3 for k in ("full", "all")))
     print("|---|---:|---:|---:|---:|---:|")
     lines = (("plain copy of the same bytes (C++ memcpy, copy/)", "copy", None, ""),
+             ("the same, into the out= arrays (numpy, 2 threads, interleaved)", "numpy_copy", None,
+              ""),
              ("computation alone (C++, compute/)", "compute", "copy", "the copy"),
              ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
-             ("out=", "out", "copy", "the copy"),
+             ("out=", "out", "numpy_copy", "the numpy copy"),
              ("fresh arrays", "fresh", "out", "out="),
              ("kinematics_chunks, rows=10000", "chunks", "out", "out="))
     aims = {"out": "1.25x", "fresh": "1.3x", "chunks": "1.1x"}
