@@ -2,18 +2,19 @@
 // Model.kinematics, into preallocated arrays (doc/speed.md#python, bench/python_batch.py):
 //
 //   batch/<model>/<outputs>/threads:T   N = 1e5 random states (uniform +-0.5 in every coordinate,
-//                                       speed and acceleration) of <model>, <outputs> = full
-//                                       (the 13 outputs the Python call gives by default with
-//                                       accelerations) or pose (rotation and origin), into arrays
-//                                       allocated and touched once before timing; real time;
-//                                       counters ns_per_sample, ns_per_body_sample, GB_per_s
+//                                       speed and acceleration) of <model> into arrays allocated
+//                                       and touched once before timing; <outputs> = full (the 13
+//                                       outputs the Python call gives by default with
+//                                       accelerations), all (every output but the partial
+//                                       velocities: full and the opt-in segment frames and joint
+//                                       motion, 20 outputs) or pose (rotation and origin); real
+//                                       time; counters ns_per_sample, ns_per_body_sample, GB_per_s
 //                                       (the bytes of the outputs written per second)
-//   copy/<model>/full/threads:T         memcpy of the same bytes between two such arrays (the
+//   copy/<model>/<outputs>/threads:T    memcpy of the same bytes between two such arrays (the
 //                                       physical limit of writing the outputs), split the same way
-//   compute/<model>/full                the same states' recursion and system kinematics on one
-//                                       thread into one Data, no output written: the batch less
-//                                       its state check, its copy out of Data and the outputs'
-//                                       memory traffic
+//   compute/<model>/<outputs>/threads:T the same states' batch on T threads with every sample
+//                                       written into one sample's arrays (in L1): the computation
+//                                       less the outputs' memory traffic and the state check
 //
 // Models: human = config/human_body.urdf (37 bodies), panda = test/robots/panda.urdf (7-joint
 // arm, hand and fingers: 12 bodies). Arguments: --benchmark_format=json for bench/python_batch.py.
@@ -26,6 +27,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
@@ -43,13 +45,31 @@ const mbk::Model& model_of(const std::string& name) {
   return name == "human" ? human : panda;
 }
 
-// The inputs and every output array of a run, allocated and touched once.
+enum class Outputs { kPose, kFull, kAll };
+const char* const kOutputNames[] = {"pose", "full", "all"};
+
+// Whether a batch of `outputs` writes `field`.
+bool writes(Outputs outputs, mbk::BatchField field) {
+  switch (outputs) {
+    case Outputs::kPose:
+      return field == mbk::BatchField::kRotation || field == mbk::BatchField::kOrigin;
+    case Outputs::kFull:
+      return field <= mbk::BatchField::kAngularMomentum;
+    case Outputs::kAll:
+      return mbk::batch_field_traits(field).width != 0;  // all but the partial velocities
+  }
+  return false;
+}
+
+// The inputs (unless `states` is false) and every output array of a run (`samples` rows: one
+// for compute's), allocated and touched once.
 struct Batch {
-  Batch(const mbk::Model& model, bool full) {
+  Batch(const mbk::Model& model, Outputs outputs, std::size_t samples = kSamples,
+        bool states = true) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(-0.5, 0.5);
     for (std::vector<double>* x : {&q, &v, &a}) {
-      x->resize(kSamples * (x == &q ? model.nq : model.nv));
+      x->resize(states ? kSamples * (x == &q ? model.nq : model.nv) : 0);
       for (double& value : *x) value = u(rng);
     }
     in.samples = kSamples;
@@ -57,20 +77,21 @@ struct Batch {
     in.velocity = v.data();
     in.acceleration = a.data();
     for (int k = 1; k <= model.body_count(); ++k) out.bodies.push_back(k);
-    const int last = full ? static_cast<int>(mbk::BatchField::kAngularMomentum)
-                          : static_cast<int>(mbk::BatchField::kOrigin);
-    for (int f = 0; f <= last; ++f) {
+    arrays.reserve(mbk::kBatchFieldCount);
+    for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
       const auto field = static_cast<mbk::BatchField>(f);
-      arrays.emplace_back(kSamples * mbk::batch_field_size(model, field, out.bodies.size()), 0.0);
+      if (!writes(outputs, field)) continue;
+      arrays.emplace_back(samples * mbk::batch_field_size(model, field, out.bodies.size()), 0.0);
       out[field] = arrays.back().data();
       bytes += arrays.back().size() * sizeof(double);
+      bytes_per_sample += mbk::batch_field_size(model, field, out.bodies.size()) * sizeof(double);
     }
   }
   std::vector<double> q, v, a;
   mbk::BatchInput in;
   std::vector<std::vector<double>> arrays;
   mbk::BatchOutput<double> out;
-  std::size_t bytes = 0;
+  std::size_t bytes = 0, bytes_per_sample = 0;
 };
 
 void set_counters(benchmark::State& state, const mbk::Model& model, std::size_t bytes) {
@@ -83,39 +104,45 @@ void set_counters(benchmark::State& state, const mbk::Model& model, std::size_t 
   state.counters["GB_per_s"] = benchmark::Counter(runs * bytes * 1e-9, benchmark::Counter::kIsRate);
 }
 
-void batch(benchmark::State& state, const std::string& name, bool full) {
+void batch(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
-  Batch b(model, full);
+  Batch b(model, outputs);
   const int threads = static_cast<int>(state.range(0));
   for (auto _ : state) mbk::batch_kinematics(model, b.in, b.out, threads);
   set_counters(state, model, b.bytes);
 }
 
-// What batch_kinematics computes for the full outputs, without writing them (as its
-// compute_sample with every output in Data and SystemKinematics only).
-void compute(benchmark::State& state, const std::string& name) {
+// What batch_kinematics computes and writes for each sample (its compute_sample), every sample
+// into one sample's arrays per thread: no output leaves the caches.
+void compute(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
-  const Batch b(model, false);  // for its states
-  mbk::JointState<double> joints(model);
-  mbk::Data<double> data(model);
-  mbk::SystemKinematics<double> system;
+  const Batch b(model, outputs, 0);  // for its states
+  const int threads = static_cast<int>(state.range(0));
+  const mbk::Level level = mbk::batch_level(b.out);
   for (auto _ : state)
-    for (std::size_t s = 0; s < kSamples; ++s) {
-      joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
-      joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
-      joints.acceleration = Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
-      mbk::apply_mimics(model, joints);
-      mbk::forward_kinematics(model, joints, data, mbk::Level::kAcceleration);
-      mbk::system_kinematics(model, data, system, mbk::Level::kAcceleration);
-      benchmark::DoNotOptimize(system);
-    }
+    mbk::split_runs(kSamples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+      Batch one(model, outputs, 1, false);
+      mbk::JointState<double> joints(model);
+      mbk::Data<double> data(model);
+      mbk::SystemKinematics<double> system;
+      for (std::size_t s = begin; s < end; ++s) {
+        joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
+        joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
+        joints.acceleration =
+            Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
+        mbk::apply_mimics(model, joints);
+        mbk::forward_kinematics(model, joints, data, level);
+        mbk::write_batch_fields(model, data, 0, level, one.out, system);
+        benchmark::DoNotOptimize(one.arrays.front().data());
+      }
+    });
   set_counters(state, model, 0);
 }
 
 // The same bytes copied between two arrays of that size, on `threads` threads.
-void copy(benchmark::State& state, const std::string& name) {
+void copy(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
-  const std::size_t bytes = Batch(model, true).bytes;
+  const std::size_t bytes = Batch(model, outputs, 0, false).bytes_per_sample * kSamples;
   std::vector<char> from(bytes, 1), to(bytes, 0);
   const std::size_t threads = static_cast<std::size_t>(state.range(0));
   for (auto _ : state) {
@@ -131,28 +158,27 @@ void copy(benchmark::State& state, const std::string& name) {
   set_counters(state, model, bytes);
 }
 
+using Run = void (*)(benchmark::State&, const std::string&, Outputs);
+
+void add(const char* row, Run run, const char* name, Outputs outputs) {
+  benchmark::RegisterBenchmark(
+      (std::string(row) + "/" + name + "/" + kOutputNames[static_cast<int>(outputs)]).c_str(),
+      [run, name, outputs](benchmark::State& s) { run(s, name, outputs); })
+      ->ArgName("threads")
+      ->Arg(1)
+      ->Arg(2)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond);
+}
+
 void register_all() {
   for (const char* name : {"human", "panda"}) {
-    for (const bool full : {true, false})
-      benchmark::RegisterBenchmark(
-          ("batch/" + std::string(name) + (full ? "/full" : "/pose")).c_str(),
-          [name, full](benchmark::State& s) { batch(s, name, full); })
-          ->ArgName("threads")
-          ->Arg(1)
-          ->Arg(2)
-          ->UseRealTime()
-          ->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("compute/" + std::string(name) + "/full").c_str(),
-                                 [name](benchmark::State& s) { compute(s, name); })
-        ->UseRealTime()
-        ->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("copy/" + std::string(name) + "/full").c_str(),
-                                 [name](benchmark::State& s) { copy(s, name); })
-        ->ArgName("threads")
-        ->Arg(1)
-        ->Arg(2)
-        ->UseRealTime()
-        ->Unit(benchmark::kMillisecond);
+    for (const Outputs outputs : {Outputs::kFull, Outputs::kPose, Outputs::kAll})
+      add("batch", batch, name, outputs);
+    for (const Outputs outputs : {Outputs::kFull, Outputs::kAll}) {
+      add("compute", compute, name, outputs);
+      add("copy", copy, name, outputs);
+    }
   }
 }
 

@@ -16,6 +16,7 @@ import json
 import os
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -25,6 +26,10 @@ import mb_kinematics
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 MODELS = {"human": "config/human_body.urdf", "panda": "test/robots/panda.urdf"}
 POSE = ["rotation", "origin"]
+# batch_benchmark's output sets: full, the 13 outputs given by default with accelerations; all,
+# every output but the partial velocities (full and the opt-in segment frames and joint motion).
+FULL = [k for k in mb_kinematics.OUTPUTS if k not in mb_kinematics.OPT_IN]
+ALL = [k for k in mb_kinematics.OUTPUTS if not k.startswith("partial_")]
 
 
 def states(model, n, seed=1):
@@ -33,24 +38,36 @@ def states(model, n, seed=1):
             rng.uniform(-0.5, 0.5, (n, model.nv)))
 
 
-def best(f, repeats=3):
+def timings(f, repeats=3):
+    """The times (s) of `repeats` runs of f."""
     times = []
     for _ in range(repeats):
         start = time.perf_counter()
         f()
         times.append(time.perf_counter() - start)
-    return min(times)
+    return times
 
 
-def cpp_rows():
-    """batch_benchmark's rows (seconds per run of 1e5 samples), from the workspace."""
+def best(f, repeats=3):
+    return min(timings(f, repeats))
+
+
+def cpp_rows(pattern=".", repeats=1):
+    """batch_benchmark's rows matching `pattern` (seconds per run of 1e5 samples), from the
+    workspace: per row the times of `repeats` repetitions."""
     for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
         path = os.path.join(prefix, "lib", "mb_kinematics", "batch_benchmark")
         if prefix and os.path.isfile(path):
-            out = subprocess.run([path, "--benchmark_format=json", "--benchmark_min_time=1"],
+            out = subprocess.run([path, "--benchmark_format=json", "--benchmark_min_time=0.5",
+                                  "--benchmark_filter=" + pattern,
+                                  "--benchmark_repetitions=%d" % repeats],
                                  capture_output=True, text=True, check=True).stdout
-            return {b["name"].replace("/real_time", ""): b["real_time"] / 1e3
-                    for b in json.loads(out)["benchmarks"]}
+            rows = {}
+            for b in json.loads(out)["benchmarks"]:
+                if b.get("run_type", "iteration") == "iteration":
+                    rows.setdefault(b["run_name"].replace("/real_time", ""), []).append(
+                        b["real_time"] / 1e3)
+            return rows
     raise RuntimeError("batch_benchmark not found: build it and source devel/setup.bash")
 
 
@@ -133,17 +150,16 @@ def main():
                         help="only the last table (out=, fresh arrays, chunks)")
     arguments = parser.parse_args()
     n = arguments.samples
-    cpp = cpp_rows()
     if arguments.in_place_only:
-        return chunk_rows(n, cpp)
+        return chunk_rows(n)
+    cpp = {k: min(t) for k, t in cpp_rows("batch/|copy/").items()}
     print("| model | outputs | threads | Python call, out= (ms) | C++ batch_kinematics (ms) | "
           "Python / C++ | Python, fresh arrays (ms) | ns per sample | ns per body and sample |")
     print("|---|---|---|---|---|---|---|---|---|")
     for name, path in MODELS.items():
         model = mb_kinematics.load(os.path.join(ROOT, path))
         q, v, a = states(model, n)
-        for kind, outputs in (("full", None), ("pose", POSE)):
-            names = outputs or [k for k in mb_kinematics.OUTPUTS if not k.startswith("partial")]
+        for kind, names in (("full", FULL), ("pose", POSE)):
             fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
             out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
             for threads in (1, 2):
@@ -175,39 +191,95 @@ def main():
                       "Model.kinematics (every body) %.2f us: %.0fx" % (
                           what, kdl * 1e6, pose * 1e6, kdl / pose))
     for name in MODELS:
-        for kind, outputs in (("full", [k for k in mb_kinematics.OUTPUTS
-                                        if not k.startswith("partial")]), ("pose", POSE)):
+        for kind, outputs in (("full", FULL), ("pose", POSE)):
             used, asked = peak_memory(name, outputs, n)
             print("%s %s: peak memory of the call %.1f MB, arrays asked for %.1f MB (%.2fx)" % (
                 name, kind, used / 1e6, asked / 1e6, used / asked))
-    chunk_rows(n, cpp)
+    chunk_rows(n)
 
 
-def chunk_rows(n, cpp):
-    """Human, full outputs, 2 threads: out= against the plain copy of the same bytes, fresh
-    arrays against out=, chunks of 10,000 rows (kinematics_chunks) against one call, and the
-    chunks' peak memory against one chunk's arrays."""
+def parallel_copy(to, source, threads=2):
+    """Each array of `source` copied into `to`'s of the same name, the rows split over `threads`
+    threads as Model.kinematics splits its samples (numpy's copy releases the GIL)."""
+    def run(t):
+        for name, x in to.items():
+            begin, end = len(x) * t // threads, len(x) * (t + 1) // threads
+            np.copyto(x[begin:end], source[name][begin:end])
+    pool = [threading.Thread(target=run, args=(t,)) for t in range(threads)]
+    for thread in pool:
+        thread.start()
+    for thread in pool:
+        thread.join()
+
+
+def chunk_rows(n):
+    """Human, 2 threads, the full and the all outputs, best (median) of 5: batch_benchmark's
+    plain copy of the same bytes, its computation alone (compute/) and its batch into arrays
+    touched before; then five rounds of a 2-thread numpy copy of the same bytes into the out=
+    arrays, out= (against that copy), fresh arrays (against out=) and chunks of 10,000 rows
+    (kinematics_chunks, against out=); the chunks' peak memory against one chunk's arrays. The
+    load average before and after."""
+    load = os.getloadavg()
+    cpp = cpp_rows("human/(full|all)/threads:2", 5)
     model = mb_kinematics.load(os.path.join(ROOT, MODELS["human"]))
     q, v, a = states(model, n)
-    names = [k for k in mb_kinematics.OUTPUTS if not k.startswith("partial")]
-    fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
-    out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
-    call = best(lambda: model.kinematics(q, v, a, outputs=names, threads=2, out=out), 5)
-    fresh = best(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 5)
+    rows = {}
+    for kind, names in (("full", FULL), ("all", ALL)):
+        fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
+        out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
+        r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
+             for what in ("copy", "compute", "batch")}
+        source = {k: np.ones_like(x) for k, x in out.items()}
+        r.update(numpy_copy=[], out=[], fresh=[], chunks=[])
 
-    def chunks():
-        for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000):
-            pass
-    chunked = best(chunks, 5)
-    copy = cpp["copy/human/full/threads:2"]
+        def chunks():
+            for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000):
+                pass
+        for _ in range(5):  # one of each per round: the load drifts alike for all four
+            r["numpy_copy"] += timings(lambda: parallel_copy(out, source), 1)
+            r["out"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2,
+                                                         out=out), 1)
+            r["fresh"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 1)
+            r["chunks"] += timings(chunks, 1)
+        out = source = None  # their memory back
+        r["memory"] = chunk_memory(n, names)
+        r["bytes"] = sum(x.nbytes for x in fresh0.values())
+        rows[kind] = r
     print()
-    print("| human, full outputs, 2 threads | ms | ratio | aim |")
-    print("|---|---:|---:|---:|")
-    print("| plain copy of the same bytes (C++ memcpy) | %.1f | | |" % (copy * 1e3))
-    print("| out= | %.1f | %.2fx the copy | 1.25x |" % (call * 1e3, call / copy))
-    print("| fresh arrays | %.1f | %.2fx out= | 1.3x |" % (fresh * 1e3, fresh / call))
-    print("| kinematics_chunks, rows=10000 | %.1f | %.2fx out= | 1.1x |" % (
-        chunked * 1e3, chunked / call))
+    print("load average %.1f before, %.1f after (1 min)" % (load[0], os.getloadavg()[0]))
+    print()
+    print("| human, 2 threads, ms: best (median) of 5 | full (%.1f KB per sample) | ratio | "
+          "all (%.1f KB per sample) | ratio | aim |" % tuple(
+              rows[k]["bytes"] / 1e3 for k in ("full", "all")))
+    print("|---|---:|---:|---:|---:|---:|")
+    lines = (("plain copy of the same bytes (C++ memcpy, copy/)", "copy", None, ""),
+             ("the same, into the out= arrays (numpy, 2 threads, interleaved)", "numpy_copy", None,
+              ""),
+             ("computation alone (C++, compute/)", "compute", "copy", "the copy"),
+             ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
+             ("out=", "out", "numpy_copy", "the numpy copy"),
+             ("fresh arrays", "fresh", "out", "out="),
+             ("kinematics_chunks, rows=10000", "chunks", "out", "out="))
+    aims = {"out": "1.25x", "fresh": "1.3x", "chunks": "1.1x"}
+    for label, what, peer, against in lines:
+        cells = []
+        for kind in ("full", "all"):
+            t = rows[kind][what]
+            ratio = ("%.2fx %s" % (min(t) / min(rows[kind][peer]), against)) if peer else ""
+            cells += ["%.1f (%.1f)" % (min(t) * 1e3, np.median(t) * 1e3), ratio]
+        print("| %s | %s | %s | %s | %s | %s |" % ((label,) + tuple(cells) +
+                                                   (aims.get(what, ""),)))
+    cells = []
+    for kind in ("full", "all"):
+        used, chunk = rows[kind]["memory"]
+        cells += ["%.1f MB" % (used / 1e6), "%.2fx one chunk's arrays (%.1f MB)" % (
+            used / chunk, chunk / 1e6)]
+    print("| kinematics_chunks' peak memory | %s | %s | %s | %s | 1x |" % tuple(cells))
+
+
+def chunk_memory(n, names):
+    """A child process: the peak RSS of kinematics_chunks(rows=10000) over n samples above its
+    RSS before, and the bytes of one chunk's arrays."""
     code = """
 import sys, numpy as np, mb_kinematics
 m = mb_kinematics.load(sys.argv[1]); n = int(sys.argv[2]); outputs = sys.argv[3].split(",")
@@ -226,9 +298,7 @@ print(status("VmHWM:") - before, chunk)
     done = subprocess.run([sys.executable, "-c", code, os.path.join(ROOT, MODELS["human"]),
                            str(n), ",".join(names)], capture_output=True, text=True, check=True,
                           cwd="/tmp")
-    used, chunk = map(int, done.stdout.split())
-    print("| kinematics_chunks' peak memory | %.1f MB | %.2fx one chunk's arrays (%.1f MB) | 1x |"
-          % (used / 1e6, used / chunk, chunk / 1e6))
+    return tuple(map(int, done.stdout.split()))
 
 
 if __name__ == "__main__":

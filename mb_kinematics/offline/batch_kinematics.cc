@@ -14,7 +14,6 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
-#include "mb_kinematics/offline/stream_copy.h"
 
 namespace mbk {
 namespace {
@@ -189,50 +188,9 @@ void compute_sample(const Model& model, const BatchInput& in, std::size_t s, Lev
   if (w.pv) write_partials(model, *w.pv, s, out);
 }
 
-// Outputs larger than this are streamed past the caches (offline/stream_copy.h); smaller ones,
-// which the caller may read from the caches next, are written in place.
-constexpr std::size_t kStreamedBytes = std::size_t{8} << 20;
-constexpr std::size_t kStagingBytes = std::size_t{48} << 10;  // a block's outputs, in L2
-
-// Rows [begin, end) of the inputs as rows [0, end - begin).
-BatchInput rows_of(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end) {
-  BatchInput rows = in;
-  rows.samples = end - begin;
-  rows.position += begin * model.nq;
-  if (rows.velocity) rows.velocity += begin * model.nv;
-  if (rows.acceleration) rows.acceleration += begin * model.nv;
-  return rows;
-}
-
-// A block of samples' outputs computed into `staging` (small, in the caches), then streamed
-// into the caller's arrays: their lines are never read first (no read-for-ownership), so the
-// arrays' memory sees each byte once, as a plain copy's destination does.
-template <typename T>
-void compute_streamed(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
-                      Level level, const BatchOutput<T>& out, Workspace& w) {
-  std::size_t per_sample = 0;
-  std::array<std::size_t, kBatchFieldCount> size{};
-  for (int f = 0; f < kBatchFieldCount; ++f)
-    if (out.field[f])
-      per_sample += size[f] =
-          batch_field_size(model, static_cast<BatchField>(f), out.bodies.size());
-  const std::size_t block = std::max<std::size_t>(1, kStagingBytes / (per_sample * sizeof(T)));
-  std::vector<T> buffer(block * per_sample);
-  BatchOutput<T> staging;
-  staging.bodies = out.bodies;
-  for (int f = 0, at = 0; f < kBatchFieldCount; ++f)
-    if (out.field[f]) staging.field[f] = buffer.data() + at, at += block * size[f];
-  for (std::size_t b = begin; b < end; b += block) {
-    const std::size_t n = std::min(block, end - b);
-    const BatchInput rows = rows_of(model, in, b, b + n);
-    for (std::size_t s = 0; s < n; ++s) compute_sample(model, rows, s, level, staging, w);
-    for (int f = 0; f < kBatchFieldCount; ++f)
-      if (out.field[f])
-        stream_copy(out.field[f] + b * size[f], staging.field[f], n * size[f] * sizeof(T));
-  }
-  stream_fence();
-}
-
+// Samples [begin, end) written straight into the caller's arrays (each thread its own rows, so
+// fresh arrays are first touched by the threads that fill them), with ordinary stores: the
+// caches absorb and write back the rows while the next samples compute (doc/speed.md#python).
 template <typename T>
 void compute_range(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
                    Level level, const BatchOutput<T>& out) {
@@ -241,12 +199,6 @@ void compute_range(const Model& model, const BatchInput& in, std::size_t begin, 
     w.pv = std::make_unique<PartialVelocities<double>>(model);
     w.scratch = std::make_unique<Data<double>>(model);
   }
-  std::size_t bytes = 0;
-  for (int f = 0; f < kBatchFieldCount; ++f)
-    if (out.field[f])
-      bytes += in.samples * sizeof(T) *
-               batch_field_size(model, static_cast<BatchField>(f), out.bodies.size());
-  if (bytes > kStreamedBytes) return compute_streamed(model, in, begin, end, level, out, w);
   for (std::size_t s = begin; s < end; ++s) compute_sample(model, in, s, level, out, w);
 }
 
