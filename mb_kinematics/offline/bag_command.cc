@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
@@ -17,15 +16,14 @@
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/angle_orders.h"
-#include "mb_kinematics/io/block_file.h"
 #include "mb_kinematics/io/bvh.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/io/number_format.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/offline/bag_output.h"
 #include "mb_kinematics/offline/base_track.h"
 #include "mb_kinematics/offline/bvh_recording.h"
+#include "mb_kinematics/offline/error_bar_files.h"
 #include "mb_kinematics/offline/h5_output.h"
 #include "mb_kinematics/offline/mot_output.h"
 #include "mb_kinematics/offline/offline_batch.h"
@@ -75,25 +73,12 @@ bool same_file(const std::string& a, const std::string& b, bool both_outputs) {
   return fs::weakly_canonical(a, ea) == fs::weakly_canonical(b, eb);
 }
 
-// The error bars' side files go beside a CSV that is (or will be) a regular file only: not
-// beside /dev/null, /dev/stdout or a pipe (which would put /dev/null.errors.csv into /dev).
-bool has_side_files(const std::string& csv) {
-  if (csv.empty()) return false;
-  std::error_code ec;
-  const std::filesystem::file_status st = std::filesystem::status(csv, ec);
-  return !std::filesystem::exists(st) || std::filesystem::is_regular_file(st);
-}
-
-// OUT.csv's side file of error bars: OUT.errors.csv.
-std::string errors_path(const std::string& csv, const char* suffix = ".errors.csv") {
-  return (ends_with(csv, ".csv") ? csv.substr(0, csv.size() - 4) : csv) + suffix;
-}
-
-// What a run writes: the outputs, the caller's other files, and with "auto" (`side_files`) the
-// CSV's side files OUT.errors.csv and OUT.sample_errors.csv.
-std::vector<NamedFile> written_files(const BagOptions& o, bool side_files) {
+// What a run writes: the outputs, the caller's other files (`others`), and with "auto"
+// (`side_files`) the CSV's side files OUT.errors.csv and OUT.sample_errors.csv.
+std::vector<NamedFile> written_files(const BagOutputs& o, const std::vector<NamedFile>& others,
+                                     bool side_files) {
   std::vector<NamedFile> files = output_files(o);
-  files.insert(files.end(), o.other_outputs.begin(), o.other_outputs.end());
+  files.insert(files.end(), others.begin(), others.end());
   if (side_files && has_side_files(o.out_csv))
     for (const char* suffix : {".errors.csv", ".sample_errors.csv"})
       files.push_back({"--csv's side file", errors_path(o.out_csv, suffix)});
@@ -223,10 +208,6 @@ struct InputReading {
   bool progress;
 };
 
-InputReading reading_of(const BagOptions& o, const mbk::ModelFile& file) {
-  return {o, file, o.bvh.scale, file.bvh && o.input == o.model, o.progress};
-}
-
 // Every sample of the input into `builder` (a trajectory CSV, a BVH file or a bag);
 // `checked`: the bag was read safely before (read_bag). A BVH input that is the model file (the
 // default) is not read again.
@@ -245,13 +226,6 @@ void read_input(const InputReading& r, mbk::RecordingBuilder& builder, BaseOdome
       [&](long done, long total) { bar.update(done, total); }, checked);
   s.unreadable = unreadable.count;
   s.unreadable_example = unreadable.first;
-}
-
-// What the HDF5 file says of its run (its frame and system set by open_outputs).
-H5Attributes h5_attributes(const BagOptions& o, const mbk::OfflineEstimator& estimator) {
-  H5Attributes a;
-  a.model_file = o.model, a.input = o.input, a.estimator = estimator.name;
-  return a;
 }
 
 // The outputs opened (under temporary names) for `base_model`'s bodies (the model of `file`,
@@ -297,77 +271,6 @@ void open_outputs(const BagOutputs& o, const std::string& input, const mbk::Mode
                                           base_model, columns);
   }
   out.base_model = &base_model;
-}
-
-// OUT.csv's side file of each sample's error bars, OUT.sample_errors.csv ("auto", every
-// coordinate in every sample): stamp, then <coordinate>_velocity_se, <coordinate>_acceleration_se
-// per coordinate (0 where the sample gives it or a mimic rule sets it), a row per sample read,
-// each number to 6 significant digits (%g); written a piece at a time as the CSV is (formatted
-// into one reused buffer, io/block_file.h), under a temporary name until commit().
-class SampleErrorsFile {
- public:
-  SampleErrorsFile(std::string path, const mbk::Model& model)
-      : path_(std::move(path)), model_(model), v_(model.nq, 0.0), a_(model.nq, 0.0) {}
-  // Rows [begin, end) of `rec`; nothing without error bars (states.coordinate_errors).
-  void write(const mbk::Recording& rec, const mbk::OfflineStates& states, int begin, int end) {
-    if (begin >= end || !states.coordinate_errors(begin, v_.data(), a_.data())) return;
-    if (!file_) open();
-    for (int r = begin; r < end; ++r) {
-      states.coordinate_errors(r, v_.data(), a_.data());
-      char* at = mbk::write_stamp(row_.data(), rec.origin, rec.recorded(r));
-      for (int c = 0; c < model_.nq; ++c) {
-        *at++ = ',';
-        at = mbk::write_general(at, v_[c], 6);
-        *at++ = ',';
-        at = mbk::write_general(at, a_[c], 6);
-      }
-      *at++ = '\n';
-      block_->write(row_.data(), static_cast<std::size_t>(at - row_.data()));
-    }
-  }
-  void commit() {
-    if (!file_) return;
-    try {
-      block_->close();
-    } catch (const std::runtime_error&) {
-      throw std::invalid_argument(path_ + ": cannot write the error bars");
-    }
-    file_->commit();
-  }
-
- private:
-  static constexpr int kStampChars = 400;  // %.9f of the largest double fits
-  void open() {
-    file_ = std::make_unique<OutputFile>(path_, false);
-    block_ = std::make_unique<mbk::BlockFile>(file_->writing());
-    std::string header = "stamp";
-    for (const std::string& name : model_.coordinate_names)
-      header += "," + name + "_velocity_se," + name + "_acceleration_se";
-    block_->write(header + "\n");
-    row_.resize(kStampChars + 2 * static_cast<std::size_t>(model_.nq) * (1 + mbk::kMaxDoubleChars) +
-                1);
-  }
-  std::string path_;
-  const mbk::Model& model_;
-  std::vector<double> v_, a_;
-  std::unique_ptr<OutputFile> file_;
-  std::unique_ptr<mbk::BlockFile> block_;
-  std::vector<char> row_;  // one row's text
-};
-
-// One row per coordinate: coordinate,noise,velocity_se,acceleration_se (medians over samples, to
-// a relative 2^-11: MedianHistogram).
-// Written like the other outputs: under a temporary name, renamed when whole (output_file.h).
-void write_errors(const std::string& path, const std::vector<mbk::CoordinateError>& errors) {
-  OutputFile file(path, false);
-  std::ofstream f(file.writing());
-  f << "coordinate,noise,velocity_se,acceleration_se\n";
-  f.precision(6);
-  for (const mbk::CoordinateError& e : errors)
-    f << e.name << "," << e.noise << "," << e.velocity_se << "," << e.acceleration_se << "\n";
-  f.close();
-  if (!f) throw std::invalid_argument(path + ": cannot write the error bars");
-  file.commit();
 }
 
 // Rows computed per OfflineStream chunk: a few blocks, small beside a long recording.
@@ -455,12 +358,14 @@ class InputRows {
 // chooses its windows in a second, the last computes and writes the rows (InputRows: the input
 // read once when its rows fit in kKeptRowBytes). False, with nothing written, when the
 // recording needs the whole-recording path (a coordinate in some samples only).
-bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
-                  const mbk::OfflineEstimator& estimator, mbk::OfflineReach reach, BagSummary& s) {
+// `about`: the HDF5 file's attributes (open_outputs).
+bool run_streamed(const InputReading& reading, const BagOutputs& o, const BagComputing& c,
+                  const H5Attributes& about, const mbk::OfflineEstimator& estimator,
+                  mbk::OfflineReach reach, BagSummary& s) {
   const auto wall = Clock::now();
-  const mbk::Model& model = file.model;
-  InputRows input(reading_of(o, file));
-  const bool intervals = o.max_gap <= 0 || estimator.automatic;
+  const mbk::Model& model = reading.file.model;
+  InputRows input(reading);
+  const bool intervals = c.max_gap <= 0 || estimator.automatic;
   mbk::RecordingSurvey survey(model.nq, intervals);
   mbk::StampGridFit grid_fit;
   input.pass(
@@ -486,8 +391,8 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
     input.pass([&](double t, const double*, const double*,
                    const std::uint8_t*) { survey.add_stamp(grid.snap(t)); },
                s);
-  s.max_gap = o.max_gap > 0 ? o.max_gap : survey.default_max_gap();
-  const int threads = o.threads > 0 ? o.threads : mbk::default_thread_count();
+  s.max_gap = c.max_gap > 0 ? c.max_gap : survey.default_max_gap();
+  const int threads = c.threads > 0 ? c.threads : mbk::default_thread_count();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
   if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
@@ -498,7 +403,7 @@ bool run_streamed(const BagOptions& o, const mbk::ModelFile& file,
     whole = choose.finish(reach);
   }
   Outputs out;
-  open_outputs(o, o.input, file, model, "", estimator.automatic, h5_attributes(o, estimator), out);
+  open_outputs(o, reading.in.input, reading.file, model, "", estimator.automatic, about, out);
   out.set_time_origin(input.time_origin());
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,
@@ -552,7 +457,7 @@ BagSummary run_bag(const BagOptions& o) {
   const mbk::OfflineEstimator estimator = mbk::make_offline_estimator(
       o.estimator.empty() ? mbk::default_offline_estimator() : o.estimator);
   refuse_same_files({{"the input", o.input}, {"--model", o.model}},
-                    written_files(o, estimator.whole_series()));
+                    written_files(o, o.other_outputs, estimator.whole_series()));
   BagSummary s;
   const mbk::ModelFile file = load(o.model, o.bvh);
   const mbk::Model& model = file.model;
@@ -564,13 +469,16 @@ BagSummary run_bag(const BagOptions& o) {
   mbk::OfflineReach reach;
   const bool may_stream = o.base_odometry.empty() && o.joint_accelerations.empty() &&
                           (estimator.automatic || mbk::offline_reach(estimator, reach));
-  if (may_stream && run_streamed(o, file, estimator, reach, s)) {
+  const InputReading reading{o, file, o.bvh.scale, file.bvh && o.input == o.model, o.progress};
+  H5Attributes about;  // what the HDF5 file says of its run (its frame and system: open_outputs)
+  about.model_file = o.model, about.input = o.input, about.estimator = estimator.name;
+  if (may_stream && run_streamed(reading, o, o, about, estimator, reach, s)) {
     s.wall_seconds = since(wall);
     return s;
   }
   mbk::RecordingBuilder builder(model);
   BaseOdometry base;
-  read_input(reading_of(o, file), builder, base, s, may_stream);
+  read_input(reading, builder, base, s, may_stream);
   const mbk::Recording rec = builder.finish();
   s.grid = rec.grid;
   s.read = builder.samples_read();
@@ -593,7 +501,7 @@ BagSummary run_bag(const BagOptions& o) {
   const mbk::Model& base_model = floating ? with_base->layout : model;
   // The error bars' columns with auto (in the model's frame: not with a base).
   open_outputs(o, o.input, file, base_model, base.frame, estimator.whole_series() && !floating,
-               h5_attributes(o, estimator), out);
+               about, out);
   out.set_time_origin(rec.origin);
   out.floating = floating;
   if (floating) out.base_data = std::make_unique<mbk::Data<double>>(base_model);

@@ -39,14 +39,18 @@ struct BagOutputs {
   bool mot_coordinates = false;
 };
 
+// How a run computes: the estimator, the gaps it does not bridge, the threads.
+struct BagComputing {
+  std::string estimator;  // empty: the default
+  double max_gap = 0;     // seconds; 0: 5 x the median interval
+  int threads = 0;        // computing threads; 0: one per CPU (default_thread_count)
+};
+
 // A run of mbk bag (mb_kinematics/tools/bag_cli.h makes it from the command line): its input,
 // its outputs, and how the kinematics are computed. The inner steps take their group only.
-struct BagOptions : BagInput, BagOutputs {
+struct BagOptions : BagInput, BagOutputs, BagComputing {
   std::string model;         // a .bvh input's own skeleton when empty
   mbk::BvhModelOptions bvh;  // --scale, --body-mass, --sex: a .bvh model's
-  std::string estimator;     // empty: the default
-  double max_gap = 0;        // seconds; 0: 5 x the median interval
-  int threads = 0;           // computing threads; 0: one per CPU (default_thread_count)
   bool progress = false;     // draw a progress bar on stderr
   // Files the caller writes besides the outputs (mbk bag's --summary-json): refused, as the
   // outputs are, when one is an input or another output.

@@ -1,5 +1,7 @@
 #include "mb_kinematics/tools/bag_cli.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,7 +13,7 @@
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/io/bvh_model.h"
 #include "mb_kinematics/io/load_model.h"
-#include "mb_kinematics/offline/error_bar_summary.h"
+#include "mb_kinematics/tools/error_bar_summary.h"
 
 namespace mbk_offline {
 namespace {
@@ -20,10 +22,12 @@ bool ends_with(const std::string& s, const std::string& end) {
   return s.size() >= end.size() && s.compare(s.size() - end.size(), end.size(), end) == 0;
 }
 
-// The command line as it is read: a .bvh model's options as text, checked once all are read.
+// The command line as it is read: a .bvh model's options as text, checked once all are read;
+// the options given, by name.
 struct Reading {
   BagCommandLine line;
   std::string scale, body_mass, sex, segments, anthropometry;
+  std::vector<std::string> given;
 };
 
 // `text` as a number, NaN when it is not one whole.
@@ -35,12 +39,15 @@ double number(const std::string& text) {
 
 // One option of `mbk bag`: its name, the value that follows it in the usage ("" for a flag), who
 // takes it (bag_cli.h) and what it sets (a wrong value throws std::invalid_argument naming the
-// option). A value option is given once at most.
+// option). A value option is given once at most. An option that adds to outputs (its columns)
+// says what it adds and the outputs it needs, one at least (check_column_options).
 struct Option {
   const char* name;
   const char* value;
   BagOptionUse use;
   void (*set)(Reading& r, const std::string& value);
+  const char* adds = "";               // "adds columns to the CSV"
+  std::array<const char*, 2> needs{};  // "--csv", "--mot": the outputs it adds to
   bool takes_value() const { return *value != '\0'; }
 };
 
@@ -62,8 +69,12 @@ const Option kOptions[] = {
        r.line.h5_compression = static_cast<int>(level);
      }},
     {"--mot", "OUT.mot", kOwn, [](Reading& r, const std::string& v) { r.line.out_mot = v; }},
-    {"--mot-coordinates", "", kJob,
-     [](Reading& r, const std::string&) { r.line.mot_coordinates = true; }},
+    {"--mot-coordinates",
+     "",
+     kJob,
+     [](Reading& r, const std::string&) { r.line.mot_coordinates = true; },
+     "adds columns to the OpenSim file",
+     {"--mot"}},
     {"--summary-json", "FILE", kOwn,
      [](Reading& r, const std::string& v) { r.line.summary_json = v; }},
     {"--joint-states", "TOPIC", kJob,
@@ -81,13 +92,22 @@ const Option kOptions[] = {
     {"--segments", "MAP.yaml", kBvh, [](Reading& r, const std::string& v) { r.segments = v; }},
     {"--anthropometry", "de_leva|dempster", kBvh,
      [](Reading& r, const std::string& v) { r.anthropometry = v; }},
-    {"--body-axes", "", kJob, [](Reading& r, const std::string&) { r.line.body_axes = true; }},
-    {"--angles", "ORDER|ORDERS.yaml", kJob,
+    {"--body-axes",
+     "",
+     kJob,
+     [](Reading& r, const std::string&) { r.line.body_axes = true; },
+     "adds columns to the CSV",
+     {"--csv"}},
+    {"--angles",
+     "ORDER|ORDERS.yaml",
+     kJob,
      [](Reading& r, const std::string& v) {
        if (!ends_with(v, ".yaml") && !ends_with(v, ".yml"))
          mbk::euler_order_from_string(v);  // a bad order refused before anything is read
        r.line.angles = v;
-     }},
+     },
+     "sets the joint angles of the CSV and the OpenSim file",
+     {"--csv", "--mot"}},
     {"--max-gap", "S", kJob,
      [](Reading& r, const std::string& v) {
        r.line.max_gap = number(v);
@@ -137,16 +157,10 @@ void check(Reading& r) {
     throw std::invalid_argument(
         "--scale, --body-mass, --sex, --segments and --anthropometry apply to a .bvh model only");
   o.bvh = mbk::bvh_model_options(r.scale, r.body_mass, r.sex, r.segments, r.anthropometry);
-  if (o.body_axes && o.out_csv.empty())
-    throw std::invalid_argument("--body-axes adds columns to the CSV: give --csv OUT.csv");
-  if (!o.angles.empty() && o.out_csv.empty() && o.out_mot.empty())
-    throw std::invalid_argument(
-        "--angles sets the joint angles of the CSV and the OpenSim file: give --csv OUT.csv or "
-        "--mot OUT.mot");
-  if (o.mot_coordinates && o.out_mot.empty())
-    throw std::invalid_argument(
-        "--mot-coordinates adds columns to the OpenSim file: give --mot OUT.mot");
-  if (output_files(o).empty())
+  std::vector<std::string> outputs;
+  for (const NamedFile& file : output_files(o)) outputs.push_back(file.name);
+  check_column_options(r.given, outputs, true);
+  if (outputs.empty())
     throw std::invalid_argument(
         "bag needs at least one of --out OUT.bag, --csv OUT.csv, --h5 OUT.h5, --mot OUT.mot");
   if (o.start_time != 0 && !ends_with(o.input, ".csv") && !mbk::is_bvh_file(o.input))
@@ -165,6 +179,7 @@ BagCommandLine parse_bag_options(int argc, char** argv) {
     if (option && (!option->takes_value() || i + 1 < argc)) {
       if (option->takes_value() && !given.insert(arg).second)
         throw std::invalid_argument(arg + " is given twice");
+      r.given.push_back(arg);
       option->set(r, option->takes_value() ? argv[++i] : "");
       if (r.line.help) return r.line;  // the usage, whatever else is given
     } else if (arg.rfind("--", 0) != 0 && r.line.input.empty()) {
@@ -175,6 +190,26 @@ BagCommandLine parse_bag_options(int argc, char** argv) {
   }
   check(r);
   return r.line;
+}
+
+void check_column_options(const std::vector<std::string>& given,
+                          const std::vector<std::string>& outputs, bool with_values) {
+  const auto has = [](const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  for (const Option& option : kOptions) {
+    if (!option.needs[0] || !has(given, option.name)) continue;
+    std::string give;
+    bool found = false;
+    for (const char* output : option.needs) {
+      if (!output) break;
+      found = found || has(outputs, output);
+      give += (give.empty() ? "" : " or ") + std::string(output);
+      if (with_values) give += std::string(" ") + find_option(output)->value;
+    }
+    if (!found)
+      throw std::invalid_argument(std::string(option.name) + " " + option.adds + ": give " + give);
+  }
 }
 
 std::vector<BagOptionRow> bag_option_rows() {

@@ -40,6 +40,15 @@ struct BagOptionRow {
 };
 std::vector<BagOptionRow> bag_option_rows();
 
+// Refuses (std::invalid_argument) an option among `given` that adds to outputs (columns:
+// --body-axes to the CSV, --angles to the CSV and the OpenSim file, --mot-coordinates to the
+// OpenSim file) when none of those is among `outputs` ("--csv", "--mot", ...): mbk bag's rule, and
+// mbk batch's through the Python module. with_values: the message gives the outputs with their
+// values
+// ("give --csv OUT.csv", mbk bag's), else their names alone (mbk batch's --csv takes none).
+void check_column_options(const std::vector<std::string>& given,
+                          const std::vector<std::string>& outputs, bool with_values);
+
 // The summary as printed at the end: samples, drops, the estimator, the noise level and the
 // worst error bar; `verbose` adds every coordinate's error bars and the times.
 std::string format_summary(const BagSummary& s, bool verbose = false);

@@ -7,7 +7,7 @@
 
 #include "mb_kinematics/io/number_format.h"
 #include "mb_kinematics/io/report.h"
-#include "mb_kinematics/offline/error_bar_summary.h"
+#include "mb_kinematics/tools/error_bar_summary.h"
 #include "mb_kinematics/offline/output_file.h"
 #include "mb_kinematics/tools/bag_cli.h"
 

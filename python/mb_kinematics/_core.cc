@@ -60,6 +60,14 @@ void check_bvh_options(const std::string& scale, const std::string& body_mass,
   mbk::bvh_model_options(scale, body_mass, sex);
 }
 
+// mbk bag's rule for the options that add columns to an output (tools/bag_cli.h): mbk batch
+// refuses, before any job runs, one given (`options`, by name) without an output it adds to
+// (`outputs`: "--csv", "--mot", ...), with mbk bag's message less the outputs' values.
+void check_column_options(const std::vector<std::string>& options,
+                          const std::vector<std::string>& outputs) {
+  mbk_offline::check_column_options(options, outputs, false);
+}
+
 // mbk bag's options (tools/bag_cli.h's table): (name, value, who takes it) per option, the value
 // "" for a flag, who: "every job", "bvh jobs" (mbk batch's) or "bag alone".
 py::list bag_options() {
@@ -442,6 +450,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
   m.def("check_bvh_options", &check_bvh_options);
+  m.def("check_column_options", &check_column_options);
   m.def("bag_options", &bag_options);
   m.def("field_traits", &field_traits);
   m.def("field_shape", &field_shape);

@@ -22,6 +22,7 @@ import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 
+from mb_kinematics import _core
 from mb_kinematics.batch_inputs import EXTENSIONS, SUMMARY, BatchError, find_inputs
 from mb_kinematics.batch_job import (BVH_OPTIONS, COMMON_OPTIONS, STATE, failure, finished,
                                      locate_mbk_bag, plan, run_job, write_atomically)
@@ -258,18 +259,14 @@ def _bag_options(model, options):
     return named
 
 
-# The options that add columns to an output, and the outputs they need (mbk bag's rule).
-COLUMN_OPTIONS = {"--body-axes": ("csv",), "--angles": ("csv", "mot"), "--mot-coordinates": ("mot",)}
-
-
 def _check_columns(named, kinds):
-    """BatchError if an option adds columns to none of the outputs `kinds` (as mbk bag refuses
-    it), before any job runs."""
-    for name, needs in COLUMN_OPTIONS.items():
-        if name in named and not set(needs) & set(kinds):
-            raise BatchError("%s adds columns to %s: give %s" % (
-                name, " or ".join("the " + k.upper() + " file" for k in needs),
-                " or ".join("--" + k for k in needs)))
+    """BatchError if an option adds columns to none of the outputs `kinds` (mbk bag's rule, from
+    its option table), before any job runs."""
+    outputs = ["--out" if kind == "bag" else "--" + kind for kind in kinds]
+    try:
+        _core.check_column_options(sorted(named), outputs)
+    except ValueError as e:
+        raise BatchError(str(e)) from None
 
 
 def run(inputs, out_dir, model=None, kinds=("csv",), jobs=None, client=None, progress=False,

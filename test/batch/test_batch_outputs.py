@@ -62,11 +62,11 @@ def test_column_options_without_their_output_are_refused_before_any_job(walk_tem
                                                                          tmp_path):
     from mb_kinematics.batch import USAGE_STATUS
     folder, _ = walk_template
-    for option, message in ((["--body-axes"], "--body-axes adds columns to the CSV file: "
-                             "give --csv"),
-                            (["--mot-coordinates"], "give --mot"),
-                            (["--angles", "ZXY"], "the CSV file or the MOT file: give --csv or "
-                             "--mot")):
+    for option, message in ((["--body-axes"], "--body-axes adds columns to the CSV: give --csv\n"),
+                            (["--mot-coordinates"], "--mot-coordinates adds columns to the "
+                             "OpenSim file: give --mot\n"),
+                            (["--angles", "ZXY"], "--angles sets the joint angles of the CSV and "
+                             "the OpenSim file: give --csv or --mot\n")):
         out = str(tmp_path / ("out" + option[0]))
         status, _, err = batch(folder, "--out-dir", out, "--scale", "0.056444", "--h5", *option)
         assert status == USAGE_STATUS and message in err, err

@@ -682,6 +682,38 @@ TEST(BagTest, EveryValueOptionOnce) {
   EXPECT_EQ(line.other_outputs[0].path, "s.json");
 }
 
+// An option that adds columns to an output is refused without one it adds to: mbk bag's message
+// names the outputs with their values, mbk batch's (check_column_options without them) does not.
+TEST(BagTest, ColumnOptionsNeedTheirOutput) {
+  const auto error = [](std::vector<const char*> args) -> std::string {
+    args.insert(args.begin(), {"mbk", "bag", "in.bag", "--model", "m.yaml"});
+    try {
+      mbk_offline::parse_bag_options(static_cast<int>(args.size()),
+                                     const_cast<char**>(args.data()));
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(error({"--h5", "o.h5", "--body-axes"}),
+            "--body-axes adds columns to the CSV: give --csv OUT.csv");
+  EXPECT_EQ(error({"--csv", "o.csv", "--mot-coordinates"}),
+            "--mot-coordinates adds columns to the OpenSim file: give --mot OUT.mot");
+  EXPECT_EQ(error({"--out", "o.bag", "--angles", "XYZ"}),
+            "--angles sets the joint angles of the CSV and the OpenSim file: give --csv OUT.csv "
+            "or --mot OUT.mot");
+  EXPECT_EQ(error({"--mot", "o.mot", "--angles", "XYZ", "--mot-coordinates"}), "");
+  EXPECT_EQ(error({"--csv", "o.csv", "--angles", "XYZ", "--body-axes"}), "");
+  try {
+    mbk_offline::check_column_options({"--angles", "--scale"}, {"--h5"}, false);
+    ADD_FAILURE() << "--angles without --csv or --mot accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--angles sets the joint angles of the CSV and the OpenSim file: give --csv or --mot");
+  }
+  EXPECT_NO_THROW(mbk_offline::check_column_options({"--body-axes"}, {"--h5", "--csv"}, false));
+}
+
 TEST(BagTest, ThreadsOptionIsACountFromOne) {
   const auto parse = [](std::vector<const char*> args) {
     args.insert(args.begin(), {"mbk", "bag", "in.bag", "--model", "m.yaml", "--out", "o.bag"});

@@ -1,4 +1,4 @@
-#include "mb_kinematics/offline/error_bar_summary.h"
+#include "mb_kinematics/tools/error_bar_summary.h"
 
 #include <algorithm>
 #include <cstdio>
