@@ -11,8 +11,8 @@
 # tests (hztest at 50 Hz, node_load_smoke's every sample counted, /tf's longest gap during a heavy
 # call in deep_partials), two rviz tests at once allowed. rviz_hostile_many runs alone
 # (test/rviz.cmake). doc_pages takes one slot: its blocks mostly wait (a launched node's settle
-# time), three at once. fuzz_smoke starts first: its clang build keeps both cores busy while the
-# waiting tests run beside it.
+# time), three at once. fuzz_smoke starts first: it waits for the harnesses' clang build (which
+# scripts/test.sh starts beside the tests' build), then runs them two at a time.
 
 # mbk_tests_matching(REGEX OUT): the names of this directory's tests that match REGEX.
 function(mbk_tests_matching regex out)
