@@ -36,6 +36,15 @@ MBK_PACKAGES+=("${MBK_TEST_PACKAGES[@]}")
 mbk_install_deps
 mbk_build -DCATKIN_ENABLE_TESTING=ON "${build_args[@]}"
 echo "== building tests (${SECONDS} s in)"
+# The fuzz harnesses' clang build (scripts/fuzz.sh --build) beside the tests' build: ctest's
+# fuzz_smoke, the longest test, then waits for it (a lock) rather than starting it; its output
+# is in <workspace>/fuzz/build.log, and a failed build fails fuzz_smoke, which builds again.
+fuzz_build=
+if [ -z "$sanitize" ]; then
+  MBK_WS=$MBK_WS setsid "$MBK_SRC/scripts/fuzz.sh" --build >/dev/null 2>&1 &
+  fuzz_build=$!
+  trap '[ -z "$fuzz_build" ] || kill -- -"$fuzz_build" 2>/dev/null || true' EXIT
+fi
 (cd "$MBK_WS/build" && make -j2 tests >>"$MBK_WS/build.log" 2>&1) || {
   tail -n 60 "$MBK_WS/build.log"
   echo "test build failed: full log in $MBK_WS/build.log" >&2

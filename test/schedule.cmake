@@ -1,7 +1,7 @@
 # ctest's schedule (doc/building.md). On a clean clone ctest has no timings of a previous run and
 # starts the tests in decreasing COST, then in the order they were added: the long ones are given
-# their seconds here (a clean clone's run on the 2-core machine), so that they start first and
-# none is left running alone at the end. Include it after every test is added.
+# their seconds here (a clean clone's ctest on the idle 2-core machine, doc/building.md), so that
+# they start first and none is left running alone at the end. Include it after every test is added.
 #
 # scripts/test.sh runs `ctest -j4`, four slots on two cores: most tests wait (on a ROS master, on
 # messages, on a timer) and take one slot (the 28 rostests and node_load_smoke: 54 CPU seconds in
@@ -11,8 +11,8 @@
 # tests (hztest at 50 Hz, node_load_smoke's every sample counted, /tf's longest gap during a heavy
 # call in deep_partials), two rviz tests at once allowed. rviz_hostile_many runs alone
 # (test/rviz.cmake). doc_pages takes one slot: its blocks mostly wait (a launched node's settle
-# time), three at once. fuzz_smoke starts first: its clang build keeps both cores busy while the
-# waiting tests run beside it.
+# time), three at once. fuzz_smoke starts with the first: it waits for the harnesses' clang
+# build (which scripts/test.sh starts beside the tests' build), then runs them two at a time.
 
 # mbk_tests_matching(REGEX OUT): the names of this directory's tests that match REGEX.
 function(mbk_tests_matching regex out)
@@ -29,22 +29,21 @@ function(mbk_test_cost regex seconds)
   endif()
 endfunction()
 
-mbk_test_cost("^fuzz_smoke$" 400)  # the harnesses' clang build, then the runs
-mbk_test_cost("^doc_pages$" 150)
-mbk_test_cost("^python_batch$" 150)
-mbk_test_cost("^rviz_moving_|^rviz_arrows_" 25)
-mbk_test_cost("rostest_test_ros_hostile\\.test$" 24)
-mbk_test_cost("rostest_test_ros_missing\\.test$" 21)
-mbk_test_cost("rostest_test_ros_base_odometry\\.test$" 20)
-mbk_test_cost("rostest_test_ros_node\\.test$" 18)
-mbk_test_cost("^node_load_smoke$" 17)
-mbk_test_cost("rostest_test_ros_nodelet\\.test$" 12)
-mbk_test_cost("^rviz_hostile_far$" 10)
-mbk_test_cost("^doc_check$|^update_once$" 8)
-mbk_test_cost("tf_duplicate" 7)
-mbk_test_cost("gtest_offline_stream_test$|^plot_kinematics$|rostest_test_ros_reload\\.test$" 7)
-mbk_test_cost("^gui_launch$|rostest_test_ros_hz\\.test$|^rviz_robot_panda$" 6)
-mbk_test_cost("^rviz_screenshot|^rviz_robot_anymal_c$" 5)
+mbk_test_cost("^python_batch$" 225)
+mbk_test_cost("^fuzz_smoke$" 185)  # the harnesses built beside the tests: their runs
+mbk_test_cost("^doc_pages$" 147)
+mbk_test_cost("^rviz_arrows_" 51)
+mbk_test_cost("^python_module$" 44)
+mbk_test_cost("^rviz_moving_" 32)
+mbk_test_cost("gtest_bag_test$" 32)
+mbk_test_cost("rostest_test_ros_hostile\\.test$" 28)
+mbk_test_cost("rostest_test_ros_(missing|node|base_odometry)\\.test$|^plot_kinematics$" 24)
+mbk_test_cost("^node_load_smoke$|gtest_output_file_test$" 20)
+mbk_test_cost("rostest_test_ros_nodelet\\.test$|^rviz_hostile_far$|^doc_check$|^relaunch$" 17)
+mbk_test_cost("gtest_offline_stream_test$|^plot_kinematics_bvh$|^gui_launch$|^xacro_launch$" 14)
+mbk_test_cost("rostest_test_ros_deep_partials(_nodelet)?\\.test$|^rviz_robot_|^rviz_screenshot" 12)
+mbk_test_cost("gtest_estimator_bound_test$" 12)
+mbk_test_cost("^rviz_legend_reset$|rostest_test_ros_(reload|hz)\\.test$|tf_duplicate" 9)
 
 # Busy tests: two slots each.
 mbk_tests_matching("^fuzz_smoke$|^node_load_smoke$|^memcheck_|^python_module$|^rviz_" busy)

@@ -62,8 +62,8 @@ if(MBK_VALGRIND AND NOT CMAKE_CXX_FLAGS MATCHES "sanitize" AND TARGET bvh_test)
 endif()
 
 # The fuzz smoke (doc/reliability.md): builds the libFuzzer harnesses of test/fuzz/ (clang, in
-# <workspace>/fuzz/build; in ctest, so that the build uses the cores the waiting tests leave)
-# and runs each from its seeds with a fixed seed and number of runs (about 5 s each, the same
+# <workspace>/fuzz/build; scripts/test.sh starts that build beside the tests' build, and this
+# test waits for it, then finds the harnesses built) and runs each from its seeds with a fixed seed and number of runs (about 5 s each, the same
 # inputs every time); fails on any crash, hang, leak or sanitizer report.
 get_filename_component(MBK_WORKSPACE ${CMAKE_BINARY_DIR} DIRECTORY)
 add_test(NAME fuzz_smoke COMMAND ${PROJECT_SOURCE_DIR}/scripts/fuzz.sh --smoke)
