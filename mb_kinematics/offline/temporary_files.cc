@@ -43,7 +43,13 @@ void remove_temporaries_on_signals() {
   action.sa_handler = remove_and_reraise;
   sigemptyset(&action.sa_mask);
   for (int signal : kSignals) sigaddset(&action.sa_mask, signal);
-  for (int i = 0; i < 3; ++i) sigaction(kSignals[i], &action, &earlier[i]);
+  for (int i = 0; i < 3; ++i) {
+    sigaction(kSignals[i], nullptr, &earlier[i]);
+    // A signal the process was started ignoring (nohup, a supervisor) stays ignored: handling it
+    // would remove the files of a run that goes on, which then fails to rename them.
+    const bool ignored = !(earlier[i].sa_flags & SA_SIGINFO) && earlier[i].sa_handler == SIG_IGN;
+    if (!ignored) sigaction(kSignals[i], &action, nullptr);
+  }
 }
 
 int record_temporary(const std::string& path) {

@@ -8,7 +8,9 @@
 
 namespace mbk_offline {
 
-// Installs the handler for SIGINT, SIGTERM and SIGHUP (once; later calls do nothing).
+// Installs the handler for SIGINT, SIGTERM and SIGHUP (once; later calls do nothing), except for
+// a signal the process ignores (started under nohup, say): that one stays ignored, and the run
+// goes on to write its outputs.
 void remove_temporaries_on_signals();
 
 // Records `path` for removal on those signals: a slot to forget(), or -1 when the table is full

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <csignal>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -156,12 +157,21 @@ std::vector<std::string> matching(const std::string& pattern) {
 }
 
 // `mbk bag` on a long recording (60,000 samples) into OUT.bag and OUT.csv, started in a child
-// process; returns once its first temporary file exists (the outputs are being written).
-pid_t start_long_run(const std::string& out) {
+// process with SIGINT, SIGTERM and SIGHUP at their default actions and unblocked, whatever this
+// process inherited (`ignored`, if not 0, ignored instead), its error output in OUT.err; returns
+// once its first temporary file exists (the outputs are being written).
+pid_t start_long_run(const std::string& out, int ignored = 0) {
   static const std::string in = write_trajectory("long_run.csv", 60000);
   const pid_t pid = fork();
   if (pid == 0) {
-    freopen("/dev/null", "w", stderr);
+    freopen((out + ".err").c_str(), "w", stderr);
+    sigset_t signals;
+    sigemptyset(&signals);
+    for (const int s : {SIGINT, SIGTERM, SIGHUP}) {
+      std::signal(s, s == ignored ? SIG_IGN : SIG_DFL);
+      sigaddset(&signals, s);
+    }
+    sigprocmask(SIG_UNBLOCK, &signals, nullptr);
     execl(MBK_MBK_PATH, "mbk", "bag", in.c_str(), "--model", kModel.c_str(), "--out",
           (out + ".bag").c_str(), "--csv", (out + ".csv").c_str(), static_cast<char*>(nullptr));
     _exit(127);
@@ -185,11 +195,29 @@ TEST(OutputFileTest, SignalsRemoveTheTemporaryFiles) {
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
-        << "signal " << signal << ": status " << status << " (the run ended before the signal?)";
+        << "signal " << signal << ": status " << status
+        << "; its errors: " << read_file(out + ".err");
     EXPECT_EQ(matching(out + ".*.mbk-tmp-*"), std::vector<std::string>{}) << signal;
     EXPECT_EQ(read_file(out + ".bag"), "the previous bag");
     EXPECT_EQ(read_file(out + ".csv"), "the previous csv");
   }
+}
+
+// A run started ignoring SIGTERM (nohup does so with SIGHUP) keeps ignoring it: sent one while it
+// writes, it goes on and renames its outputs into place. (Handled, the signal removed the
+// temporary files of a run that went on, which then failed naming them "replaced".)
+TEST(OutputFileTest, ASignalIgnoredFromTheStartStaysIgnored) {
+  const std::string out = temp("ignoring");
+  std::ofstream(out + ".csv") << "the previous csv";
+  const pid_t pid = start_long_run(out, SIGTERM);
+  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << "status " << status << "; its errors: " << read_file(out + ".err");
+  EXPECT_EQ(matching(out + ".*.mbk-tmp-*"), std::vector<std::string>{});
+  EXPECT_EQ(read_file(out + ".csv").rfind("stamp,body,", 0), 0u)
+      << "the run's CSV, not the previous one";
 }
 
 // What a run killed by SIGKILL leaves (its process gone) is removed by the next run on the same
