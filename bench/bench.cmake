@@ -8,6 +8,10 @@
 add_executable(euler_instructions bench/euler_instructions.cc)
 target_link_libraries(euler_instructions mbk_analysis mbk_io mbk_core)
 target_compile_definitions(euler_instructions PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+# recursion_instructions: the driver of bench/recursion_instructions.sh (callgrind).
+add_executable(recursion_instructions bench/recursion_instructions.cc)
+target_link_libraries(recursion_instructions mbk_analysis mbk_io mbk_core)
+target_compile_definitions(recursion_instructions PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
 find_package(benchmark QUIET)  # orocos_kdl and kdl_parser: found in CMakeLists.txt
 if(NOT benchmark_FOUND)

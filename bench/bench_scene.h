@@ -28,6 +28,53 @@ struct Scene {
   std::string mjcf = "";  // an MJCF file of the model: MuJoCo alone reads it (not the others)
 };
 
+// 29 revolute joints in the shape of Pinocchio's simple_humanoid: from the waist, two legs of 6
+// (hip roll, pitch, yaw, knee, ankle pitch, roll), a waist of 3 and two arms of 7.
+inline mbk::Model humanoid29() {
+  struct J {
+    std::string name, parent;  // parent "": the waist (the frame R)
+    double y, z;               // q_k = (0, y, z)
+    int axis;                  // 0, 1, 2: x, y, z
+  };
+  std::vector<J> joints = {
+      {"WAIST_P", "", 0, 0, 1}, {"WAIST_R", "WAIST_P", 0, 0, 0}, {"CHEST", "WAIST_R", 0, 0.35, 2}};
+  for (const std::string side : {"R", "L"}) {
+    const double sign = side == "R" ? -1 : 1;
+    const std::string leg = side + "LEG_", arm = side + "ARM_";
+    const std::vector<J> limbs = {{leg + "HIP_R", "", sign * 0.09, 0, 0},
+                                  {leg + "HIP_P", leg + "HIP_R", 0, 0, 1},
+                                  {leg + "HIP_Y", leg + "HIP_P", 0, -0.3535, 2},
+                                  {leg + "KNEE", leg + "HIP_Y", 0, 0, 1},
+                                  {leg + "ANKLE_P", leg + "KNEE", 0, -0.3, 1},
+                                  {leg + "ANKLE_R", leg + "ANKLE_P", 0, 0, 0},
+                                  {arm + "SHOULDER_P", "CHEST", sign * 0.21, 0, 1},
+                                  {arm + "SHOULDER_R", arm + "SHOULDER_P", 0, 0, 0},
+                                  {arm + "SHOULDER_Y", arm + "SHOULDER_R", 0, -0.263, 2},
+                                  {arm + "ELBOW", arm + "SHOULDER_Y", 0, 0, 1},
+                                  {arm + "WRIST_Y", arm + "ELBOW", 0, -0.247, 2},
+                                  {arm + "WRIST_P", arm + "WRIST_Y", 0, 0, 1},
+                                  {arm + "WRIST_R", arm + "WRIST_P", 0, 0, 0}};
+    joints.insert(joints.end(), limbs.begin(), limbs.end());
+  }
+  mbk::Model model;
+  model.frame = "WAIST_LINK0";
+  model.bodies.resize(joints.size() + 1);
+  for (size_t i = 0; i < joints.size(); ++i) {
+    const J& j = joints[i];
+    mbk::Body& body = model.bodies[i + 1];
+    body.name = j.name + "_LINK";
+    body.joint.name = j.name;
+    body.joint.type = mbk::JointType::kRevolute;
+    body.joint.offset = mbk::Vec3<double>(0.0, j.y, j.z);
+    body.joint.axis = mbk::Vec3<double>::Unit(j.axis);
+    body.lower = j.parent.empty() ? 0 : model.body_index(j.parent + "_LINK");
+    body.mass_center = mbk::Vec3<double>(0.01, 0.0, j.z < 0 ? -0.1 : 0.05);
+    body.mass = 2.0;
+  }
+  mbk::finalize_model(model);
+  return model;
+}
+
 inline mbk::JointState<double> random_state(const mbk::Model& model, unsigned seed) {
   std::mt19937 rng(seed);
   return mbk::random_state(model, rng);

@@ -245,61 +245,6 @@ void check_agreement(const std::string& name, const mbk::Model& model, KdlScene&
   }
 }
 
-// 29 revolute joints in the shape of Pinocchio's simple_humanoid: from the waist, two legs of 6
-// (hip roll, pitch, yaw, knee, ankle pitch, roll), a waist of 3 and two arms of 7.
-mbk::Model humanoid29() {
-  struct J {
-    std::string name, parent;  // parent "": the waist (the frame R)
-    double y, z;               // q_k = (0, y, z)
-    int axis;                  // 0, 1, 2: x, y, z
-  };
-  std::vector<J> joints = {
-      {"WAIST_P", "", 0, 0, 1}, {"WAIST_R", "WAIST_P", 0, 0, 0}, {"CHEST", "WAIST_R", 0, 0.35, 2}};
-  for (const std::string side : {"R", "L"}) {
-    const double sign = side == "R" ? -1 : 1;
-    const std::string leg = side + "LEG_", arm = side + "ARM_";
-    const std::vector<J> limbs = {{leg + "HIP_R", "", sign * 0.09, 0, 0},
-                                  {leg + "HIP_P", leg + "HIP_R", 0, 0, 1},
-                                  {leg + "HIP_Y", leg + "HIP_P", 0, -0.3535, 2},
-                                  {leg + "KNEE", leg + "HIP_Y", 0, 0, 1},
-                                  {leg + "ANKLE_P", leg + "KNEE", 0, -0.3, 1},
-                                  {leg + "ANKLE_R", leg + "ANKLE_P", 0, 0, 0},
-                                  {arm + "SHOULDER_P", "CHEST", sign * 0.21, 0, 1},
-                                  {arm + "SHOULDER_R", arm + "SHOULDER_P", 0, 0, 0},
-                                  {arm + "SHOULDER_Y", arm + "SHOULDER_R", 0, -0.263, 2},
-                                  {arm + "ELBOW", arm + "SHOULDER_Y", 0, 0, 1},
-                                  {arm + "WRIST_Y", arm + "ELBOW", 0, -0.247, 2},
-                                  {arm + "WRIST_P", arm + "WRIST_Y", 0, 0, 1},
-                                  {arm + "WRIST_R", arm + "WRIST_P", 0, 0, 0}};
-    joints.insert(joints.end(), limbs.begin(), limbs.end());
-  }
-  mbk::Model model;
-  model.frame = "WAIST_LINK0";
-  model.bodies.resize(joints.size() + 1);
-  for (size_t i = 0; i < joints.size(); ++i) {
-    const J& j = joints[i];
-    mbk::Body& body = model.bodies[i + 1];
-    body.name = j.name + "_LINK";
-    body.joint.name = j.name;
-    body.joint.type = mbk::JointType::kRevolute;
-    body.joint.offset = mbk::Vec3<double>(0.0, j.y, j.z);
-    body.joint.axis = mbk::Vec3<double>::Unit(j.axis);
-    body.lower = j.parent.empty() ? 0 : model.body_index(j.parent + "_LINK");
-    body.mass_center = mbk::Vec3<double>(0.01, 0.0, j.z < 0 ? -0.1 : 0.05);
-    body.mass = 2.0;
-  }
-  mbk::finalize_model(model);
-  return model;
-}
-
-// A random tree of n revolute joints: make_random_tree's shapes, axes, offsets and C_k.
-mbk::Model random_revolute_tree(int n, unsigned seed) {
-  mbk::Model model = mbk::make_random_tree(n, seed);
-  for (int k = 1; k <= n; ++k) model.bodies[k].joint.type = mbk::JointType::kRevolute;
-  mbk::finalize_model(model);
-  return model;
-}
-
 // The model with every ball and free joint's angles in `order`.
 mbk::Model in_order(mbk::Model model, mbk::EulerOrder order) {
   for (mbk::Body& body : model.bodies)
@@ -325,9 +270,10 @@ int main(int argc, char** argv) {
     scenes.push_back(
         std::make_unique<Scene>(Scene{name, in_order(scenes[0]->model, order), "", false, false}));
   scenes.push_back(urdf_scene("human_urdf", human_urdf));
-  scenes.push_back(urdf_scene("humanoid29", mbk::write_urdf(humanoid29(), "humanoid29")));
   scenes.push_back(
-      urdf_scene("random64", mbk::write_urdf(random_revolute_tree(64, 7), "random64")));
+      urdf_scene("humanoid29", mbk::write_urdf(mbk_bench::humanoid29(), "humanoid29")));
+  scenes.push_back(
+      urdf_scene("random64", mbk::write_urdf(mbk::make_random_revolute_tree(64, 7), "random64")));
   for (int n : {10, 100, 1000, 10000, 100000}) {
     mbk::Model chain = mbk::make_chain(n, mbk::JointType::kRevolute);
     const bool small = n <= 1000;
