@@ -29,6 +29,9 @@ constexpr int kSelectionSamples = 1000, kMaxStride = 8;
 // this many series (each of its threads computes every window's weights): fewer are not worth one.
 constexpr size_t kRowsPerThread = 1024;
 constexpr int kSeriesPerThread = 8;
+// The choice pass with its selection samples shared out: a thread more per this many samples at
+// least, and the samples' own sums kept for this many at a time.
+constexpr size_t kSamplesPerThread = 16, kSamplesPerBatch = 256;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -384,12 +387,46 @@ std::vector<OfflineEstimator> auto_candidates(double dt) {
   return out;
 }
 
+// A choice pass's sums (AutoChooser's Residuals and Statistics): the whole recording's, or one
+// selection sample's terms alone.
+struct AutoChooser::Sums {
+  Residuals residuals;
+  Statistics stats[2], centred[2];
+  explicit Sums(const AutoChooser& c)
+      : residuals{std::vector<double>(c.m_, 0.0)},
+        stats{c.stats_[0], c.stats_[1]},
+        centred{c.centred_stats_[0], c.centred_stats_[1]} {
+    clear();
+  }
+  void clear() {
+    std::fill(residuals.rss.begin(), residuals.rss.end(), 0.0);
+    residuals.trace = residuals.count = 0;
+    for (Statistics* s : {&stats[0], &stats[1], &centred[0], &centred[1]})
+      for (std::vector<double>* v : {&s->moved, &s->change, &s->count})
+        std::fill(v->begin(), v->end(), 0.0);
+  }
+};
+
+namespace {
+
+void add_to(const std::vector<double>& terms, std::vector<double>& sums) {
+  for (size_t j = 0; j < terms.size(); ++j) sums[j] += terms[j];
+}
+
+void add_to(const AutoChooser::Statistics& terms, AutoChooser::Statistics& sums) {
+  add_to(terms.moved, sums.moved), add_to(terms.change, sums.change);
+  add_to(terms.count, sums.count);
+}
+
+}  // namespace
+
 AutoChooser::AutoChooser(double median_interval, long rows, int m, int threads)
     : candidates_(auto_candidates(median_interval)),
       centred_(auto_centred_candidates(median_interval)),
       stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
       m_(m),
       threads_(std::clamp(threads, 1, std::max(1, m / kSeriesPerThread))),
+      sample_threads_(threads_ < threads ? threads : 1),
       residuals_{std::vector<double>(m, 0.0)} {
   for (int chain = 0; chain < 2; ++chain) {
     const size_t kc = (chain == 0 ? candidates_ : centred_).size();
@@ -411,6 +448,7 @@ OfflineReach AutoChooser::reach() const {
 
 void AutoChooser::add(const std::vector<double>& t, const Segments& segments, const double* x,
                       int ld, long first, int from, int to) {
+  if (sample_threads_ > 1) return add_by_samples(t, segments, x, ld, first, from, to);
   // Each part: its series, every selection sample.
   split_runs(m_, threads_, [&](size_t part, size_t begin, size_t end) {
     const SeriesShare share{static_cast<int>(begin), static_cast<int>(end), part == 0};
@@ -424,6 +462,44 @@ void AutoChooser::add(const std::vector<double>& t, const Segments& segments, co
       add_lepski(centred_, t, segments, x, ld, m_, i, share, w, estimate, centred_stats_);
     }
   });
+}
+
+// Each part: its selection samples, every series; each sample's terms summed apart (Sums, from
+// zero), then added to the sums in the samples' order. The same bits as add's: each sum takes
+// the same terms in the same order (0 + v is v; and a sum from +0 of these terms is never -0,
+// so the zeros of a term a sample does not have change nothing).
+void AutoChooser::add_by_samples(const std::vector<double>& t, const Segments& segments,
+                                 const double* x, int ld, long first, int from, int to) {
+  std::vector<int> selected;
+  for (int i = from; i < to; ++i)
+    if ((first + i) % stride_ == 0) selected.push_back(i);
+  std::vector<Sums> terms(std::min(selected.size(), kSamplesPerBatch), Sums(*this));
+  const SeriesShare all{0, m_, true};
+  for (size_t b = 0; b < selected.size(); b += kSamplesPerBatch) {
+    const size_t n = std::min(kSamplesPerBatch, selected.size() - b);
+    const size_t runs =
+        std::clamp<size_t>(sample_threads_, 1, std::max<size_t>(1, n / kSamplesPerThread));
+    split_runs(n, static_cast<int>(runs), [&](size_t, size_t begin, size_t end) {
+      DerivativeWeights w[2];
+      std::vector<double> estimate[2] = {std::vector<double>(2 * m_), std::vector<double>(2 * m_)};
+      for (size_t j = begin; j < end; ++j) {
+        Sums& s = terms[j];
+        const int i = selected[b + j];
+        s.clear();
+        add_residuals(candidates_.front(), t, segments, x, ld, i, all, w[0], s.residuals);
+        add_lepski(candidates_, t, segments, x, ld, m_, i, all, w, estimate, s.stats);
+        derivative_weights(centred_.front(), t, segments, i, w[0]);
+        add_lepski(centred_, t, segments, x, ld, m_, i, all, w, estimate, s.centred);
+      }
+    });
+    for (size_t j = 0; j < n; ++j) {
+      const Sums& s = terms[j];
+      add_to(s.residuals.rss, residuals_.rss);
+      residuals_.trace += s.residuals.trace, residuals_.count += s.residuals.count;
+      for (int d = 0; d < 2; ++d)
+        add_to(s.stats[d], stats_[d]), add_to(s.centred[d], centred_stats_[d]);
+    }
+  }
 }
 
 AutoChoice AutoChooser::choice() const {
