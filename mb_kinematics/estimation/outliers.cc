@@ -20,9 +20,9 @@ constexpr int kMostOnStack = 64;
 
 }  // namespace
 
-// The window sorted once (insertion sort, at most kMostOnStack values); its deviations |v - m|
-// then come in increasing order by merging the two sides of the median (each side's deviations
-// are monotone in v, rounding included), and their median is the same value any selection finds.
+// The window sorted once; its deviations |v - m| then come in increasing order by merging the two
+// sides of the median (each side's deviations are monotone in v, rounding included), and their
+// median is the same value any selection finds.
 OutlierTest hampel_test(double* values, int count, double x) {
   OutlierTest out;
   double deviations[kMostOnStack];
