@@ -100,8 +100,9 @@ class AutoChooser {
   int stride_, m_, threads_;
   int sample_threads_;  // > 1: the selection samples shared out (add_by_samples)
   Residuals residuals_;
-  Statistics stats_[2];          // per derivative d at [d - 1]
-  Statistics centred_stats_[2];  // of centred_ ([1]: the accelerations')
+  Statistics stats_[2];       // per derivative d at [d - 1]
+  Statistics centred_stats_;  // of centred_, the accelerations' (past the shared windows)
+  size_t shared_ = 0;         // the windows candidates_ and centred_ begin with alike
 };
 
 // At sample i, the weights of candidate k (`w`), of the candidate before it (`shorter`, when
