@@ -257,13 +257,14 @@ void check_record_lengths(const std::string& path) {
 // Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
 // child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
 // index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
-// the real reading, which counts them.
-void survive_or_refuse(const std::string& path) {
+// the real reading, which counts them. `bag`: constructed, not open (the child opens its copy:
+// rosbag's plugin loader, in Bag's constructor, runs once for both).
+void survive_or_refuse(const std::string& path, rosbag::Bag& bag) {
   const pid_t child = fork();
   if (child < 0) return;  // cannot isolate: read it anyway
   if (child == 0) {
     try {
-      rosbag::Bag bag(path, rosbag::bagmode::Read);
+      bag.open(path, rosbag::bagmode::Read);
       std::vector<std::uint8_t> bytes;
       for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
         try {  // as the real reading: past a message that throws, on to the next
@@ -398,8 +399,8 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress, bool checked) {
   mbk::check_regular_file(path, "the recording");  // a pipe or /dev/zero: read without end
-  if (!checked) check_record_lengths(path), survive_or_refuse(path);
   rosbag::Bag bag;
+  if (!checked) check_record_lengths(path), survive_or_refuse(path, bag);
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {
