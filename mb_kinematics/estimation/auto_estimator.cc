@@ -29,6 +29,9 @@ constexpr int kSelectionSamples = 1000, kMaxStride = 8;
 // this many series (each of its threads computes every window's weights): fewer are not worth one.
 constexpr size_t kRowsPerThread = 1024;
 constexpr int kSeriesPerThread = 8;
+// The choice pass with its selection samples shared out: a thread more per this many samples at
+// least, and the samples' own sums kept for this many at a time.
+constexpr size_t kSamplesPerThread = 16, kSamplesPerBatch = 256;
 
 const std::vector<double>& weights_of(const DerivativeWeights& w, int d) {
   return d == 1 ? w.first : w.second;
@@ -106,24 +109,41 @@ std::vector<double> noise_levels(const Residuals& res) {
 // and count[k] such samples.
 using Statistics = AutoChooser::Statistics;
 
-// Selection sample i's share of Lepski's statistics; w, estimate: scratch, w[0] holding the
-// first candidate's weights at i already (add_residuals').
-void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
-                const Segments& segments, const double* x, int ld, int m, int i, SeriesShare share,
-                DerivativeWeights (&w)[2], std::vector<double> (&estimate)[2],
-                Statistics (&stats)[2]) {
+// A choice pass's scratch at a selection sample: two candidates' weights and estimates (candidate
+// k's at [k % 2]), and those of the candidate the centred chain goes on from (`kept`).
+struct LepskiScratch {
+  DerivativeWeights w[2], kept_w;
+  std::vector<double> estimate[2], kept_estimate;
+  explicit LepskiScratch(int m)
+      : estimate{std::vector<double>(2 * m), std::vector<double>(2 * m)} {}
+};
+
+// Selection sample i's share of Lepski's statistics of candidates `from` on (stats[d - 1] of
+// derivative d, where not null): the scratch holds candidate from - 1's weights and estimates in
+// `kept` (from > 0) or candidate 0's weights in w[0] (add_residuals'); candidate `keep`'s go
+// there. Returns the candidates up to the first that is not valid and centred (longer ones are
+// not either).
+int add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vector<double>& t,
+               const Segments& segments, const double* x, int ld, int m, int i, SeriesShare share,
+               LepskiScratch& scratch, Statistics* const (&stats)[2], int from, int keep) {
   const int kc = static_cast<int>(candidates.size());
-  for (int k = 0; k < kc; ++k) {
+  DerivativeWeights(&w)[2] = scratch.w;
+  std::vector<double>(&estimate)[2] = scratch.estimate;
+  if (from > 0)
+    std::swap(w[(from - 1) % 2], scratch.kept_w),
+        std::swap(estimate[(from - 1) % 2], scratch.kept_estimate);
+  for (int k = from; k < kc; ++k) {
     DerivativeWeights &cur = w[k % 2], &prev = w[(k + 1) % 2];
     if (k > 0) derivative_weights(candidates[k], t, segments, i, cur);
-    if (cur.valid < 2 || !centred_window(t, i, cur)) break;  // longer ones are not either
+    if (cur.valid < 2 || !centred_window(t, i, cur)) return k;
     std::vector<double>&now = estimate[k % 2], &before = estimate[(k + 1) % 2];
     // Both derivatives of the share's series, each the sum over the window's rows in order.
     apply_weights(cur, x + share.begin, ld, share.end - share.begin, now.data() + share.begin,
                   now.data() + m + share.begin);
+    if (k == keep) scratch.kept_w = cur, scratch.kept_estimate = now;
     for (int d = 1; d <= 2; ++d) {
-      if (k == 0) continue;
-      Statistics& s = stats[d - 1];
+      if (k == 0 || !stats[d - 1]) continue;
+      Statistics& s = *stats[d - 1];
       if (share.shared) s.change[k] += difference2(cur, prev, d), s.count[k] += 1;
       for (int c = share.begin; c < share.end; ++c) {
         const double step = now[(d - 1) * m + c] - before[(d - 1) * m + c];
@@ -131,6 +151,25 @@ void add_lepski(const std::vector<OfflineEstimator>& candidates, const std::vect
       }
     }
   }
+  return kc;
+}
+
+// Selection sample i's share of the first chain's statistics (both derivatives), then of the
+// centred chain's after the `shared` windows both begin with (the same weights, estimates and
+// statistics: its accelerations' are the first chain's there, AutoChooser::choice), from the last
+// shared one on; of the centred chain, the accelerations' alone (its velocities' are not used).
+void add_sample(const std::vector<OfflineEstimator>& candidates,
+                const std::vector<OfflineEstimator>& centred_candidates, size_t shared,
+                const std::vector<double>& t, const Segments& segments, const double* x, int ld,
+                int m, int i, SeriesShare share, LepskiScratch& scratch, Statistics (&stats)[2],
+                Statistics& centred) {
+  const int keep = static_cast<int>(shared) - 1;
+  const int reached = add_lepski(candidates, t, segments, x, ld, m, i, share, scratch,
+                                 {&stats[0], &stats[1]}, 0, keep);
+  if (shared == 0) derivative_weights(centred_candidates.front(), t, segments, i, scratch.w[0]);
+  if (shared == 0 || reached > keep)
+    add_lepski(centred_candidates, t, segments, x, ld, m, i, share, scratch, {nullptr, &centred},
+               static_cast<int>(shared), -1);
 }
 
 // Lepski's choice per series: the longest window before the first whose estimates moved more
@@ -384,18 +423,60 @@ std::vector<OfflineEstimator> auto_candidates(double dt) {
   return out;
 }
 
+// Do both estimators fit the same window (the same weights at every sample)?
+bool same_window(const OfflineEstimator& a, const OfflineEstimator& b) {
+  return a.order == b.order && a.window_seconds == b.window_seconds &&
+         a.window_samples == b.window_samples;
+}
+
+// A choice pass's sums (AutoChooser's Residuals and Statistics): the whole recording's, or one
+// selection sample's terms alone.
+struct AutoChooser::Sums {
+  Residuals residuals;
+  Statistics stats[2], centred;
+  explicit Sums(const AutoChooser& c)
+      : residuals{std::vector<double>(c.m_, 0.0)},
+        stats{c.stats_[0], c.stats_[1]},
+        centred(c.centred_stats_) {
+    clear();
+  }
+  void clear() {
+    std::fill(residuals.rss.begin(), residuals.rss.end(), 0.0);
+    residuals.trace = residuals.count = 0;
+    for (Statistics* s : {&stats[0], &stats[1], &centred})
+      for (std::vector<double>* v : {&s->moved, &s->change, &s->count})
+        std::fill(v->begin(), v->end(), 0.0);
+  }
+};
+
+namespace {
+
+void add_to(const std::vector<double>& terms, std::vector<double>& sums) {
+  for (size_t j = 0; j < terms.size(); ++j) sums[j] += terms[j];
+}
+
+void add_to(const AutoChooser::Statistics& terms, AutoChooser::Statistics& sums) {
+  add_to(terms.moved, sums.moved), add_to(terms.change, sums.change);
+  add_to(terms.count, sums.count);
+}
+
+}  // namespace
+
 AutoChooser::AutoChooser(double median_interval, long rows, int m, int threads)
     : candidates_(auto_candidates(median_interval)),
       centred_(auto_centred_candidates(median_interval)),
       stride_(static_cast<int>(std::clamp(rows / kSelectionSamples, 1L, long{kMaxStride}))),
       m_(m),
       threads_(std::clamp(threads, 1, std::max(1, m / kSeriesPerThread))),
+      sample_threads_(threads_ < threads ? threads : 1),
       residuals_{std::vector<double>(m, 0.0)} {
-  for (int chain = 0; chain < 2; ++chain) {
-    const size_t kc = (chain == 0 ? candidates_ : centred_).size();
-    for (Statistics& s : chain == 0 ? stats_ : centred_stats_)
-      s.moved.assign(kc * m, 0.0), s.change.assign(kc, 0.0), s.count.assign(kc, 0.0);
+  for (Statistics* s : {&stats_[0], &stats_[1], &centred_stats_}) {
+    const size_t kc = (s == &centred_stats_ ? centred_ : candidates_).size();
+    s->moved.assign(kc * m, 0.0), s->change.assign(kc, 0.0), s->count.assign(kc, 0.0);
   }
+  while (shared_ < std::min(candidates_.size(), centred_.size()) &&
+         same_window(candidates_[shared_], centred_[shared_]))
+    ++shared_;
 }
 
 OfflineReach AutoChooser::reach() const {
@@ -411,19 +492,54 @@ OfflineReach AutoChooser::reach() const {
 
 void AutoChooser::add(const std::vector<double>& t, const Segments& segments, const double* x,
                       int ld, long first, int from, int to) {
+  if (sample_threads_ > 1) return add_by_samples(t, segments, x, ld, first, from, to);
   // Each part: its series, every selection sample.
   split_runs(m_, threads_, [&](size_t part, size_t begin, size_t end) {
     const SeriesShare share{static_cast<int>(begin), static_cast<int>(end), part == 0};
-    DerivativeWeights w[2];
-    std::vector<double> estimate[2] = {std::vector<double>(2 * m_), std::vector<double>(2 * m_)};
+    LepskiScratch scratch(m_);
     for (int i = from; i < to; ++i) {
       if ((first + i) % stride_ != 0) continue;
-      add_residuals(candidates_.front(), t, segments, x, ld, i, share, w[0], residuals_);
-      add_lepski(candidates_, t, segments, x, ld, m_, i, share, w, estimate, stats_);
-      derivative_weights(centred_.front(), t, segments, i, w[0]);
-      add_lepski(centred_, t, segments, x, ld, m_, i, share, w, estimate, centred_stats_);
+      add_residuals(candidates_.front(), t, segments, x, ld, i, share, scratch.w[0], residuals_);
+      add_sample(candidates_, centred_, shared_, t, segments, x, ld, m_, i, share, scratch, stats_,
+                 centred_stats_);
     }
   });
+}
+
+// Each part: its selection samples, every series; each sample's terms summed apart (Sums, from
+// zero), then added to the sums in the samples' order. The same bits as add's: each sum takes
+// the same terms in the same order (0 + v is v; and a sum from +0 of these terms is never -0,
+// so the zeros of a term a sample does not have change nothing).
+void AutoChooser::add_by_samples(const std::vector<double>& t, const Segments& segments,
+                                 const double* x, int ld, long first, int from, int to) {
+  std::vector<int> selected;
+  for (int i = from; i < to; ++i)
+    if ((first + i) % stride_ == 0) selected.push_back(i);
+  std::vector<Sums> terms(std::min(selected.size(), kSamplesPerBatch), Sums(*this));
+  const SeriesShare all{0, m_, true};
+  for (size_t b = 0; b < selected.size(); b += kSamplesPerBatch) {
+    const size_t n = std::min(kSamplesPerBatch, selected.size() - b);
+    const size_t runs =
+        std::clamp<size_t>(sample_threads_, 1, std::max<size_t>(1, n / kSamplesPerThread));
+    split_runs(n, static_cast<int>(runs), [&](size_t, size_t begin, size_t end) {
+      LepskiScratch scratch(m_);
+      for (size_t j = begin; j < end; ++j) {
+        Sums& s = terms[j];
+        const int i = selected[b + j];
+        s.clear();
+        add_residuals(candidates_.front(), t, segments, x, ld, i, all, scratch.w[0], s.residuals);
+        add_sample(candidates_, centred_, shared_, t, segments, x, ld, m_, i, all, scratch, s.stats,
+                   s.centred);
+      }
+    });
+    for (size_t j = 0; j < n; ++j) {
+      const Sums& s = terms[j];
+      add_to(s.residuals.rss, residuals_.rss);
+      residuals_.trace += s.residuals.trace, residuals_.count += s.residuals.count;
+      add_to(s.stats[0], stats_[0]), add_to(s.stats[1], stats_[1]);
+      add_to(s.centred, centred_stats_);
+    }
+  }
 }
 
 AutoChoice AutoChooser::choice() const {
@@ -433,7 +549,12 @@ AutoChoice AutoChooser::choice() const {
   for (int d = 1; d <= 2; ++d)
     choose(stats_[d - 1], out.noise, out.choice[d - 1], out.bias2[d - 1]);
   out.centred_candidates = centred_;
-  choose_centred(centred_stats_[1], out.noise, centred_, out.centred_choice, out.centred_bias2);
+  Statistics centred = centred_stats_;  // the shared windows' are the first chain's (add_sample)
+  for (size_t k = 1; k < shared_; ++k) {
+    centred.change[k] = stats_[1].change[k], centred.count[k] = stats_[1].count[k];
+    for (int c = 0; c < m_; ++c) centred.moved[k * m_ + c] = stats_[1].moved[k * m_ + c];
+  }
+  choose_centred(centred, out.noise, centred_, out.centred_choice, out.centred_bias2);
   return out;
 }
 

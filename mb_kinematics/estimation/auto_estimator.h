@@ -67,7 +67,9 @@ class AutoChooser {
  public:
   // threads: the series shared out among up to that many, 8 series each at least (each series'
   // sums its own, in the same order: the same bits on any count; each thread computes the windows'
-  // weights itself).
+  // weights itself); with too few series for that many, the selection samples shared out instead
+  // (each sample's terms summed apart, then added to the sums in the samples' order: the same
+  // bits).
   AutoChooser(double dt, long rows, int m, int threads = 1);
   // How far a selection sample's sums reach (the longest candidate's).
   OfflineReach reach() const;
@@ -90,11 +92,17 @@ class AutoChooser {
   };
 
  private:
+  struct Sums;  // the sums below, of the whole recording or of one selection sample
+  void add_by_samples(const std::vector<double>& t, const Segments& segments, const double* x,
+                      int ld, long first, int from, int to);
+
   std::vector<OfflineEstimator> candidates_, centred_;
   int stride_, m_, threads_;
+  int sample_threads_;  // > 1: the selection samples shared out (add_by_samples)
   Residuals residuals_;
-  Statistics stats_[2];          // per derivative d at [d - 1]
-  Statistics centred_stats_[2];  // of centred_ ([1]: the accelerations')
+  Statistics stats_[2];       // per derivative d at [d - 1]
+  Statistics centred_stats_;  // of centred_, the accelerations' (past the shared windows)
+  size_t shared_ = 0;         // the windows candidates_ and centred_ begin with alike
 };
 
 // At sample i, the weights of candidate k (`w`), of the candidate before it (`shorter`, when

@@ -6,23 +6,46 @@
 namespace mbk {
 namespace {
 
-// The median of values[0, count), reordering them.
-double median_of(double* values, int count) {
+// The median of values[0, count) in increasing order.
+double median_of_sorted(const double* values, int count) {
   const int middle = count / 2;
-  std::nth_element(values, values + middle, values + count);
   const double upper = values[middle];
   if (count % 2 == 1) return upper;
-  const double lower = *std::max_element(values, values + middle);
+  const double lower = values[middle - 1];
   return lower + (upper - lower) / 2;  // no overflow for values near the double's limit
 }
 
+// The windows kept on the stack (a recording's are 2 kOutlierHalfWindow + 1 long).
+constexpr int kMostOnStack = 64;
+
 }  // namespace
 
+// The window sorted once; its deviations |v - m| then come in increasing order by merging the two
+// sides of the median (each side's deviations are monotone in v, rounding included), and their
+// median is the same value any selection finds.
 OutlierTest hampel_test(double* values, int count, double x) {
   OutlierTest out;
-  out.median = median_of(values, count);
-  for (int i = 0; i < count; ++i) values[i] = std::abs(values[i] - out.median);
-  const double mad = median_of(values, count);
+  double deviations[kMostOnStack];
+  double* const d = count <= kMostOnStack ? deviations : values;
+  std::sort(values, values + count);
+  out.median = median_of_sorted(values, count);
+  const double m = out.median;
+  if (d == values) {  // a long window: in place, sorted again
+    for (int i = 0; i < count; ++i) values[i] = std::abs(values[i] - m);
+    std::sort(values, values + count);
+  } else {
+    int right = static_cast<int>(std::lower_bound(values, values + count, m) - values),
+        left = right - 1;
+    for (int k = 0; k <= count / 2; ++k) {  // the deviations' smallest count / 2 + 1
+      const double below = left >= 0 ? std::abs(values[left] - m) : HUGE_VAL,
+                   above = right < count ? std::abs(values[right] - m) : HUGE_VAL;
+      if (right >= count || (left >= 0 && below <= above))
+        d[k] = below, --left;
+      else
+        d[k] = above, ++right;
+    }
+  }
+  const double mad = median_of_sorted(d, count);
   out.scale = std::max(1.4826 * mad, kOutlierFloor * (1 + std::abs(out.median)));
   out.outlier = std::abs(x - out.median) > kOutlierScales * out.scale;
   return out;

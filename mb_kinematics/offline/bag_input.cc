@@ -11,12 +11,16 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <set>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/quaternion_scale.h"
@@ -199,6 +203,14 @@ class MessageReader {
       return e.what();
     }
   }
+  // A joint state message into `js` (read's first step): why it could not be read, or "".
+  std::string load_joint_state(const rosbag::MessageInstance& m, sensor_msgs::JointState& js) {
+    try {
+      return load(m, kJointStateFields, js);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+  }
 
  private:
   template <typename M>
@@ -245,13 +257,14 @@ void check_record_lengths(const std::string& path) {
 // Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
 // child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
 // index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
-// the real reading, which counts them.
-void survive_or_refuse(const std::string& path) {
+// the real reading, which counts them. `bag`: constructed, not open (the child opens its copy:
+// rosbag's plugin loader, in Bag's constructor, runs once for both).
+void survive_or_refuse(const std::string& path, rosbag::Bag& bag) {
   const pid_t child = fork();
   if (child < 0) return;  // cannot isolate: read it anyway
   if (child == 0) {
     try {
-      rosbag::Bag bag(path, rosbag::bagmode::Read);
+      bag.open(path, rosbag::bagmode::Read);
       std::vector<std::uint8_t> bytes;
       for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
         try {  // as the real reading: past a message that throws, on to the next
@@ -274,14 +287,120 @@ void survive_or_refuse(const std::string& path) {
                                 "); `rosbag reindex " + path + "` may recover it");
 }
 
+// The messages of a view of joint states alone, read ahead: rosbag's iteration, each message's
+// bytes checked and deserialized (MessageReader) on a second thread, a batch at a time, while the
+// caller's thread adds the batch before to the recording. In the messages' order: the same
+// samples, drops and messages as read on one thread.
+class ReadAhead {
+ public:
+  struct Message {
+    sensor_msgs::JointState js;  // its buffers reused from one batch to the next
+    double stamp = 0;
+    std::string where, error;  // error: why it could not be read, or ""
+  };
+  // Reads `view` on a second thread; false (nothing read) when none can start.
+  bool start(rosbag::View& view) {
+    try {
+      reader_ = std::thread([this, &view] { produce(view); });
+    } catch (const std::exception&) {  // std::system_error, std::bad_alloc: read on one thread
+      return false;
+    }
+    return true;
+  }
+  ~ReadAhead() {  // also when the caller's thread throws: the reading stops first
+    if (!reader_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    reader_.join();
+  }
+  // Each message in order to take(message); then, when rosbag failed part way (its index or a
+  // chunk), the messages iterated before and its error (else -1 and "").
+  template <typename Take>
+  void consume(const Take& take, long& read_before_failure, std::string& failure) {
+    for (int b = 0;; b = 1 - b) {
+      Batch& batch = batches_[b];
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        changed_.wait(lock, [&] { return batch.ready; });
+      }
+      for (int i = 0; i < batch.count; ++i) take(batch.messages[i]);
+      const bool last = batch.last;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        batch.ready = false;
+      }
+      changed_.notify_all();
+      if (last) break;
+    }
+    reader_.join();
+    read_before_failure = failed_after_, failure = failure_;
+  }
+
+ private:
+  static constexpr int kBatch = 256;
+  struct Batch {
+    std::vector<Message> messages = std::vector<Message>(kBatch);
+    int count = 0;
+    bool ready = false, last = false;  // ready: filled, not yet taken
+  };
+
+  void produce(rosbag::View& view) {
+    MessageReader reader;
+    long done = 0;
+    int b = 0;
+    if (!wait_free(b)) return;
+    try {
+      for (const rosbag::MessageInstance& m : view) {
+        if (batches_[b].count == kBatch) {
+          hand_over(b, false);
+          b = 1 - b;
+          if (!wait_free(b)) return;
+        }
+        Message& message = batches_[b].messages[batches_[b].count++];
+        message.where.assign(m.getTopic()).append(" message ").append(std::to_string(++done));
+        message.error = reader.load_joint_state(m, message.js);
+        if (message.error.empty()) message.stamp = stamp_of(message.js.header, m);
+      }
+    } catch (const std::exception& e) {  // rosbag's own exceptions: the index or a chunk
+      failed_after_ = done, failure_ = e.what();
+    }
+    hand_over(b, true);
+  }
+  // Waits until batch b is taken (false: stop reading).
+  bool wait_free(int b) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return stop_ || !batches_[b].ready; });
+    batches_[b].count = 0;
+    return !stop_;
+  }
+  void hand_over(int b, bool last) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      batches_[b].ready = true, batches_[b].last = last;
+    }
+    changed_.notify_all();
+  }
+
+  Batch batches_[2];
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  bool stop_ = false;
+  long failed_after_ = -1;  // the reader's, read after join
+  std::string failure_;
+  std::thread reader_;
+};
+
 }  // namespace
 
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress, bool checked) {
   mbk::check_regular_file(path, "the recording");  // a pipe or /dev/zero: read without end
-  if (!checked) check_record_lengths(path), survive_or_refuse(path);
   rosbag::Bag bag;
+  if (!checked) check_record_lengths(path), survive_or_refuse(path, bag);
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {
@@ -315,6 +434,25 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
   rosbag::View view(bag, rosbag::TopicQuery(wanted));
   const long total = view.size();
   long done = 0;
+  ReadAhead ahead;  // joint states alone: read ahead on a second thread
+  if (topics.joint_accelerations.empty() && topics.base_odometry.empty() && ahead.start(view)) {
+    long failed_after = -1;
+    std::string failure;
+    ahead.consume(
+        [&](const ReadAhead::Message& m) {
+          if (++done % 1024 == 0) progress(done, total);
+          if (m.error.empty())
+            builder.add(m.stamp, m.js.name, m.js.position, m.js.velocity, m.where);
+          else
+            unreadable.add(1, m.where + ": " + m.error);
+        },
+        failed_after, failure);
+    if (failed_after >= 0)
+      unreadable.add(std::max(1L, total - failed_after),
+                     path + ": after message " + std::to_string(failed_after) + " of " +
+                         std::to_string(total) + ": " + failure);
+    return progress(total, total);
+  }
   MessageReader reader;
   std::string where;  // reused: no allocation per message
   try {

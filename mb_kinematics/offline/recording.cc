@@ -63,16 +63,6 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
   if (!intake_.unknown().empty())
     log_.note("names not in the model ignored", where + ": " + join(intake_.unknown()));
   intake_.take(position);  // the named coordinates' positions, Euler parameters' signs aligned
-  const int nq = model_.nq;
-  std::vector<double> row(intake_.last()), vrow(nq, 0.0);  // the others keep their last
-  std::vector<std::uint8_t> given(nq, 0);
-  for (size_t m = 0; m < names.size(); ++m) {  // a mimic's published value wins (as the node)
-    const int i = intake_.coordinates()[m];
-    if (i < 0) continue;
-    given[i] = Recording::kPosition;
-    if (!velocity.empty())
-      vrow[i] = intake_.sign(i) * velocity[m], given[i] |= Recording::kVelocity;
-  }
   has_last_stamp_ = true, last_stamp_ = t;
   if (sink_) {  // as finish() drops the rows before every coordinate was named
     const std::vector<std::string> missing = not_named_yet();
@@ -80,7 +70,28 @@ void RecordingBuilder::add(double t, const std::vector<std::string>& names,
       return log_.drop("missing joints (not named yet)",
                        "sample at t = " + std::to_string(origin_ + t) + ": " + join(missing));
   }
-  hold({t, std::move(row), std::move(vrow), std::move(given), where});
+  const int nq = model_.nq;
+  PendingRow next = spare_row();
+  next.t = t;
+  next.row = intake_.last();  // the coordinates not named keep their last
+  next.vrow.assign(nq, 0.0);
+  next.given.assign(nq, 0);
+  next.where = where;
+  for (size_t m = 0; m < names.size(); ++m) {  // a mimic's published value wins (as the node)
+    const int i = intake_.coordinates()[m];
+    if (i < 0) continue;
+    next.given[i] = Recording::kPosition;
+    if (!velocity.empty())
+      next.vrow[i] = intake_.sign(i) * velocity[m], next.given[i] |= Recording::kVelocity;
+  }
+  hold(std::move(next));
+}
+
+RecordingBuilder::PendingRow RecordingBuilder::spare_row() {
+  if (spare_.empty()) return PendingRow();
+  PendingRow r = std::move(spare_.back());
+  spare_.pop_back();
+  return r;
 }
 
 // The coordinates (mimics aside) no sample has named so far.
@@ -100,6 +111,7 @@ void RecordingBuilder::hold(PendingRow pending) {
   tested_head_ = true;
   test_outliers(h);
   emit(pending_.front());
+  spare_.push_back(std::move(pending_.front()));
   pending_.pop_front();
 }
 

@@ -109,6 +109,7 @@ class RecordingBuilder {
     std::string where;
   };
   void hold(PendingRow pending);
+  PendingRow spare_row();     // one emitted before, its buffers reused (else a new one)
   void test_outliers(int p);  // pending_[p] against the pending rows around it
   void exclude_outlier(int p, int c, double median, double scale);
   void release_pending();  // the rows held at the end
@@ -128,6 +129,7 @@ class RecordingBuilder {
   double last_stamp_ = 0;  // of the last row accepted
   double time_offset_ = 0;
   std::deque<PendingRow> pending_;
+  std::vector<PendingRow> spare_;  // emitted rows, for their buffers (no allocation per row)
   bool tested_head_ = false;  // the first rows held have been tested
   double stamp_rounding_ = 0;  // 0: none noted
   double origin_ = 0;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -67,6 +68,54 @@ TEST(Outliers, MotionRoundingAndNoiseAreNot) {
     crossed += test_at(x, mbk::kOutlierHalfWindow).outlier;
   }
   EXPECT_EQ(crossed, 0);
+}
+
+// Hampel's test as estimation/outliers.h states it, by selection (std::nth_element): the median,
+// then the median of the absolute deviations from it.
+double reference_median(std::vector<double> v) {
+  const int n = static_cast<int>(v.size()), middle = n / 2;
+  std::nth_element(v.begin(), v.begin() + middle, v.end());
+  const double upper = v[middle];
+  if (n % 2 == 1) return upper;
+  const double lower = *std::max_element(v.begin(), v.begin() + middle);
+  return lower + (upper - lower) / 2;
+}
+
+mbk::OutlierTest reference_test(const std::vector<double>& window, double x) {
+  mbk::OutlierTest out;
+  out.median = reference_median(window);
+  std::vector<double> deviation;
+  for (double v : window) deviation.push_back(std::abs(v - out.median));
+  out.scale = std::max(1.4826 * reference_median(deviation),
+                       mbk::kOutlierFloor * (1 + std::abs(out.median)));
+  out.outlier = std::abs(x - out.median) > mbk::kOutlierScales * out.scale;
+  return out;
+}
+
+// The sorted window's median, scale and verdict are the selection's, bit for bit: windows of 1
+// to 80 values (odd and even, past the 64 kept on the stack), with ties, both signs, spikes.
+TEST(Outliers, SameBitsAsSelection) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal(0, 1);
+  std::uniform_int_distribution<int> count(1, 80), small(0, 3);
+  int outliers = 0;
+  for (int k = 0; k < 20000; ++k) {
+    std::vector<double> window(k % 4 == 0 ? count(rng) : 7 + k % 5);
+    for (double& v : window) {
+      v = k % 3 == 0 ? small(rng) * 0.25 : 1.5 + normal(rng) * std::pow(10.0, small(rng) - 3);
+      if (normal(rng) > 2.5) v = normal(rng) * 1e30;  // a spike
+    }
+    const double x = window[k % window.size()];
+    const mbk::OutlierTest want = reference_test(window, x);
+    std::vector<double> values = window;
+    const mbk::OutlierTest got =
+        mbk::hampel_test(values.data(), static_cast<int>(values.size()), x);
+    ASSERT_EQ(got.median, want.median) << k;
+    ASSERT_EQ(got.scale, want.scale) << k;
+    ASSERT_EQ(got.outlier, want.outlier) << k;
+    outliers += got.outlier;
+  }
+  EXPECT_GT(outliers, 100);  // the spikes were tested too
 }
 
 }  // namespace
