@@ -214,8 +214,8 @@ def parallel_copy(to, source, threads=2):
 
 def chunk_rows(n):
     """Human, 2 threads, the full and the all outputs, best (median) of 5: batch_benchmark's
-    plain copy of the same bytes, its computation alone (compute/) and its batch into arrays
-    touched before; then five rounds of a 2-thread numpy copy of the same bytes into the out=
+    plain copy of the same bytes, its computation alone (compute/), its writes alone (write/,
+    stream/) and its batch into arrays touched before; then five rounds of a 2-thread numpy copy of the same bytes into the out=
     arrays, out= (against that copy), fresh arrays (against out=) and chunks of 10,000 rows
     (kinematics_chunks, against out=; and into one chunk's arrays made before, out=); the
     chunks' peak memory against one chunk's arrays. The
@@ -229,7 +229,7 @@ def chunk_rows(n):
         fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
         out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
         r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
-             for what in ("copy", "compute", "batch")}
+             for what in ("copy", "compute", "write", "stream", "batch")}
         source = {k: np.ones_like(x) for k, x in out.items()}
         r.update(numpy_copy=[], out=[], fresh=[], chunks=[], chunks_out=[])
         chunk_out = {k: np.ones((10000,) + x.shape[1:]) for k, x in fresh0.items()}
@@ -260,6 +260,8 @@ def chunk_rows(n):
              ("the same, into the out= arrays (numpy, 2 threads, interleaved)", "numpy_copy", None,
               ""),
              ("computation alone (C++, compute/)", "compute", "copy", "the copy"),
+             ("the writes alone, ordinary stores (C++, write/)", "write", "copy", "the copy"),
+             ("the writes alone, streaming stores (C++, stream/)", "stream", "copy", "the copy"),
              ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
              ("out=", "out", "numpy_copy", "the numpy copy"),
              ("fresh arrays", "fresh", "out", "out="),
