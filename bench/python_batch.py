@@ -24,7 +24,6 @@ import time
 import numpy as np
 
 import mb_kinematics
-from mb_kinematics import _core
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 MODELS = {"human": "config/human_body.urdf", "panda": "test/robots/panda.urdf"}
@@ -215,8 +214,7 @@ def chunk_rows(n):
     plain copy of the same bytes, its computation alone (compute/), its writes alone (write/,
     stream/) and its batch into arrays touched before; then five rounds of a 2-thread numpy
     copy of the same bytes into the out= arrays, out= (against that copy), fresh arrays (against
-    out=; and the same call without its threads faulting their rows' pages in first, through
-    _core) and chunks of 10,000 rows
+    out=) and chunks of 10,000 rows
     (kinematics_chunks, against out=; and into one chunk's arrays made before, out=); the
     chunks' peak memory against one chunk's arrays. The
     load average before and after."""
@@ -231,24 +229,18 @@ def chunk_rows(n):
         r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
              for what in ("copy", "compute", "write", "stream", "batch")}
         source = {k: np.ones_like(x) for k, x in out.items()}
-        r.update(numpy_copy=[], out=[], fresh=[], fresh_lazily=[], chunks=[], chunks_out=[])
+        r.update(numpy_copy=[], out=[], fresh=[], chunks=[], chunks_out=[])
         chunk_out = {k: np.ones((10000,) + x.shape[1:]) for k, x in fresh0.items()}
-
-        def fresh_lazily():  # the same call without its threads faulting their pages in first
-            arrays = {k: np.empty((n,) + x.shape[1:]) for k, x in fresh0.items()}
-            _core.batch_kinematics(model._core, q, v, a, arrays, set(),
-                                   list(range(1, model.body_count + 1)), 2, False)
 
         def chunks(**given):
             for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000,
                                              **given):
                 pass
-        for _ in range(5):  # one of each per round: the load drifts alike for all six
+        for _ in range(5):  # one of each per round: the load drifts alike for all five
             r["numpy_copy"] += timings(lambda: parallel_copy(out, source), 1)
             r["out"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2,
                                                          out=out), 1)
             r["fresh"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 1)
-            r["fresh_lazily"] += timings(fresh_lazily, 1)
             r["chunks"] += timings(chunks, 1)
             r["chunks_out"] += timings(lambda: chunks(out=chunk_out), 1)
         out = source = None  # their memory back
@@ -271,8 +263,6 @@ def chunk_rows(n):
              ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
              ("out=", "out", "numpy_copy", "the numpy copy"),
              ("fresh arrays", "fresh", "out", "out="),
-             ("fresh arrays, their pages faulted in one at a time between the stores",
-              "fresh_lazily", "out", "out="),
              ("kinematics_chunks, rows=10000", "chunks", "out", "out="),
              ("kinematics_chunks, rows=10000, out= (one chunk's arrays, made before)",
               "chunks_out", "out", "out="))

@@ -14,7 +14,6 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
-#include "mb_kinematics/offline/fresh_pages.h"
 
 namespace mbk {
 namespace {
@@ -189,25 +188,12 @@ void compute_sample(const Model& model, const BatchInput& in, std::size_t s, Lev
   if (w.pv) write_partials(model, *w.pv, s, out);
 }
 
-// The pages of rows [begin, end) of the fresh fields, faulted in by the thread that fills them.
-template <typename T>
-void fault_in_rows(const Model& model, std::size_t begin, std::size_t end,
-                   const BatchOutput<T>& out) {
-  for (int f = 0; f < kBatchFieldCount; ++f) {
-    if (!out.field[f] || !out.fresh[f]) continue;
-    const std::size_t size =
-        batch_field_size(model, static_cast<BatchField>(f), out.bodies.size());
-    fault_in(out.field[f] + begin * size, (end - begin) * size * sizeof(T));
-  }
-}
-
-// Samples [begin, end) written straight into the caller's arrays, each thread its own rows (a
-// fresh array's pages faulted in first by the thread that fills them), with ordinary stores
-// (doc/speed.md#python).
+// Samples [begin, end) written straight into the caller's arrays (each thread its own rows, so
+// fresh arrays are first touched by the threads that fill them), with ordinary stores: the
+// caches absorb and write back the rows while the next samples compute (doc/speed.md#python).
 template <typename T>
 void compute_range(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
                    Level level, const BatchOutput<T>& out) {
-  fault_in_rows(model, begin, end, out);
   Workspace w(model);
   if (any_partials(out)) {
     w.pv = std::make_unique<PartialVelocities<double>>(model);

@@ -83,12 +83,9 @@ struct BatchInput {
 };
 
 // Where each field goes (null: not asked for), and the bodies (1..N, any order, repeats allowed).
-// `fresh`: the field's array is anonymous memory not yet written (a new numpy array): each thread
-// faults in the pages of its own rows before computing them (offline/fresh_pages.h).
 template <typename T>
 struct BatchOutput {
   std::array<T*, kBatchFieldCount> field{};
-  std::array<bool, kBatchFieldCount> fresh{};
   std::vector<int> bodies;
   T*& operator[](BatchField f) { return field[static_cast<int>(f)]; }
   T* operator[](BatchField f) const { return field[static_cast<int>(f)]; }

@@ -361,9 +361,8 @@ class Model:
                             else _out_array(given, name, shape[1:] if single else shape, dtype,
                                             shape))
         q, velocity, acceleration = _apart(arrays, q, velocity, acceleration)
-        fresh = {name for name in arrays if out is None or name not in out}
-        _core.batch_kinematics(self._core, q, velocity, acceleration, arrays, fresh,
-                               list(chosen), _threads(threads), dtype == np.float32)
+        _core.batch_kinematics(self._core, q, velocity, acceleration, arrays, list(chosen),
+                               _threads(threads), dtype == np.float32)
         if single:
             return {name: (out[name] if out is not None and name in out else a[0])
                     for name, a in arrays.items()}

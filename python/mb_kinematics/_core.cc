@@ -117,10 +117,9 @@ const double* input(const py::object& array, std::size_t samples, int width, con
   return a.data();
 }
 
-// `fresh`: the names of arrays new to memory (np.empty), whose pages the batch faults in.
 template <typename T>
-void fill_output(const mbk::Model& model, const py::dict& arrays, const py::set& fresh,
-                 std::size_t samples, mbk::BatchOutput<T>& out) {
+void fill_output(const mbk::Model& model, const py::dict& arrays, std::size_t samples,
+                 mbk::BatchOutput<T>& out) {
   for (const auto& item : arrays) {
     const std::string name = item.first.cast<std::string>();
     const mbk::BatchField field = mbk::batch_field_from_name(name);
@@ -131,14 +130,13 @@ void fill_output(const mbk::Model& model, const py::dict& arrays, const py::set&
       throw std::invalid_argument("out['" + name + "']: not a writeable C-contiguous array of " +
                                   "the right dtype and size");
     out[field] = static_cast<T*>(a.mutable_data());
-    out.fresh[static_cast<int>(field)] = fresh.contains(item.first);
   }
 }
 
 template <typename T>
 void run(const mbk::Model& model, const InputArray& position, const py::object& velocity,
-         const py::object& acceleration, const py::dict& outputs, const py::set& fresh,
-         const std::vector<int>& bodies, int threads) {
+         const py::object& acceleration, const py::dict& outputs, const std::vector<int>& bodies,
+         int threads) {
   if (position.ndim() != 2 || position.shape(1) != model.nq)
     throw std::invalid_argument("position: wrong shape");
   mbk::BatchInput in;
@@ -148,21 +146,20 @@ void run(const mbk::Model& model, const InputArray& position, const py::object& 
   in.acceleration = input(acceleration, in.samples, model.nv, "acceleration");
   mbk::BatchOutput<T> out;
   out.bodies = bodies;
-  fill_output(model, outputs, fresh, in.samples, out);
+  fill_output(model, outputs, in.samples, out);
   py::gil_scoped_release release;
   mbk::batch_kinematics(model, in, out, threads);
 }
 
 // Writes the fields named by `outputs` (name -> array, all float64 or all float32) for every row
-// of `position` (N, nq) and the optional velocity and acceleration (N, nv); `fresh`, the names of
-// those arrays just allocated.
+// of `position` (N, nq) and the optional velocity and acceleration (N, nv).
 void batch_kinematics(const ModelPtr& model, const InputArray& position, py::object velocity,
-                      py::object acceleration, const py::dict& outputs, const py::set& fresh,
+                      py::object acceleration, const py::dict& outputs,
                       const std::vector<int>& bodies, int threads, bool single) {
   if (single)
-    run<float>(*model, position, velocity, acceleration, outputs, fresh, bodies, threads);
+    run<float>(*model, position, velocity, acceleration, outputs, bodies, threads);
   else
-    run<double>(*model, position, velocity, acceleration, outputs, fresh, bodies, threads);
+    run<double>(*model, position, velocity, acceleration, outputs, bodies, threads);
 }
 
 // A recording read as mbk bag reads it (with a bag's base odometry), and what was dropped.
@@ -450,8 +447,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("segments") = py::none(), py::arg("source") = "<text>",
         py::arg("anthropometry") = py::none());
   m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
-        py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("fresh"),
-        py::arg("bodies"),
+        py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
   m.def("check_bvh_options", &check_bvh_options);
   m.def("check_column_options", &check_column_options);
