@@ -15,10 +15,17 @@
 //   compute/<model>/<outputs>/threads:T the same states' batch on T threads with every sample
 //                                       written into one sample's arrays (in L1): the computation
 //                                       less the outputs' memory traffic and the state check
+//   write/<model>/<outputs>/threads:T   the writes alone: one sample's outputs (in L1) stored
+//                                       into every sample's rows of arrays touched before, with
+//                                       ordinary stores (each line read for ownership first, as
+//                                       the batch's stores)
+//   stream/<model>/<outputs>/threads:T  the same with streaming (non-temporal) stores: each line
+//                                       written once, never read
 //
 // Models: human = config/human_body.urdf (37 bodies), panda = test/robots/panda.urdf (7-joint
 // arm, hand and fingers: 12 bodies). Arguments: --benchmark_format=json for bench/python_batch.py.
 #include <benchmark/benchmark.h>
+#include <emmintrin.h>
 
 #include <cstring>
 #include <random>
@@ -158,6 +165,52 @@ void copy(benchmark::State& state, const std::string& name, Outputs outputs) {
   set_counters(state, model, bytes);
 }
 
+// Doubles [from, from + n) to `to` with SSE2 streaming stores (8-byte ones up to and from a
+// 16-byte boundary).
+void stream_doubles(double* to, const double* from, std::size_t n) {
+  const auto one = [&] {
+    long long bits;
+    std::memcpy(&bits, from++, 8);
+    _mm_stream_si64(reinterpret_cast<long long*>(to++), bits);
+    --n;
+  };
+  while (n > 0 && reinterpret_cast<std::uintptr_t>(to) % 16 != 0) one();
+  for (; n >= 2; to += 2, from += 2, n -= 2) _mm_stream_pd(to, _mm_loadu_pd(from));
+  if (n > 0) one();
+}
+
+// The outputs' writes without the computation: one sample's arrays (in L1) into every sample's
+// rows, with ordinary stores (memcpy of a few KB) or streaming ones.
+void write_rows(benchmark::State& state, const std::string& name, Outputs outputs, bool streaming) {
+  const mbk::Model& model = model_of(name);
+  Batch b(model, outputs, kSamples, false);
+  const Batch one(model, outputs, 1, false);
+  const int threads = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    mbk::split_runs(kSamples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+      for (std::size_t s = begin; s < end; ++s)
+        for (std::size_t i = 0; i < b.arrays.size(); ++i) {
+          const std::size_t n = one.arrays[i].size();
+          if (streaming)
+            stream_doubles(b.arrays[i].data() + s * n, one.arrays[i].data(), n);
+          else
+            std::memcpy(b.arrays[i].data() + s * n, one.arrays[i].data(), n * sizeof(double));
+        }
+      _mm_sfence();
+    });
+    benchmark::DoNotOptimize(b.arrays.front().data());
+  }
+  set_counters(state, model, b.bytes);
+}
+
+void write(benchmark::State& state, const std::string& name, Outputs outputs) {
+  write_rows(state, name, outputs, false);
+}
+
+void stream(benchmark::State& state, const std::string& name, Outputs outputs) {
+  write_rows(state, name, outputs, true);
+}
+
 using Run = void (*)(benchmark::State&, const std::string&, Outputs);
 
 void add(const char* row, Run run, const char* name, Outputs outputs) {
@@ -178,6 +231,8 @@ void register_all() {
     for (const Outputs outputs : {Outputs::kFull, Outputs::kAll}) {
       add("compute", compute, name, outputs);
       add("copy", copy, name, outputs);
+      add("write", write, name, outputs);
+      add("stream", stream, name, outputs);
     }
   }
 }

@@ -2,11 +2,13 @@
 """The Python module's speed (doc/speed.md#python): Model.kinematics on N = 1e5 states of
 config/human_body.urdf and test/robots/panda.urdf (a 7-joint arm), full outputs (the default
 with accelerations) and poses only, one and two threads, into out= arrays allocated before
-(as batch_benchmark's C++ rows, run in the same invocation) and freshly allocated; a Python loop
+(as batch_benchmark's C++ rows, run in the same invocation); a Python loop
 over PyKDL's chain solvers (panda: the hand's pose and velocity, then every body's) and over dartpy (every body's
 pose, velocities and accelerations) on 1000 states; the peak memory of a fresh call (a child
 process: its peak RSS during the call, VmHWM reset just before it, above its RSS then) against the bytes of the arrays
-asked for. Prints a markdown table. Not a test: the figures depend on the machine's load.
+asked for; then the human model's writing in place, fresh arrays and chunks (chunk_rows, alone
+with --in-place-only). Prints markdown tables. Not a test: the figures depend on the machine's
+load.
 
   source devel/setup.bash; /usr/bin/python3 bench/python_batch.py [--samples N] [--in-place-only]
   (run outside the repository's root, which would shadow the package: e.g. cd /tmp first)
@@ -152,10 +154,10 @@ def main():
     n = arguments.samples
     if arguments.in_place_only:
         return chunk_rows(n)
-    cpp = {k: min(t) for k, t in cpp_rows("batch/|copy/").items()}
+    cpp = {k: min(t) for k, t in cpp_rows("batch/").items()}
     print("| model | outputs | threads | Python call, out= (ms) | C++ batch_kinematics (ms) | "
-          "Python / C++ | Python, fresh arrays (ms) | ns per sample | ns per body and sample |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "Python / C++ | ns per body and sample |")
+    print("|---|---|---:|---:|---:|---:|---:|")
     for name, path in MODELS.items():
         model = mb_kinematics.load(os.path.join(ROOT, path))
         q, v, a = states(model, n)
@@ -165,15 +167,10 @@ def main():
             for threads in (1, 2):
                 call = best(lambda: model.kinematics(q, v, a, outputs=names, threads=threads,
                                                      out=out))
-                fresh = best(lambda: model.kinematics(q, v, a, outputs=names, threads=threads))
                 c = cpp["batch/%s/%s/threads:%d" % (name, kind, threads)]
-                print("| %s | %s | %d | %.1f | %.1f | %.2f | %.1f | %.0f | %.1f |" % (
-                    name, kind, threads, call * 1e3, c * 1e3, call / c, fresh * 1e3, call / n * 1e9,
+                print("| %s | %s | %d | %.1f | %.1f | %.2f | %.1f |" % (
+                    name, kind, threads, call * 1e3, c * 1e3, call / c,
                     call / n / model.body_count * 1e9))
-        for threads in (1, 2):
-            copy = cpp["copy/%s/full/threads:%d" % (name, threads)]
-            print("| %s | copy of the full outputs' bytes | %d | | %.1f | | | %.0f | |" % (
-                name, threads, copy * 1e3, copy / n * 1e9))
     print()
     for name in MODELS:
         model = mb_kinematics.load(os.path.join(ROOT, MODELS[name]))
@@ -214,10 +211,12 @@ def parallel_copy(to, source, threads=2):
 
 def chunk_rows(n):
     """Human, 2 threads, the full and the all outputs, best (median) of 5: batch_benchmark's
-    plain copy of the same bytes, its computation alone (compute/) and its batch into arrays
-    touched before; then five rounds of a 2-thread numpy copy of the same bytes into the out=
-    arrays, out= (against that copy), fresh arrays (against out=) and chunks of 10,000 rows
-    (kinematics_chunks, against out=); the chunks' peak memory against one chunk's arrays. The
+    plain copy of the same bytes, its computation alone (compute/), its writes alone (write/,
+    stream/) and its batch into arrays touched before; then five rounds of a 2-thread numpy
+    copy of the same bytes into the out= arrays, out= (against that copy), fresh arrays (against
+    out=) and chunks of 10,000 rows
+    (kinematics_chunks, against out=; and into one chunk's arrays made before, out=); the
+    chunks' peak memory against one chunk's arrays. The
     load average before and after."""
     load = os.getloadavg()
     cpp = cpp_rows("human/(full|all)/threads:2", 5)
@@ -228,19 +227,22 @@ def chunk_rows(n):
         fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
         out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
         r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
-             for what in ("copy", "compute", "batch")}
+             for what in ("copy", "compute", "write", "stream", "batch")}
         source = {k: np.ones_like(x) for k, x in out.items()}
-        r.update(numpy_copy=[], out=[], fresh=[], chunks=[])
+        r.update(numpy_copy=[], out=[], fresh=[], chunks=[], chunks_out=[])
+        chunk_out = {k: np.ones((10000,) + x.shape[1:]) for k, x in fresh0.items()}
 
-        def chunks():
-            for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000):
+        def chunks(**given):
+            for _ in model.kinematics_chunks(q, v, a, outputs=names, threads=2, rows=10000,
+                                             **given):
                 pass
-        for _ in range(5):  # one of each per round: the load drifts alike for all four
+        for _ in range(5):  # one of each per round: the load drifts alike for all five
             r["numpy_copy"] += timings(lambda: parallel_copy(out, source), 1)
             r["out"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2,
                                                          out=out), 1)
             r["fresh"] += timings(lambda: model.kinematics(q, v, a, outputs=names, threads=2), 1)
             r["chunks"] += timings(chunks, 1)
+            r["chunks_out"] += timings(lambda: chunks(out=chunk_out), 1)
         out = source = None  # their memory back
         r["memory"] = chunk_memory(n, names)
         r["bytes"] = sum(x.nbytes for x in fresh0.values())
@@ -256,11 +258,15 @@ def chunk_rows(n):
              ("the same, into the out= arrays (numpy, 2 threads, interleaved)", "numpy_copy", None,
               ""),
              ("computation alone (C++, compute/)", "compute", "copy", "the copy"),
+             ("the writes alone, ordinary stores (C++, write/)", "write", "copy", "the copy"),
+             ("the writes alone, streaming stores (C++, stream/)", "stream", "copy", "the copy"),
              ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
              ("out=", "out", "numpy_copy", "the numpy copy"),
              ("fresh arrays", "fresh", "out", "out="),
-             ("kinematics_chunks, rows=10000", "chunks", "out", "out="))
-    aims = {"out": "1.25x", "fresh": "1.3x", "chunks": "1.1x"}
+             ("kinematics_chunks, rows=10000", "chunks", "out", "out="),
+             ("kinematics_chunks, rows=10000, out= (one chunk's arrays, made before)",
+              "chunks_out", "out", "out="))
+    aims = {"out": "1.25x", "fresh": "1.3x", "chunks": "1.1x", "chunks_out": "1.1x"}
     for label, what, peer, against in lines:
         cells = []
         for kind in ("full", "all"):

@@ -368,28 +368,35 @@ class Model:
                     for name, a in arrays.items()}
         return arrays
 
-    def kinematics_chunks(self, q, velocity=None, acceleration=None, rows=10000, **options):
+    def kinematics_chunks(self, q, velocity=None, acceleration=None, rows=10000, out=None,
+                          **options):
         """kinematics() of (N, nq) q (and (N, nv) velocity, acceleration) `rows` samples at a
         time, for any N in the memory of one chunk: yields (start, out) per chunk, out's arrays
         holding samples start.. start + len (rows, fewer in the last chunk). The arrays are
-        reused by the next chunk: copy what must outlive it. Options as kinematics() but out."""
+        reused by the next chunk: copy what must outlive it. out: dict name -> array of `rows`
+        rows (as kinematics()' out= for `rows` samples) to write every chunk into; without it the
+        first chunk allocates them. Options as kinematics()."""
         rows = _count(rows, "rows")
-        if "out" in options:
-            raise ValueError("out: not with kinematics_chunks (its arrays are its own)")
         single, q = _positions(self, q)
         if single:
             raise ValueError("q: shape (%d,), expected (N, %d) rows to split" % (self.nq, self.nq))
+        if out is not None and not isinstance(out, dict):
+            raise TypeError("out: a dict name -> array, not %s" % type(out).__name__)
+        for name, a in (out or {}).items():
+            if not isinstance(a, np.ndarray) or a.ndim == 0 or len(a) != rows:
+                raise ValueError("out[%r]: %s, expected %d rows (rows=%d)" % (
+                    name, "shape %s" % (a.shape,) if isinstance(a, np.ndarray) else
+                    type(a).__name__, rows, rows))
         n = q.shape[0]
         velocity = _speeds(self, velocity, "velocity", n, False)
         acceleration = _speeds(self, acceleration, "acceleration", n, False)
-        arrays = None
+        arrays = out
         for start in range(0, n, rows):
             stop = min(n, start + rows)
             part = [None if x is None else x[start:stop] for x in (velocity, acceleration)]
-            out = None if arrays is None else {k: a[:stop - start] for k, a in arrays.items()}
-            result = self.kinematics(q[start:stop], part[0], part[1], out=out, **options)
-            arrays = arrays or result
-            yield start, result
+            given = None if arrays is None else {k: a[:stop - start] for k, a in arrays.items()}
+            arrays = self.kinematics(q[start:stop], part[0], part[1], out=given, **options)
+            yield start, arrays
 
 
 def _frozen(array):

@@ -1,6 +1,6 @@
 """Model.kinematics_chunks: the results of one call, chunk by chunk, in the memory of one chunk
-(tracemalloc counts numpy's arrays); a chunk size of 0 or less is a ValueError naming `rows`.
-And one large call on two threads equals the same samples computed in small calls on one, in
+(tracemalloc counts numpy's arrays), or into the caller's arrays (out=); a chunk size of 0 or
+less is a ValueError naming `rows`, out= arrays of another length one naming the array. And one large call on two threads equals the same samples computed in small calls on one, in
 float64 and float32."""
 import tracemalloc
 
@@ -46,8 +46,29 @@ def test_bad_chunk_sizes(human):
             next(human.kinematics_chunks(q, rows=rows))
     with pytest.raises(TypeError, match="rows: an integer"):
         next(human.kinematics_chunks(q, rows=2.5))
-    with pytest.raises(ValueError, match="out: not with kinematics_chunks"):
-        next(human.kinematics_chunks(q, rows=2, out={}))
+    for out in ({"rotation": np.zeros((3, human.body_count, 3, 3))}, {"rotation": 1.0}):
+        with pytest.raises(ValueError, match=r"out\['rotation'\]: .*expected 2 rows \(rows=2\)"):
+            next(human.kinematics_chunks(q, rows=2, out=out))
+    with pytest.raises(TypeError, match="out: a dict"):
+        next(human.kinematics_chunks(q, rows=2, out=[]))
+
+
+def test_chunks_into_arrays_of_ones_own(human):
+    """out=: every chunk written into the caller's arrays of `rows` rows (a view of their first
+    rows yielded), the outputs not in it allocated once, the same numbers as one call."""
+    q, v, a = random_states(human, 1000, seed=7)
+    whole = human.kinematics(q, v, a, outputs=["omega", "origin"], threads=2)
+    mine = {"omega": np.full((300, human.body_count, 3), np.nan)}
+    seen = set()
+    for start, out in human.kinematics_chunks(q, v, a, rows=300, out=mine,
+                                              outputs=["omega", "origin"], threads=2):
+        size = min(300, 1000 - start)
+        assert np.shares_memory(out["omega"], mine["omega"])
+        seen.add(out["origin"].__array_interface__["data"][0])
+        for name in ("omega", "origin"):
+            assert np.array_equal(out[name], whole[name][start:start + size])
+    assert np.array_equal(mine["omega"][:100], whole["omega"][900:])  # the last chunk's
+    assert len(seen) == 1  # origin's array allocated once, reused
 
 
 @pytest.mark.parametrize("dtype", [np.float64, np.float32])
