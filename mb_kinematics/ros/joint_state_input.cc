@@ -1,5 +1,6 @@
 #include "mb_kinematics/ros/joint_state_input.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,6 +55,9 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
     coordinates_[i].velocity_history = prototype.clone();
   }
   for (const mbk::Mimic& m : model.mimics) coordinates_[m.coordinate].mimic = true;
+  plain_model_ = model.mimics.empty();
+  for (int k = 1; k <= model.body_count(); ++k)
+    plain_model_ = plain_model_ && !mbk::uses_euler_parameters(model.bodies[k].joint.type);
 }
 
 // The message checked whole (mbk::JointStateIntake: lengths, duplicate names, NaN/Inf), then
@@ -68,9 +72,22 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
   return check_values(msg, update);
 }
 
+// True if check_values would find nothing, known without a trial state: a model without mimics
+// or Euler parameters, and every value of the message (finite where it names a coordinate: the
+// intake checked) within mbk::kMaxStateMagnitude. The values it keeps passed when they came, and
+// the trial's velocities and accelerations it does not set are zero. One vectorized pass.
+bool JointStateInput::plainly_bounded(const sensor_msgs::JointState& msg) const {
+  const auto largest = [](const std::vector<double>& x) {
+    return x.empty() ? 0.0 : Eigen::Map<const Eigen::ArrayXd>(x.data(), x.size()).abs().maxCoeff();
+  };
+  return plain_model_ && largest(msg.position) <= mbk::kMaxStateMagnitude &&
+         largest(msg.velocity) <= mbk::kMaxStateMagnitude;
+}
+
 // What mbk::check_state would refuse, before any estimator sees it: the message's values over
 // the coordinates known so far (mimics applied).
 std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Update& update) {
+  if (plainly_bounded(msg)) return "";
   for (int i = 0; i < model_.nq; ++i)
     trial_.position[i] =
         coordinates_[i].has_value ? coordinates_[i].position : initial_.position[i];

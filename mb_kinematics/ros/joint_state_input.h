@@ -98,10 +98,14 @@ class JointStateInput {
   };
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
+  bool plainly_bounded(const sensor_msgs::JointState& msg) const;
   bool take(Coordinate& c, double t);
 
   const mbk::Model& model_;
   double max_gap_;
+  // No mimic and no Euler parameters: a message whose values are bounded needs no trial state
+  // (plainly_bounded).
+  bool plain_model_ = true;
   mbk::JointStateIntake intake_;              // of joint_states (core/joint_state_intake.h)
   mbk::CoordinateLookup acceleration_names_;  // of joint_accelerations
   std::vector<Coordinate> coordinates_;
