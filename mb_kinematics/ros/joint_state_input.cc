@@ -127,9 +127,11 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
       c.position_history->reset();
       c.velocity_history->reset();
     }
+    const bool velocity_given = !msg.velocity.empty();
+    c.other_reset = c.other_reset && c.has_value && velocity_given == c.velocity_given;
     c.has_value = true;
     c.position = intake_.last()[j];
-    c.velocity_given = !msg.velocity.empty();
+    c.velocity_given = velocity_given;
     if (c.velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
     if (!take(c, t)) update.estimator_reset.push_back(msg.name[i]);
     ++update.used;
@@ -145,7 +147,8 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
 bool JointStateInput::take(Coordinate& c, double t) {
   c.stamp = t;
   mbk::DerivativeEstimator& used = c.velocity_given ? *c.velocity_history : *c.position_history;
-  (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  if (!c.other_reset) (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  c.other_reset = true;
   const double value = c.velocity_given ? c.velocity : c.position;
   used.add(t, value);
   if (sound(used, c.velocity_given ? 1 : 2)) return true;
@@ -191,12 +194,6 @@ std::vector<std::string> JointStateInput::missing() const {
   return names;
 }
 
-JointStateInput::Freshness JointStateInput::freshness(int i, double t) const {
-  const Coordinate& c = coordinates_[i];
-  if (!c.has_value) return Freshness::kNever;
-  return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
-}
-
 bool JointStateInput::settled(int i) const {
   const Coordinate& c = coordinates_[i];
   double first = 0, second = 0;
@@ -219,8 +216,8 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
       continue;
     }
     state.position[i] = c.position;
-    double first = 0, second = 0;
-    const int n = c.position_history->estimate(first, second);
+    double first = 0, second = 0;  // the positions' estimates, when no velocity is given
+    const int n = c.velocity_given ? 0 : c.position_history->estimate(first, second);
     if (velocities) {
       state.velocity[i] = c.velocity_given ? c.velocity : first;
       velocities = c.velocity_given || n >= 1;

@@ -74,7 +74,11 @@ class JointStateInput {
   // Of coordinate i (not a mimic) at time t: never set; its last sample within max_gap of t
   // (or max_gap 0); or older than that (stale: its publisher has stopped, or paused).
   enum class Freshness { kNever, kFresh, kStale };
-  Freshness freshness(int i, double t) const;
+  Freshness freshness(int i, double t) const {  // inline: asked per coordinate and sample
+    const Coordinate& c = coordinates_[i];
+    if (!c.has_value) return Freshness::kNever;
+    return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
+  }
   // True once coordinate i's history gives what fill() needs for accelerations: a velocity
   // estimate of given velocities, or two position estimates.
   bool settled(int i) const;
@@ -93,6 +97,9 @@ class JointStateInput {
  private:
   struct Coordinate {
     bool mimic = false, has_value = false, velocity_given = false;
+    // The history of the other kind (positions when velocities are given) is reset and has
+    // taken nothing since: take() need not reset it again.
+    bool other_reset = false;
     double position = 0, velocity = 0, stamp = 0;
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
