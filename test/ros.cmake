@@ -19,6 +19,11 @@ target_link_libraries(output_allocation_test mbk_ros mbk_test_models mbk_analysi
   gtest_main)
 target_compile_definitions(output_allocation_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 
+# /tf's rotations against mbk::joint_quaternion, bit for bit (no master).
+catkin_add_gtest(tf_fill_test test/ros/tf_fill_test.cc)
+add_dependencies(tf_fill_test mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(tf_fill_test mbk_ros mbk_test_models mbk_core gtest_main)
+
 # body_kinematics' system field against the core, with and without inertias (no master).
 catkin_add_gtest(system_fields_test test/ros/system_fields_test.cc)
 add_dependencies(system_fields_test mb_kinematics_msgs_generate_messages_cpp)

@@ -1,13 +1,54 @@
 #include "mb_kinematics/messages/tf.h"
 
+#include <algorithm>
+
 #include "mb_kinematics/core/joint_motion.h"
+#include "mb_kinematics/core/sincos.h"
 #include "mb_kinematics/messages/fields.h"
 
 namespace mbk_messages {
+namespace {
+
+// The plain turns' half angles go through mbk::sin_cos over an array (a loop that vectorizes,
+// bit for bit the one-angle sin_cos of mbk::joint_quaternion) this many at a time.
+constexpr size_t kTurnBlock = 32;
+
+// The rotation of moving[first, end) into `transforms`: the plain turns from their half angles'
+// sines and cosines taken together, the others by mbk::joint_quaternion.
+void fill_rotations(const mbk::Model& model, const mbk::JointState<double>& state,
+                    const std::vector<TfJoint>& moving, size_t first, size_t end,
+                    std::vector<geometry_msgs::TransformStamped>& transforms) {
+  double half[kTurnBlock], s[kTurnBlock], c[kTurnBlock];
+  for (size_t i = first; i < end; ++i) {
+    const mbk::Body& body = model.bodies[moving[i].body];
+    half[i - first] = moving[i].plain_turn ? state.position[body.q_index] / 2 : 0.0;
+  }
+  mbk::sin_cos(half, static_cast<int>(end - first), s, c);
+  for (size_t i = first; i < end; ++i) {
+    const mbk::Body& body = model.bodies[moving[i].body];
+    geometry_msgs::Quaternion& out = transforms[i].transform.rotation;
+    if (!moving[i].plain_turn) {
+      set_quaternion(
+          mbk::joint_quaternion(body.joint, moving[i].offset, state.position.data() + body.q_index),
+          out);
+      continue;
+    }
+    const double si = s[i - first];  // joint_quaternion's values (a zero's sign aside)
+    out.w = c[i - first];
+    out.x = si * body.joint.axis.x();
+    out.y = si * body.joint.axis.y();
+    out.z = si * body.joint.axis.z();
+  }
+}
+
+}  // namespace
 
 TfJoint tf_joint(const mbk::Model& model, int body) {
   const mbk::Joint& joint = model.bodies[body].joint;
-  return {body, Eigen::Quaterniond(joint.rotation), mbk::translation_count(joint.type) > 0};
+  const bool plain_turn =
+      joint.type == mbk::JointType::kRevolute && joint.rotation == mbk::Mat3<double>::Identity();
+  return {body, Eigen::Quaterniond(joint.rotation), mbk::translation_count(joint.type) > 0,
+          plain_turn};
 }
 
 std::vector<int> moving_bodies(const mbk::Model& model, int first) {
@@ -37,13 +78,15 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
                      const std::vector<TfJoint>& moving, const ros::Time& stamp,
                      std::vector<geometry_msgs::TransformStamped>& transforms,
                      const mbk::BaseMotion* base) {
+  for (size_t first = 0; first < moving.size(); first += kTurnBlock)
+    fill_rotations(model, state, moving, first, std::min(moving.size(), first + kTurnBlock),
+                   transforms);
   mbk::JointMotion<double> m;
   for (size_t i = 0; i < moving.size(); ++i) {
     const mbk::Body& body = model.bodies[moving[i].body];
     const double* q = state.position.data() + body.q_index;
     geometry_msgs::Transform& out = transforms[i].transform;
     transforms[i].header.stamp = stamp;
-    set_quaternion(mbk::joint_quaternion(body.joint, moving[i].offset, q), out.rotation);
     if (!moving[i].translates) {
       set_vector(body.joint.offset, out.translation);
       continue;

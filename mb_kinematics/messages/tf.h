@@ -23,6 +23,9 @@ struct TfJoint {
   int body;
   Eigen::Quaterniond offset;  // C_k
   bool translates;            // prismatic, planar, free joints: s_k from mbk::joint_motion
+  // A revolute joint whose C_k is the identity (every URDF joint without rpy): SJK is the turn
+  // (cos(q/2), sin(q/2) axis) alone, its sine and cosine taken with the other such joints'.
+  bool plain_turn;
 };
 TfJoint tf_joint(const mbk::Model& model, int body);
 

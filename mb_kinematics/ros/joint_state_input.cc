@@ -1,5 +1,6 @@
 #include "mb_kinematics/ros/joint_state_input.h"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,6 +55,9 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
     coordinates_[i].velocity_history = prototype.clone();
   }
   for (const mbk::Mimic& m : model.mimics) coordinates_[m.coordinate].mimic = true;
+  plain_model_ = model.mimics.empty();
+  for (int k = 1; k <= model.body_count(); ++k)
+    plain_model_ = plain_model_ && !mbk::uses_euler_parameters(model.bodies[k].joint.type);
 }
 
 // The message checked whole (mbk::JointStateIntake: lengths, duplicate names, NaN/Inf), then
@@ -68,9 +72,22 @@ std::string JointStateInput::validate(const sensor_msgs::JointState& msg, Update
   return check_values(msg, update);
 }
 
+// True if check_values would find nothing, known without a trial state: a model without mimics
+// or Euler parameters, and every value of the message (finite where it names a coordinate: the
+// intake checked) within mbk::kMaxStateMagnitude. The values it keeps passed when they came, and
+// the trial's velocities and accelerations it does not set are zero. One vectorized pass.
+bool JointStateInput::plainly_bounded(const sensor_msgs::JointState& msg) const {
+  const auto largest = [](const std::vector<double>& x) {
+    return x.empty() ? 0.0 : Eigen::Map<const Eigen::ArrayXd>(x.data(), x.size()).abs().maxCoeff();
+  };
+  return plain_model_ && largest(msg.position) <= mbk::kMaxStateMagnitude &&
+         largest(msg.velocity) <= mbk::kMaxStateMagnitude;
+}
+
 // What mbk::check_state would refuse, before any estimator sees it: the message's values over
 // the coordinates known so far (mimics applied).
 std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Update& update) {
+  if (plainly_bounded(msg)) return "";
   for (int i = 0; i < model_.nq; ++i)
     trial_.position[i] =
         coordinates_[i].has_value ? coordinates_[i].position : initial_.position[i];
@@ -110,9 +127,11 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
       c.position_history->reset();
       c.velocity_history->reset();
     }
+    const bool velocity_given = !msg.velocity.empty();
+    c.other_reset = c.other_reset && c.has_value && velocity_given == c.velocity_given;
     c.has_value = true;
     c.position = intake_.last()[j];
-    c.velocity_given = !msg.velocity.empty();
+    c.velocity_given = velocity_given;
     if (c.velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
     if (!take(c, t)) update.estimator_reset.push_back(msg.name[i]);
     ++update.used;
@@ -128,7 +147,8 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
 bool JointStateInput::take(Coordinate& c, double t) {
   c.stamp = t;
   mbk::DerivativeEstimator& used = c.velocity_given ? *c.velocity_history : *c.position_history;
-  (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  if (!c.other_reset) (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  c.other_reset = true;
   const double value = c.velocity_given ? c.velocity : c.position;
   used.add(t, value);
   if (sound(used, c.velocity_given ? 1 : 2)) return true;
@@ -174,12 +194,6 @@ std::vector<std::string> JointStateInput::missing() const {
   return names;
 }
 
-JointStateInput::Freshness JointStateInput::freshness(int i, double t) const {
-  const Coordinate& c = coordinates_[i];
-  if (!c.has_value) return Freshness::kNever;
-  return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
-}
-
 bool JointStateInput::settled(int i) const {
   const Coordinate& c = coordinates_[i];
   double first = 0, second = 0;
@@ -202,8 +216,8 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
       continue;
     }
     state.position[i] = c.position;
-    double first = 0, second = 0;
-    const int n = c.position_history->estimate(first, second);
+    double first = 0, second = 0;  // the positions' estimates, when no velocity is given
+    const int n = c.velocity_given ? 0 : c.position_history->estimate(first, second);
     if (velocities) {
       state.velocity[i] = c.velocity_given ? c.velocity : first;
       velocities = c.velocity_given || n >= 1;

@@ -74,7 +74,11 @@ class JointStateInput {
   // Of coordinate i (not a mimic) at time t: never set; its last sample within max_gap of t
   // (or max_gap 0); or older than that (stale: its publisher has stopped, or paused).
   enum class Freshness { kNever, kFresh, kStale };
-  Freshness freshness(int i, double t) const;
+  Freshness freshness(int i, double t) const {  // inline: asked per coordinate and sample
+    const Coordinate& c = coordinates_[i];
+    if (!c.has_value) return Freshness::kNever;
+    return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
+  }
   // True once coordinate i's history gives what fill() needs for accelerations: a velocity
   // estimate of given velocities, or two position estimates.
   bool settled(int i) const;
@@ -93,15 +97,22 @@ class JointStateInput {
  private:
   struct Coordinate {
     bool mimic = false, has_value = false, velocity_given = false;
+    // The history of the other kind (positions when velocities are given) is reset and has
+    // taken nothing since: take() need not reset it again.
+    bool other_reset = false;
     double position = 0, velocity = 0, stamp = 0;
     std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
+  bool plainly_bounded(const sensor_msgs::JointState& msg) const;
   bool take(Coordinate& c, double t);
 
   const mbk::Model& model_;
   double max_gap_;
+  // No mimic and no Euler parameters: a message whose values are bounded needs no trial state
+  // (plainly_bounded).
+  bool plain_model_ = true;
   mbk::JointStateIntake intake_;              // of joint_states (core/joint_state_intake.h)
   mbk::CoordinateLookup acceleration_names_;  // of joint_accelerations
   std::vector<Coordinate> coordinates_;

@@ -412,3 +412,40 @@ TEST_F(PoisonTest, AngleSpikeRestartsThatCoordinateOnly) {
     }
   }
 }
+
+// A model without mimics or Euler parameters (its messages checked without a trial state when
+// every value is within 1e50): the same verdicts as check_state's. A translation or a speed
+// beyond 1e50 is refused, named, and changes nothing; an angle of any finite size is taken.
+TEST(JointStateInputPlain, BoundsAsCheckState) {
+  const mbk::Model model = mbk::load_urdf_string(R"(<robot name="plain">
+    <link name="base"/><link name="arm"/><link name="slide"/>
+    <joint name="turn" type="revolute"><parent link="base"/><child link="arm"/>
+      <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+    <joint name="push" type="prismatic"><parent link="arm"/><child link="slide"/>
+      <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  </robot>)");
+  const auto estimator = mbk::make_derivative_estimator("backward_difference");
+  mbk_ros::JointStateInput input(model, *estimator);
+  mbk::JointState<double> state(model);
+  const std::vector<std::string> names = {"turn", "push"};
+  sensor_msgs::JointState m = msg(names, 0.25, true);
+  ASSERT_EQ(input.add(m, 1.0).error, "");
+  for (double huge : {1e51, 1e300}) {
+    m = msg(names, 0.5, true);
+    m.position[1] = huge;
+    std::string error = input.add(m, 2.0).error;
+    EXPECT_NE(error.find("'push': magnitude"), std::string::npos) << error;
+    m = msg(names, 0.5, true);
+    m.velocity[0] = -huge;
+    error = input.add(m, 2.0).error;
+    EXPECT_NE(error.find("speed 'turn': magnitude"), std::string::npos) << error;
+    input.fill(Level::kPose, nullptr, state);
+    EXPECT_EQ(state.position[1], 0.25) << "a refused message changed nothing";
+  }
+  m = msg(names, 0.5, true);
+  m.position[0] = 1e300;  // a valid angle
+  EXPECT_EQ(input.add(m, 3.0).error, "");
+  input.fill(Level::kPose, nullptr, state);
+  EXPECT_EQ(state.position[0], 1e300);
+  EXPECT_EQ(state.position[1], 0.5);
+}
