@@ -4,11 +4,8 @@
 #   Pinocchio 3.x is not in Debian: build it yourself and point CMake at it, e.g.
 #   `source scripts/common.sh; mbk_build -DCMAKE_PREFIX_PATH=<its install prefix>`.
 #   DART: Debian's libdart-dev and libdart-utils-urdf-dev (scripts/common.sh installs them).
-# euler_instructions: the driver of bench/euler_instructions.sh (callgrind; no Google Benchmark).
-add_executable(euler_instructions bench/euler_instructions.cc)
-target_link_libraries(euler_instructions mbk_analysis mbk_io mbk_core)
-target_compile_definitions(euler_instructions PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-# recursion_instructions: the driver of bench/recursion_instructions.sh (callgrind).
+# recursion_instructions: the driver of bench/recursion_instructions.sh and
+# bench/euler_instructions.sh (callgrind; no Google Benchmark).
 add_executable(recursion_instructions bench/recursion_instructions.cc)
 target_link_libraries(recursion_instructions mbk_analysis mbk_io mbk_core)
 target_compile_definitions(recursion_instructions PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -4,13 +4,15 @@
 //   recursion_instructions SCENE recursive|pv pose|velocity|full N
 // SCENE: human (config/human_body.yaml), human_urdf (config/human_body.urdf), humanoid29 and
 // random64 (kinematics_benchmark's, through URDF text), tree100 (make_random_tree(100, 3): every
-// joint type), chainN (make_chain(N, revolute)).
+// joint type), chainN (make_chain(N, revolute)), human:ORDER (human with every ball and free
+// joint's angles in an Euler order such as ZYX: bench/euler_instructions.sh).
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include "bench/bench_scene.h"
 #include "mb_kinematics/core/data.h"
+#include "mb_kinematics/core/euler_order.h"
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/io/load_model.h"
@@ -26,9 +28,19 @@ mbk::Level level_of(const std::string& name) {
   throw std::invalid_argument("unknown level '" + name + "' (pose, velocity or full)");
 }
 
+mbk::Model human_in_order(mbk::EulerOrder order) {
+  mbk::Model model = mbk::load_model_file(std::string(MBK_SOURCE_DIR) + "/config/human_body.yaml");
+  for (mbk::Body& body : model.bodies)
+    if (mbk::takes_euler_order(body.joint.type)) body.joint.euler_order = order;
+  mbk::finalize_model(model);
+  return model;
+}
+
 mbk::Model scene(const std::string& name) {
   const std::string config = std::string(MBK_SOURCE_DIR) + "/config/";
   if (name == "human") return mbk::load_model_file(config + "human_body.yaml");
+  if (name.rfind("human:", 0) == 0)
+    return human_in_order(mbk::euler_order_from_string(name.substr(6)));
   if (name == "human_urdf") return mbk::load_model_file(config + "human_body.urdf");
   if (name == "humanoid29")
     return mbk::load_urdf_string(mbk::write_urdf(mbk_bench::humanoid29(), name), name);
@@ -39,7 +51,7 @@ mbk::Model scene(const std::string& name) {
   if (name.rfind("chain", 0) == 0 && name.size() > 5)
     return mbk::make_chain(std::stoi(name.substr(5)), mbk::JointType::kRevolute);
   throw std::invalid_argument("unknown scene '" + name +
-                              "' (human, human_urdf, humanoid29, random64, tree100, chainN)");
+                              "' (human, human:ORDER, human_urdf, humanoid29, random64, tree100, chainN)");
 }
 
 }  // namespace

@@ -26,20 +26,10 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-MBK_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-MBK_WS=${MBK_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/mb_kinematics/ws-$(echo "$MBK_ROOT" | md5sum | cut -c1-8)}
-[ -f "$MBK_WS/devel/setup.bash" ] || { echo "node_instructions.sh: no build in $MBK_WS" >&2; exit 1; }
+# shellcheck source=scripts/node_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/node_common.sh"
+node_script_env node_instructions "$PORT"
 command -v valgrind >/dev/null || { echo "node_instructions.sh: needs valgrind" >&2; exit 1; }
-export PATH=/usr/bin:$PATH PYTHONNOUSERSITE=1
-set +u
-# shellcheck disable=SC1091
-source "$MBK_WS/devel/setup.bash"
-set -u
-export ROS_MASTER_URI=http://127.0.0.1:$PORT ROS_IP=127.0.0.1
-unset ROS_HOSTNAME
-BIN=$MBK_WS/devel/lib/mb_kinematics
-TMP=$(mktemp -d /tmp/mbk_node_instructions.XXXXXX)
-PIDS=()
 stop() { kill -INT "$1" 2>/dev/null || true; wait "$1" 2>/dev/null || true; }
 cleanup() {
   for ((i = ${#PIDS[@]} - 1; i >= 0; i--)); do stop "${PIDS[i]}"; done
@@ -47,14 +37,8 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# The random tree of scripts/node_load.sh (the same awk, the same seed).
-eval "$(sed -n '/^random_tree_urdf() {/,/^}/p' "$MBK_ROOT/scripts/node_load.sh")"
-random_tree_urdf 100 >"$TMP/tree.urdf"
-
-roscore -p "$PORT" >"$TMP/roscore.log" 2>&1 &
-PIDS+=($!)
-for _ in $(seq 100); do rosparam get /rosdistro >/dev/null 2>&1 && break; sleep 0.2; done
-rosparam set --textfile "$TMP/tree.urdf" /robot_description
+random_tree_urdf 100 >"$TMP/tree.urdf"  # scripts/node_load.sh's tree
+start_master "$PORT" "$TMP/tree.urdf"
 
 # One run of S seconds: "instructions messages callback-instructions".
 run() {

@@ -44,19 +44,9 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-MBK_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-MBK_WS=${MBK_WS:-${XDG_CACHE_HOME:-$HOME/.cache}/mb_kinematics/ws-$(echo "$MBK_ROOT" | md5sum | cut -c1-8)}
-[ -f "$MBK_WS/devel/setup.bash" ] || { echo "node_load.sh: no build in $MBK_WS (run scripts/test.sh)" >&2; exit 1; }
-export PATH=/usr/bin:$PATH PYTHONNOUSERSITE=1
-set +u
-# shellcheck disable=SC1091
-source "$MBK_WS/devel/setup.bash"
-set -u
-export ROS_MASTER_URI=http://127.0.0.1:$PORT ROS_IP=127.0.0.1
-unset ROS_HOSTNAME
-BIN=$MBK_WS/devel/lib/mb_kinematics
-TMP=$(mktemp -d /tmp/mbk_node_load.XXXXXX)
-PIDS=()
+# shellcheck source=scripts/node_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/node_common.sh"
+node_script_env node_load "$PORT"
 cleanup() {
   for ((i = ${#PIDS[@]} - 1; i >= 0; i--)); do kill -INT "${PIDS[i]}" 2>/dev/null || true; done
   for _ in $(seq 50); do
@@ -70,31 +60,12 @@ cleanup() {
 }
 trap cleanup EXIT
 
-# A random tree of N links: link k's parent is one of links 0..k-1, joint axes x, y or z.
-random_tree_urdf() {
-  awk -v n="$1" 'BEGIN {
-    srand(1); print "<?xml version=\"1.0\"?>\n<robot name=\"tree" n "\">";
-    for (k = 0; k < n; k++) {
-      printf "  <link name=\"l%d\"><inertial><origin xyz=\"0 0 0.05\"/><mass value=\"1\"/>", k;
-      print "<inertia ixx=\"0.01\" iyy=\"0.01\" izz=\"0.01\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>";
-      if (k == 0) continue;
-      p = int(rand() * k); a = int(rand() * 3);
-      printf "  <joint name=\"j%d\" type=\"continuous\"><parent link=\"l%d\"/><child link=\"l%d\"/>", k, p, k;
-      printf "<origin xyz=\"%.3f %.3f %.3f\"/><axis xyz=\"%d %d %d\"/></joint>\n", rand() * 0.2,
-        rand() * 0.2, 0.1, a == 0, a == 1, a == 2;
-    }
-    print "</robot>" }'
-}
-
 if [ -z "$MODEL" ]; then
   MODEL=$TMP/tree$BODIES.urdf
   random_tree_urdf "$BODIES" >"$MODEL"
 fi
 
-roscore -p "$PORT" >"$TMP/roscore.log" 2>&1 &
-PIDS+=($!)
-for _ in $(seq 100); do rosparam get /rosdistro >/dev/null 2>&1 && break; sleep 0.2; done
-rosparam set --textfile "$MODEL" /robot_description
+start_master "$PORT" "$MODEL"
 
 NODE_NAME=/mb_kinematics  # the publisher of the node's /tf
 if [ "$NODELET" = 1 ]; then
