@@ -156,12 +156,14 @@ std::vector<std::string> matching(const std::string& pattern) {
   return paths;
 }
 
-// `mbk bag` on a long recording (60,000 samples) into OUT.bag and OUT.csv, started in a child
-// process with SIGINT, SIGTERM and SIGHUP at their default actions and unblocked, whatever this
-// process inherited (`ignored`, if not 0, ignored instead), its error output in OUT.err; returns
-// once its first temporary file exists (the outputs are being written).
+// `mbk bag` on a long recording (10,000 samples: its outputs take seconds to write) into OUT.bag
+// and OUT.csv, started in a child process with SIGINT, SIGTERM and SIGHUP at their default
+// actions and unblocked, whatever this process inherited (`ignored`, if not 0, ignored instead),
+// its error output in OUT.err. Returns it stopped (SIGSTOP) 200 ms after its first temporary file
+// appeared, its temporary files still there: a signal sent now reaches it while it writes its
+// outputs, however fast the machine (continue it with SIGCONT).
 pid_t start_long_run(const std::string& out, int ignored = 0) {
-  static const std::string in = write_trajectory("long_run.csv", 60000);
+  static const std::string in = write_trajectory("long_run.csv", 10000);
   const pid_t pid = fork();
   if (pid == 0) {
     freopen((out + ".err").c_str(), "w", stderr);
@@ -180,7 +182,18 @@ pid_t start_long_run(const std::string& out, int ignored = 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   EXPECT_FALSE(matching(out + ".*.mbk-tmp-*").empty()) << "no temporary file after 60 s";
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  int status = 0;
+  EXPECT_EQ(kill(pid, SIGSTOP), 0);
+  EXPECT_EQ(waitpid(pid, &status, WUNTRACED), pid);
+  EXPECT_TRUE(WIFSTOPPED(status)) << "the run ended before it was stopped: status " << status;
+  EXPECT_FALSE(matching(out + ".*.mbk-tmp-*").empty()) << "stopped after writing its outputs";
   return pid;
+}
+
+// Sends `signal` to a run start_long_run stopped, and continues it.
+void signal_stopped_run(pid_t pid, int signal) {
+  ASSERT_EQ(kill(pid, signal), 0);
+  ASSERT_EQ(kill(pid, SIGCONT), 0);
 }
 
 // Ended by SIGINT, SIGTERM or SIGHUP while writing, a run leaves no temporary file, ends by the
@@ -191,7 +204,7 @@ TEST(OutputFileTest, SignalsRemoveTheTemporaryFiles) {
     std::ofstream(out + ".bag") << "the previous bag";
     std::ofstream(out + ".csv") << "the previous csv";
     const pid_t pid = start_long_run(out);
-    ASSERT_EQ(kill(pid, signal), 0);
+    signal_stopped_run(pid, signal);
     int status = 0;
     ASSERT_EQ(waitpid(pid, &status, 0), pid);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
@@ -210,7 +223,7 @@ TEST(OutputFileTest, ASignalIgnoredFromTheStartStaysIgnored) {
   const std::string out = temp("ignoring");
   std::ofstream(out + ".csv") << "the previous csv";
   const pid_t pid = start_long_run(out, SIGTERM);
-  ASSERT_EQ(kill(pid, SIGTERM), 0);
+  signal_stopped_run(pid, SIGTERM);
   int status = 0;
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
@@ -225,7 +238,7 @@ TEST(OutputFileTest, ASignalIgnoredFromTheStartStaysIgnored) {
 TEST(OutputFileTest, TheNextRunRemovesAKilledRunsTemporaryFiles) {
   const std::string out = temp("killed");
   const pid_t pid = start_long_run(out);
-  ASSERT_EQ(kill(pid, SIGKILL), 0);
+  ASSERT_EQ(kill(pid, SIGKILL), 0);  // a stopped process too
   ASSERT_EQ(waitpid(pid, nullptr, 0), pid);
   ASSERT_FALSE(matching(out + ".*.mbk-tmp-*").empty());
   const std::string running = out + ".csv.mbk-tmp-" + std::to_string(getpid()) + "-abcdef";
