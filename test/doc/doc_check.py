@@ -10,8 +10,8 @@
 (c) With --pages (ctest doc_pages): every ```sh, ```bash and ```python block of doc/*.md runs as
     written, each from a fresh shell that has sourced the workspace only (bash -e; python blocks
     through /usr/bin/python3), in a fresh folder of its own (not the repository), on a ROS
-    master of the check's own, on an Xvfb screen (rviz:=true); --jobs blocks at once, each on
-    a master and a screen of its own. The folder holds the reader's own
+    master of the check's own, on an Xvfb screen (rviz:=true); --jobs blocks at once (the
+    longest first), each on a master and a screen of its own. The folder holds the reader's own
     files the pages name (FIXTURES: copies of the repository's real data). A command that runs
     until the reader stops it (roslaunch, rostopic echo, rviz) passes when it is still running
     after --settle s with no node died and no error printed, and is then stopped (SIGTERM, as
@@ -223,6 +223,9 @@ roslaunch() { mbk_running command roslaunch "$@"; }
 rviz() { mbk_running command rviz "$@"; }
 rostopic() { if [ "$1" = echo ] && [[ " $* " != *" -n "* ]]; then mbk_running command rostopic "$@"; else command rostopic "$@"; fi; }
 """
+# A command of a block that LONG_RUNNING runs until stopped (settle_waits).
+LONG_COMMAND = re.compile(r"(?:^|[;&|(]\s*|\bthen\s+)"
+                          r"(?:roslaunch|rviz|rostopic echo(?![^\n]* -n ))\b", re.M)
 
 
 def page_blocks(path):
@@ -343,6 +346,13 @@ class Station:
             self.xvfb.wait()
 
 
+def settle_waits(text, directives):
+    """How many --settle waits a block takes at least: three per command started beside it, one
+    per command that runs until stopped (LONG_RUNNING)."""
+    beside = sum(kind == "beside" for kind, _ in directives)
+    return 3 * beside + len(LONG_COMMAND.findall(text))
+
+
 def run_pages(root, ws, settle, timeout, only=None, jobs=3):
     """Every command block of doc/*.md (c), on JOBS stations at once (the blocks are independent:
     each has a fresh folder and a fresh parameter server; most of their time is the settle wait
@@ -350,7 +360,7 @@ def run_pages(root, ws, settle, timeout, only=None, jobs=3):
     import queue
     import threading
     setup = os.path.join(ws, "devel", "setup.bash")
-    todo, skipped = queue.Queue(), []
+    todo, skipped, blocks = queue.Queue(), [], []
     for path in doc_files(root)[1:]:
         for line, language, text, directives in page_blocks(path):
             where = "%s:%d" % (os.path.relpath(path, root), line)
@@ -360,7 +370,11 @@ def run_pages(root, ws, settle, timeout, only=None, jobs=3):
             if skip:
                 skipped.append("%s (%s)" % (where, skip[0]))
                 continue
-            todo.put((where, block_script(root, setup, language, text, directives)))
+            blocks.append((settle_waits(text, directives), where,
+                           block_script(root, setup, language, text, directives)))
+    # The longest blocks first (their settle waits), so that none starts last on its own.
+    for _, where, script in sorted(blocks, key=lambda b: -b[0]):
+        todo.put((where, script))
     ran = todo.qsize()
     errors, printing = [], threading.Lock()
 
