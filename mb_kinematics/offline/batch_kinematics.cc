@@ -1,10 +1,12 @@
 #include "mb_kinematics/offline/batch_kinematics.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <type_traits>
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
@@ -92,9 +94,6 @@ void put_or_nan(T* out, const Vec3<double>& v, bool known) {
     out[i] = known ? static_cast<T>(v[i]) : std::numeric_limits<T>::quiet_NaN();
 }
 
-// Copied from Data: writing in place would save this copy (3,930 of 16,380 instructions per
-// sample of the human model's full batch, 12-16 % of its time) but needs every kernel to treat
-// the ground, which has no row in the caller's arrays, apart.
 template <typename T>
 bool any_relative(const BatchOutput<T>& out) {
   return out[BatchField::kRelativeRotation] || out[BatchField::kRelativeOmega] ||
@@ -120,24 +119,54 @@ void write_segment_frames(const Model& model, const Data<double>& data, int k, s
 }
 
 template <typename T>
+bool any_segment_frames(const BatchOutput<T>& out) {
+  return out[BatchField::kOmegaBody] || out[BatchField::kAlphaBody] ||
+         out[BatchField::kVelocityBody] || out[BatchField::kAccelerationBody] || any_relative(out);
+}
+
+// Whether `bodies` is 1..N, every body in order (Model.kinematics' default).
+bool every_body_in_order(const std::vector<int>& bodies) {
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i] != static_cast<int>(i) + 1) return false;
+  return true;
+}
+
+// The rows of `values` of the chosen bodies into v, 3 numbers a row: in double for every body in
+// order, one copy of Data's run of rows 1..N.
+template <typename T>
+void put_rows(T* v, const std::vector<Vec3<double>>& values, const std::vector<int>& bodies,
+              bool every_body) {
+  static_assert(sizeof(Vec3<double>) == 3 * sizeof(double), "Vec3<double>: three packed doubles");
+  if constexpr (std::is_same_v<T, double>)
+    if (every_body) {
+      std::memcpy(v, values[1].data(), bodies.size() * sizeof(Vec3<double>));
+      return;
+    }
+  for (std::size_t i = 0; i < bodies.size(); ++i) put(v + i * 3, values[bodies[i]]);
+}
+
+// Sample s's rows of the per-body outputs, copied from Data, a field at a time (each field's
+// rows of a sample are one run of the caller's array). Writing in place instead would need every
+// kernel to treat the ground, which has no row in the caller's arrays, apart.
+template <typename T>
 void write_bodies(const Model& model, const Data<double>& data, std::size_t s,
                   const BatchOutput<T>& out) {
   const std::size_t nb = out.bodies.size();
-  for (std::size_t i = 0; i < nb; ++i) {
-    const int k = out.bodies[i];
-    const std::size_t row = s * nb + i;
-    if (T* r = out[BatchField::kRotation]) put(r + row * 9, data.rotation[k]);
-    const std::pair<BatchField, const std::vector<Vec3<double>>*> vectors[] = {
-        {BatchField::kOrigin, &data.origin},
-        {BatchField::kMassCenter, &data.mass_center},
-        {BatchField::kOmega, &data.omega},
-        {BatchField::kAlpha, &data.alpha},
-        {BatchField::kVelocity, &data.mass_center_velocity},
-        {BatchField::kAcceleration, &data.mass_center_acceleration}};
-    for (const auto& [field, values] : vectors)
-      if (T* v = out[field]) put(v + row * 3, (*values)[k]);
-    write_segment_frames(model, data, k, row, out);
-  }
+  const bool every_body = nb > 0 && every_body_in_order(out.bodies);
+  if (T* r = out[BatchField::kRotation])
+    for (std::size_t i = 0; i < nb; ++i) put(r + (s * nb + i) * 9, data.rotation[out.bodies[i]]);
+  const std::pair<BatchField, const std::vector<Vec3<double>>*> vectors[] = {
+      {BatchField::kOrigin, &data.origin},
+      {BatchField::kMassCenter, &data.mass_center},
+      {BatchField::kOmega, &data.omega},
+      {BatchField::kAlpha, &data.alpha},
+      {BatchField::kVelocity, &data.mass_center_velocity},
+      {BatchField::kAcceleration, &data.mass_center_acceleration}};
+  for (const auto& [field, values] : vectors)
+    if (T* v = out[field]) put_rows(v + s * nb * 3, *values, out.bodies, every_body);
+  if (any_segment_frames(out))
+    for (std::size_t i = 0; i < nb; ++i)
+      write_segment_frames(model, data, out.bodies[i], s * nb + i, out);
 }
 
 // As `mbk eval`'s JSON: the vectors are NaN where it writes null (no mass: no mass center; a body

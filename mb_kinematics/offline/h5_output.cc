@@ -132,18 +132,21 @@ std::string h5_reason() {
   return errno ? std::strerror(errno) : "HDF5 error";
 }
 
-// An identifier of the C API closed by its own function.
-class Id {
+}  // namespace
+
+// An identifier of the C API closed by its own function (outside the anonymous namespace: File's
+// members hold them).
+class H5Id {
  public:
-  Id() = default;
-  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  Id(Id&& o) noexcept : id_(std::exchange(o.id_, -1)), close_(o.close_) {}
-  Id& operator=(Id&& o) noexcept {
+  H5Id() = default;
+  H5Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
+  H5Id(H5Id&& o) noexcept : id_(std::exchange(o.id_, -1)), close_(o.close_) {}
+  H5Id& operator=(H5Id&& o) noexcept {
     reset();
     id_ = std::exchange(o.id_, -1), close_ = o.close_;
     return *this;
   }
-  ~Id() { reset(); }
+  ~H5Id() { reset(); }
   hid_t get() const { return id_; }
   void reset() {
     if (id_ >= 0) close_(id_);
@@ -160,7 +163,9 @@ class Id {
   herr_t (*close_)(hid_t) = nullptr;
 };
 
-Id utf8_string_type() { return Id(H5Tcopy(H5T_C_S1), H5Tclose); }
+namespace {
+
+H5Id utf8_string_type() { return H5Id(H5Tcopy(H5T_C_S1), H5Tclose); }
 
 }  // namespace
 
@@ -170,7 +175,7 @@ struct H5Output::File {
     std::vector<hsize_t> shape;  // per row
     std::size_t width = 1;       // numbers per row
     RowFill fill = nullptr;      // a row quantity's; null: a batch field's
-    Id id;
+    H5Id id;
     std::vector<double> buffer;  // chunk_rows x width
   };
 
@@ -180,11 +185,12 @@ struct H5Output::File {
   double origin = 0;                                  // the stamps' (set_time_origin)
   std::size_t time = 0;                               // the `time` dataset's index
   hsize_t written = 0;
-  Id file;
+  H5Id file;
   std::vector<Dataset> datasets;
   mbk::BatchOutput<double> batch;  // the batch fields' buffers
   mbk::SystemKinematics<double> system;
   bool closed = false;
+  bool raw_chunks = false;  // whole chunks written as they are: uncompressed, doubles as stored
 
   File(const std::string& s, const mbk::Model& m, std::size_t coordinates)
       : shown(s), model(m), nq(coordinates), bodies(m.body_count()) {}
@@ -195,9 +201,9 @@ struct H5Output::File {
   void check(herr_t status, const char* what) const {
     if (status < 0) fail(what);
   }
-  Id made(hid_t id, herr_t (*close)(hid_t), const char* what) const {
+  H5Id made(hid_t id, herr_t (*close)(hid_t), const char* what) const {
     if (id < 0) fail(what);
-    return Id(id, close);
+    return H5Id(id, close);
   }
 
   // False, adding nothing, for a dataset of no number per row (a model without coordinates).
@@ -236,8 +242,8 @@ struct H5Output::File {
     chunk.insert(chunk.end(), d.shape.begin(), d.shape.end());
     for (hsize_t& n : chunk) n = std::max<hsize_t>(n, 1);
     const int rank = static_cast<int>(dims.size());
-    Id space = made(H5Screate_simple(rank, dims.data(), most.data()), H5Sclose, "cannot create");
-    Id properties = made(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create");
+    H5Id space = made(H5Screate_simple(rank, dims.data(), most.data()), H5Sclose, "cannot create");
+    H5Id properties = made(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create");
     check(H5Pset_chunk(properties.get(), rank, chunk.data()), "cannot create");
     check(H5Pset_fill_time(properties.get(), H5D_FILL_TIME_NEVER), "cannot create");
     // No times in the file: the same run writes the same bytes.
@@ -253,27 +259,27 @@ struct H5Output::File {
   }
 
   void attribute(hid_t object, const char* name, const std::string& value) {
-    Id type = utf8_string_type();
+    H5Id type = utf8_string_type();
     check(H5Tset_size(type.get(), H5T_VARIABLE), "cannot create");
     check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot create");
-    Id space = made(H5Screate(H5S_SCALAR), H5Sclose, "cannot create");
-    Id a = made(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                H5Aclose, "cannot create");
+    H5Id space = made(H5Screate(H5S_SCALAR), H5Sclose, "cannot create");
+    H5Id a = made(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                  H5Aclose, "cannot create");
     const char* text = value.c_str();
     check(H5Awrite(a.get(), type.get(), &text), "cannot write");
   }
 
   void names(const char* name, const std::vector<std::string>& values) {
-    Id type = utf8_string_type();
+    H5Id type = utf8_string_type();
     check(H5Tset_size(type.get(), H5T_VARIABLE), "cannot create");
     check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot create");
     const hsize_t n = values.size();
-    Id space = made(H5Screate_simple(1, &n, nullptr), H5Sclose, "cannot create");
-    Id properties = made(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create");
+    H5Id space = made(H5Screate_simple(1, &n, nullptr), H5Sclose, "cannot create");
+    H5Id properties = made(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create");
     check(H5Pset_obj_track_times(properties.get(), false), "cannot create");
-    Id d = made(H5Dcreate2(file.get(), name, type.get(), space.get(), H5P_DEFAULT, properties.get(),
-                           H5P_DEFAULT),
-                H5Dclose, "cannot create");
+    H5Id d = made(H5Dcreate2(file.get(), name, type.get(), space.get(), H5P_DEFAULT,
+                             properties.get(), H5P_DEFAULT),
+                  H5Dclose, "cannot create");
     std::vector<const char*> texts;
     for (const std::string& v : values) texts.push_back(v.c_str());
     if (n > 0)
@@ -281,7 +287,9 @@ struct H5Output::File {
             "write failed");
   }
 
-  // The rows buffered appended to every dataset.
+  // The rows buffered appended to every dataset: a whole chunk, when it is stored as it is in
+  // memory, straight into the file (H5Dwrite_chunk), else through the library's chunk cache
+  // (which zeroes a chunk, then copies the rows into it).
   void flush() {
     if (rows == 0) return;
     for (Dataset& d : datasets) {
@@ -290,11 +298,17 @@ struct H5Output::File {
       for (hsize_t n : d.shape) start.push_back(0), count.push_back(n);
       const int rank = static_cast<int>(size.size());
       check(H5Dset_extent(d.id.get(), size.data()), "write failed");
-      Id space = made(H5Dget_space(d.id.get()), H5Sclose, "write failed");
+      if (raw_chunks && rows == chunk_rows) {
+        check(H5Dwrite_chunk(d.id.get(), H5P_DEFAULT, 0, start.data(),
+                             rows * d.width * sizeof(double), d.buffer.data()),
+              "write failed");
+        continue;
+      }
+      H5Id space = made(H5Dget_space(d.id.get()), H5Sclose, "write failed");
       check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                                 nullptr),
             "write failed");
-      Id memory = made(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "write failed");
+      H5Id memory = made(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "write failed");
       check(H5Dwrite(d.id.get(), H5T_NATIVE_DOUBLE, memory.get(), space.get(), H5P_DEFAULT,
                      d.buffer.data()),
             "write failed");
@@ -334,8 +348,9 @@ H5Output::H5Output(const std::string& path, const std::string& shown, const mbk:
   for (const File::Dataset& d : f.datasets) widest = std::max(widest, d.width);
   f.chunk_rows =
       std::clamp<std::size_t>(kChunkBytes / (widest * sizeof(double)), 1, kMostChunkRows);
+  f.raw_chunks = compression == 0 && H5Tequal(H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE) > 0;
   try {
-    Id creation = f.made(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "cannot write");
+    H5Id creation = f.made(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "cannot write");
     f.check(H5Pset_obj_track_times(creation.get(), false), "cannot write");
     f.file = f.made(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), H5P_DEFAULT), H5Fclose,
                     "cannot write");

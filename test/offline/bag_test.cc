@@ -16,7 +16,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <set>
@@ -1022,6 +1024,72 @@ TEST(BagTest, APartialRunExitsTwoWithTheCounts) {
   const std::string text((std::istreambuf_iterator<char>(err)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("100 samples read, 100 written"), std::string::npos) << text;
   EXPECT_NE(text.find("unreadable 1 messages"), std::string::npos) << text;
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The demo trajectory at 100 Hz for 4 s in a bag of bz2 chunks of about 2 KB; messages
+// skip_from..skip_to (1-based, inclusive) left out.
+std::string write_bz2_bag(const std::string& name, int skip_from = 0, int skip_to = -1) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  rosbag::Bag bag(temp(name), rosbag::bagmode::Write);
+  bag.setCompression(rosbag::compression::BZ2);
+  bag.setChunkThreshold(2048);
+  for (int i = 0; i < 400; ++i)
+    if (i + 1 < skip_from || i + 1 > skip_to)
+      bag.write("/joint_states", ros::Time(1.0 + i / 100.0), sample(model, waves, 1.0 + i / 100.0));
+  bag.close();
+  return temp(name);
+}
+
+// Where each chunk record's data (op 0x05) lies in a bag file's bytes: offset and length.
+std::vector<std::pair<std::size_t, std::size_t>> chunk_data(const std::string& bytes) {
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, bytes.data() + at, 4);
+    return std::size_t{v};
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> chunks;
+  for (std::size_t at = 13; at + 8 <= bytes.size();) {
+    const std::size_t header = u32(at), data_at = at + 8 + header, length = u32(at + 4 + header);
+    if (bytes.substr(at + 4, header).find(std::string("op=\x05", 4)) != std::string::npos)
+      chunks.emplace_back(data_at, length);
+    at = data_at + length;
+  }
+  return chunks;
+}
+
+// A compressed chunk damaged in the middle of the bag (the joint states are read ahead on a
+// second thread): librosbag throws for each of its messages, which are counted unreadable and
+// skipped; the rest are read in order, and the output is the bag's without them, byte for byte.
+TEST(BagTest, ADamagedChunkLosesItsMessagesAlone) {
+  std::string bytes = file_bytes(write_bz2_bag("chunked.bag"));
+  const auto chunks = chunk_data(bytes);
+  ASSERT_GE(chunks.size(), 20u);
+  const auto [at, length] = chunks[chunks.size() / 2];
+  for (std::size_t i = length / 4; i < length / 4 + 16; ++i) bytes[at + i] ^= '\xff';
+  std::ofstream(temp("damaged_chunk.bag"), std::ios::binary) << bytes;
+  mbk_offline::BagOptions damaged = options(temp("damaged_chunk.bag"), "");
+  damaged.out_csv = temp("damaged_chunk.csv");
+  const mbk_offline::BagSummary s = mbk_offline::run_bag(damaged);
+  ASSERT_GT(s.unreadable, 0);
+  EXPECT_LT(s.unreadable, 20);
+  EXPECT_EQ(s.read + s.unreadable, 400);
+  const std::string where = "/joint_states message ";
+  const std::size_t n = s.unreadable_example.find(where);
+  ASSERT_NE(n, std::string::npos) << s.unreadable_example;
+  const int first = std::stoi(s.unreadable_example.substr(n + where.size()));
+  EXPECT_GT(first, 100) << s.unreadable_example;  // the middle of the bag
+  EXPECT_LT(first, 300) << s.unreadable_example;
+  mbk_offline::BagOptions without =
+      options(write_bz2_bag("without.bag", first, first + static_cast<int>(s.unreadable) - 1), "");
+  without.out_csv = temp("without.csv");
+  EXPECT_EQ(mbk_offline::run_bag(without).read, s.read);
+  EXPECT_EQ(file_bytes(damaged.out_csv), file_bytes(without.out_csv));
 }
 
 // Stamps jittered so that every interval differs, more of them than the survey's

@@ -158,13 +158,17 @@ def test_h5_equals_the_csv_bit_for_bit(mbk_kinematics, tmp_path):
 
 
 def test_h5_alone_compressed_and_in_any_number_of_threads(tmp_path):
-    bvh = walk(tmp_path, 200)
+    """Uncompressed, whole chunks go straight into the file and the last part through libhdf5's
+    chunk cache; compressed, every chunk through it: the same numbers."""
+    bvh = walk(tmp_path, 994)
     plain, packed = str(tmp_path / "plain.h5"), str(tmp_path / "packed.h5")
     assert run_bag(bvh, "--scale", SCALE, "--h5", plain, "--threads", "1")[0] == 0
     assert run_bag(bvh, "--scale", SCALE, "--h5", packed, "--h5-compression", "6",
                    "--threads", "2")[0] == 0
     with h5py.File(plain, "r") as a, h5py.File(packed, "r") as b:
         assert set(a) == set(b) and "system_mass" not in a  # no --body-mass: no mass
+        rows, chunk = a["rotation"].shape[0], a["rotation"].chunks[0]
+        assert rows == 994 and 2 * chunk < rows and rows % chunk  # whole chunks, then a part
         assert b["omega"].compression == "gzip" and b["omega"].compression_opts == 6
         for name in a:
             if a[name].dtype.kind == "f":
