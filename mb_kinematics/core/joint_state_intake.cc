@@ -73,12 +73,14 @@ std::string JointStateIntake::check(const std::vector<std::string>& names,
                                     const std::vector<double>& position,
                                     const std::vector<double>& velocity) {
   const size_t n = names.size();
+  same_names_ = false;
   problem_ = SampleProblem::kUnequalLengths;
   if (position.size() != n) return lengths(n, position.size(), "positions");
   if (!velocity.empty() && velocity.size() != n) return lengths(n, velocity.size(), "velocities");
   bool changed = false;
   const std::vector<int>& coordinate_of = lookup_.look_up(names, &changed);
   if (changed) map_names(names);
+  same_names_ = !changed;
   problem_ = SampleProblem::kNone;
   if (duplicate_at_ == n && all_finite(position) && all_finite(velocity)) return "";
   for (size_t i = 0; i < n; ++i) {  // the first problem in the sample's order

@@ -44,6 +44,8 @@ class JointStateIntake {
   std::string check(const std::vector<std::string>& names, const std::vector<double>& position,
                     const std::vector<double>& velocity);
   SampleProblem problem() const { return problem_; }
+  // The last sample checked had the names of the one checked before it (in the same order).
+  bool same_names() const { return same_names_; }
   // Of the last sample checked with equal lengths: each name's coordinate (-1: none of the
   // model's), and the names that are none of the model's, in the sample's order.
   const std::vector<int>& coordinates() const { return lookup_.coordinates(); }
@@ -75,6 +77,7 @@ class JointStateIntake {
   std::vector<int> place_;
   size_t duplicate_at_ = 0;
   SampleProblem problem_ = SampleProblem::kNone;
+  bool same_names_ = false;
   std::vector<double> sign_, last_;
   std::vector<char> taken_;
 };

@@ -9,6 +9,8 @@
 
 namespace mbk {
 
+class EstimatorBank;
+
 class DerivativeEstimator {
  public:
   virtual ~DerivativeEstimator() = default;
@@ -25,6 +27,8 @@ class DerivativeEstimator {
   virtual int estimate(double& first, double& second) const = 0;
   // How many samples before the newest the estimates refer to (0: at the newest sample).
   virtual int latency() const { return 0; }
+  // n estimators of this kind and settings, each with an empty history (estimator_bank.h).
+  virtual std::unique_ptr<EstimatorBank> bank(int n) const;
 };
 
 // Estimators by name (derivative_estimator_names() lists the studied ones; doc/error_vs_runtime.md

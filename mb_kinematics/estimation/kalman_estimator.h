@@ -1,12 +1,11 @@
 // A constant-acceleration Kalman filter per coordinate (state x, x', x''; white jerk of
 // spectral density `jerk_density`, position noise of standard deviation `position_noise`):
 // a tracking filter that handles irregular stamps and noise, with no window latency but a lag
-// that grows as jerk_density shrinks.
+// that grows as jerk_density shrinks. The filter is a KalmanBank of one (kalman_bank.h).
 #pragma once
 
-#include <Eigen/Core>
-
 #include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/estimation/kalman_bank.h"
 
 namespace mbk {
 
@@ -16,22 +15,16 @@ class KalmanEstimator : public DerivativeEstimator {
   KalmanEstimator(double jerk_density, double position_noise);
 
   std::unique_ptr<DerivativeEstimator> clone() const override;
-  void reset() override { count_ = 0; }
-  bool add(double t, double x) override;
-  int estimate(double& first, double& second) const override;
+  void reset() override { filter_.reset(0); }
+  bool add(double t, double x) override { return filter_.add(0, t, x); }
+  int estimate(double& first, double& second) const override {
+    return filter_.estimate(0, first, second);
+  }
+  // A KalmanBank: a sample of many coordinates in one vectorized pass.
+  std::unique_ptr<EstimatorBank> bank(int n) const override;
 
  private:
-  void predict(double dt);  // the state and covariance dt later, before the measurement
-
-  double q_, r_;
-  int count_ = 0;  // samples since the last reset (estimates need 3)
-  double t_ = 0;
-  Eigen::Vector3d s_;  // x, x', x''
-  Eigen::Matrix3d p_;  // covariance
-  // Before the latest update, so that a repeated stamp can replace the latest sample.
-  double t_before_ = 0;
-  Eigen::Vector3d s_before_;
-  Eigen::Matrix3d p_before_;
+  KalmanBank filter_;
 };
 
 }  // namespace mbk

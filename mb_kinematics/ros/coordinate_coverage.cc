@@ -24,8 +24,11 @@ CoordinateCoverage::CoordinateCoverage(const mbk::Model& model, MissingCoordinat
 }
 
 bool CoordinateCoverage::update(const JointStateInput& input, double t) {
+  // Every coordinate fresh now, and joined and from the input before: nothing changes.
+  if (all_joined_ && input.every_coordinate_at(t)) return false;
   const bool skip = mode_ == MissingCoordinates::kSkip;
   bool named = false, joins = false;  // what changed: no allocation unless something did
+  bool all_joined = true;
   for (int i = 0; i < model_.nq; ++i) {
     if (is_mimic_[i]) continue;  // known_bodies takes them from their sources
     const JointStateInput::Freshness f = input.freshness(i, t);
@@ -37,7 +40,9 @@ bool CoordinateCoverage::update(const JointStateInput& input, double t) {
     joined_[i] = joined;
     // skip: the joined ones only; wait, zero: all received (stale held), not the invented ones
     from_input_[i] = skip ? joined : f != JointStateInput::Freshness::kNever;
+    all_joined = all_joined && fresh && joined && from_input_[i];
   }
+  all_joined_ = all_joined;
   started_ = true;
   if (!named && !joins) return false;
   std::vector<std::string> never, stale;

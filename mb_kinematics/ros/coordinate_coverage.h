@@ -52,6 +52,7 @@ class CoordinateCoverage {
   std::string description_;
   std::string describe_missing() const;
   bool started_ = false;
+  bool all_joined_ = false;  // at the last update: every coordinate fresh, joined, from the input
   std::vector<std::string> never_, stale_, affected_, left_out_;
 };
 

@@ -13,13 +13,13 @@ namespace {
 
 std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
 
-// True if the first `used` derivatives an estimator gives are finite and within what
+// True if the first `used` derivatives estimator i gives are finite and within what
 // mbk::check_state accepts for speeds and accelerations.
-bool sound(const mbk::DerivativeEstimator& estimator, int used) {
+bool sound(const mbk::EstimatorBank& bank, int i, int used) {
   double d[2] = {0, 0};
-  const int n = std::min(estimator.estimate(d[0], d[1]), used);
-  for (int i = 0; i < n; ++i)
-    if (!(std::abs(d[i]) <= mbk::kMaxStateMagnitude)) return false;  // NaN too
+  const int n = std::min(bank.estimate(i, d[0], d[1]), used);
+  for (int k = 0; k < n; ++k)
+    if (!(std::abs(d[k]) <= mbk::kMaxStateMagnitude)) return false;  // NaN too
   return true;
 }
 
@@ -46,14 +46,14 @@ JointStateInput::JointStateInput(const mbk::Model& model, const mbk::DerivativeE
       intake_(model),
       acceleration_names_(model),
       coordinates_(model.nq),
+      positions_(prototype.bank(model.nq)),
+      velocities_(prototype.bank(model.nq)),
+      sample_(model.nq, 0.0),
+      sampled_(model.nq, 0),
       initial_(model),
       trial_(model) {
   if (model.nq != model.nv)
     throw std::invalid_argument("JointStateInput needs coordinate-derivative speeds");
-  for (int i = 0; i < model.nq; ++i) {
-    coordinates_[i].position_history = prototype.clone();
-    coordinates_[i].velocity_history = prototype.clone();
-  }
   for (const mbk::Mimic& m : model.mimics) coordinates_[m.coordinate].mimic = true;
   plain_model_ = model.mimics.empty();
   for (int k = 1; k <= model.body_count(); ++k)
@@ -113,48 +113,108 @@ std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Up
 JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg, double t) {
   Update update;
   update.error = validate(msg, update);
+  const bool steady_message = steady(msg, t);
+  steady_ = false;
   if (!update.error.empty()) return update;
   update.flipped = intake_.take(msg.position);  // e and -e: one rotation, e kept continuous
+  const bool velocity_given = !msg.velocity.empty();
+  if (steady_message)
+    take_steady(msg, t);
+  else
+    take_each(msg, t, update);
+  update.used = last_used_;
+  // The samples into their histories, all in one call (KalmanBank: one vectorized pass).
+  (velocity_given ? velocities_ : positions_)->add(t, sample_.data(), sampled_.data());
+  check_estimates(msg, t, update);
+  steady_ = true;
+  last_t_ = t;
+  last_velocity_given_ = velocity_given;
+  return update;
+}
+
+// The message names the coordinates the last one taken named, in the same order, and of the
+// same kind (velocities or not), not before it and within max_gap of it: then each of its
+// coordinates was last set by that message, its history takes this sample as it is, and only
+// the values change (take_steady).
+bool JointStateInput::steady(const sensor_msgs::JointState& msg, double t) const {
+  return steady_ && intake_.same_names() && msg.velocity.empty() != last_velocity_given_ &&
+         t >= last_t_ && !(max_gap_ > 0 && t - last_t_ > max_gap_);
+}
+
+// The values of a steady message: what take_each does to a coordinate that has a value of this
+// kind, set at a stamp not after t and within max_gap of it.
+void JointStateInput::take_steady(const sensor_msgs::JointState& msg, double t) {
+  const std::vector<int>& coordinate_of = intake_.coordinates();
+  const std::vector<double>& last = intake_.last();
+  const bool velocity_given = !msg.velocity.empty();
+  for (size_t i = 0; i < coordinate_of.size(); ++i) {
+    const int j = coordinate_of[i];
+    if (j < 0) continue;
+    Coordinate& c = coordinates_[j];
+    c.position = last[j];
+    if (velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
+    c.stamp = t;
+    sample_[j] = velocity_given ? c.velocity : c.position;
+  }
+}
+
+// Each coordinate the message names: its history reset if its stamps went back or paused, its
+// value and the sample for its history (take).
+void JointStateInput::take_each(const sensor_msgs::JointState& msg, double t, Update& update) {
+  const bool velocity_given = !msg.velocity.empty();
+  std::fill(sampled_.begin(), sampled_.end(), 0);
+  last_used_ = 0;
   for (size_t i = 0; i < msg.name.size(); ++i) {
     const int j = intake_.coordinates()[i];
     if (j < 0) continue;  // a published mimic value wins over its rule (robot_state_publisher)
     Coordinate& c = coordinates_[j];
     if (c.has_value && t < c.stamp) {  // e.g. a bag looping: the old history means nothing
-      c.position_history->reset();
-      c.velocity_history->reset();
+      positions_->reset(j);
+      velocities_->reset(j);
       update.reset.push_back(msg.name[i]);
     } else if (c.has_value && max_gap_ > 0 && t - c.stamp > max_gap_) {  // a pause
-      c.position_history->reset();
-      c.velocity_history->reset();
+      positions_->reset(j);
+      velocities_->reset(j);
     }
-    const bool velocity_given = !msg.velocity.empty();
     c.other_reset = c.other_reset && c.has_value && velocity_given == c.velocity_given;
     c.has_value = true;
     c.position = intake_.last()[j];
     c.velocity_given = velocity_given;
     if (c.velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
-    if (!take(c, t)) update.estimator_reset.push_back(msg.name[i]);
-    ++update.used;
+    take(j, t);
+    ++last_used_;
   }
-  return update;
+  every_coordinate_ = last_used_ == model_.nq;  // no name twice (the intake checked)
 }
 
-// Adds the coordinate's new sample at t to the estimator of its derivatives: that of the given
-// velocities when the message has them, else that of the positions; the other starts again (a
-// gap in its stream). An estimator whose estimates go non-finite or beyond what check_state
-// accepts (an angle of 1e300 rad, say, is a valid angle but no motion) restarts from this
-// sample: false then.
-bool JointStateInput::take(Coordinate& c, double t) {
+// Makes the coordinate's new sample at t the next for the history of its derivatives: that of
+// the given velocities when the message has them, else that of the positions; the other starts
+// again (a gap in its stream).
+void JointStateInput::take(int j, double t) {
+  Coordinate& c = coordinates_[j];
   c.stamp = t;
-  mbk::DerivativeEstimator& used = c.velocity_given ? *c.velocity_history : *c.position_history;
-  if (!c.other_reset) (c.velocity_given ? c.position_history : c.velocity_history)->reset();
+  if (!c.other_reset) (c.velocity_given ? positions_ : velocities_)->reset(j);
   c.other_reset = true;
-  const double value = c.velocity_given ? c.velocity : c.position;
-  used.add(t, value);
-  if (sound(used, c.velocity_given ? 1 : 2)) return true;
-  used.reset();
-  used.add(t, value);
-  return false;
+  sample_[j] = c.velocity_given ? c.velocity : c.position;
+  sampled_[j] = 1;
+}
+
+// A history whose estimates went non-finite or beyond what check_state accepts (an angle of
+// 1e300 rad, say, is a valid angle but no motion) restarts from this sample, named in
+// update.estimator_reset (in the message's order). One pass over the bank when all are sound.
+void JointStateInput::check_estimates(const sensor_msgs::JointState& msg, double t,
+                                      Update& update) {
+  const bool velocity_given = !msg.velocity.empty();
+  mbk::EstimatorBank& used = velocity_given ? *velocities_ : *positions_;
+  const int derivatives = velocity_given ? 1 : 2;
+  if (used.bounded(sampled_.data(), derivatives, mbk::kMaxStateMagnitude)) return;
+  for (size_t i = 0; i < msg.name.size(); ++i) {
+    const int j = intake_.coordinates()[i];
+    if (j < 0 || sound(used, j, derivatives)) continue;
+    used.reset(j);
+    used.add(j, t, sample_[j]);
+    update.estimator_reset.push_back(msg.name[i]);
+  }
 }
 
 std::string JointStateInput::convert(const mb_kinematics_msgs::JointAccelerations& msg, double t,
@@ -197,13 +257,34 @@ std::vector<std::string> JointStateInput::missing() const {
 bool JointStateInput::settled(int i) const {
   const Coordinate& c = coordinates_[i];
   double first = 0, second = 0;
-  if (c.velocity_given) return c.velocity_history->estimate(first, second) >= 1;
-  return c.position_history->estimate(first, second) >= 2;
+  if (c.velocity_given) return velocities_->estimate(i, first, second) >= 1;
+  return positions_->estimate(i, first, second) >= 2;
+}
+
+// fill() when the last message taken named every coordinate, all from the input, with no
+// accelerations given: the values and the banks' estimates copied whole, as fill() would. False
+// when an estimate is missing: then `state` holds no value fill() would not write.
+bool JointStateInput::fill_every(mbk::Level level, mbk::JointState<double>& state) const {
+  unused_.resize(model_.nq);
+  if (level != mbk::Level::kPose && !last_velocity_given_ &&
+      !positions_->all_estimated(state.velocity.data(), level == mbk::Level::kAcceleration
+                                                            ? state.acceleration.data()
+                                                            : unused_.data()))
+    return false;
+  for (int i = 0; i < model_.nq; ++i) state.position[i] = coordinates_[i].position;
+  if (level == mbk::Level::kPose || !last_velocity_given_) return true;
+  for (int i = 0; i < model_.nq; ++i) state.velocity[i] = coordinates_[i].velocity;
+  return level == mbk::Level::kVelocity ||
+         velocities_->all_estimated(state.acceleration.data(), unused_.data());
 }
 
 mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* accelerations,
                                  mbk::JointState<double>& state,
                                  const std::vector<char>* from_input) const {
+  const bool all_from_input =
+      !from_input || std::find(from_input->begin(), from_input->end(), 0) == from_input->end();
+  if (steady_ && every_coordinate_ && !accelerations && all_from_input && fill_every(level, state))
+    return level;
   bool velocities = level != mbk::Level::kPose;
   bool accels = level == mbk::Level::kAcceleration;
   for (int i = 0; i < model_.nq; ++i) {
@@ -217,7 +298,7 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
     }
     state.position[i] = c.position;
     double first = 0, second = 0;  // the positions' estimates, when no velocity is given
-    const int n = c.velocity_given ? 0 : c.position_history->estimate(first, second);
+    const int n = c.velocity_given ? 0 : positions_->estimate(i, first, second);
     if (velocities) {
       state.velocity[i] = c.velocity_given ? c.velocity : first;
       velocities = c.velocity_given || n >= 1;
@@ -227,7 +308,7 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
       state.acceleration[i] = accelerations->value[i];
     } else if (c.velocity_given) {
       double v_second = 0;
-      accels = c.velocity_history->estimate(state.acceleration[i], v_second) >= 1;
+      accels = velocities_->estimate(i, state.acceleration[i], v_second) >= 1;
     } else {
       state.acceleration[i] = second;
       accels = n >= 2;

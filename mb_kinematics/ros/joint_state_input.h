@@ -17,6 +17,7 @@
 #include "mb_kinematics/core/model.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/estimation/derivative_estimator.h"
+#include "mb_kinematics/estimation/estimator_bank.h"
 #include "mb_kinematics/ros/acceleration_pairing.h"
 #include "mb_kinematics/ros/input_problem.h"
 
@@ -79,6 +80,9 @@ class JointStateInput {
     if (!c.has_value) return Freshness::kNever;
     return max_gap_ > 0 && t - c.stamp > max_gap_ ? Freshness::kStale : Freshness::kFresh;
   }
+  // The last message taken named every coordinate (mimics too), at time t, and none has come
+  // since: every coordinate is fresh at t.
+  bool every_coordinate_at(double t) const { return steady_ && every_coordinate_ && t == last_t_; }
   // True once coordinate i's history gives what fill() needs for accelerations: a velocity
   // estimate of given velocities, or two position estimates.
   bool settled(int i) const;
@@ -101,12 +105,16 @@ class JointStateInput {
     // taken nothing since: take() need not reset it again.
     bool other_reset = false;
     double position = 0, velocity = 0, stamp = 0;
-    std::unique_ptr<mbk::DerivativeEstimator> position_history, velocity_history;
   };
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
   bool plainly_bounded(const sensor_msgs::JointState& msg) const;
-  bool take(Coordinate& c, double t);
+  bool steady(const sensor_msgs::JointState& msg, double t) const;
+  void take_each(const sensor_msgs::JointState& msg, double t, Update& update);
+  void take_steady(const sensor_msgs::JointState& msg, double t);
+  void take(int j, double t);
+  void check_estimates(const sensor_msgs::JointState& msg, double t, Update& update);
+  bool fill_every(mbk::Level level, mbk::JointState<double>& state) const;
 
   const mbk::Model& model_;
   double max_gap_;
@@ -116,6 +124,19 @@ class JointStateInput {
   mbk::JointStateIntake intake_;              // of joint_states (core/joint_state_intake.h)
   mbk::CoordinateLookup acceleration_names_;  // of joint_accelerations
   std::vector<Coordinate> coordinates_;
+  // Each coordinate's history of positions, of given velocities (estimator_bank.h).
+  std::unique_ptr<mbk::EstimatorBank> positions_, velocities_;
+  // The message being taken: each coordinate's new sample for its history, and 1 where it has
+  // one (in the bank of the message's kind: one message gives velocities for all or none).
+  std::vector<double> sample_;
+  std::vector<char> sampled_;
+  // The last message checked was taken (steady_), at last_t_, with velocities or not, setting
+  // last_used_ coordinates: every one (every_coordinate_) or not. A message with its names
+  // (intake_.same_names) that follows it within max_gap is taken by take_steady.
+  bool steady_ = false, last_velocity_given_ = false, every_coordinate_ = false;
+  double last_t_ = 0;
+  int last_used_ = 0;
+  mutable std::vector<double> unused_;       // fill_every: the second derivatives of velocities
   mbk::JointState<double> initial_, trial_;  // the state before any sample; a message's values
   AccelerationPairing pairing_;
 };

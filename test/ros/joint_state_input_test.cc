@@ -449,3 +449,74 @@ TEST(JointStateInputPlain, BoundsAsCheckState) {
   EXPECT_EQ(state.position[0], 1e300);
   EXPECT_EQ(state.position[1], 0.5);
 }
+
+// Messages of one layout (the same names, one publisher) take the steady path: each sample's
+// values and estimates must be those of one KalmanEstimator per coordinate fed that
+// coordinate's given velocities since its last restart, bit for bit, through the events that
+// leave the path: a pause beyond max_gap, stamps going back, a refused message, messages without
+// velocities, names in another order. Every coordinate named (the mimic too): fill and the
+// coverage copy them whole (every_coordinate_at).
+TEST(JointStateInputSteady, AsOneFilterPerCoordinate) {
+  const mbk::Model model = ::model();
+  std::vector<std::string> names = kAll;
+  names.push_back("finger_joint");  // the mimic, published
+  const auto prototype = mbk::make_derivative_estimator("kalman_smooth");
+  mbk_ros::JointStateInput input(model, *prototype, 0.5);
+  mbk::JointState<double> state(model);
+  std::vector<std::unique_ptr<mbk::DerivativeEstimator>> reference;
+  for (int j = 0; j < model.nq; ++j) reference.push_back(prototype->clone());
+  const auto restart = [&] {
+    for (auto& r : reference) r->reset();
+  };
+  double t = 1.0;
+  int checked = 0;
+  for (int k = 0; k < 300; ++k) {
+    t += k == 100 ? 0.6 : k == 150 ? -0.05 : 0.01;  // a pause; stamps back
+    if (k == 100 || k == 150) restart();
+    if (k == 200) std::reverse(names.begin(), names.end());  // looked up again
+    sensor_msgs::JointState m;
+    m.name = names;
+    for (size_t i = 0; i < names.size(); ++i) {
+      m.position.push_back(std::sin(t + i));
+      m.velocity.push_back(std::cos(t + i) + 1e-3 * std::sin(40 * t * (i + 1)));
+    }
+    if (k == 120) {  // refused: changes nothing
+      m.position[3] = std::numeric_limits<double>::quiet_NaN();
+      ASSERT_NE(input.add(m, t).error, "");
+      EXPECT_FALSE(input.every_coordinate_at(t));
+      continue;
+    }
+    if (k == 250) {  // positions only: the velocities' histories start again after it
+      m.velocity.clear();
+      ASSERT_EQ(input.add(m, t).error, "");
+      restart();
+      continue;
+    }
+    const auto update = input.add(m, t);
+    ASSERT_EQ(update.error, "") << k;
+    EXPECT_EQ(update.reset.size(), k == 150 ? names.size() : 0u) << k;
+    EXPECT_EQ(update.used, model.nq);
+    EXPECT_TRUE(input.every_coordinate_at(t));
+    EXPECT_FALSE(input.every_coordinate_at(t + 0.01));
+    bool estimated = true;
+    for (size_t i = 0; i < names.size(); ++i) {
+      auto& r = *reference[model.coordinate_index(names[i])];
+      r.add(t, m.velocity[i]);
+      double first = 0, second = 0;
+      estimated = estimated && r.estimate(first, second) >= 1;
+    }
+    ASSERT_EQ(input.fill(Level::kAcceleration, nullptr, state),
+              estimated ? Level::kAcceleration : Level::kVelocity)
+        << k;
+    for (size_t i = 0; i < names.size() && estimated; ++i) {
+      const int j = model.coordinate_index(names[i]);
+      double first = 0, second = 0;
+      reference[j]->estimate(first, second);
+      ASSERT_EQ(state.position[j], m.position[i]) << k << " " << names[i];
+      ASSERT_EQ(state.velocity[j], m.velocity[i]) << k << " " << names[i];
+      ASSERT_EQ(state.acceleration[j], first) << k << " " << names[i];
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 250 * model.nq);
+}

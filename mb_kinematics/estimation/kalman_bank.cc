@@ -1,0 +1,253 @@
+#include "mb_kinematics/estimation/kalman_bank.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iterator>
+#include <stdexcept>
+
+// The vector helpers below are always inlined (V4 into the AVX2 copy alone): no vector crosses a
+// call, so GCC's note on the ABI of 32-byte vectors without AVX does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+namespace mbk {
+namespace {
+
+// One filter's state and covariance (upper triangle); T: double, or a vector of filters.
+template <typename T>
+struct Filter {
+  T s0, s1, s2, p00, p01, p02, p11, p12, p22;
+};
+
+// s <- F s, P <- F P F^T + q Q over dt, with F = [1 dt h; 0 1 dt; 0 0 1] (constant
+// acceleration, h = dt^2 / 2) and Q the white jerk's discretized covariance; then the update by
+// the position x of noise variance r: gain K = P e1 / (P00 + r), s += K (x - s0),
+// P -= K P.row(0). F P F^T multiplied out on the upper triangle of the symmetric P: a third of
+// the products of the 3x3 form (the node runs one filter per coordinate and sample;
+// doc/speed.md "The node's load").
+template <typename T>
+__attribute__((always_inline)) inline void predict_update(Filter<T>& f, const T& dt, const T& x,
+                                                          double q, double r) {
+  const T d2 = dt * dt, h = d2 / 2.0, d3 = d2 * dt;
+  f.s0 += dt * f.s1 + h * f.s2;
+  f.s1 += dt * f.s2;
+  // Rows of A = F P: a0j = p0j + dt p1j + h p2j, a1j = p1j + dt p2j (j >= row), a2j = p2j.
+  const T a00 = f.p00 + dt * f.p01 + h * f.p02;
+  const T a01 = f.p01 + dt * f.p11 + h * f.p12;
+  const T a02 = f.p02 + dt * f.p12 + h * f.p22;
+  const T a11 = f.p11 + dt * f.p12, a12 = f.p12 + dt * f.p22;
+  // (A F^T)ij = ai0 + dt ai1 + h ai2, ai1 + dt ai2, ai2 for j = 0, 1, 2.
+  f.p00 = a00 + dt * a01 + h * a02 + q * (d3 * d2 / 20.0);
+  f.p01 = a01 + dt * a02 + q * (d2 * d2 / 8.0);
+  f.p02 = a02 + q * (d3 / 6.0);
+  f.p11 = a11 + dt * a12 + q * (d3 / 3.0);
+  f.p12 = a12 + q * (d2 / 2.0);
+  f.p22 += q * dt;
+  const T innovation = x - f.s0, variance = f.p00 + r;
+  const T r0 = f.p00, r1 = f.p01, r2 = f.p02;  // row 0 of P
+  const T g0 = r0 / variance, g1 = r1 / variance, g2 = r2 / variance;
+  f.s0 += g0 * innovation;
+  f.s1 += g1 * innovation;
+  f.s2 += g2 * innovation;
+  f.p00 = f.p00 - g0 * r0;
+  f.p01 = f.p01 - g0 * r1;
+  f.p02 = f.p02 - g0 * r2;
+  f.p11 = f.p11 - g1 * r1;
+  f.p12 = f.p12 - g1 * r2;
+  f.p22 = f.p22 - g2 * r2;
+}
+
+// The arrays of KalmanBank's Lanes.
+struct LanePointers {
+  double *t, *s0, *s1, *s2, *p00, *p01, *p02, *p11, *p12, *p22;
+};
+
+// Two or four filters (GCC vector extensions): SSE2 (or NEON), AVX2.
+typedef double V2 __attribute__((vector_size(16)));
+typedef double V4 __attribute__((vector_size(32)));
+
+template <typename T>
+__attribute__((always_inline)) inline T load(const double* p) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <typename T>
+__attribute__((always_inline)) inline void store(double* p, const T& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+template <typename V>
+__attribute__((always_inline)) inline V splat(double x) {
+  double lanes[sizeof(V) / sizeof(double)];
+  std::fill(std::begin(lanes), std::end(lanes), x);
+  return load<V>(lanes);
+}
+
+// predict_update at t with x[i] on each filter i with step[i] != 0, its state before kept in
+// `before`: the filters of a vector V at a time, each operation once on all (those not to
+// update discarded by a blend), the last ones one by one.
+template <typename V>
+__attribute__((always_inline)) inline void step_all(double t, const double* x, const double* step,
+                                                    double q, double r, int n,
+                                                    const LanePointers& now,
+                                                    const LanePointers& before) {
+  constexpr int kWidth = sizeof(V) / sizeof(double);
+  int i = 0;
+  for (; i + kWidth <= n; i += kWidth) {
+    const auto m = load<V>(step + i) != 0.0;
+    const V t_old = load<V>(now.t + i);
+    const Filter<V> old{load<V>(now.s0 + i),  load<V>(now.s1 + i),  load<V>(now.s2 + i),
+                        load<V>(now.p00 + i), load<V>(now.p01 + i), load<V>(now.p02 + i),
+                        load<V>(now.p11 + i), load<V>(now.p12 + i), load<V>(now.p22 + i)};
+    Filter<V> f = old;
+    const V dt = t - t_old, xi = load<V>(x + i);
+    predict_update<V>(f, dt, xi, q, r);
+    const auto keep = [&](double* p, const V& v) { store(p + i, m ? v : load<V>(p + i)); };
+    keep(before.t, t_old);
+    keep(before.s0, old.s0), keep(before.s1, old.s1), keep(before.s2, old.s2);
+    keep(before.p00, old.p00), keep(before.p01, old.p01), keep(before.p02, old.p02);
+    keep(before.p11, old.p11), keep(before.p12, old.p12), keep(before.p22, old.p22);
+    keep(now.t, splat<V>(t));
+    keep(now.s0, f.s0), keep(now.s1, f.s1), keep(now.s2, f.s2);
+    keep(now.p00, f.p00), keep(now.p01, f.p01), keep(now.p02, f.p02);
+    keep(now.p11, f.p11), keep(now.p12, f.p12), keep(now.p22, f.p22);
+  }
+  for (; i < n; ++i) {
+    if (step[i] == 0) continue;
+    Filter<double> f{now.s0[i],  now.s1[i],  now.s2[i],  now.p00[i], now.p01[i],
+                     now.p02[i], now.p11[i], now.p12[i], now.p22[i]};
+    before.t[i] = now.t[i], before.s0[i] = f.s0, before.s1[i] = f.s1, before.s2[i] = f.s2;
+    before.p00[i] = f.p00, before.p01[i] = f.p01, before.p02[i] = f.p02;
+    before.p11[i] = f.p11, before.p12[i] = f.p12, before.p22[i] = f.p22;
+    predict_update<double>(f, t - now.t[i], x[i], q, r);
+    now.t[i] = t, now.s0[i] = f.s0, now.s1[i] = f.s1, now.s2[i] = f.s2;
+    now.p00[i] = f.p00, now.p01[i] = f.p01, now.p02[i] = f.p02;
+    now.p11[i] = f.p11, now.p12[i] = f.p12, now.p22[i] = f.p22;
+  }
+}
+
+void step_all_portable(double t, const double* x, const double* step, double q, double r, int n,
+                       const LanePointers& now, const LanePointers& before) {
+  step_all<V2>(t, x, step, q, r, n, now, before);
+}
+
+#if defined(__x86_64__)
+// Each operation on 256 bits; no fused multiply-add, so bit for bit the SSE2 results.
+__attribute__((target("avx2"))) void step_all_avx2(double t, const double* x, const double* step,
+                                                   double q, double r, int n,
+                                                   const LanePointers& now,
+                                                   const LanePointers& before) {
+  step_all<V4>(t, x, step, q, r, n, now, before);
+}
+#endif
+
+}  // namespace
+
+KalmanBank::Lanes::Lanes(int n)
+    : t(n), s0(n), s1(n), s2(n), p00(n), p01(n), p02(n), p11(n), p12(n), p22(n) {}
+
+KalmanBank::KalmanBank(double jerk_density, double position_noise, int n)
+    : q_(jerk_density),
+      r_(position_noise * position_noise),
+      count_(n, 0),
+      now_(n),
+      before_(n),
+      step_(n, 0.0) {
+  if (!(std::isfinite(jerk_density) && jerk_density > 0 && std::isfinite(position_noise) &&
+        position_noise > 0))
+    throw std::invalid_argument("kalman: jerk density and position noise must be finite and > 0");
+}
+
+double KalmanBank::position_noise() const { return std::sqrt(r_); }
+
+bool KalmanBank::add(int i, double t, double x) {
+  if (!std::isfinite(t) || !std::isfinite(x)) return false;
+  Lanes& a = now_;
+  Lanes& b = before_;
+  if (count_[i] > 0 && t == a.t[i]) {  // a repeated stamp replaces the sample
+    if (count_[i] == 1) {
+      a.s0[i] = x;
+      return true;
+    }
+    a.t[i] = b.t[i], a.s0[i] = b.s0[i], a.s1[i] = b.s1[i], a.s2[i] = b.s2[i];
+    a.p00[i] = b.p00[i], a.p01[i] = b.p01[i], a.p02[i] = b.p02[i];
+    a.p11[i] = b.p11[i], a.p12[i] = b.p12[i], a.p22[i] = b.p22[i];  // undo, redo with x
+    --count_[i];
+  }
+  const bool forward = count_[i] == 0 || t > a.t[i];
+  if (!forward) reset(i);  // stamps went back (a bag looping): start over
+  if (count_[i] == 0) {
+    a.s0[i] = x, a.s1[i] = 0, a.s2[i] = 0;
+    a.p00[i] = r_, a.p11[i] = 1e6, a.p22[i] = 1e12;  // position known, the rest not
+    a.p01[i] = a.p02[i] = a.p12[i] = 0;
+    a.t[i] = t;
+    count_[i] = 1;
+    return forward;
+  }
+  b.t[i] = a.t[i], b.s0[i] = a.s0[i], b.s1[i] = a.s1[i], b.s2[i] = a.s2[i];
+  b.p00[i] = a.p00[i], b.p01[i] = a.p01[i], b.p02[i] = a.p02[i];
+  b.p11[i] = a.p11[i], b.p12[i] = a.p12[i], b.p22[i] = a.p22[i];
+  Filter<double> f{a.s0[i],  a.s1[i],  a.s2[i],  a.p00[i], a.p01[i],
+                   a.p02[i], a.p11[i], a.p12[i], a.p22[i]};
+  predict_update<double>(f, t - a.t[i], x, q_, r_);
+  a.s0[i] = f.s0, a.s1[i] = f.s1, a.s2[i] = f.s2;
+  a.p00[i] = f.p00, a.p01[i] = f.p01, a.p02[i] = f.p02;
+  a.p11[i] = f.p11, a.p12[i] = f.p12, a.p22[i] = f.p22;
+  a.t[i] = t;
+  ++count_[i];
+  return true;
+}
+
+int KalmanBank::estimate(int i, double& first, double& second) const {
+  if (count_[i] < 3) return 0;
+  first = now_.s1[i];
+  second = now_.s2[i];
+  return 2;
+}
+
+void KalmanBank::add(double t, const double* x, const char* use) {
+  const int n = size();
+  const bool finite_t = std::isfinite(t);
+  for (int i = 0; i < n; ++i) {
+    const bool plain = use[i] && finite_t && count_[i] > 0 && t > now_.t[i] && std::isfinite(x[i]);
+    step_[i] = plain;
+    if (plain)
+      ++count_[i];
+    else if (use[i])
+      add(i, t, x[i]);
+  }
+  const auto lanes = [](Lanes& l) {
+    return LanePointers{l.t.data(),   l.s0.data(),  l.s1.data(),  l.s2.data(),  l.p00.data(),
+                        l.p01.data(), l.p02.data(), l.p11.data(), l.p12.data(), l.p22.data()};
+  };
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) return step_all_avx2(t, x, step_.data(), q_, r_, n, lanes(now_), lanes(before_));
+#endif
+  step_all_portable(t, x, step_.data(), q_, r_, n, lanes(now_), lanes(before_));
+}
+
+bool KalmanBank::bounded(const char* use, int derivatives, double bound) const {
+  bool within = true;
+  for (int i = 0; i < size(); ++i) {
+    const bool estimated = use[i] && count_[i] >= 3;
+    const bool first = std::abs(now_.s1[i]) <= bound;  // NaN: false
+    const bool second = derivatives < 2 || std::abs(now_.s2[i]) <= bound;
+    within = within && (!estimated || (first && second));
+  }
+  return within;
+}
+
+bool KalmanBank::all_estimated(double* first, double* second) const {
+  if (std::find_if(count_.begin(), count_.end(), [](int c) { return c < 3; }) != count_.end())
+    return false;
+  std::copy(now_.s1.begin(), now_.s1.end(), first);
+  std::copy(now_.s2.begin(), now_.s2.end(), second);
+  return true;
+}
+
+}  // namespace mbk
