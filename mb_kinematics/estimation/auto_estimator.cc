@@ -576,20 +576,22 @@ OfflineReach AutoChoice::reach() const {
   return out;
 }
 
-void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
-                     int ld, double max_gap, AutoEstimate& out, int threads) {
+void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t,
+                     const Segments& segments, const double* x, int ld, AutoEstimate& out,
+                     int threads) {
   const int m = static_cast<int>(choice.noise.size());
   out.series = m;
   out.noise = choice.noise;
   out.choice = choice.choice[1];
-  final_pass(choice, t, find_segments(t, max_gap), x, ld, m, threads, out);
+  final_pass(choice, t, segments, x, ld, m, threads, out);
 }
 
 void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m, double max_gap,
                    AutoEstimate& out, int threads) {
   AutoChooser chooser(default_max_gap(t) / 5, static_cast<long>(t.size()), m, threads);
-  chooser.add(t, find_segments(t, max_gap), x, ld, 0, 0, static_cast<int>(t.size()));
-  estimate_chosen(chooser.choice(), t, x, ld, max_gap, out, threads);
+  const Segments segments = find_segments(t, max_gap);
+  chooser.add(t, segments, x, ld, 0, 0, static_cast<int>(t.size()));
+  estimate_chosen(chooser.choice(), t, segments, x, ld, out, threads);
 }
 
 }  // namespace mbk

@@ -149,9 +149,10 @@ void estimate_auto(const std::vector<double>& t, const double* x, int ld, int m,
                    AutoEstimate& out, int threads = 1);
 // The estimating pass with a choice made before (AutoChooser), on the whole recording or a piece
 // of it (each row's estimate is the whole recording's where the longest chosen window's reach lies
-// in the piece as in the recording). Its samples shared out among up to `threads` threads (a
-// sample's estimates are its own: the same bits on any count).
-void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t, const double* x,
-                     int ld, double max_gap, AutoEstimate& out, int threads = 1);
+// in the piece as in the recording), of stamps t and their segments. Its samples shared out among
+// up to `threads` threads (a sample's estimates are its own: the same bits on any count).
+void estimate_chosen(const AutoChoice& choice, const std::vector<double>& t,
+                     const Segments& segments, const double* x, int ld, AutoEstimate& out,
+                     int threads = 1);
 
 }  // namespace mbk

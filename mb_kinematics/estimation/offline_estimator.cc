@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "mb_kinematics/estimation/auto_estimator.h"
@@ -15,6 +18,7 @@ namespace {
 
 // The fits' order at most (auto's centred long windows, auto_estimator.h); --estimator's.
 constexpr int kMaxOrder = 6, kMaxNamedOrder = 5;
+constexpr double kDoubleEpsilon = std::numeric_limits<double>::epsilon();
 
 // The window [begin, end) for sample i inside segment [sb, se): centred where it can be,
 // shifted to one side near the segment's ends.
@@ -111,8 +115,9 @@ bool offline_reach(const OfflineEstimator& e, OfflineReach& reach) {
   return true;
 }
 
-Segments find_segments(const std::vector<double>& t, double max_gap) {
+Segments find_segments(const std::vector<double>& t, double max_gap, double period) {
   Segments s;
+  s.period = period;
   s.segment_of.resize(t.size());
   for (size_t i = 0; i < t.size(); ++i) {
     if (i == 0 || (max_gap > 0 && t[i] - t[i - 1] > max_gap)) {
@@ -170,30 +175,47 @@ void weight_rows(int n, int order, double scale, const double (&g)[3][kMaxOrder 
     weight_row_pack(w.first[j], order, scale, g, w.value[j], w.first[j], w.second[j]);
 }
 
-}  // namespace
+// x rounded to the nearest whole number (ties to even), inline; for |x| < 2^51.
+inline double nearest_whole(double x) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 x 2^52: the sum keeps no fraction
+  return (x + kShift) - kShift;
+}
 
-void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
-                        const Segments& segments, int i, DerivativeWeights& w) {
-  const int seg = segments.segment_of[i];
-  int begin = 0, end = 0;
-  window_range(e, t, segments.begin[seg], segments.end[seg], i, begin, end);
-  w.stride = (end - begin + kMaxOfflineWindow - 1) / kMaxOfflineWindow;
-  w.begin = i - (i - begin) / w.stride * w.stride;  // every stride-th sample, i among them
-  const int n = (end - 1 - w.begin) / w.stride + 1, order = std::min(e.order, n - 1);
-  w.count = n;
-  w.valid = std::min(order, 2);
-  w.value.resize(n);  // every entry written below (no fill first: this runs per sample and window)
-  w.first.resize(n);
-  w.second.resize(n);
-  if (order < 1) {
-    std::fill_n(w.value.begin(), n, 0.0), std::fill_n(w.first.begin(), n, 0.0);
-    std::fill_n(w.second.begin(), n, 0.0);
+// The window's time offsets d_j = t_row(j) - t_i (seconds; doc/recorded_data.md, "Offline
+// estimators"). Stamps on a grid of `period` (each within the grid's tolerance of its grid time,
+// far below a period): whole periods. Stamps that are whole nanoseconds (a bag's, a CSV's of at
+// most 9 decimals) are doubles within a few units of their last place of them, so their
+// differences lie within `tolerance` of whole nanoseconds: taken as those, exactly. Else the
+// doubles' differences.
+void window_offsets(const std::vector<double>& t, int i, const DerivativeWeights& w, double period,
+                    double* d) {
+  const int n = w.count;
+  if (period > 0 && (t[w.row(n - 1)] - t[w.begin]) / period < 0x1p50) {
+    for (int j = 0; j < n; ++j) d[j] = nearest_whole((t[w.row(j)] - t[i]) / period) * period;
     return;
   }
-  const double scale = std::max(t[i] - t[w.begin], t[w.row(n - 1)] - t[i]);
+  long long ns[kMaxOfflineWindow];
+  const double largest = std::max(std::abs(t[w.begin]), std::abs(t[w.row(n - 1)]));
+  const double tolerance = 8 * kDoubleEpsilon * largest * 1e9;  // ns
+  bool whole =
+      tolerance < 0.25 && n <= kMaxOfflineWindow && (t[w.row(n - 1)] - t[w.begin]) * 1e9 < 0x1p50;
+  for (int j = 0; j < n; ++j) {
+    d[j] = t[w.row(j)] - t[i];
+    if (!whole) continue;
+    const double q = d[j] * 1e9, r = nearest_whole(q);
+    whole = std::abs(q - r) <= tolerance + 2 * kDoubleEpsilon * std::abs(q);
+    ns[j] = static_cast<long long>(r);
+  }
+  if (whole)
+    for (int j = 0; j < n; ++j) d[j] = static_cast<double>(ns[j]) / 1e9;
+}
+
+// The weights of offsets d at `order` (n >= 2 rows, order >= 1) into w.value, first, second.
+void offset_weights(const double* d, int n, int order, DerivativeWeights& w) {
+  const double scale = std::max(-d[0], d[n - 1]);
   double moment[2 * kMaxOrder + 1] = {};  // sum_j s_j^k
   for (int j = 0; j < n; ++j) {
-    const double s = (t[w.row(j)] - t[i]) / scale;
+    const double s = d[j] / scale;
     w.first[j] = s;
     double p = 1;
     for (int k = 0; k <= 2 * order; ++k, p *= s) moment[k] += p;
@@ -221,6 +243,79 @@ void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
     }
   }
   weight_rows(n, order, scale, g, w);
+}
+
+// The weights are a function of the offsets and the order alone: each thread keeps the last ones
+// of up to kSlots windows (slot by a hash of the offsets), found again only by the same order and
+// the same offsets to the bit. A regular recording's windows repeat from sample to sample, so the
+// weights of each window are computed about once per thread; the results are those of computing
+// them again, whatever a thread computed before.
+class WeightCache {
+ public:
+  // The weights of (d, n, order) into w; false when not kept (then `keep` them after computing).
+  bool find(const double* d, int n, int order, DerivativeWeights& w) {
+    Slot& s = slot(d, n, order);
+    if (s.order != order || s.n != n || std::memcmp(s.d, d, n * sizeof(double)) != 0) return false;
+    std::copy_n(s.value, n, w.value.begin()), std::copy_n(s.first, n, w.first.begin());
+    std::copy_n(s.second, n, w.second.begin());
+    return true;
+  }
+  void keep(const double* d, int n, int order, const DerivativeWeights& w) {
+    Slot& s = slot(d, n, order);
+    s.order = order, s.n = n;
+    std::copy_n(d, n, s.d);
+    std::copy_n(w.value.begin(), n, s.value), std::copy_n(w.first.begin(), n, s.first);
+    std::copy_n(w.second.begin(), n, s.second);
+  }
+  static WeightCache& of_this_thread() {
+    thread_local std::unique_ptr<WeightCache> cache(new WeightCache);  // on the heap: 84 kB
+    return *cache;
+  }
+
+ private:
+  static constexpr int kSlots = 64;
+  struct Slot {
+    int order = -1, n = 0;
+    double d[kMaxOfflineWindow], value[kMaxOfflineWindow], first[kMaxOfflineWindow],
+        second[kMaxOfflineWindow];
+  };
+  Slot& slot(const double* d, int n, int order) {
+    std::uint64_t a, b, c;
+    std::memcpy(&a, &d[0], 8), std::memcpy(&b, &d[1], 8), std::memcpy(&c, &d[n - 1], 8);
+    std::uint64_t h = (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^
+                      (c * 0x165667B19E3779F9ull) ^ (static_cast<std::uint64_t>(n) << 8 | order);
+    h ^= h >> 29;
+    return slots_[(h * 0xBF58476D1CE4E5B9ull) >> 58];  // the top 6 bits: kSlots
+  }
+  Slot slots_[kSlots];
+};
+
+}  // namespace
+
+void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
+                        const Segments& segments, int i, DerivativeWeights& w) {
+  const int seg = segments.segment_of[i];
+  int begin = 0, end = 0;
+  window_range(e, t, segments.begin[seg], segments.end[seg], i, begin, end);
+  w.stride = (end - begin + kMaxOfflineWindow - 1) / kMaxOfflineWindow;
+  w.begin = i - (i - begin) / w.stride * w.stride;  // every stride-th sample, i among them
+  const int n = (end - 1 - w.begin) / w.stride + 1, order = std::min(e.order, n - 1);
+  w.count = n;
+  w.valid = std::min(order, 2);
+  w.value.resize(n);  // every entry written below (no fill first: this runs per sample and window)
+  w.first.resize(n);
+  w.second.resize(n);
+  if (order < 1) {
+    std::fill_n(w.value.begin(), n, 0.0), std::fill_n(w.first.begin(), n, 0.0);
+    std::fill_n(w.second.begin(), n, 0.0);
+    return;
+  }
+  double d[kMaxOfflineWindow];
+  window_offsets(t, i, w, segments.period, d);
+  WeightCache& cache = WeightCache::of_this_thread();
+  if (cache.find(d, n, order, w)) return;
+  offset_weights(d, n, order, w);
+  cache.keep(d, n, order, w);
 }
 
 namespace {

@@ -57,13 +57,21 @@ struct DerivativeWeights {
 };
 
 // Index ranges [begin, end) of the runs of `t` (increasing) without a gap longer than max_gap
-// (max_gap <= 0: no gaps); segment_of[i] is the run holding sample i.
+// (max_gap <= 0: no gaps); segment_of[i] is the run holding sample i. period > 0: the stamps lie
+// on a uniform grid of that period (StampGrid::found, estimation/stamp_grid.h), so the weights
+// take the offsets between them as whole periods (derivative_weights).
 struct Segments {
   std::vector<int> begin, end, segment_of;
+  double period = 0;
 };
-Segments find_segments(const std::vector<double>& t, double max_gap);
+Segments find_segments(const std::vector<double>& t, double max_gap, double period = 0);
 
 // The weights for sample i of the increasing stamps t (within its segment); e is not automatic.
+// They are fitted in the offsets t_j - t_i: whole periods of segments.period where it is set,
+// else whole nanoseconds where the stamps are (a bag's; to within their double rounding), else
+// the doubles' differences. Each thread keeps the weights of the windows it computed last,
+// found again by their order and offsets to the bit: on a grid, a window's weights are computed
+// about once per thread, with the same results.
 void derivative_weights(const OfflineEstimator& e, const std::vector<double>& t,
                         const Segments& segments, int i, DerivativeWeights& w);
 

@@ -28,6 +28,12 @@ struct StampGrid {
   bool holds(double t) const;
 };
 
+// The grid's period where the stamps lie on one (found), else 0: Segments::period
+// (estimation/offline_estimator.h).
+inline double grid_period(const StampGrid& g) {
+  return g.found ? static_cast<double>(g.period) : 0;
+}
+
 // The stamps' distance allowed from the grid: max(1 ns, `rounding`, 1e-6 h) plus 4 x 2.2e-16 x
 // the largest |stamp| (a stamp in double seconds far from 0 is rounded to that). rounding: the
 // stamps' own (half a unit of the last decimal a text gives them), 0 for none beyond a bag's ns.

@@ -397,6 +397,7 @@ bool run_streamed(const InputReading& reading, const BagOutputs& o, const BagCom
   whole.velocity_everywhere = survey.velocity_everywhere;
   if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
     mbk::AutoChoosePass choose(model, survey, s.max_gap, kStreamChunkRows, threads);
+    choose.set_stamp_grid(grid);
     input.pass([&](double t, const double* p, const double* v,
                    const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
                s);

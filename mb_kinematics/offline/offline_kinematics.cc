@@ -54,7 +54,7 @@ OfflineStates::OfflineStates(const Model& model, const Recording& recording,
     s.segments = find_segments(s.t, max_gap > 0 ? max_gap : default_max_gap(s.t));
     series_.push_back(std::move(s));
   }
-  segments_ = find_segments(rec_.stamp, max_gap_);
+  segments_ = find_segments(rec_.stamp, max_gap_, grid_period(rec_.grid));
   for (int c : full_)
     any_velocity_everywhere_ = any_velocity_everywhere_ || velocity_everywhere_[c];
   constexpr std::uint8_t kBoth = Recording::kVelocity | Recording::kAcceleration;
@@ -76,7 +76,7 @@ void OfflineStates::fit_automatic(int threads) {
   auto fit = [&](const std::vector<double>& x, const AutoChoice* choice) {
     auto a = std::make_shared<AutoEstimate>();
     if (choice)
-      estimate_chosen(*choice, rec_.stamp, x.data(), nq, max_gap_, *a, threads);
+      estimate_chosen(*choice, rec_.stamp, segments_, x.data(), nq, *a, threads);
     else
       estimate_with_errors(estimator_, rec_.stamp, x.data(), nq, nq, max_gap_, *a, threads);
     return a;

@@ -160,7 +160,7 @@ void AutoChoosePass::add(double t, const double* position, const double* velocit
 }
 
 void AutoChoosePass::take(int end) {
-  const Segments segments = find_segments(t_, max_gap_);
+  const Segments segments = find_segments(t_, max_gap_, grid_period(grid_));
   positions_.add(t_, segments, position_.data(), nq_, first_, next_, end);
   if (velocities_) velocities_->add(t_, segments, velocity_.data(), nq_, first_, next_, end);
   rotations_.add(t_, segments, position_.data(), nq_, next_, end);

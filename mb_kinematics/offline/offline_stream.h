@@ -61,7 +61,7 @@ class OfflineStream {
   // The stamps' grid (estimation/stamp_grid.h, found over the whole recording in passes before):
   // when it moves them, the rows are differentiated at the grid's times and keep their stamps
   // (Recording::recorded_stamp). Set before the first add.
-  void set_stamp_grid(const StampGrid& grid) { grid_ = grid; }
+  void set_stamp_grid(const StampGrid& grid) { grid_ = buffer_.grid = grid; }
   // The whole seconds the stamps added are counted from (Recording::origin), for messages.
   void set_time_origin(double seconds) { buffer_.origin = seconds; }
   // Computes the rows left.
@@ -119,6 +119,9 @@ class AutoChoosePass {
   AutoChoosePass(const Model& model, const RecordingSurvey& survey, double max_gap, int chunk_rows,
                  int threads = 1);
   void add(double t, const double* position, const double* velocity);
+  // The stamps' grid (estimation/stamp_grid.h; the stamps added are its times where it moves
+  // them): the windows' offsets are whole periods, as the estimating pass's. Before the first add.
+  void set_stamp_grid(const StampGrid& grid) { grid_ = grid; }
   // The choices (with the survey's velocity_everywhere), and the estimating pass's reach: the
   // longest window chosen.
   WholeRecording finish(OfflineReach& reach);
@@ -135,6 +138,7 @@ class AutoChoosePass {
   std::unique_ptr<AutoChooser> velocities_;      // when some coordinate has them in every row
   OfflineReach reach_;                           // the longest candidate's
   RotationNoise rotations_;
+  StampGrid grid_;
   std::vector<double> t_, position_, velocity_;  // the rows kept, oldest first
   long first_ = 0;                               // the recording's row of buffer row 0
   int next_ = 0, peak_rows_ = 0;

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
+#include <thread>
 
 namespace {
 
@@ -83,6 +85,80 @@ TEST(OfflineEstimatorTest, TimeWindowScalesWithTheRate) {
     EXPECT_EQ((i - w.begin) % w.stride, 0);  // the estimated sample is one of those fitted
     EXPECT_NEAR(t[w.row(w.count - 1)] - t[w.begin], 0.1, 1.5 * w.stride / rate) << rate;
     EXPECT_NEAR(t[i] - t[w.begin], 0.05, 1.5 * w.stride / rate) << rate;
+  }
+}
+
+// A bag's stamps at 1 kHz from t0 s on: whole seconds and nanoseconds, read as ros::Time::toSec
+// does (sec + 1e-9 nsec in double).
+std::vector<double> bag_stamps(long t0, int n) {
+  std::vector<double> t;
+  for (int k = 0; k < n; ++k) {
+    const long ns = t0 * 1000000000L + k * 1000000L;
+    t.push_back(static_cast<double>(ns / 1000000000L) +
+                1e-9 * static_cast<double>(ns % 1000000000L));
+  }
+  return t;
+}
+
+// Whole-nanosecond stamps far from 0 (1000 s: doubles 1.1e-13 s apart) are not equally spaced in
+// double; their offsets are taken in whole nanoseconds, so every centred window has the same
+// weights, Savitzky and Golay's for 5 samples at order 3: x' (1, -8, 0, 8, -1) / 12h and
+// x'' (2, -1, -2, -1, 2) / 7h^2, to the last few bits.
+TEST(OfflineEstimatorTest, WholeNanosecondStampsGiveExactOffsets) {
+  const std::vector<double> t = bag_stamps(1000, 200);
+  std::vector<double> steps;
+  for (int i = 1; i < 20; ++i) steps.push_back(t[i] - t[i - 1]);
+  ASSERT_NE(*std::min_element(steps.begin(), steps.end()),
+            *std::max_element(steps.begin(), steps.end()));  // unequal in double
+  const mbk::OfflineEstimator e = mbk::make_offline_estimator("centered_5_3");
+  const mbk::Segments s = mbk::find_segments(t, 0);
+  const double h = 1e-3, first[5] = {1, -8, 0, 8, -1}, second[5] = {2, -1, -2, -1, 2};
+  mbk::DerivativeWeights w, at_50;
+  mbk::derivative_weights(e, t, s, 50, at_50);
+  for (int i = 2; i < 198; ++i) {
+    mbk::derivative_weights(e, t, s, i, w);
+    ASSERT_EQ(w.count, 5);
+    EXPECT_EQ(w.first, at_50.first) << i;  // the same bits
+    EXPECT_EQ(w.second, at_50.second) << i;
+    for (int j = 0; j < 5; ++j) {
+      EXPECT_NEAR(w.first[j], first[j] / (12 * h), 1e-13 * 8 / (12 * h)) << i << " " << j;
+      EXPECT_NEAR(w.second[j], second[j] / (7 * h * h), 1e-13 * 2 / (7 * h * h)) << i << " " << j;
+    }
+  }
+}
+
+// The weights computed once per thread and window (a cache) are those computed afresh, on any
+// thread and after any others: a fresh thread's equal this one's after every estimator's windows
+// at every sample, for whole-nanosecond stamps and for jittered ones.
+TEST(OfflineEstimatorTest, WeightsDoNotDependOnWhatWasComputedBefore) {
+  for (const std::vector<double>& t : {bag_stamps(7, 3000), stamps(1000, 3.0, 0.2)}) {
+    const mbk::Segments s = mbk::find_segments(t, mbk::default_max_gap(t));
+    std::vector<mbk::OfflineEstimator> estimators;
+    for (const std::string& name : mbk::offline_estimator_names())
+      if (name != "auto") estimators.push_back(mbk::make_offline_estimator(name));
+    const int n = static_cast<int>(t.size());
+    const std::vector<int> samples = {0, 3, 700, n / 2, n / 2 + 1, n - 2};
+    auto all = [&](std::vector<mbk::DerivativeWeights>& out) {
+      for (int i : samples)
+        for (const mbk::OfflineEstimator& e : estimators) {
+          out.emplace_back();
+          mbk::derivative_weights(e, t, s, i, out.back());
+        }
+    };
+    mbk::DerivativeWeights scratch;  // every window at every sample first, on this thread
+    for (int i = 0; i < n; ++i)
+      for (const mbk::OfflineEstimator& e : estimators)
+        mbk::derivative_weights(e, t, s, i, scratch);
+    std::vector<mbk::DerivativeWeights> here, fresh;
+    all(here);
+    std::thread([&] { all(fresh); }).join();
+    ASSERT_EQ(here.size(), fresh.size());
+    for (size_t k = 0; k < here.size(); ++k) {
+      EXPECT_EQ(here[k].begin, fresh[k].begin) << k;
+      EXPECT_EQ(here[k].value, fresh[k].value) << k;
+      EXPECT_EQ(here[k].first, fresh[k].first) << k;
+      EXPECT_EQ(here[k].second, fresh[k].second) << k;
+    }
   }
 }
 

@@ -232,6 +232,7 @@ TEST(GimbalLockErrorsTest, PieceByPieceEqualsTheWholeRecording) {
   for (int r = 0; r < rows; ++r) survey.add(rec.stamp[r], rec.given.data() + r * nq);
   ASSERT_TRUE(survey.finish_pass());
   mbk::AutoChoosePass pass(model, survey, survey.default_max_gap(), 300);
+  pass.set_stamp_grid(rec.grid);  // as mbk bag: the stamps' grid, found over the whole recording
   for (int r = 0; r < rows; ++r)
     pass.add(rec.stamp[r], rec.position.data() + r * nq, rec.velocity.data() + r * nq);
   mbk::OfflineReach reach;
@@ -243,6 +244,7 @@ TEST(GimbalLockErrorsTest, PieceByPieceEqualsTheWholeRecording) {
                               acceleration_se.push_back(row.acceleration_se);
                             });
   stream.set_body_errors(true);
+  stream.set_stamp_grid(rec.grid);
   for (int r = 0; r < rows; ++r)
     stream.add(rec.stamp[r], rec.position.data() + r * nq, rec.velocity.data() + r * nq,
                rec.given.data() + r * nq);

@@ -44,7 +44,8 @@ mbk::JointState<double> exact_state(const mbk::Model& model, double t) {
 
 // The largest error of the bodies' angular and mass-center accelerations over the rows, relative
 // to the largest of those accelerations.
-double body_acceleration_error(const mbk::Model& model, const mbk::Recording& rec) {
+double body_acceleration_error(const mbk::Model& model, const mbk::Recording& rec,
+                               double start = kStart) {
   mbk::OfflineStates states(model, rec, mbk::make_offline_estimator("auto"), 0);
   mbk::JointState<double> estimated(model);
   mbk::Data<double> got(model), want(model);
@@ -52,7 +53,7 @@ double body_acceleration_error(const mbk::Model& model, const mbk::Recording& re
   for (int r = 0; r < rec.rows(); ++r) {
     EXPECT_EQ(states.state_at(r, estimated), "") << r;
     mbk::forward_kinematics(model, estimated, got, mbk::Level::kAcceleration);
-    mbk::forward_kinematics(model, exact_state(model, kStart + r * kPeriod), want,
+    mbk::forward_kinematics(model, exact_state(model, start + r * kPeriod), want,
                             mbk::Level::kAcceleration);
     for (int k = 1; k <= kBodies; ++k) {
       error =
@@ -64,12 +65,14 @@ double body_acceleration_error(const mbk::Model& model, const mbk::Recording& re
   return error / scale;
 }
 
-// The recording through RecordingBuilder, as mbk bag reads it; `stamp[i]` for sample i.
-mbk::Recording read(const mbk::Model& model, const std::vector<double>& stamp) {
+// The recording through RecordingBuilder, as mbk bag reads it; `stamp[i]` for sample i, the
+// motion at start + i kPeriod.
+mbk::Recording read(const mbk::Model& model, const std::vector<double>& stamp,
+                    double start = kStart) {
   mbk::RecordingBuilder builder(model);
   std::vector<double> q(model.nq);
   for (int i = 0; i < kRows; ++i) {
-    for (int c = 0; c < model.nq; ++c) q[c] = motion(c, kStart + i * kPeriod, 0);
+    for (int c = 0; c < model.nq; ++c) q[c] = motion(c, start + i * kPeriod, 0);
     builder.add(stamp[i], model.coordinate_names, q, {}, "sample " + std::to_string(i));
   }
   return builder.finish();
@@ -95,12 +98,41 @@ TEST(StampRoundingTest, BodyAccelerationsSeeThroughNanosecondStamps) {
   // The same positions at the rounded stamps as they are: the rounding dominates.
   mbk::Recording as_stamped = rec;
   as_stamped.stamp = stamp;
+  as_stamped.grid = mbk::StampGrid();  // no grid: the offsets are the stamps' differences
   const double rounded = body_acceleration_error(model, as_stamped);
   EXPECT_GT(rounded, 100 * on_grid);
   char figures[128];
   std::snprintf(figures, sizeof figures,
                 "%.2e on the grid, %.2e on exact times, %.2e at the stamps", on_grid, on_exact,
                 rounded);
+  RecordProperty("relative_body_acceleration_error", figures);
+}
+
+// A bag stamped by a wall clock (1.7e9 s, where doubles lie 2.4e-7 s apart): its stamps in double
+// seconds are not moved (no grid time is nearer in double), but on their grid the offsets within
+// each window are whole periods, so the accelerations are as on exact times; the stamps'
+// differences as they are would give 2.4e-7 s of noise per 1 ms.
+TEST(StampRoundingTest, WallClockStampsOnAGridGiveExactOffsets) {
+  const mbk::Model model = mbk::make_random_revolute_tree(kBodies, 12);
+  std::vector<double> stamp(kRows), exact(kRows);
+  for (int i = 0; i < kRows; ++i)  // ros::Time(1700000000, i ms).toSec()
+    stamp[i] = 1700000000.0 + 1e-9 * (i * 1000000.0), exact[i] = kStart + i * kPeriod;
+  const mbk::Recording rec = read(model, stamp, kStart);
+  ASSERT_TRUE(rec.grid.found);
+  EXPECT_FALSE(rec.grid.moves);
+  const double on_grid = body_acceleration_error(model, rec);
+  const double on_exact = body_acceleration_error(
+      model, mbk::recording_of_positions(model.nq, kRows, exact.data(), rec.position.data()));
+  EXPECT_LT(on_grid, 1e-5);
+  EXPECT_LT(on_grid, 2 * on_exact);
+  mbk::Recording as_stamped = rec;
+  as_stamped.grid = mbk::StampGrid();
+  const double rounded = body_acceleration_error(model, as_stamped);
+  EXPECT_GT(rounded, 100 * on_grid);
+  char figures[128];
+  std::snprintf(figures, sizeof figures,
+                "%.2e on the grid, %.2e on exact times, %.2e at the stamps' differences", on_grid,
+                on_exact, rounded);
   RecordProperty("relative_body_acceleration_error", figures);
 }
 

@@ -1027,7 +1027,12 @@ TEST(MbkCli, NamesWithControlBytesAreEscapedInEveryLine) {
   };
   const TempFile bad_mass(robot("-1"), ".urdf"), good(robot("1"), ".urdf");
   std::string csv = "time," + joint + ",extra\x1b[32m\vcolumn\n";
-  for (int i = 0; i < 50; ++i) csv += std::to_string(0.01 * i) + ",1e60,1\n";  // too large
+  for (int i = 0; i < 50; ++i) {  // x = A t^3: accelerations 6 A t above 1e50 from t = 0.31 on
+    char row[64];
+    const double t = 0.01 * i;
+    std::snprintf(row, sizeof row, "%.2f,%.17g,1\n", t, 1e50 / (6 * 0.305) * t * t * t);
+    csv += row;
+  }
   const TempFile recording(csv, ".csv");
   const std::string mass_error = "body 1 'b\\x1b[31mX\\x0bY': mass must be finite and >= 0";
   for (const std::string& command :
