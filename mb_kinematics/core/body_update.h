@@ -74,10 +74,7 @@ void body_update(const BodyStep& b, int k, const JointTerms<V>& t, const DataVie
   constexpr bool kTurns = M == JointMoves::kTurns || M == JointMoves::kTurnsAndTranslates;
   constexpr bool kTranslates = M == JointMoves::kTranslates || M == JointMoves::kTurnsAndTranslates;
   const int j = b.lower;
-  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);       // doc/method.md 4, orientation
-  const bool centered = b.mass_center_shape == VectorShape::kZero;  // G_k = O_k
-  V rho;  // S0K r_k (doc/method.md 4, mass center)
-  Lane::mass_center_offset(b, data.rotation[k], t.s0k, rho);
+  if (b.reorthonormalize) reorthonormalize(data.rotation[k]);  // doc/method.md 4, orientation
   V omega_j{}, alpha_j{}, omega_k{}, alpha_k{};
   if constexpr (L != Level::kPose) {
     Lane::load(data.omega[j], omega_j);
@@ -109,7 +106,11 @@ void body_update(const BodyStep& b, int k, const JointTerms<V>& t, const DataVie
     }
   }
   store_point<L>(origins, k, o);
-  if (!centered) o = fixed_point<L>(o, omega_k, alpha_k, rho);
+  if (b.mass_center_shape != VectorShape::kZero) {  // else G_k = O_k
+    V rho;                                          // S0K r_k (doc/method.md 4, mass center)
+    Lane::mass_center_offset(b, data.rotation[k], t.s0k, rho);
+    o = fixed_point<L>(o, omega_k, alpha_k, rho);
+  }
   store_point<L>(data.centers(), k, o);
 }
 

@@ -25,8 +25,11 @@ typedef double V4 __attribute__((vector_size(32)));
 
 MBK_AVX2 inline V4 splat(double x) { return V4{x, x, x, x}; }
 
-// *p in every lane: one load (vbroadcastsd), where GCC makes two of splat(*p).
-MBK_AVX2 inline V4 splat_at(const double* p) { return (V4)_mm256_broadcast_sd(p); }
+// *p in every lane: one load (GCC folds it into vbroadcastsd). A plain load, not the intrinsic
+// _mm256_broadcast_sd(p): GCC's loop optimizer does not see through the intrinsic's pointer, and
+// over the loop over bodies keeps one to each coordinate of the constants (body_step.h offset,
+// mass_center) in a register of its own, each stepped once per body.
+MBK_AVX2 inline V4 splat_at(const double* p) { return splat(*p); }
 
 // Lane 3 zero. Two loads, of 16 and 8 bytes, that match store3's stores (a load of what the
 // body before stored is forwarded from the store buffer), and an insert.
