@@ -10,14 +10,17 @@ void EstimatorBank::add(double t, const double* x, const char* use) {
     if (use[i]) add(i, t, x[i]);
 }
 
+bool EstimatorBank::bounded(int i, int derivatives, double bound) const {
+  double d[2] = {0, 0};
+  const int n = std::min(estimate(i, d[0], d[1]), derivatives);
+  for (int k = 0; k < n; ++k)
+    if (!(std::abs(d[k]) <= bound)) return false;  // NaN too
+  return true;
+}
+
 bool EstimatorBank::bounded(const char* use, int derivatives, double bound) const {
-  for (int i = 0; i < size(); ++i) {
-    if (!use[i]) continue;
-    double d[2] = {0, 0};
-    const int n = std::min(estimate(i, d[0], d[1]), derivatives);
-    for (int k = 0; k < n; ++k)
-      if (!(std::abs(d[k]) <= bound)) return false;  // NaN too
-  }
+  for (int i = 0; i < size(); ++i)
+    if (use[i] && !bounded(i, derivatives, bound)) return false;
   return true;
 }
 
@@ -25,7 +28,10 @@ bool EstimatorBank::all_estimated(double* first, double* second) const {
   double d[2];
   for (int i = 0; i < size(); ++i)
     if (estimate(i, d[0], d[1]) < 2) return false;
-  for (int i = 0; i < size(); ++i) estimate(i, first[i], second[i]);
+  for (int i = 0; i < size(); ++i) {
+    estimate(i, first[i], d[1]);
+    if (second) second[i] = d[1];
+  }
   return true;
 }
 

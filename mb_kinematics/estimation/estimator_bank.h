@@ -20,11 +20,14 @@ class EstimatorBank {
   virtual int estimate(int i, double& first, double& second) const = 0;
   // x[i] at t added to each estimator i with use[i] != 0 (arrays of size()), as add(i, t, x[i]).
   virtual void add(double t, const double* x, const char* use);
-  // True if, for each i with use[i] != 0, the first `derivatives` (1 or 2) estimates that
-  // estimate(i) gives are within `bound` in magnitude (NaN is not).
+  // True if the first `derivatives` (1 or 2) estimates that estimate(i) gives are within
+  // `bound` in magnitude (NaN is not).
+  bool bounded(int i, int derivatives, double bound) const;
+  // bounded(i, derivatives, bound) for each i with use[i] != 0.
   virtual bool bounded(const char* use, int derivatives, double bound) const;
   // True if every estimator gives both derivatives (estimate(i) returns 2): then first[i] and
-  // second[i] are estimator i's; else the arrays are left as they are.
+  // second[i] (when `second` is not null) are estimator i's; else the arrays are left as they
+  // are.
   virtual bool all_estimated(double* first, double* second) const;
 };
 

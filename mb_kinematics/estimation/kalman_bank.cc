@@ -246,7 +246,7 @@ bool KalmanBank::all_estimated(double* first, double* second) const {
   if (std::find_if(count_.begin(), count_.end(), [](int c) { return c < 3; }) != count_.end())
     return false;
   std::copy(now_.s1.begin(), now_.s1.end(), first);
-  std::copy(now_.s2.begin(), now_.s2.end(), second);
+  if (second) std::copy(now_.s2.begin(), now_.s2.end(), second);
   return true;
 }
 

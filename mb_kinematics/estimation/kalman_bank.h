@@ -22,6 +22,7 @@ class KalmanBank final : public EstimatorBank {
   // The filters whose sample follows their latest (the common case) in one pass; the others
   // (first sample, repeated stamp, stamps going back, non-finite values) one by one.
   void add(double t, const double* x, const char* use) override;
+  using EstimatorBank::bounded;
   bool bounded(const char* use, int derivatives, double bound) const override;
   bool all_estimated(double* first, double* second) const override;
 

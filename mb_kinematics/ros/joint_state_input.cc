@@ -13,16 +13,6 @@ namespace {
 
 std::string describe(double x) { return std::isnan(x) ? "NaN" : "Inf"; }
 
-// True if the first `used` derivatives estimator i gives are finite and within what
-// mbk::check_state accepts for speeds and accelerations.
-bool sound(const mbk::EstimatorBank& bank, int i, int used) {
-  double d[2] = {0, 0};
-  const int n = std::min(bank.estimate(i, d[0], d[1]), used);
-  for (int k = 0; k < n; ++k)
-    if (!(std::abs(d[k]) <= mbk::kMaxStateMagnitude)) return false;  // NaN too
-  return true;
-}
-
 // The node's class of a sample the intake refused.
 InputProblem problem_of(mbk::SampleProblem problem) {
   switch (problem) {
@@ -210,7 +200,7 @@ void JointStateInput::check_estimates(const sensor_msgs::JointState& msg, double
   if (used.bounded(sampled_.data(), derivatives, mbk::kMaxStateMagnitude)) return;
   for (size_t i = 0; i < msg.name.size(); ++i) {
     const int j = intake_.coordinates()[i];
-    if (j < 0 || sound(used, j, derivatives)) continue;
+    if (j < 0 || used.bounded(j, derivatives, mbk::kMaxStateMagnitude)) continue;
     used.reset(j);
     used.add(j, t, sample_[j]);
     update.estimator_reset.push_back(msg.name[i]);
@@ -265,17 +255,16 @@ bool JointStateInput::settled(int i) const {
 // accelerations given: the values and the banks' estimates copied whole, as fill() would. False
 // when an estimate is missing: then `state` holds no value fill() would not write.
 bool JointStateInput::fill_every(mbk::Level level, mbk::JointState<double>& state) const {
-  unused_.resize(model_.nq);
   if (level != mbk::Level::kPose && !last_velocity_given_ &&
       !positions_->all_estimated(state.velocity.data(), level == mbk::Level::kAcceleration
                                                             ? state.acceleration.data()
-                                                            : unused_.data()))
+                                                            : nullptr))
     return false;
   for (int i = 0; i < model_.nq; ++i) state.position[i] = coordinates_[i].position;
   if (level == mbk::Level::kPose || !last_velocity_given_) return true;
   for (int i = 0; i < model_.nq; ++i) state.velocity[i] = coordinates_[i].velocity;
   return level == mbk::Level::kVelocity ||
-         velocities_->all_estimated(state.acceleration.data(), unused_.data());
+         velocities_->all_estimated(state.acceleration.data(), nullptr);
 }
 
 mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* accelerations,

@@ -136,7 +136,6 @@ class JointStateInput {
   bool steady_ = false, last_velocity_given_ = false, every_coordinate_ = false;
   double last_t_ = 0;
   int last_used_ = 0;
-  mutable std::vector<double> unused_;       // fill_every: the second derivatives of velocities
   mbk::JointState<double> initial_, trial_;  // the state before any sample; a message's values
   AccelerationPairing pairing_;
 };

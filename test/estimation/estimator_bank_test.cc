@@ -59,6 +59,10 @@ void expect_bank_is_separate_estimators(const mbk::DerivativeEstimator& prototyp
     ASSERT_EQ(bank->all_estimated(whole_first.data(), whole_second.data()), all) << k;
     EXPECT_EQ(whole_first, all ? first : std::vector<double>(n, -7.0)) << k;
     EXPECT_EQ(whole_second, all ? second : std::vector<double>(n, -7.0)) << k;
+    // Without the second derivatives' array: the first ones alone.
+    std::vector<double> first_only(n, -7.0);
+    ASSERT_EQ(bank->all_estimated(first_only.data(), nullptr), all) << k;
+    EXPECT_EQ(first_only, whole_first) << k;
   }
 }
 
