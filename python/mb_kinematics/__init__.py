@@ -26,7 +26,7 @@ except ImportError:  # imported from the source folder first on sys.path (a deve
 
 from mb_kinematics.recording import Recording  # noqa: E402 (after _core's search)
 
-__all__ = ["load", "Model", "OUTPUTS", "OPT_IN", "Recording", "angles"]
+__all__ = ["load", "Model", "OUTPUTS", "OPT_IN", "Recording", "angles", "release_memory"]
 #: The package's version (package.xml's).
 __version__ = _core.__version__
 
@@ -79,6 +79,12 @@ def load(path_or_text, scale=None, body_mass=None, sex=None, segments=None, anth
     model._source = (source, scale, body_mass, sex, segments, anthropometry,
                      None if text else _file_digest(source))
     return model
+
+
+def release_memory():
+    """Hands the kernel back the memory of released output arrays that the module keeps for the
+    next calls' fresh arrays (doc/python.md, Memory); returns its bytes."""
+    return _core.release_memory()
 
 
 def angles(rotation, order):
@@ -357,7 +363,7 @@ class Model:
         for name in names:
             shape = _shape(self, name, samples, len(chosen))
             given = None if out is None else out.get(name)
-            arrays[name] = (np.empty(shape, dtype=dtype) if given is None
+            arrays[name] = (_core.empty(shape, dtype == np.float32) if given is None
                             else _out_array(given, name, shape[1:] if single else shape, dtype,
                                             shape))
         q, velocity, acceleration = _apart(arrays, q, velocity, acceleration)

@@ -26,6 +26,7 @@
 #include "mb_kinematics/offline/batch_kinematics.h"
 #include "mb_kinematics/offline/recording_input.h"
 #include "mb_kinematics/offline/recording_states.h"
+#include "mb_kinematics/offline/retained_blocks.h"
 #include "mb_kinematics/tools/bag_cli.h"
 
 namespace py = pybind11;
@@ -160,6 +161,26 @@ void batch_kinematics(const ModelPtr& model, const InputArray& position, py::obj
     run<float>(*model, position, velocity, acceleration, outputs, bodies, threads);
   else
     run<double>(*model, position, velocity, acceleration, outputs, bodies, threads);
+}
+
+// An uninitialized C-contiguous array of `shape`, float64 or float32 (`single`): above 1 MiB in a
+// block of offline/retained_blocks.h, given back when the array is released.
+py::array empty(const std::vector<py::ssize_t>& shape, bool single) {
+  const py::dtype dtype = single ? py::dtype::of<float>() : py::dtype::of<double>();
+  std::size_t bytes = static_cast<std::size_t>(dtype.itemsize());
+  for (const py::ssize_t n : shape) bytes *= static_cast<std::size_t>(n);
+  if (bytes <= (std::size_t{1} << 20)) return py::array(dtype, shape);
+  struct Block {
+    void* data;
+    std::size_t bytes;
+  };
+  auto* block = new Block{mbk::RetainedBlocks::shared().take(bytes), bytes};
+  const py::capsule owner(block, [](void* p) {
+    auto* b = static_cast<Block*>(p);
+    mbk::RetainedBlocks::shared().give(b->data, b->bytes);
+    delete b;
+  });
+  return py::array(dtype, shape, block->data, owner);
 }
 
 // A recording read as mbk bag reads it (with a bag's base odometry), and what was dropped.
@@ -449,6 +470,9 @@ PYBIND11_MODULE(_core, m) {
   m.def("batch_kinematics", &batch_kinematics, py::arg("model"), py::arg("position"),
         py::arg("velocity"), py::arg("acceleration"), py::arg("outputs"), py::arg("bodies"),
         py::arg("threads"), py::arg("single"));
+  m.def("empty", &empty, py::arg("shape"), py::arg("single"));
+  m.def("kept_bytes", [] { return mbk::RetainedBlocks::shared().kept_bytes(); });
+  m.def("release_memory", [] { return mbk::RetainedBlocks::shared().release(); });
   m.def("check_bvh_options", &check_bvh_options);
   m.def("check_column_options", &check_column_options);
   m.def("bag_options", &bag_options);
