@@ -324,7 +324,7 @@ class InputRows {
     mbk::Progress bar("computing", reading_.progress);
     for (std::size_t r = 0; r < rows; ++r) {
       if (r % 1024 == 0) bar.update(static_cast<long>(r), static_cast<long>(rows));
-      const KeptRows::Row row = kept_.row(r);
+      const mbk::KeptRows::Row row = kept_.row(r);
       sink(row.t, row.position, row.velocity, row.given);
     }
     bar.finish();
@@ -332,7 +332,7 @@ class InputRows {
 
   const InputReading reading_;
   bool read_ = false;
-  KeptRows kept_;
+  mbk::KeptRows kept_;
   mbk::DropLog log_;
   long samples_read_ = 0;
   double stamp_rounding_ = 0, time_origin_ = 0;

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace mbk_offline {
+namespace mbk {
 namespace {
 
 // The bytes of rows per block: large beside a block's four allocations, small beside the bound.
@@ -49,4 +49,4 @@ void KeptRows::add_block() {
   b.given.reserve(rows * nq_);
 }
 
-}  // namespace mbk_offline
+}  // namespace mbk

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace mbk_offline {
+namespace mbk {
 
 class KeptRows {
  public:
@@ -44,4 +44,4 @@ class KeptRows {
   std::vector<Block> blocks_;
 };
 
-}  // namespace mbk_offline
+}  // namespace mbk
