@@ -25,6 +25,7 @@
 #include "mb_kinematics/offline/bvh_recording.h"
 #include "mb_kinematics/offline/error_bar_files.h"
 #include "mb_kinematics/offline/h5_output.h"
+#include "mb_kinematics/offline/kept_rows.h"
 #include "mb_kinematics/offline/mot_output.h"
 #include "mb_kinematics/offline/offline_batch.h"
 #include "mb_kinematics/offline/offline_stream.h"
@@ -290,14 +291,15 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
-  explicit InputRows(const InputReading& reading) : reading_(reading) {}
+  explicit InputRows(const InputReading& reading)
+      : reading_(reading), kept_(reading.file.model.nq, kKeptRowBytes) {}
   // Every row to `sink`; the first pass's unreadable messages go to `s`.
   void pass(const Sink& sink, BagSummary& s) {
-    if (read_ && kept_) return replay(sink);
+    if (read_ && kept_.complete()) return replay(sink);
     const bool first = !read_;
     mbk::RecordingBuilder builder(reading_.file.model);
     builder.stream_to([&](double t, const double* p, const double* v, const std::uint8_t* g) {
-      if (first) keep(t, p, v, g);
+      if (first) kept_.keep(t, p, v, g);
       sink(t, p, v, g);
     });
     BaseOdometry unused;
@@ -317,41 +319,23 @@ class InputRows {
   double time_origin() const { return time_origin_; }        // RecordingBuilder's
 
  private:
-  void keep(double t, const double* p, const double* v, const std::uint8_t* g) {
-    const std::size_t nq = reading_.file.model.nq, rows = t_.size();
-    const std::size_t most = kKeptRowBytes / (sizeof(double) * (1 + 2 * nq) + nq);
-    if (!kept_) return;
-    if (rows == most) {
-      kept_ = false;
-      t_ = {}, position_ = {}, velocity_ = {}, given_ = {};
-      return;
-    }
-    if (rows == t_.capacity()) {  // grown by hand: never beyond kKeptRowBytes
-      const std::size_t n = std::min(most, std::max<std::size_t>(1024, 2 * rows));
-      t_.reserve(n), position_.reserve(n * nq), velocity_.reserve(n * nq), given_.reserve(n * nq);
-    }
-    t_.push_back(t);
-    position_.insert(position_.end(), p, p + nq);
-    velocity_.insert(velocity_.end(), v, v + nq);
-    given_.insert(given_.end(), g, g + nq);
-  }
   void replay(const Sink& sink) const {
-    const std::size_t nq = reading_.file.model.nq, rows = t_.size();
+    const std::size_t rows = kept_.rows();
     mbk::Progress bar("computing", reading_.progress);
     for (std::size_t r = 0; r < rows; ++r) {
       if (r % 1024 == 0) bar.update(static_cast<long>(r), static_cast<long>(rows));
-      sink(t_[r], position_.data() + r * nq, velocity_.data() + r * nq, given_.data() + r * nq);
+      const mbk::KeptRows::Row row = kept_.row(r);
+      sink(row.t, row.position, row.velocity, row.given);
     }
     bar.finish();
   }
 
   const InputReading reading_;
-  bool read_ = false, kept_ = true;
+  bool read_ = false;
+  mbk::KeptRows kept_;
   mbk::DropLog log_;
   long samples_read_ = 0;
   double stamp_rounding_ = 0, time_origin_ = 0;
-  std::vector<double> t_, position_, velocity_;  // rows x nq
-  std::vector<std::uint8_t> given_;
 };
 
 // The bounded-memory path (offline/offline_stream.h): a first pass surveys the input, "auto"

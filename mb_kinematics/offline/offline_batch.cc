@@ -153,7 +153,7 @@ void wait_for(OfflineBatch& batch) {
 
 RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int end,
                         const std::function<void(const OfflineRow&)>& use,
-                        const std::function<void(int)>& progress) {
+                        const std::function<void(int)>& progress, RowBlocks* blocks) {
   using Clock = std::chrono::steady_clock;
   RowSeconds s;
   if (begin >= end) return s;
@@ -161,9 +161,12 @@ RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int 
   // with each row's formatted text (a CSV row of a large model outweighs its kinematics), stay
   // within 4 MB: the first block is small, and its texts size the others. Rows made and touched
   // once per call and never reused were most of a short run's page faults.
+  RowBlocks own;
+  RowBlocks& rows = blocks ? *blocks : own;
+  std::vector<OfflineRow>&ready = rows.ready, &next = rows.next;
   const OfflineRow blank(model);
   int first = begin, last = std::min(end, begin + batch.rows_per_block(0));
-  std::vector<OfflineRow> ready(last - first, blank), next;
+  if (static_cast<int>(ready.size()) < last - first) ready.resize(last - first, blank);
   s.compute += batch.compute(first, last, ready);
   const int block = batch.rows_per_block(4 << 20, text_bytes(ready));
   for (;;) {

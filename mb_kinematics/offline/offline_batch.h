@@ -104,7 +104,7 @@ class OfflineBatch {
   long block_ = 0;   // blocks started; a worker runs each once
   int running_ = 0;  // workers still on the block
   bool stop_ = false;
-  double seconds_ = 0;  // the workers', on the block, summed
+  double seconds_ = 0;        // the workers', on the block, summed
   std::exception_ptr error_;  // what a worker threw on the block (finish() rethrows it)
   std::vector<std::thread> threads_;
 };
@@ -112,15 +112,22 @@ class OfflineBatch {
 // std::thread::hardware_concurrency(), at least 1.
 int default_thread_count();
 
+// The two blocks of rows compute_rows fills in turn. A caller that computes many ranges of rows
+// (OfflineStream's chunks) keeps them, and the rows are made once.
+struct RowBlocks {
+  std::vector<OfflineRow> ready, next;
+};
+
 // Rows [begin, end) of `batch`, a block at a time (rows_per_block(4 MB) with the first block's
 // formatted text; the first block the least), each handed to `use` in order while the workers
-// compute the next block; progress(rows done) after each block.
+// compute the next block; progress(rows done) after each block. The rows are `blocks`' (else
+// made for this call).
 // Returns the seconds the workers spent (summed) and the seconds spent in `use`.
 struct RowSeconds {
   double compute = 0, use = 0;
 };
 RowSeconds compute_rows(OfflineBatch& batch, const Model& model, int begin, int end,
                         const std::function<void(const OfflineRow&)>& use,
-                        const std::function<void(int)>& progress);
+                        const std::function<void(int)>& progress, RowBlocks* blocks = nullptr);
 
 }  // namespace mbk

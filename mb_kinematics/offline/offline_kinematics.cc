@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "mb_kinematics/core/body_errors.h"
+#include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/estimation/butterworth_estimator.h"
 
 namespace mbk {
@@ -153,20 +154,22 @@ std::size_t ErrorColumns::bytes() const {
   return sum;
 }
 
-void OfflineStates::append_errors(int begin, int end, ErrorColumns& out) const {
+void OfflineStates::append_errors(int begin, int end, ErrorColumns& out, int threads) const {
   if (!positions_fit_) return;
   out.velocity.resize(full_.size()), out.acceleration.resize(full_.size());
   const int nq = rec_.nq;
-  for (size_t k = 0; k < full_.size(); ++k) {
-    const int c = full_[k];
-    // Accelerations from given velocities: their first derivative's error bar.
-    const AutoEstimate* v = velocity_everywhere_[c] ? velocities_fit_.get() : nullptr;
-    for (int r = begin; r < end; ++r) {
-      const size_t at = static_cast<size_t>(r) * nq + c;
-      out.velocity[k].add(positions_fit_->first_se[at]);
-      out.acceleration[k].add(v ? v->first_se[at] : positions_fit_->second_se[at]);
+  split_runs(full_.size(), std::max(1, threads), [&](size_t, size_t first, size_t last) {
+    for (size_t k = first; k < last; ++k) {
+      const int c = full_[k];
+      // Accelerations from given velocities: their first derivative's error bar.
+      const AutoEstimate* v = velocity_everywhere_[c] ? velocities_fit_.get() : nullptr;
+      for (int r = begin; r < end; ++r) {
+        const size_t at = static_cast<size_t>(r) * nq + c;
+        out.velocity[k].add(positions_fit_->first_se[at]);
+        out.acceleration[k].add(v ? v->first_se[at] : positions_fit_->second_se[at]);
+      }
     }
-  }
+  });
 }
 
 std::vector<CoordinateError> OfflineStates::error_summary(const ErrorColumns* whole) const {

@@ -66,8 +66,9 @@ class OfflineStates {
   // medians over this recording's rows, or over `whole`'s (a longer recording's, gathered piece
   // by piece with append_errors).
   std::vector<CoordinateError> error_summary(const ErrorColumns* whole = nullptr) const;
-  // "auto": rows [begin, end)'s standard errors that error_summary takes the medians of.
-  void append_errors(int begin, int end, ErrorColumns& out) const;
+  // "auto": rows [begin, end)'s standard errors that error_summary takes the medians of; the
+  // coordinates shared out among up to `threads` threads (each column takes its rows in order).
+  void append_errors(int begin, int end, ErrorColumns& out, int threads = 1) const;
   // The standard errors of each body's alpha and mass-center acceleration at row r, in `state`
   // (from state_at; `data` its forward_kinematics at Level::kAcceleration), propagated from the
   // coordinates' (core/body_errors.h; given derivatives and mimic rules count as exact; a

@@ -108,10 +108,11 @@ void OfflineStream::compute(int end, bool last) {
   OfflineBatch batch(model_, buffer_, estimator_, max_gap_, nullptr, threads_, &whole_);
   batch.set_formatter(formatter_);
   batch.set_body_errors(body_errors_);
-  const RowSeconds s = compute_rows(batch, model_, next_, end, sink_, [](int) {});
+  const RowSeconds s = compute_rows(
+      batch, model_, next_, end, sink_, [](int) {}, &rows_);
   seconds_.compute += s.compute, seconds_.use += s.use;
   if (hook_) hook_(batch.states(), buffer_, next_, end);
-  if (estimator_.automatic) batch.states().append_errors(next_, end, columns_);
+  if (estimator_.automatic) batch.states().append_errors(next_, end, columns_, threads_);
   if (estimator_.automatic && last) errors_ = batch.states().error_summary(&columns_);
   next_ = end;
   forget();

@@ -103,6 +103,7 @@ class OfflineStream {
   ErrorColumns columns_;  // "auto": every row's, for the medians of error_summary
   std::vector<CoordinateError> errors_;
   Recording buffer_;  // the rows kept, oldest first
+  RowBlocks rows_;    // the chunks' results, made once
   int next_ = 0;      // buffer row of the first row not yet computed
   int peak_rows_ = 0;
   RowSeconds seconds_;
@@ -135,8 +136,8 @@ class AutoChoosePass {
   int chunk_rows_;
   std::vector<char> velocity_everywhere_;
   AutoChooser positions_;
-  std::unique_ptr<AutoChooser> velocities_;      // when some coordinate has them in every row
-  OfflineReach reach_;                           // the longest candidate's
+  std::unique_ptr<AutoChooser> velocities_;  // when some coordinate has them in every row
+  OfflineReach reach_;                       // the longest candidate's
   RotationNoise rotations_;
   StampGrid grid_;
   std::vector<double> t_, position_, velocity_;  // the rows kept, oldest first
