@@ -84,22 +84,29 @@ MBK_AVX2 __m256d body_momentum(const Body& body, const Mat3<double>& s0k, const 
   return add(spin, mul(_mm256_set1_pd(body.mass), orbit));
 }
 
-// system_kinematics<double> at kAcceleration after its total mass and inertias_known: the
-// mass-weighted sums, then H_G, on vectors (out.mass set, the other fields zero).
+// system_kinematics<double> at kAcceleration: M and inertias_known, the mass-weighted sums in
+// the same pass, then H_G, on vectors.
 __attribute__((target("avx2"))) void system_sums_avx2(const Model& model, const Data<double>& data,
                                                       SystemKinematics<double>& out) {
+  out = SystemKinematics<double>();
   Vec3<double> p0, v0, a0;
   root_mass_center(model, data, p0, v0, a0);
   const auto p = [&](int k) { return k ? data.mass_center[k].data() : p0.data(); };
   const auto v = [&](int k) { return k ? data.mass_center_velocity[k].data() : v0.data(); };
   const auto a = [&](int k) { return k ? data.mass_center_acceleration[k].data() : a0.data(); };
+  bool inertias = true;  // inertias_known
   __m256d g = _mm256_setzero_pd(), momentum = g, acceleration = g;
   for (int k = 0; k <= model.body_count(); ++k) {
-    const __m256d m = _mm256_set1_pd(model.bodies[k].mass);
+    const Body& body = model.bodies[k];
+    out.mass += body.mass;
+    inertias = inertias && (body.has_inertia || !(body.mass > 0));
+    const __m256d m = _mm256_set1_pd(body.mass);
     g = add(g, mul(m, load3(p(k))));
     momentum = add(momentum, mul(m, load3(v(k))));
     acceleration = add(acceleration, mul(m, load3(a(k))));
   }
+  out.angular_momentum_known = inertias;
+  if (!(out.mass > 0)) return;  // no mass center: every vector zero
   const __m256d total = _mm256_set1_pd(out.mass);
   g = _mm256_div_pd(g, total);
   const __m256d vg = _mm256_div_pd(momentum, total);
@@ -126,15 +133,7 @@ void system_kinematics(const Model& model, const Data<double>& data, SystemKinem
   static const bool avx2 = __builtin_cpu_supports("avx2");
   if (avx2 && level == Level::kAcceleration) {
     assert(sized_for(data, model) && "system_kinematics: Data made for another model");
-    out = SystemKinematics<double>();
-    bool inertias = true;  // inertias_known, in the same pass
-    for (int k = 0; k <= model.body_count(); ++k) {
-      out.mass += model.bodies[k].mass;
-      inertias = inertias && !(model.bodies[k].mass > 0 && !model.bodies[k].has_inertia);
-    }
-    out.angular_momentum_known = inertias;
-    if (out.mass > 0) system_avx2::system_sums_avx2(model, data, out);
-    return;
+    return system_avx2::system_sums_avx2(model, data, out);
   }
 #endif
   system_kinematics<double>(model, data, out, level);

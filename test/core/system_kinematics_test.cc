@@ -384,7 +384,7 @@ TEST(SystemKinematics, RootLinkMassCountsFixedInR) {
 
 // The double overload (on a CPU with AVX2: 256-bit vectors) gives the template's numbers bit
 // for bit: random trees with random full inertias, a root link with mass, a body without an
-// inertia (H_G left out), and speeds of 1 and 1e3.
+// inertia (H_G left out), no mass at all, and speeds of 1 and 1e3.
 bool same_bits(const V& a, const V& b) { return std::memcmp(a.data(), b.data(), sizeof(V)) == 0; }
 
 void expect_template_bits(const mbk::Model& model, const mbk::JointState<double>& state,
@@ -429,6 +429,9 @@ TEST(SystemKinematics, DoubleOverloadIsTheTemplateBitForBit) {
   const mbk::Model heavy = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");
   std::mt19937 rng(7);
   expect_template_bits(heavy, mbk::random_state(heavy, rng), "heavy root");
+  mbk::Model massless = mbk_test::random_tree(5, 1);  // M = 0: no mass center
+  for (mbk::Body& body : massless.bodies) body.mass = 0;
+  expect_template_bits(massless, mbk::random_state(massless, rng), "massless");
 }
 
 }  // namespace
