@@ -32,7 +32,8 @@ TfJoint tf_joint(const mbk::Model& model, int body);
 // The bodies on joints with coordinates, from body `first` on.
 std::vector<int> moving_bodies(const mbk::Model& model, int first = 1);
 
-// `bodies`' joints into `moving` and a transform each into `transforms`, frames set. With a
+// `bodies`' joints into `moving` and a transform each into `transforms`, frames set, and the
+// translation q_k of each joint that does not translate (fill_transforms leaves it). With a
 // `base_frame` (the odometry's frame of a floating base), one transform more, last:
 // base_frame -> names.root(), the model's root frame.
 void init_transforms(const mbk::Model& model, const FrameNames& names,
@@ -40,9 +41,10 @@ void init_transforms(const mbk::Model& model, const FrameNames& names,
                      std::vector<geometry_msgs::TransformStamped>& transforms,
                      const std::string& base_frame = "");
 
-// The relative transforms of the `moving` bodies at `stamp` into `transforms` (frames already
-// set by init_transforms): nothing allocated. The base's transform, if init_transforms made one,
-// gets the stamp and, with `base`, the root frame's pose in the odometry's frame.
+// The relative transforms of the `moving` bodies at `stamp` into `transforms` (made by
+// init_transforms: frames and constant translations set): nothing allocated. The base's transform,
+// if init_transforms made one, gets the stamp and, with `base`, the root frame's pose in the
+// odometry's frame.
 void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& state,
                      const std::vector<TfJoint>& moving, const ros::Time& stamp,
                      std::vector<geometry_msgs::TransformStamped>& transforms,

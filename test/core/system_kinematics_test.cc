@@ -9,6 +9,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -378,6 +380,58 @@ TEST(SystemKinematics, RootLinkMassCountsFixedInR) {
   const V h_o = i1 * data.omega[1] + m1 * data.mass_center[1].cross(data.mass_center_velocity[1]);
   EXPECT_LT((s.angular_momentum - (h_o - total * s.mass_center.cross(s.velocity))).norm(),
             16 * kEps);
+}
+
+// The double overload (on a CPU with AVX2: 256-bit vectors) gives the template's numbers bit
+// for bit: random trees with random full inertias, a root link with mass, a body without an
+// inertia (H_G left out), no mass at all, and speeds of 1 and 1e3.
+bool same_bits(const V& a, const V& b) { return std::memcmp(a.data(), b.data(), sizeof(V)) == 0; }
+
+void expect_template_bits(const mbk::Model& model, const mbk::JointState<double>& state,
+                          const std::string& where) {
+  mbk::Data<double> data(model);
+  mbk::forward_kinematics(model, state, data);
+  for (mbk::Level level : {mbk::Level::kPose, mbk::Level::kVelocity, mbk::Level::kAcceleration}) {
+    mbk::SystemKinematics<double> fast, reference;
+    fast.mass = -1;  // every field is written
+    mbk::system_kinematics(model, data, fast, level);
+    mbk::system_kinematics<double>(model, data, reference, level);
+    EXPECT_EQ(std::memcmp(&fast.mass, &reference.mass, sizeof(double)), 0) << where;
+    EXPECT_TRUE(same_bits(fast.mass_center, reference.mass_center)) << where;
+    EXPECT_TRUE(same_bits(fast.velocity, reference.velocity)) << where;
+    EXPECT_TRUE(same_bits(fast.acceleration, reference.acceleration)) << where;
+    EXPECT_TRUE(same_bits(fast.linear_momentum, reference.linear_momentum)) << where;
+    EXPECT_TRUE(same_bits(fast.angular_momentum, reference.angular_momentum)) << where;
+    EXPECT_EQ(fast.angular_momentum_known, reference.angular_momentum_known) << where;
+  }
+}
+
+TEST(SystemKinematics, DoubleOverloadIsTheTemplateBitForBit) {
+  for (int n : {1, 3, 8, 21, 100}) {
+    for (unsigned seed : {1u, 2u, 3u}) {
+      mbk::Model model = mbk::with_random_inertias(mbk_test::random_tree(n, seed), seed);
+      model.bodies[0].mass = 2.5;  // the root link counts too
+      model.bodies[0].mass_center = V(0.1, -0.2, 0.3);
+      model.bodies[0].inertia = V(0.2, 0.3, 0.4).asDiagonal();
+      model.bodies[0].has_inertia = true;
+      std::mt19937 rng(seed);
+      for (double speed : {1.0, 1e3}) {
+        const mbk::JointState<double> state = mbk::random_state(model, rng, speed);
+        const std::string where = "n=" + std::to_string(n) + " seed=" + std::to_string(seed) +
+                                  " speed=" + std::to_string(speed);
+        expect_template_bits(model, state, where);
+        mbk::Model partial = model;
+        partial.bodies[n].has_inertia = false;  // H_G unknown
+        expect_template_bits(partial, state, where + " without an inertia");
+      }
+    }
+  }
+  const mbk::Model heavy = mbk::load_urdf_string(mbk_test::kHeavyRootUrdf, "q.urdf");
+  std::mt19937 rng(7);
+  expect_template_bits(heavy, mbk::random_state(heavy, rng), "heavy root");
+  mbk::Model massless = mbk_test::random_tree(5, 1);  // M = 0: no mass center
+  for (mbk::Body& body : massless.bodies) body.mass = 0;
+  expect_template_bits(massless, mbk::random_state(massless, rng), "massless");
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // messages/tf.h's fill_transforms: every moving body's rotation is mbk::joint_quaternion's (the
 // quaternion test/core/joint_traits_test.cc checks against joint_motion), equal to the last bit (a
 // zero's sign aside), whether its sine and cosine are taken with the other plain turns' (revolute
-// joints without an offset rotation, more than one block of them) or alone. No ROS master needed.
+// joints without an offset rotation, more than one block of them) or alone; every translation
+// q_k + s_k. No ROS master needed.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -10,6 +11,7 @@
 
 #include "mb_kinematics/core/joint.h"
 #include "mb_kinematics/core/joint_motion.h"
+#include "mb_kinematics/messages/frames.h"
 #include "mb_kinematics/messages/tf.h"
 #include "test/support/test_models.h"
 
@@ -76,6 +78,36 @@ TEST(TfFill, LargeAnglesAsJointQuaternion) {
   mbk::JointState<double> state(chain);
   state.position << -0.5, 1e7, -3e9, 2e300, -0.0;
   EXPECT_EQ(expect_joint_quaternions(chain, state), 5);
+}
+
+// init_transforms then fill_transforms, twice (a message reused): each translation is q_k + s_k
+// of joint_motion, q_k alone (set by init_transforms) on the joints that do not translate.
+TEST(TfFill, TranslationsAreOffsetsPlusJointTranslations) {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const mbk::Model model = mbk_test::random_tree(100, seed);
+    const std::vector<int> bodies = mbk_messages::moving_bodies(model);
+    std::vector<mbk_messages::TfJoint> moving;
+    std::vector<geometry_msgs::TransformStamped> transforms;
+    mbk_messages::init_transforms(model, mbk_messages::FrameNames(model, "", "world"), bodies,
+                                  moving, transforms);
+    const mbk_test::Trajectory trajectory(model, seed);
+    for (const double t : {0.4, 1.1}) {
+      const mbk::JointState<double> state = trajectory.at<double>(t);
+      mbk_messages::fill_transforms(model, state, moving, ros::Time(t), transforms);
+      for (size_t i = 0; i < bodies.size(); ++i) {
+        const mbk::Body& body = model.bodies[bodies[i]];
+        SCOPED_TRACE(body.name + " (" + mbk::to_string(body.joint.type) + ")");
+        mbk::JointMotion<double> m;
+        mbk::joint_motion<double>(body.joint, model.speeds, state.position.data() + body.q_index,
+                                  nullptr, m);
+        const mbk::Vec3<double> want = body.joint.offset + m.translation;
+        const geometry_msgs::Vector3& got = transforms[i].transform.translation;
+        expect_bits(got.x, want.x());
+        expect_bits(got.y, want.y());
+        expect_bits(got.z, want.z());
+      }
+    }
+  }
 }
 
 }  // namespace
