@@ -64,6 +64,24 @@ struct LanePointers {
   double *t, *s0, *s1, *s2, *p00, *p01, *p02, *p11, *p12, *p22;
 };
 
+// The arrays of KalmanBank's Lanes `l`.
+template <typename Lanes>
+LanePointers lane_pointers(Lanes& l) {
+  return {l.t.data(),   l.s0.data(),  l.s1.data(),  l.s2.data(),  l.p00.data(),
+          l.p01.data(), l.p02.data(), l.p11.data(), l.p12.data(), l.p22.data()};
+}
+
+// Filter i of the lanes (its stamp apart), and back with its stamp t.
+Filter<double> filter_at(const LanePointers& l, int i) {
+  return {l.s0[i], l.s1[i], l.s2[i], l.p00[i], l.p01[i], l.p02[i], l.p11[i], l.p12[i], l.p22[i]};
+}
+
+void set_filter(const LanePointers& l, int i, double t, const Filter<double>& f) {
+  l.t[i] = t, l.s0[i] = f.s0, l.s1[i] = f.s1, l.s2[i] = f.s2;
+  l.p00[i] = f.p00, l.p01[i] = f.p01, l.p02[i] = f.p02;
+  l.p11[i] = f.p11, l.p12[i] = f.p12, l.p22[i] = f.p22;
+}
+
 // Two or four filters (GCC vector extensions): SSE2 (or NEON), AVX2.
 typedef double V2 __attribute__((vector_size(16)));
 typedef double V4 __attribute__((vector_size(32)));
@@ -118,15 +136,10 @@ __attribute__((always_inline)) inline void step_all(double t, const double* x, c
   }
   for (; i < n; ++i) {
     if (step[i] == 0) continue;
-    Filter<double> f{now.s0[i],  now.s1[i],  now.s2[i],  now.p00[i], now.p01[i],
-                     now.p02[i], now.p11[i], now.p12[i], now.p22[i]};
-    before.t[i] = now.t[i], before.s0[i] = f.s0, before.s1[i] = f.s1, before.s2[i] = f.s2;
-    before.p00[i] = f.p00, before.p01[i] = f.p01, before.p02[i] = f.p02;
-    before.p11[i] = f.p11, before.p12[i] = f.p12, before.p22[i] = f.p22;
+    Filter<double> f = filter_at(now, i);
+    set_filter(before, i, now.t[i], f);
     predict_update<double>(f, t - now.t[i], x[i], q, r);
-    now.t[i] = t, now.s0[i] = f.s0, now.s1[i] = f.s1, now.s2[i] = f.s2;
-    now.p00[i] = f.p00, now.p01[i] = f.p01, now.p02[i] = f.p02;
-    now.p11[i] = f.p11, now.p12[i] = f.p12, now.p22[i] = f.p22;
+    set_filter(now, i, t, f);
   }
 }
 
@@ -166,38 +179,27 @@ double KalmanBank::position_noise() const { return std::sqrt(r_); }
 
 bool KalmanBank::add(int i, double t, double x) {
   if (!std::isfinite(t) || !std::isfinite(x)) return false;
-  Lanes& a = now_;
-  Lanes& b = before_;
+  const LanePointers a = lane_pointers(now_), b = lane_pointers(before_);
   if (count_[i] > 0 && t == a.t[i]) {  // a repeated stamp replaces the sample
     if (count_[i] == 1) {
       a.s0[i] = x;
       return true;
     }
-    a.t[i] = b.t[i], a.s0[i] = b.s0[i], a.s1[i] = b.s1[i], a.s2[i] = b.s2[i];
-    a.p00[i] = b.p00[i], a.p01[i] = b.p01[i], a.p02[i] = b.p02[i];
-    a.p11[i] = b.p11[i], a.p12[i] = b.p12[i], a.p22[i] = b.p22[i];  // undo, redo with x
+    set_filter(a, i, b.t[i], filter_at(b, i));  // undo, redo with x
     --count_[i];
   }
   const bool forward = count_[i] == 0 || t > a.t[i];
   if (!forward) reset(i);  // stamps went back (a bag looping): start over
   if (count_[i] == 0) {
-    a.s0[i] = x, a.s1[i] = 0, a.s2[i] = 0;
-    a.p00[i] = r_, a.p11[i] = 1e6, a.p22[i] = 1e12;  // position known, the rest not
-    a.p01[i] = a.p02[i] = a.p12[i] = 0;
-    a.t[i] = t;
+    // Position known, the rest not.
+    set_filter(a, i, t, Filter<double>{x, 0, 0, r_, 0, 0, 1e6, 0, 1e12});
     count_[i] = 1;
     return forward;
   }
-  b.t[i] = a.t[i], b.s0[i] = a.s0[i], b.s1[i] = a.s1[i], b.s2[i] = a.s2[i];
-  b.p00[i] = a.p00[i], b.p01[i] = a.p01[i], b.p02[i] = a.p02[i];
-  b.p11[i] = a.p11[i], b.p12[i] = a.p12[i], b.p22[i] = a.p22[i];
-  Filter<double> f{a.s0[i],  a.s1[i],  a.s2[i],  a.p00[i], a.p01[i],
-                   a.p02[i], a.p11[i], a.p12[i], a.p22[i]};
+  Filter<double> f = filter_at(a, i);
+  set_filter(b, i, a.t[i], f);
   predict_update<double>(f, t - a.t[i], x, q_, r_);
-  a.s0[i] = f.s0, a.s1[i] = f.s1, a.s2[i] = f.s2;
-  a.p00[i] = f.p00, a.p01[i] = f.p01, a.p02[i] = f.p02;
-  a.p11[i] = f.p11, a.p12[i] = f.p12, a.p22[i] = f.p22;
-  a.t[i] = t;
+  set_filter(a, i, t, f);
   ++count_[i];
   return true;
 }
@@ -220,15 +222,13 @@ void KalmanBank::add(double t, const double* x, const char* use) {
     else if (use[i])
       add(i, t, x[i]);
   }
-  const auto lanes = [](Lanes& l) {
-    return LanePointers{l.t.data(),   l.s0.data(),  l.s1.data(),  l.s2.data(),  l.p00.data(),
-                        l.p01.data(), l.p02.data(), l.p11.data(), l.p12.data(), l.p22.data()};
-  };
 #if defined(__x86_64__)
   static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2) return step_all_avx2(t, x, step_.data(), q_, r_, n, lanes(now_), lanes(before_));
+  if (avx2)
+    return step_all_avx2(t, x, step_.data(), q_, r_, n, lane_pointers(now_),
+                         lane_pointers(before_));
 #endif
-  step_all_portable(t, x, step_.data(), q_, r_, n, lanes(now_), lanes(before_));
+  step_all_portable(t, x, step_.data(), q_, r_, n, lane_pointers(now_), lane_pointers(before_));
 }
 
 bool KalmanBank::bounded(const char* use, int derivatives, double bound) const {
