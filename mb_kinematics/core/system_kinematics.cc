@@ -16,14 +16,14 @@ std::vector<std::string> bodies_without_inertia(const Model& model) {
   std::vector<std::string> names;
   for (int k = 0; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
-    if (body.mass > 0 && !body.has_inertia) names.push_back(body.name);
+    if (lacks_inertia(body)) names.push_back(body.name);
   }
   return names;
 }
 
 bool inertias_known(const Model& model) {
   for (int k = 0; k <= model.body_count(); ++k)
-    if (model.bodies[k].mass > 0 && !model.bodies[k].has_inertia) return false;
+    if (lacks_inertia(model.bodies[k])) return false;
   return true;
 }
 
@@ -99,7 +99,7 @@ __attribute__((target("avx2"))) void system_sums_avx2(const Model& model, const 
   for (int k = 0; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     out.mass += body.mass;
-    inertias = inertias && (body.has_inertia || !(body.mass > 0));
+    inertias = inertias && !lacks_inertia(body);
     const __m256d m = _mm256_set1_pd(body.mass);
     g = add(g, mul(m, load3(p(k))));
     momentum = add(momentum, mul(m, load3(v(k))));

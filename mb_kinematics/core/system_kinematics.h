@@ -25,6 +25,9 @@ struct SystemKinematics {
   bool angular_momentum_known = false;         // every body with mass has an inertia
 };
 
+// A body with a mass but no inertia: H_G is unknown when any body lacks one.
+inline bool lacks_inertia(const Body& body) { return body.mass > 0 && !body.has_inertia; }
+
 // Bodies with a mass but no inertia (their names): H_G is unknown unless this is empty.
 std::vector<std::string> bodies_without_inertia(const Model& model);
 bool inertias_known(const Model& model);  // bodies_without_inertia is empty (no allocation)
@@ -52,7 +55,7 @@ void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics
   bool inertias = true;  // inertias_known, in the same pass
   for (int k = 0; k <= n; ++k) {
     out.mass += S(model.bodies[k].mass);
-    inertias = inertias && !(model.bodies[k].mass > 0 && !model.bodies[k].has_inertia);
+    inertias = inertias && !lacks_inertia(model.bodies[k]);
   }
   out.angular_momentum_known = level != Level::kPose && inertias;
   if (!(out.mass > S(0))) return;
