@@ -23,6 +23,7 @@ void KeptRows::keep(double t, const double* position, const double* velocity,
   if (rows_ == most_) {
     complete_ = false;
     blocks_ = {};
+    rows_ = 0;
     return;
   }
   if (rows_ % block_rows_ == 0) add_block();

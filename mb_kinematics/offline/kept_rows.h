@@ -21,6 +21,7 @@ class KeptRows {
   void keep(double t, const double* position, const double* velocity, const std::uint8_t* given);
   // Every row offered is kept.
   bool complete() const { return complete_; }
+  // The rows kept: none once the bound is passed.
   std::size_t rows() const { return rows_; }
 
   // Row r (< rows()) of those kept.

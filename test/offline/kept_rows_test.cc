@@ -65,8 +65,10 @@ TEST(KeptRows, OneRowPastTheBoundKeepsNone) {
   mbk::KeptRows over(kNq, most * kRowBytes);
   keep_rows(over, most + 1);
   EXPECT_FALSE(over.complete());
+  EXPECT_EQ(over.rows(), 0u);  // none kept: no row() to read
   keep_rows(over, 10);
   EXPECT_FALSE(over.complete());
+  EXPECT_EQ(over.rows(), 0u);
 }
 
 }  // namespace
