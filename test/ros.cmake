@@ -24,6 +24,11 @@ catkin_add_gtest(tf_fill_test test/ros/tf_fill_test.cc)
 add_dependencies(tf_fill_test mb_kinematics_msgs_generate_messages_cpp)
 target_link_libraries(tf_fill_test mbk_ros mbk_test_models mbk_core gtest_main)
 
+# /tf's and body_kinematics' kept bytes against ros::serialization's, bit for bit (no master).
+catkin_add_gtest(reused_serialization_test test/ros/reused_serialization_test.cc)
+add_dependencies(reused_serialization_test mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(reused_serialization_test mbk_ros mbk_test_models mbk_core gtest_main)
+
 # body_kinematics' system field against the core, with and without inertias (no master).
 catkin_add_gtest(system_fields_test test/ros/system_fields_test.cc)
 add_dependencies(system_fields_test mb_kinematics_msgs_generate_messages_cpp)
@@ -113,7 +118,8 @@ target_compile_definitions(output_file_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SO
 
 # Their own files at -O1, with the node's tests' precompiled header (test/test_build.cmake).
 mbk_test_compile(mbk_ros_test_headers joint_state_input_test node_input_test
-  output_allocation_test system_fields_test frame_player_test heap_trim_test
+  output_allocation_test reused_serialization_test system_fields_test frame_player_test
+  heap_trim_test
   kinematics_markers_test glyph_limits_test legend_test node_test pairing_test rsp_compare_test
   markers_test hostile_test frame_prefix_test system_test base_odometry_test reload_test
   two_robots_test missing_test deep_partials_test bvh_launch_test real_robots_test

@@ -8,15 +8,16 @@ BodyKinematicsOutput::BodyKinematicsOutput(const OutputSetup& setup)
     : publisher_(setup.nh.advertise<mb_kinematics_msgs::BodyKinematicsArray>("body_kinematics",
                                                                              kSampleQueueSize)),
       shown_(setup.model.body_count() + 1, 1) {
-  mbk_messages::init_body_kinematics(setup.model, setup.frame, msg_.next(), setup.missing_segments);
+  mbk_messages::init_body_kinematics(setup.model, setup.frame, msg_.reshape(),
+                                     setup.missing_segments);
 }
 
 void BodyKinematicsOutput::publish(const ros::Time& stamp, const Sample& sample) {
-  mb_kinematics_msgs::BodyKinematicsArray& msg = msg_.next();
   if (sample.published != shown_) {  // ~missing_coordinates skip: bodies left out or joining
-    mbk_messages::select_body_kinematics(sample.model, sample.published, msg);
+    mbk_messages::select_body_kinematics(sample.model, sample.published, msg_.reshape());
     shown_ = sample.published;
   }
+  mb_kinematics_msgs::BodyKinematicsArray& msg = msg_.next();
   mbk_messages::fill_kinematics(stamp, sample.model, sample.data, sample.complete, msg);
   msg_.publish(publisher_);
 }

@@ -10,7 +10,7 @@
 
 #include "mb_kinematics/messages/body_kinematics.h"
 #include "mb_kinematics/ros/outputs/output.h"
-#include "mb_kinematics/ros/outputs/reused_message.h"
+#include "mb_kinematics/ros/outputs/reused_serialization.h"
 
 namespace mbk_ros {
 
@@ -24,7 +24,7 @@ class BodyKinematicsOutput : public Output {
 
  private:
   ros::Publisher publisher_;
-  ReusedMessage<mb_kinematics_msgs::BodyKinematicsArray> msg_;
+  ReusedSerialization<mb_kinematics_msgs::BodyKinematicsArray> msg_;
   std::vector<char> shown_;  // per body: in the message (~missing_coordinates skip)
 };
 

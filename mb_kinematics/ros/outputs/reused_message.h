@@ -21,6 +21,8 @@ class ReusedMessage {
     return *msg_;
   }
   void publish(const ros::Publisher& publisher) const { publisher.publish(msg_); }
+  const M& message() const { return *msg_; }
+  const boost::shared_ptr<M>& shared() const { return msg_; }
 
  private:
   boost::shared_ptr<M> msg_;

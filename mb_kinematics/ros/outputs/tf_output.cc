@@ -10,7 +10,7 @@ TfOutput::TfOutput(const OutputSetup& setup)
   // With ~base_odometry, body 1 is the base: R -> base comes from the odometry's source.
   const bool base_tf = setup.params.base_odometry.empty() || setup.params.publish_base_tf;
   moving_all_ = mbk_messages::moving_bodies(setup.model, base_tf ? 1 : 2);
-  select(setup.model, std::vector<char>(shown_.size(), 1), msg_.next());
+  select(setup.model, std::vector<char>(shown_.size(), 1), msg_.reshape());
   const mbk_messages::FrameNames names(setup.model, prefix_, frame_);
   std::vector<std::string> frames;
   for (const int k : moving_all_) frames.push_back(names.body(k));
@@ -30,8 +30,8 @@ void TfOutput::select(const mbk::Model& model, const std::vector<char>& publishe
 
 void TfOutput::publish(const ros::Time& stamp, const Sample& sample) {
   if (stamp == last_stamp_) return;  // tf2 rejects repeated stamps
+  if (sample.published != shown_) select(sample.model, sample.published, msg_.reshape());
   tf2_msgs::TFMessage& msg = msg_.next();
-  if (sample.published != shown_) select(sample.model, sample.published, msg);
   if (moving_.empty()) return;
   last_stamp_ = stamp;
   mbk_messages::fill_transforms(sample.model, sample.state, moving_, stamp, msg.transforms);

@@ -13,7 +13,7 @@
 
 #include "mb_kinematics/messages/tf.h"
 #include "mb_kinematics/ros/outputs/output.h"
-#include "mb_kinematics/ros/outputs/reused_message.h"
+#include "mb_kinematics/ros/outputs/reused_serialization.h"
 #include "mb_kinematics/ros/outputs/tf_duplicate_watch.h"
 
 namespace mbk_ros {
@@ -37,11 +37,11 @@ class TfOutput : public Output {
   void select(const mbk::Model& model, const std::vector<char>& published,
               tf2_msgs::TFMessage& msg);
 
-  std::string prefix_, frame_;                 // ~frame_prefix, R
-  std::vector<int> moving_all_;                // bodies on joints with coordinates
-  std::vector<mbk_messages::TfJoint> moving_;  // those of them published now
-  std::vector<char> shown_;                    // per body: published now
-  ReusedMessage<tf2_msgs::TFMessage> msg_;     // a transform per body of moving_
+  std::string prefix_, frame_;                    // ~frame_prefix, R
+  std::vector<int> moving_all_;                   // bodies on joints with coordinates
+  std::vector<mbk_messages::TfJoint> moving_;     // those of them published now
+  std::vector<char> shown_;                       // per body: published now
+  ReusedSerialization<tf2_msgs::TFMessage> msg_;  // a transform per body of moving_
   ros::Time last_stamp_;
   ros::Publisher publisher_;
   std::unique_ptr<TfDuplicateWatch> watch_;
