@@ -34,8 +34,9 @@ class RetainedBlocks {
   ~RetainedBlocks();
 
  private:
-  void* take_kept(std::size_t size);         // nullptr when no kept range is large enough; locked
-  void keep(char* block, std::size_t size);  // locked
+  // Both called with mutex_ held. take_kept: nullptr when no kept range holds `size`.
+  void* take_kept(std::size_t size);
+  void keep(char* block, std::size_t size);
 
   mutable std::mutex mutex_;
   std::map<char*, std::size_t> kept_;  // start -> bytes; ranges that neither touch nor overlap

@@ -68,6 +68,11 @@ TEST(RetainedBlocks, TakesTheSmallestKeptRangeThatHoldsTheRequest) {
   EXPECT_EQ(blocks.take(3 * kPage), small);  // 4 pages hold 3: the 8 are left whole
   EXPECT_EQ(blocks.take(5 * kPage), large);
   EXPECT_EQ(blocks.kept_bytes(), 4 * kPage);
+  blocks.give(small, 3 * kPage);
+  blocks.give(between, kPage);
+  blocks.give(large, 5 * kPage);
+  EXPECT_EQ(blocks.kept_ranges(), 1u);  // the 13 pages again
+  EXPECT_EQ(blocks.kept_bytes(), 13 * kPage);
 }
 
 TEST(RetainedBlocks, KeepsNoMoreThanTheMostHeldAtOnce) {
