@@ -361,25 +361,23 @@ class PipeIn {
 // and hands each message's bytes over a pipe as it reads them, then reads the rest of the bag
 // when those topics are not all of it) or for the check alone (done: the parent reads the bag
 // after it). The parent keeps nothing of what it read when the child crashes. Exceptions are left
-// to the real reading, which counts them. `bag`: constructed, not open (the child opens its copy:
-// rosbag's plugin loader, in Bag's constructor, runs once for both).
+// to the real reading, which counts them. Each process makes its own rosbag::Bag (rosbag's plugin
+// loader, in Bag's constructor, crawls the package path), at the same time.
 class BagCheck {
  public:
   // Starts the child; false when it cannot be isolated (no process, no socket): read it anyway.
-  bool start(const std::string& path, rosbag::Bag& bag) {
+  bool start(const std::string& path) {
     int ends[2];
     if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) return false;
     child_ = fork();
     if (child_ == 0) {
       ::close(ends[0]);
-      run_child(path, bag, ends[1]);
+      run_child(path, ends[1]);
     }
     ::close(ends[1]);
     if (child_ < 0) return ::close(ends[0]), false;
     fd_ = ends[0];
     in_ = std::make_unique<PipeIn>(fd_);
-    char said = 0;
-    opened_ = in_->tag(said) && said == 'O';
     return true;
   }
   ~BagCheck() {
@@ -391,8 +389,11 @@ class BagCheck {
     }
   }
   bool running() const { return child_ > 0; }
-  // The child opened the bag and listed its connections: so can the parent.
-  bool opened() const { return opened_; }
+  // The child opened the bag and listed its connections (waits for it to say): so can the parent.
+  bool wait_until_opened() {
+    char said = 0;
+    return child_ > 0 && in_->tag(said) && said == 'O';
+  }
   // Asks for the messages of `topics` (`whole`: they are every topic of the bag); in() takes
   // them.
   void stream(const std::vector<std::string>& topics, bool whole) {
@@ -423,8 +424,9 @@ class BagCheck {
   }
 
  private:
-  [[noreturn]] static void run_child(const std::string& path, rosbag::Bag& bag, int fd) {
+  [[noreturn]] static void run_child(const std::string& path, int fd) {
     PipeOut out(fd);
+    rosbag::Bag bag;
     try {
       bag.open(path, rosbag::bagmode::Read);
       rosbag::View(bag).getConnections();
@@ -494,7 +496,6 @@ class BagCheck {
   pid_t child_ = -1;
   int fd_ = -1;  // the parent's end of the socket
   std::unique_ptr<PipeIn> in_;
-  bool opened_ = false;
 };
 
 // The messages of a view of joint states alone, read ahead: rosbag's iteration, each message's
@@ -665,10 +666,11 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress, bool checked) {
   mbk::check_regular_file(path, "the recording");  // a pipe or /dev/zero: read without end
-  rosbag::Bag bag;
   BagCheck check;  // the child that reads the bag first (not when `checked`)
-  if (!checked) check_record_lengths(path), check.start(path, bag);
-  if (!check.opened()) check.finish_or_refuse(path);  // a crash, or the opening's error below
+  if (!checked) check_record_lengths(path), check.start(path);
+  rosbag::Bag bag;
+  if (!check.wait_until_opened())
+    check.finish_or_refuse(path);  // a crash, or the opening's error below
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {
