@@ -880,6 +880,27 @@ TEST(BagTest, AFailedRunLeavesNoPartialOutput) {
   }
 }
 
+// With "auto" the outputs are opened while the windows are chosen (a thread of their own):
+// an output that cannot be made is the same one error line as with an estimator that has no
+// choice to make (opened after the reading), and the output opened beside it is removed.
+TEST(BagTest, AnOutputOpenedBesideTheChoiceFailsAsAlone) {
+  const std::string in = write_bag("beside.bag", 100, 1.0);
+  std::string errors[2];
+  for (const bool automatic : {true, false}) {
+    mbk_offline::BagOptions o = options(in, temp("beside_out.bag"));
+    o.out_h5 = "/nonexistent/dir/x.h5";
+    o.estimator = automatic ? "auto" : "centered_0.4s_4";
+    errors[automatic] = error_of(o);
+    EXPECT_NE(errors[automatic].find("/nonexistent/dir/x.h5: cannot create a file beside it"),
+              std::string::npos)
+        << errors[automatic];
+    EXPECT_FALSE(std::ifstream(temp("beside_out.bag")).good());
+    const std::string ls = "ls " + temp("beside_out.bag") + ".mbk-tmp-* >/dev/null 2>&1";
+    EXPECT_NE(std::system(ls.c_str()), 0) << "a temporary file left";
+  }
+  EXPECT_EQ(errors[0], errors[1]);
+}
+
 // Odometry whose quaternion components are finite but huge (1e200 times a unit
 // one) is the same rotation, not ignored.
 TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
