@@ -322,11 +322,12 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 
 // The streamed path's input: its accepted rows (RecordingBuilder's sink), handed in order to each
 // pass. The first pass reads the input and keeps the rows (up to kKeptRowBytes); the later passes
-// replay them, or read the input again when it was longer. Reads of a bag: two when its rows fit
-// (read_bag's check in a child process, then the first pass), else one more per later pass (the
-// passes: the survey; the stamps' grid check, and the survey again when they are moved onto the
-// grid; with jittered stamps, the stamps once more; "auto"'s choice; the computing); of a CSV or
-// BVH file, one when its rows fit (a BVH input that is the model file: none, read_input).
+// replay them, or read the input again when it was longer. Reads of a bag: one when its rows fit
+// (by read_bag's check in a child process, which hands the first pass the messages), else one
+// more per later pass (the passes: the survey; the stamps' grid check, and the survey again when
+// they are moved onto the grid; with jittered stamps, the stamps once more; "auto"'s choice; the
+// computing); of a CSV or BVH file, one when its rows fit (a BVH input that is the model file:
+// none, read_input).
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
