@@ -60,11 +60,19 @@ target_compile_definitions(auto_lengths_test PRIVATE MBK_SOURCE_DIR="${PROJECT_S
 catkin_add_gtest(legend_test test/viz/legend_test.cc)
 target_link_libraries(legend_test mbk_viz gtest_main)
 
+# The integration tests' shared helpers (test/ros/ros_test_support.h), compiled once: in the
+# header, their subscriptions' templates were compiled again in each of the tests below.
+add_library(mbk_ros_test_support STATIC EXCLUDE_FROM_ALL test/ros/ros_test_support.cc)
+add_dependencies(mbk_ros_test_support mb_kinematics_msgs_generate_messages_cpp)
+target_link_libraries(mbk_ros_test_support mbk_io mbk_core ${catkin_LIBRARIES} ${GTEST_LIBRARIES})
+target_compile_definitions(mbk_ros_test_support PRIVATE GTEST_HAS_PTHREAD=1
+  MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}" MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 foreach(name node pairing rsp_compare markers hostile frame_prefix system base_odometry reload
     two_robots missing deep_partials)
   add_rostest_gtest(${name}_test test/ros/${name}.test test/ros/${name}_test.cc)
   add_dependencies(${name}_test mb_kinematics_node mb_kinematics_msgs_generate_messages_cpp)
-  target_link_libraries(${name}_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES})
+  target_link_libraries(${name}_test mbk_ros_test_support mbk_ros mbk_io mbk_core
+    ${catkin_LIBRARIES})
   target_compile_definitions(${name}_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>")
 endforeach()
@@ -88,8 +96,8 @@ add_dependencies(tests real_robots_test)
 add_dependencies(real_robots_test mb_kinematics_node mbk mbk_bag
   mb_kinematics_msgs_generate_messages_cpp)
 target_include_directories(real_robots_test SYSTEM PRIVATE ${GTEST_INCLUDE_DIRS})
-target_link_libraries(real_robots_test mbk_ros mbk_io mbk_core ${catkin_LIBRARIES}
-  ${GTEST_LIBRARIES})
+target_link_libraries(real_robots_test mbk_ros_test_support mbk_ros mbk_io mbk_core
+  ${catkin_LIBRARIES} ${GTEST_LIBRARIES})
 target_compile_definitions(real_robots_test PRIVATE MBK_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
   MBK_NODE_PATH="$<TARGET_FILE:mb_kinematics_node>" MBK_MBK_PATH="$<TARGET_FILE:mbk>")
 foreach(robot panda anymal_c solo12 romeo_small pr2 baxter)
@@ -123,7 +131,7 @@ mbk_test_compile(mbk_ros_test_headers joint_state_input_test node_input_test
   kinematics_markers_test glyph_limits_test legend_test node_test pairing_test rsp_compare_test
   markers_test hostile_test frame_prefix_test system_test base_odometry_test reload_test
   two_robots_test missing_test deep_partials_test bvh_launch_test real_robots_test
-  nodelet_load_test bag_test output_file_test auto_lengths_test)
+  nodelet_load_test bag_test output_file_test auto_lengths_test mbk_ros_test_support)
 
 # scripts/node_load.sh end to end on its own master (port 11523), the node and transport_floor
 # (MBK_WORKSPACE: test/tests.cmake).
