@@ -50,8 +50,36 @@ template <>
 struct Lanes<v4::V4> {  // body_update's registers: a 3-vector in four lanes, S0K in three
   using S = double;
   using Rotation = v4::Cols;
-  MBK_AVX2 static void load(const Vec3<double>& x, v4::V4& out) { out = v4::load3(x.data()); }
+  using Held = v4::V4;
+  // Data's vector x loaded (kRead), or a zero register to compute it in.
+  template <bool kRead = true>
+  MBK_AVX2 static v4::V4 hold(const Vec3<double>& x) {
+    if constexpr (kRead) return v4::load3(x.data());
+    return v4::V4{};
+  }
   MBK_AVX2 static void store(Vec3<double>& x, const v4::V4& v) { v4::store3(x.data(), v); }
+  using Point = PointMotion<v4::V4>;
+  // Body k's point of `arrays` at level L, loaded.
+  template <Level L>
+  MBK_AVX2 static Point point(const PointArrays<double>& arrays, int k) {
+    Point m;
+    m.position = hold(arrays.position[k]);
+    if constexpr (L != Level::kPose) m.velocity = hold(arrays.velocity[k]);
+    if constexpr (L == Level::kAcceleration) m.acceleration = hold(arrays.acceleration[k]);
+    return m;
+  }
+  // The point body_update makes from `from`: made in from's registers (fixed_point_into in place),
+  // then stored by store_point.
+  template <Level L>
+  MBK_AVX2 static Point& target(const PointArrays<double>&, int, Point& from) {
+    return from;
+  }
+  template <Level L>
+  MBK_AVX2 static void store_point(const PointArrays<double>& arrays, int k, const Point& m) {
+    store(arrays.position[k], m.position);
+    if constexpr (L != Level::kPose) store(arrays.velocity[k], m.velocity);
+    if constexpr (L == Level::kAcceleration) store(arrays.acceleration[k], m.acceleration);
+  }
   // rho = S0K r_k from the registers, or from Data where body_update reorthonormalized S0K.
   MBK_AVX2 static void mass_center_offset(const BodyStep& b, const Mat3<double>& s0k,
                                           const v4::Cols& turned, v4::V4& rho) {
