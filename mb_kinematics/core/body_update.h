@@ -12,20 +12,22 @@ namespace mbk {
 namespace detail {
 
 // Where body_update keeps the vectors of Data it reads and writes while it works on body k.
-// Here, for Eigen's Vec3<S>: in Data itself. A Held vector and a Point are references into Data,
-// so each result is written where it belongs as it is computed and the stores have nothing left
-// to do; the kernels' S0K is read back from data.rotation[k]. The AVX2 copy's four-lane vectors
-// (fast_kernels_avx2.h) specialize it: registers, loaded by hold and point, written back to Data
+// Here, for Eigen's Vec3<S>: in Data itself. Spin and Point are references into Data, so each
+// result is written where it belongs as it is computed and the stores have nothing left to do;
+// the kernels' S0K is read back from data.rotation[k]. The AVX2 copy's four-lane vectors
+// (fast_kernels_avx2.h) specialize it: registers, loaded by spin and point, written back to Data
 // by store and store_point, S0K kept in them.
 template <typename V>
 struct Lanes {
   using S = typename V::Scalar;
   struct Rotation {};  // S0K as the kernel holds it: only in data.rotation[k]
-  using Held = V&;     // a vector of Data as body_update holds it: Data's own
-  // Data's vector x, to read (kRead: its value is used at this level) or to write.
-  template <bool kRead = true>
-  static V& hold(V& x) {
-    return x;
+  struct Spin {        // a body's angular velocity omega and acceleration alpha: Data's own
+    V &omega, &alpha;
+  };
+  // Body k's omega and alpha at level L, to read (kRead) or to write.
+  template <Level L, bool kRead>
+  static Spin spin(const DataView<S>& data, int k) {
+    return {data.omega[k], data.alpha[k]};
   }
   static void store(V&, const V&) {}  // Data's x = v: already there
   struct Point {                      // a point's position, velocity and acceleration: Data's own
@@ -83,10 +85,6 @@ void copy_point(const P& p, Q& q) {
 // with its velocity and acceleration (fixed_point_into). A zero d or r_k leaves the point as it
 // was. Body j = L(k)'s vectors are read and body k's written as Lanes holds them: Data's own
 // (Eigen's), or registers loaded and then stored (the AVX2 copy's).
-// The AVX2 copy's hold returns a register from code not compiled for AVX, which GCC warns changes
-// the ABI of a call: every such call is inlined into the AVX2 kernel (revolute_step).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wpsabi"
 template <Level L, JointMoves M, typename V, typename S>
 void body_update(const BodyStep& b, int k, const JointTerms<V>& t, const DataView<S>& data) {
   using Lane = Lanes<V>;
@@ -96,10 +94,10 @@ void body_update(const BodyStep& b, int k, const JointTerms<V>& t, const DataVie
   constexpr bool kMoving = L != Level::kPose, kAccelerating = L == Level::kAcceleration;
   const int j = b.lower;
   if (b.reorthonormalize) reorthonormalize(data.rotation[k]);  // doc/method.md 4, orientation
-  typename Lane::Held omega_j = Lane::template hold<kMoving>(data.omega[j]);  // read
-  typename Lane::Held alpha_j = Lane::template hold<kAccelerating>(data.alpha[j]);
-  typename Lane::Held omega_k = Lane::template hold<false>(data.omega[k]);  // written
-  typename Lane::Held alpha_k = Lane::template hold<false>(data.alpha[k]);
+  typename Lane::Spin spin_j = Lane::template spin<L, true>(data, j);   // read
+  typename Lane::Spin spin_k = Lane::template spin<L, false>(data, k);  // written
+  auto &omega_j = spin_j.omega, &alpha_j = spin_j.alpha;
+  auto &omega_k = spin_k.omega, &alpha_k = spin_k.alpha;
   if constexpr (kMoving) {
     if constexpr (kTurns)
       omega_k = omega_j + t.w;  // eq. 4.4.6
@@ -145,7 +143,6 @@ void body_update(const BodyStep& b, int k, const JointTerms<V>& t, const DataVie
   }
   Lane::template store_point<L>(centers, k, g_k);
 }
-#pragma GCC diagnostic pop
 
 }  // namespace detail
 }  // namespace mbk

@@ -50,12 +50,16 @@ template <>
 struct Lanes<v4::V4> {  // body_update's registers: a 3-vector in four lanes, S0K in three
   using S = double;
   using Rotation = v4::Cols;
-  using Held = v4::V4;
-  // Data's vector x loaded (kRead), or a zero register to compute it in.
-  template <bool kRead = true>
-  MBK_AVX2 static v4::V4 hold(const Vec3<double>& x) {
-    if constexpr (kRead) return v4::load3(x.data());
-    return v4::V4{};
+  struct Spin {
+    v4::V4 omega{}, alpha{};
+  };
+  // Body k's omega and alpha at level L loaded (kRead), or zero registers to compute them in.
+  template <Level L, bool kRead>
+  MBK_AVX2 static Spin spin(const DataView<double>& data, int k) {
+    Spin m;
+    if constexpr (kRead && L != Level::kPose) m.omega = v4::load3(data.omega[k].data());
+    if constexpr (kRead && L == Level::kAcceleration) m.alpha = v4::load3(data.alpha[k].data());
+    return m;
   }
   MBK_AVX2 static void store(Vec3<double>& x, const v4::V4& v) { v4::store3(x.data(), v); }
   using Point = PointMotion<v4::V4>;
@@ -63,9 +67,10 @@ struct Lanes<v4::V4> {  // body_update's registers: a 3-vector in four lanes, S0
   template <Level L>
   MBK_AVX2 static Point point(const PointArrays<double>& arrays, int k) {
     Point m;
-    m.position = hold(arrays.position[k]);
-    if constexpr (L != Level::kPose) m.velocity = hold(arrays.velocity[k]);
-    if constexpr (L == Level::kAcceleration) m.acceleration = hold(arrays.acceleration[k]);
+    m.position = v4::load3(arrays.position[k].data());
+    if constexpr (L != Level::kPose) m.velocity = v4::load3(arrays.velocity[k].data());
+    if constexpr (L == Level::kAcceleration)
+      m.acceleration = v4::load3(arrays.acceleration[k].data());
     return m;
   }
   // The point body_update makes from `from`: made in from's registers (fixed_point_into in place),
