@@ -11,16 +11,42 @@
 namespace mbk {
 namespace detail {
 
-// How body_update holds a 3-vector V while it works, and reads and writes Data's: here Eigen's
-// Vec3<S>, the kernels' S0K read back from data.rotation[k]. The AVX2 copy's four-lane vectors
-// (fast_kernels_avx2.h) specialize it: loads and stores of registers, S0K kept in them (each
-// result written to `out`, as CrossProduct's, point_kinematics.h).
+// Where body_update keeps the vectors of Data it reads and writes while it works on body k.
+// Here, for Eigen's Vec3<S>: in Data itself. Spin and Point are references into Data, so each
+// result is written where it belongs as it is computed and the stores have nothing left to do;
+// the kernels' S0K is read back from data.rotation[k]. The AVX2 copy's four-lane vectors
+// (fast_kernels_avx2.h) specialize it: registers, loaded by spin and point, written back to Data
+// by store and store_point, S0K kept in them.
 template <typename V>
 struct Lanes {
   using S = typename V::Scalar;
   struct Rotation {};  // S0K as the kernel holds it: only in data.rotation[k]
-  static void load(const V& x, V& out) { out = x; }
-  static void store(V& x, const V& v) { x = v; }
+  struct Spin {        // a body's angular velocity omega and acceleration alpha: Data's own
+    V &omega, &alpha;
+  };
+  // Body k's omega and alpha at level L, to read (kRead) or to write.
+  template <Level L, bool kRead>
+  static Spin spin(const DataView<S>& data, int k) {
+    return {data.omega[k], data.alpha[k]};
+  }
+  static void store(V&, const V&) {}  // Data's x = v: already there
+  struct Point {                      // a point's position, velocity and acceleration: Data's own
+    V &position, &velocity, &acceleration;
+  };
+  // Body k's point of `arrays` (its origin or mass center) at level L, to read.
+  template <Level L>
+  static Point point(const PointArrays<S>& arrays, int k) {
+    return {arrays.position[k], arrays.velocity[k], arrays.acceleration[k]};
+  }
+  // The point body_update makes from the point `from` and then stores as body k's point of
+  // `arrays`: body k's point in Data.
+  template <Level L>
+  static Point target(const PointArrays<S>& arrays, int k, Point&) {
+    return point<L>(arrays, k);
+  }
+  // Data's body k's point of `arrays` = p at level L: already there.
+  template <Level L>
+  static void store_point(const PointArrays<S>&, int, const Point&) {}
   // rho = S0K r_k (doc/method.md 4, mass center), S0K once body_update has it in data.rotation[k].
   static void mass_center_offset(const BodyStep& b, const Mat3<S>& s0k, const Rotation&, V& rho) {
     rho = times_constant(s0k, b.mass_center, b.mass_center_shape);
@@ -45,73 +71,77 @@ constexpr int kAxis = K == JointKernel::kRevoluteX   ? 0
                       : K == JointKernel::kRevoluteY ? 1
                                                      : 2;
 
-// The point of body k (origin or mass center) at level L from Data, and back (the parts L leaves
-// out are neither read nor written).
-template <Level L, typename V, typename S>
-PointMotion<V> load_point(const PointArrays<S>& arrays, int k) {
-  PointMotion<V> m;
-  Lanes<V>::load(arrays.position[k], m.position);
-  if constexpr (L != Level::kPose) Lanes<V>::load(arrays.velocity[k], m.velocity);
-  if constexpr (L == Level::kAcceleration) Lanes<V>::load(arrays.acceleration[k], m.acceleration);
-  return m;
-}
-
-template <Level L, typename V, typename S>
-void store_point(const PointArrays<S>& arrays, int k, const PointMotion<V>& m) {
-  Lanes<V>::store(arrays.position[k], m.position);
-  if constexpr (L != Level::kPose) Lanes<V>::store(arrays.velocity[k], m.velocity);
-  if constexpr (L == Level::kAcceleration) Lanes<V>::store(arrays.acceleration[k], m.acceleration);
+// q = p at level L (the parts L leaves out neither read nor written).
+template <Level L, typename P, typename Q>
+void copy_point(const P& p, Q& q) {
+  q.position = p.position;
+  if constexpr (L != Level::kPose) q.velocity = p.velocity;
+  if constexpr (L == Level::kAcceleration) q.acceleration = p.acceleration;
 }
 
 // Body k once its joint has put S0K = S0J SJK into data.rotation[k] (doc/method.md 4): its
 // angular velocity and acceleration, its origin O_k (the point at d of Bj, moved by S0J s_k' when
 // the joint translates) and its mass center G_k (the point at rho = S0K r_k of Bk), each point
-// with its velocity and acceleration (fixed_point). A zero d or r_k leaves the point as it was.
+// with its velocity and acceleration (fixed_point_into). A zero d or r_k leaves the point as it
+// was. Body j = L(k)'s vectors are read and body k's written as Lanes holds them: Data's own
+// (Eigen's), or registers loaded and then stored (the AVX2 copy's).
 template <Level L, JointMoves M, typename V, typename S>
 void body_update(const BodyStep& b, int k, const JointTerms<V>& t, const DataView<S>& data) {
   using Lane = Lanes<V>;
   using Cross = CrossProduct<V>;
   constexpr bool kTurns = M == JointMoves::kTurns || M == JointMoves::kTurnsAndTranslates;
   constexpr bool kTranslates = M == JointMoves::kTranslates || M == JointMoves::kTurnsAndTranslates;
+  constexpr bool kMoving = L != Level::kPose, kAccelerating = L == Level::kAcceleration;
   const int j = b.lower;
   if (b.reorthonormalize) reorthonormalize(data.rotation[k]);  // doc/method.md 4, orientation
-  V omega_j{}, alpha_j{}, omega_k{}, alpha_k{};
-  if constexpr (L != Level::kPose) {
-    Lane::load(data.omega[j], omega_j);
-    omega_k = omega_j;
-    if constexpr (kTurns) omega_k = omega_j + t.w;  // eq. 4.4.6
+  typename Lane::Spin spin_j = Lane::template spin<L, true>(data, j);   // read
+  typename Lane::Spin spin_k = Lane::template spin<L, false>(data, k);  // written
+  auto &omega_j = spin_j.omega, &alpha_j = spin_j.alpha;
+  auto &omega_k = spin_k.omega, &alpha_k = spin_k.alpha;
+  if constexpr (kMoving) {
+    if constexpr (kTurns)
+      omega_k = omega_j + t.w;  // eq. 4.4.6
+    else
+      omega_k = omega_j;
     Lane::store(data.omega[k], omega_k);
   }
-  if constexpr (L == Level::kAcceleration) {
-    Lane::load(data.alpha[j], alpha_j);
-    alpha_k = alpha_j;
+  if constexpr (kAccelerating) {
     if constexpr (kTurns) {
       V omega_w;
       Cross::of(omega_j, t.w, omega_w);
       alpha_k = (alpha_j + t.wd) + omega_w;  // eq. 4.5.1
+    } else {
+      alpha_k = alpha_j;
     }
     Lane::store(data.alpha[k], alpha_k);
   }
   const PointArrays<S> origins = data.origins();
-  PointMotion<V> o = load_point<L, V>(origins, j);  // O_k = O_j when d = 0
+  typename Lane::Point o_j = Lane::template point<L>(origins, j);
+  auto&& o_k = Lane::template target<L>(origins, k, o_j);  // Data's O_k, or o_j's registers
   if (kTranslates || b.offset_shape != VectorShape::kZero) {
-    o = fixed_point<L>(o, omega_j, alpha_j, t.d);  // eq. 4.6.2: o_k = o_j + d_k, point d of Bj
-    if constexpr (kTranslates && L != Level::kPose) {
-      o.velocity = o.velocity + t.sd;             // doc/method.md 4, origin velocity
-      if constexpr (L == Level::kAcceleration) {  // and acceleration
+    fixed_point_into<L>(o_j, omega_j, alpha_j, t.d, o_k);  // eq. 4.6.2: o_k = o_j + d_k
+    if constexpr (kTranslates && kMoving) {
+      o_k.velocity = o_k.velocity + t.sd;  // doc/method.md 4, origin velocity
+      if constexpr (kAccelerating) {       // and acceleration
         V omega_sd;
         Cross::of(omega_j, t.sd, omega_sd);
-        o.acceleration = o.acceleration + (typename Lane::S(2) * omega_sd + t.sdd);
+        o_k.acceleration = o_k.acceleration + (typename Lane::S(2) * omega_sd + t.sdd);
       }
     }
+  } else {
+    copy_point<L>(o_j, o_k);  // O_k = O_j
   }
-  store_point<L>(origins, k, o);
-  if (b.mass_center_shape != VectorShape::kZero) {  // else G_k = O_k
-    V rho;                                          // S0K r_k (doc/method.md 4, mass center)
+  Lane::template store_point<L>(origins, k, o_k);
+  const PointArrays<S> centers = data.centers();
+  auto&& g_k = Lane::template target<L>(centers, k, o_k);  // Data's G_k, or o_k's registers
+  if (b.mass_center_shape != VectorShape::kZero) {
+    V rho;  // S0K r_k (doc/method.md 4, mass center)
     Lane::mass_center_offset(b, data.rotation[k], t.s0k, rho);
-    o = fixed_point<L>(o, omega_k, alpha_k, rho);
+    fixed_point_into<L>(o_k, omega_k, alpha_k, rho, g_k);
+  } else {
+    copy_point<L>(o_k, g_k);  // G_k = O_k
   }
-  store_point<L>(data.centers(), k, o);
+  Lane::template store_point<L>(centers, k, g_k);
 }
 
 }  // namespace detail

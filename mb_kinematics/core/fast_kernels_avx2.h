@@ -50,8 +50,41 @@ template <>
 struct Lanes<v4::V4> {  // body_update's registers: a 3-vector in four lanes, S0K in three
   using S = double;
   using Rotation = v4::Cols;
-  MBK_AVX2 static void load(const Vec3<double>& x, v4::V4& out) { out = v4::load3(x.data()); }
+  struct Spin {
+    v4::V4 omega{}, alpha{};
+  };
+  // Body k's omega and alpha at level L loaded (kRead), or zero registers to compute them in.
+  template <Level L, bool kRead>
+  MBK_AVX2 static Spin spin(const DataView<double>& data, int k) {
+    Spin m;
+    if constexpr (kRead && L != Level::kPose) m.omega = v4::load3(data.omega[k].data());
+    if constexpr (kRead && L == Level::kAcceleration) m.alpha = v4::load3(data.alpha[k].data());
+    return m;
+  }
   MBK_AVX2 static void store(Vec3<double>& x, const v4::V4& v) { v4::store3(x.data(), v); }
+  using Point = PointMotion<v4::V4>;
+  // Body k's point of `arrays` at level L, loaded.
+  template <Level L>
+  MBK_AVX2 static Point point(const PointArrays<double>& arrays, int k) {
+    Point m;
+    m.position = v4::load3(arrays.position[k].data());
+    if constexpr (L != Level::kPose) m.velocity = v4::load3(arrays.velocity[k].data());
+    if constexpr (L == Level::kAcceleration)
+      m.acceleration = v4::load3(arrays.acceleration[k].data());
+    return m;
+  }
+  // The point body_update makes from `from`: made in from's registers (fixed_point_into in place),
+  // then stored by store_point.
+  template <Level L>
+  MBK_AVX2 static Point& target(const PointArrays<double>&, int, Point& from) {
+    return from;
+  }
+  template <Level L>
+  MBK_AVX2 static void store_point(const PointArrays<double>& arrays, int k, const Point& m) {
+    store(arrays.position[k], m.position);
+    if constexpr (L != Level::kPose) store(arrays.velocity[k], m.velocity);
+    if constexpr (L == Level::kAcceleration) store(arrays.acceleration[k], m.acceleration);
+  }
   // rho = S0K r_k from the registers, or from Data where body_update reorthonormalized S0K.
   MBK_AVX2 static void mass_center_offset(const BodyStep& b, const Mat3<double>& s0k,
                                           const v4::Cols& turned, v4::V4& rho) {

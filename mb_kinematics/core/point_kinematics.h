@@ -29,11 +29,12 @@ struct CrossProduct {
 
 // P at rho from the point O of a body turning at omega, alpha, O moving as `o` (doc/method.md 4,
 // mass center): p = o + rho, v = v_o + omega x rho, a = a_o + alpha x rho + omega x (omega x rho).
-// L: kPose gives p alone, kVelocity p and v.
-template <Level L = Level::kAcceleration, typename V>
-PointMotion<V> fixed_point(const PointMotion<V>& o, const V& omega, const V& alpha, const V& rho) {
+// L: kPose gives p alone, kVelocity p and v. O and P: a point's position, velocity and
+// acceleration (a PointMotion, or the recursion's references into Data: body_update.h); P may be
+// O itself (each part of O is read before P's is written).
+template <Level L = Level::kAcceleration, typename O, typename V, typename P>
+void fixed_point_into(const O& o, const V& omega, const V& alpha, const V& rho, P&& p) {
   using Cross = detail::CrossProduct<V>;
-  PointMotion<V> p;
   p.position = o.position + rho;
   if constexpr (L != Level::kPose) {
     V omega_rho, alpha_rho, omega_omega_rho;
@@ -45,6 +46,12 @@ PointMotion<V> fixed_point(const PointMotion<V>& o, const V& omega, const V& alp
       p.acceleration = (o.acceleration + alpha_rho) + omega_omega_rho;
     }
   }
+}
+
+template <Level L = Level::kAcceleration, typename V>
+PointMotion<V> fixed_point(const PointMotion<V>& o, const V& omega, const V& alpha, const V& rho) {
+  PointMotion<V> p;
+  fixed_point_into<L>(o, omega, alpha, rho, p);
   return p;
 }
 
