@@ -1085,17 +1085,23 @@ std::vector<std::pair<std::size_t, std::size_t>> chunk_data(const std::string& b
   return chunks;
 }
 
+// write_bz2_bag's bag with 16 bytes of its middle chunk's data inverted, as `name`: its path.
+std::string write_damaged_chunk_bag(const std::string& name) {
+  std::string bytes = file_bytes(write_bz2_bag("undamaged_" + name));
+  const auto chunks = chunk_data(bytes);
+  EXPECT_GE(chunks.size(), 20u);
+  if (chunks.empty()) return temp(name);
+  const auto [at, length] = chunks[chunks.size() / 2];
+  for (std::size_t i = length / 4; i < length / 4 + 16; ++i) bytes[at + i] ^= '\xff';
+  std::ofstream(temp(name), std::ios::binary) << bytes;
+  return temp(name);
+}
+
 // A compressed chunk damaged in the middle of the bag (the joint states are read ahead on a
 // second thread): librosbag throws for each of its messages, which are counted unreadable and
 // skipped; the rest are read in order, and the output is the bag's without them, byte for byte.
 TEST(BagTest, ADamagedChunkLosesItsMessagesAlone) {
-  std::string bytes = file_bytes(write_bz2_bag("chunked.bag"));
-  const auto chunks = chunk_data(bytes);
-  ASSERT_GE(chunks.size(), 20u);
-  const auto [at, length] = chunks[chunks.size() / 2];
-  for (std::size_t i = length / 4; i < length / 4 + 16; ++i) bytes[at + i] ^= '\xff';
-  std::ofstream(temp("damaged_chunk.bag"), std::ios::binary) << bytes;
-  mbk_offline::BagOptions damaged = options(temp("damaged_chunk.bag"), "");
+  mbk_offline::BagOptions damaged = options(write_damaged_chunk_bag("damaged_chunk.bag"), "");
   damaged.out_csv = temp("damaged_chunk.csv");
   const mbk_offline::BagSummary s = mbk_offline::run_bag(damaged);
   ASSERT_GT(s.unreadable, 0);
@@ -1150,12 +1156,6 @@ bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
 TEST(BagTest, TheMessagesTheBagCheckHandsOverAreTheBagsOwn) {
   const mbk::Model model = mbk::load_model_file(kModel);
   const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
-  std::string damaged = file_bytes(write_bz2_bag("handed_chunked.bag"));
-  const auto chunks = chunk_data(damaged);
-  ASSERT_GE(chunks.size(), 20u);
-  const auto [at, length] = chunks[chunks.size() / 2];
-  for (std::size_t i = length / 4; i < length / 4 + 16; ++i) damaged[at + i] ^= '\xff';
-  std::ofstream(temp("handed_damaged.bag"), std::ios::binary) << damaged;
   const std::vector<std::string> bags = {
       write_bag("handed_plain.bag", 200, 2),
       write_mixed("handed_mixed.bag", "/joint_states",
@@ -1174,7 +1174,7 @@ TEST(BagTest, TheMessagesTheBagCheckHandsOverAreTheBagsOwn) {
                     js.name.resize(1u << 16, "x");
                     bag.write("/joint_states", ros::Time(t - 0.005), js);
                   }),
-      temp("handed_damaged.bag")};
+      write_damaged_chunk_bag("handed_damaged.bag")};
   for (const std::string& bag : bags) {
     const TakenFromBag handed = take_from_bag(bag, false), own = take_from_bag(bag, true);
     EXPECT_GT(handed.rec.rows(), 90) << bag;
