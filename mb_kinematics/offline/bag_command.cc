@@ -5,14 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
-#include <functional>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
-#include <system_error>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -278,41 +274,6 @@ void open_outputs(const BagOutputs& o, const std::string& input, const mbk::Mode
   out.base_model = &base_model;
 }
 
-// The outputs opened (files created under temporary names, the HDF5 file's datasets) on a thread
-// of their own while "auto" chooses its windows from the rows kept, which neither needs the other
-// for (`beside`; not when the input is read again: no two rosbag::Bag are made at once); else,
-// or when no thread starts, by finish(). finish() waits for it and rethrows what it threw;
-// the destructor waits for it (the caller's own error goes first, and its outputs are removed).
-class OpeningBeside {
- public:
-  OpeningBeside(std::function<void()> open, bool beside) : open_(std::move(open)) {
-    if (!beside) return;
-    try {
-      thread_ = std::thread([this] {
-        try {
-          open_();
-        } catch (...) {
-          error_ = std::current_exception();
-        }
-      });
-    } catch (const std::system_error&) {  // opened by finish()
-    }
-  }
-  ~OpeningBeside() {
-    if (thread_.joinable()) thread_.join();
-  }
-  void finish() {
-    if (!thread_.joinable()) return open_();
-    thread_.join();
-    if (error_) std::rethrow_exception(error_);
-  }
-
- private:
-  std::function<void()> open_;
-  std::exception_ptr error_;
-  std::thread thread_;
-};
-
 // Rows computed per OfflineStream chunk: a few blocks, small beside a long recording.
 constexpr int kStreamChunkRows = 8192;
 
@@ -322,12 +283,11 @@ constexpr std::size_t kKeptRowBytes = std::size_t{16} << 20;
 
 // The streamed path's input: its accepted rows (RecordingBuilder's sink), handed in order to each
 // pass. The first pass reads the input and keeps the rows (up to kKeptRowBytes); the later passes
-// replay them, or read the input again when it was longer. Reads of a bag: one when its rows fit
-// (by read_bag's check in a child process, which hands the first pass the messages), else one
-// more per later pass (the passes: the survey; the stamps' grid check, and the survey again when
-// they are moved onto the grid; with jittered stamps, the stamps once more; "auto"'s choice; the
-// computing); of a CSV or BVH file, one when its rows fit (a BVH input that is the model file:
-// none, read_input).
+// replay them, or read the input again when it was longer. Reads of a bag: two when its rows fit
+// (read_bag's check in a child process, then the first pass), else one more per later pass (the
+// passes: the survey; the stamps' grid check, and the survey again when they are moved onto the
+// grid; with jittered stamps, the stamps once more; "auto"'s choice; the computing); of a CSV or
+// BVH file, one when its rows fit (a BVH input that is the model file: none, read_input).
 class InputRows {
  public:
   using Sink = mbk::RecordingBuilder::RowSink;
@@ -352,8 +312,6 @@ class InputRows {
     stamp_rounding_ = builder.stamp_rounding();
     time_origin_ = builder.time_origin();
   }
-  // The passes after the first replay the rows kept: the input is not read again.
-  bool replays() const { return read_ && kept_.complete(); }
   // The reading's drops and notes (later passes read the same), and the samples read.
   mbk::DropLog& log() { return log_; }
   long samples_read() const { return samples_read_; }
@@ -421,24 +379,16 @@ bool run_streamed(const InputReading& reading, const BagOutputs& o, const BagCom
   const int threads = c.threads > 0 ? c.threads : mbk::default_thread_count();
   mbk::WholeRecording whole;
   whole.velocity_everywhere = survey.velocity_everywhere;
-  Outputs out;
-  {
-    OpeningBeside opening(
-        [&] {
-          open_outputs(o, reading.in.input, reading.file, model, "", estimator.automatic, about,
-                       out);
-        },
-        estimator.automatic && input.replays());
-    if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
-      mbk::AutoChoosePass choose(model, survey, s.max_gap, kStreamChunkRows, threads);
-      choose.set_stamp_grid(grid);
-      input.pass([&](double t, const double* p, const double* v,
-                     const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
-                 s);
-      whole = choose.finish(reach);
-    }
-    opening.finish();  // its error after the choice's, as when it came after it
+  if (estimator.automatic) {  // the whole recording's choices, and the estimating pass's reach
+    mbk::AutoChoosePass choose(model, survey, s.max_gap, kStreamChunkRows, threads);
+    choose.set_stamp_grid(grid);
+    input.pass([&](double t, const double* p, const double* v,
+                   const std::uint8_t*) { choose.add(grid.snap(t), p, v); },
+               s);
+    whole = choose.finish(reach);
   }
+  Outputs out;
+  open_outputs(o, reading.in.input, reading.file, model, "", estimator.automatic, about, out);
   out.set_time_origin(input.time_origin());
   mbk::OfflineStream stream(
       model, estimator, reach, s.max_gap, std::move(whole), threads, kStreamChunkRows,

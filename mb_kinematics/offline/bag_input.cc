@@ -5,7 +5,6 @@
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/JointState.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,12 +12,10 @@
 #include <cerrno>
 #include <cmath>
 #include <condition_variable>
-#include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <memory>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -182,27 +179,6 @@ void copy_bytes(const rosbag::MessageInstance& m, std::vector<std::uint8_t>& byt
   m.write(sink);
 }
 
-// Why message m is not an M (its type or its definition's md5), or "".
-template <typename M>
-std::string type_error(const rosbag::MessageInstance& m) {
-  const char* type = ros::message_traits::datatype<M>();
-  if (m.getDataType() != type || m.getMD5Sum() != ros::message_traits::md5sum<M>())
-    return "a " + m.getDataType() + " message (md5 " + m.getMD5Sum() + "), not " + type;
-  return "";
-}
-
-// A message of type M from its serialized bytes, checked first: why it could not be read, or "".
-template <typename M>
-std::string from_bytes(const std::vector<std::uint8_t>& bytes, const std::vector<Field>& fields,
-                       M& out) {
-  const std::string error = ByteWalk(bytes.data(), bytes.size()).check(fields);
-  if (!error.empty()) return error;
-  ros::serialization::IStream in(const_cast<std::uint8_t*>(bytes.data()),
-                                 static_cast<uint32_t>(bytes.size()));
-  ros::serialization::deserialize(in, out);
-  return "";
-}
-
 // Reads messages from their bytes, checked before they are deserialized (a count of 2^32 names
 // in a damaged message would otherwise be allocated), into the recording or the odometry.
 class MessageReader {
@@ -235,23 +211,19 @@ class MessageReader {
       return e.what();
     }
   }
-  // The same from a joint state message's bytes, read by the bag check's child process.
-  static std::string joint_state_from(const std::vector<std::uint8_t>& bytes,
-                                      sensor_msgs::JointState& js) {
-    try {
-      return from_bytes(bytes, kJointStateFields, js);
-    } catch (const std::exception& e) {
-      return e.what();
-    }
-  }
 
  private:
   template <typename M>
   std::string load(const rosbag::MessageInstance& m, const std::vector<Field>& fields, M& out) {
-    const std::string error = type_error<M>(m);
-    if (!error.empty()) return error;
+    const char* type = ros::message_traits::datatype<M>();
+    if (m.getDataType() != type || m.getMD5Sum() != ros::message_traits::md5sum<M>())
+      return "a " + m.getDataType() + " message (md5 " + m.getMD5Sum() + "), not " + type;
     copy_bytes(m, bytes_);
-    return from_bytes(bytes_, fields, out);
+    const std::string error = ByteWalk(bytes_.data(), bytes_.size()).check(fields);
+    if (!error.empty()) return error;
+    ros::serialization::IStream in(bytes_.data(), static_cast<uint32_t>(bytes_.size()));
+    ros::serialization::deserialize(in, out);
+    return "";
   }
 
   std::vector<std::uint8_t> bytes_;
@@ -282,221 +254,38 @@ void check_record_lengths(const std::string& path) {
   }
 }
 
-// Bytes to a socket, a buffer at a time; once a write fails (the reader gone), the rest are
-// dropped (failed()). No SIGPIPE: the parent's thread writes too.
-class PipeOut {
- public:
-  explicit PipeOut(int fd) : fd_(fd) {}
-  void bytes(const void* data, std::size_t n) {
-    const char* p = static_cast<const char*>(data);
-    buffer_.insert(buffer_.end(), p, p + n);
-    if (buffer_.size() >= kFlushBytes) flush();
-  }
-  void tag(char t) { bytes(&t, 1); }
-  void number(std::uint64_t v) { bytes(&v, sizeof v); }
-  void text(const std::string& t) { number(t.size()), bytes(t.data(), t.size()); }
-  void flush() {
-    for (std::size_t at = 0; at < buffer_.size() && !failed_;) {
-      const ssize_t n = ::send(fd_, buffer_.data() + at, buffer_.size() - at, MSG_NOSIGNAL);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) failed_ = true;
-      at += n > 0 ? static_cast<std::size_t>(n) : 0;
-    }
-    buffer_.clear();
-  }
-  bool failed() const { return failed_; }
-
- private:
-  static constexpr std::size_t kFlushBytes = 1 << 16;
-  int fd_;
-  std::vector<char> buffer_;
-  bool failed_ = false;
-};
-
-// Bytes from a socket, a buffer at a time; false at its end (or on an error).
-class PipeIn {
- public:
-  explicit PipeIn(int fd) : fd_(fd), buffer_(1 << 16) {}
-  bool bytes(void* out, std::size_t n) {
-    char* o = static_cast<char*>(out);
-    while (n > 0) {
-      if (at_ == end_ && !fill()) return false;
-      const std::size_t k = std::min(n, end_ - at_);
-      std::memcpy(o, buffer_.data() + at_, k);
-      o += k, at_ += k, n -= k;
-    }
-    return true;
-  }
-  bool tag(char& t) { return bytes(&t, 1); }
-  bool number(std::uint64_t& v) { return bytes(&v, sizeof v); }
-  template <typename Bytes>  // std::string or std::vector<std::uint8_t>
-  bool text(Bytes& t) {
-    std::uint64_t n = 0;
-    if (!number(n) || n > (std::uint64_t{1} << 32)) return false;
-    t.resize(n);
-    return n == 0 || bytes(&t[0], n);
-  }
-
- private:
-  bool fill() {
-    for (;;) {
-      const ssize_t n = ::read(fd_, buffer_.data(), buffer_.size());
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) return false;
-      at_ = 0, end_ = static_cast<std::size_t>(n);
-      return true;
-    }
-  }
-  int fd_;
-  std::vector<char> buffer_;
-  std::size_t at_ = 0, end_ = 0;
-};
-
-// The bag check: the whole bag read as read_bag will (its index, every chunk, every message's
-// bytes) in a child process first, since librosbag itself crashes on some damaged headers (a
-// flipped byte in a chunk or index record), and a crash there must be an error, not the end of
-// mbk. The child says when it has opened the bag and listed its connections ('O'; 'E': opening
-// threw, for the parent's own opening to report); the parent, which opens it then, either asks
-// for the messages of its joint states topics (stream: the child reads the bag once, for both,
-// and hands each message's bytes over a pipe as it reads them, then reads the rest of the bag
-// when those topics are not all of it) or for the check alone (done: the parent reads the bag
-// after it). The parent keeps nothing of what it read when the child crashes. Exceptions are left
-// to the real reading, which counts them. Each process makes its own rosbag::Bag (rosbag's plugin
-// loader, in Bag's constructor, crawls the package path), at the same time.
-class BagCheck {
- public:
-  // Starts the child; false when it cannot be isolated (no process, no socket): read it anyway.
-  bool start(const std::string& path) {
-    int ends[2];
-    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0) return false;
-    child_ = fork();
-    if (child_ == 0) {
-      ::close(ends[0]);
-      run_child(path, ends[1]);
-    }
-    ::close(ends[1]);
-    if (child_ < 0) return ::close(ends[0]), false;
-    fd_ = ends[0];
-    in_ = std::make_unique<PipeIn>(fd_);
-    return true;
-  }
-  ~BagCheck() {
-    if (child_ <= 0) return;
-    ::close(fd_);
-    kill(child_, SIGKILL);  // the parent failed first: its error is the one reported
-    int status = 0;
-    while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
-    }
-  }
-  bool running() const { return child_ > 0; }
-  // The child opened the bag and listed its connections (waits for it to say): so can the parent.
-  bool wait_until_opened() {
-    char said = 0;
-    return child_ > 0 && in_->tag(said) && said == 'O';
-  }
-  // Asks for the messages of `topics` (`whole`: they are every topic of the bag); in() takes
-  // them.
-  void stream(const std::vector<std::string>& topics, bool whole) {
-    PipeOut out(fd_);
-    out.tag(whole ? 'W' : 'S');
-    out.number(topics.size());
-    for (const std::string& t : topics) out.text(t);
-    out.flush();
-    ::shutdown(fd_, SHUT_WR);
-  }
-  PipeIn& in() { return *in_; }
-  // Waits for the child (the whole check, when the messages were not asked for); a crash is the
-  // error naming the bag.
-  void finish_or_refuse(const std::string& path) {
-    if (child_ <= 0) return;
-    ::shutdown(fd_, SHUT_WR);  // no request: the check alone
-    int status = 0;
-    while (waitpid(child_, &status, 0) < 0 && errno == EINTR) {
-    }
-    child_ = -1;
-    ::close(fd_);
-    if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))  // a sanitizer's
-      throw std::invalid_argument(path + ": damaged bag: reading it crashes librosbag (" +
-                                  (WIFSIGNALED(status)
-                                       ? "signal " + std::to_string(WTERMSIG(status))
-                                       : "exit " + std::to_string(WEXITSTATUS(status))) +
-                                  "); `rosbag reindex " + path + "` may recover it");
-  }
-
- private:
-  [[noreturn]] static void run_child(const std::string& path, int fd) {
-    PipeOut out(fd);
-    rosbag::Bag bag;
+// Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
+// child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
+// index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
+// the real reading, which counts them. `bag`: constructed, not open (the child opens its copy:
+// rosbag's plugin loader, in Bag's constructor, runs once for both).
+void survive_or_refuse(const std::string& path, rosbag::Bag& bag) {
+  const pid_t child = fork();
+  if (child < 0) return;  // cannot isolate: read it anyway
+  if (child == 0) {
     try {
       bag.open(path, rosbag::bagmode::Read);
-      rosbag::View(bag).getConnections();
-    } catch (...) {
-      out.tag('E'), out.flush();
-      _exit(0);
-    }
-    out.tag('O'), out.flush();
-    try {
-      PipeIn request(fd);
-      char what = 0;
-      std::uint64_t count = 0;
-      std::vector<std::string> topics;
-      if (request.tag(what) && request.number(count))
-        for (std::string t; topics.size() < count && request.text(t);) topics.push_back(t);
-      const bool streamed = (what == 'S' || what == 'W') && topics.size() == count;
-      if (streamed) stream_to(bag, topics, out);
-      if (!streamed || what != 'W') read_whole(bag);
+      std::vector<std::uint8_t> bytes;
+      for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+        try {  // as the real reading: past a message that throws, on to the next
+          copy_bytes(m, bytes);
+        } catch (const std::exception&) {
+        }
+      }
     } catch (...) {
     }
     _exit(0);
   }
-  // Every message of `topics`, in the order of their view: 'V' and the view's size, then per
-  // message 'M', its topic, time (s, ns), whether its bytes could be read and they or why not;
-  // 'D' at the end, or 'F', the messages read and rosbag's error where it failed part way.
-  static void stream_to(rosbag::Bag& bag, const std::vector<std::string>& topics, PipeOut& out) {
-    rosbag::View view(bag, rosbag::TopicQuery(topics));
-    out.tag('V'), out.number(view.size());
-    std::uint64_t done = 0;
-    std::vector<std::uint8_t> bytes;
-    std::string topic, error;
-    try {
-      for (const rosbag::MessageInstance& m : view) {
-        if (out.failed()) return;  // the parent stopped reading
-        topic = m.getTopic();
-        const ros::Time t = m.getTime();
-        try {
-          error = type_error<sensor_msgs::JointState>(m);
-          if (error.empty()) copy_bytes(m, bytes);
-        } catch (const std::exception& e) {
-          error = e.what();
-        }
-        out.tag('M'), out.text(topic), out.number(t.sec), out.number(t.nsec);
-        out.number(error.empty() ? 1 : 0);
-        if (error.empty())
-          out.number(bytes.size()), out.bytes(bytes.data(), bytes.size());
-        else
-          out.text(error);
-        ++done;
-      }
-      out.tag('D');
-    } catch (const std::exception& e) {  // rosbag's own exceptions: the index or a chunk
-      out.tag('F'), out.number(done), out.text(std::string(e.what()));
-    }
-    out.flush();
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0 && errno == EINTR) {
   }
-  static void read_whole(rosbag::Bag& bag) {
-    std::vector<std::uint8_t> bytes;
-    for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
-      try {  // as the real reading: past a message that throws, on to the next
-        copy_bytes(m, bytes);
-      } catch (const std::exception&) {
-      }
-    }
-  }
-
-  pid_t child_ = -1;
-  int fd_ = -1;  // the parent's end of the socket
-  std::unique_ptr<PipeIn> in_;
-};
+  if (WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) != 0))  // a sanitizer's
+    throw std::invalid_argument(path + ": damaged bag: reading it crashes librosbag (" +
+                                (WIFSIGNALED(status)
+                                     ? "signal " + std::to_string(WTERMSIG(status))
+                                     : "exit " + std::to_string(WEXITSTATUS(status))) +
+                                "); `rosbag reindex " + path + "` may recover it");
+}
 
 // The messages of a view of joint states alone, read ahead: rosbag's iteration, each message's
 // bytes checked and deserialized (MessageReader) on a second thread, a batch at a time, while the
@@ -518,23 +307,6 @@ class ReadAhead {
     }
     return true;
   }
-  // The same from the messages the bag check's child reads (BagCheck::stream): their bytes
-  // checked and deserialized on a second thread. False (nothing asked) when none can start.
-  bool start(BagCheck& check, const std::vector<std::string>& topics, bool whole) {
-    try {
-      reader_ = std::thread([this, &check, topics, whole] {
-        check.stream(topics, whole);
-        produce(check.in());
-      });
-    } catch (const std::exception&) {
-      return false;
-    }
-    return true;
-  }
-  // The messages in all (after the first batch is taken): the view's size.
-  long total() const { return total_; }
-  // The child's stream ended as it should ('D' or 'F'), not cut short.
-  bool ended() const { return ended_; }
   ~ReadAhead() {  // also when the caller's thread throws: the reading stops first
     if (!reader_.joinable()) return;
     {
@@ -597,43 +369,6 @@ class ReadAhead {
     }
     hand_over(b, true);
   }
-  // The messages the child hands over (BagCheck::stream_to), as produce(view) reads them.
-  void produce(PipeIn& in) {
-    long done = 0;
-    int b = 0;
-    std::uint64_t total = 0;
-    if (!wait_free(b)) return;
-    char tag = 0;
-    if (in.tag(tag) && tag == 'V' && in.number(total)) {
-      total_ = static_cast<long>(total);
-      std::string topic, error;
-      std::vector<std::uint8_t> bytes;
-      std::uint64_t sec = 0, nsec = 0, readable = 0, failed_after = 0;
-      while (in.tag(tag) && tag == 'M') {
-        if (!in.text(topic) || !in.number(sec) || !in.number(nsec) || !in.number(readable) ||
-            !(readable ? in.text(bytes) : in.text(error)))
-          break;
-        if (batches_[b].count == kBatch) {
-          hand_over(b, false);
-          b = 1 - b;
-          if (!wait_free(b)) return;
-        }
-        Message& message = batches_[b].messages[batches_[b].count++];
-        message.where.assign(topic).append(" message ").append(std::to_string(++done));
-        message.error = readable ? MessageReader::joint_state_from(bytes, message.js) : error;
-        if (message.error.empty())
-          message.stamp =
-              message.js.header.stamp.isZero()
-                  ? ros::Time(static_cast<std::uint32_t>(sec), static_cast<std::uint32_t>(nsec))
-                        .toSec()
-                  : message.js.header.stamp.toSec();
-      }
-      if (tag == 'D') ended_ = true;
-      if (tag == 'F' && in.number(failed_after) && in.text(error))
-        ended_ = true, failed_after_ = static_cast<long>(failed_after), failure_ = error;
-    }
-    hand_over(b, true);
-  }
   // Waits until batch b is taken (false: stop reading).
   bool wait_free(int b) {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -655,8 +390,6 @@ class ReadAhead {
   bool stop_ = false;
   long failed_after_ = -1;  // the reader's, read after join
   std::string failure_;
-  long total_ = 0;      // from the child: set before the first batch is handed over
-  bool ended_ = false;  // the reader's, read after join
   std::thread reader_;
 };
 
@@ -666,11 +399,8 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
               BaseOdometry& base, Unreadable& unreadable,
               const std::function<void(long, long)>& progress, bool checked) {
   mbk::check_regular_file(path, "the recording");  // a pipe or /dev/zero: read without end
-  BagCheck check;  // the child that reads the bag first (not when `checked`)
-  if (!checked) check_record_lengths(path), check.start(path);
   rosbag::Bag bag;
-  if (!check.wait_until_opened())
-    check.finish_or_refuse(path);  // a crash, or the opening's error below
+  if (!checked) check_record_lengths(path), survive_or_refuse(path, bag);
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {
@@ -690,67 +420,38 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
   }
   const Topics present = bag_topics(bag);
   std::map<std::string, Kind> kinds;
-  try {  // a topic missing: the bag's check first (a crash is the error)
-    for (const std::string& t : require(present, path, topics.joint_states, kJointState))
-      kinds[t] = Kind::kJointStates;
-    if (!topics.joint_accelerations.empty())
-      for (const std::string& t :
-           require(present, path, topics.joint_accelerations, kJointAccelerations))
-        kinds[t] = Kind::kAccelerations;
-    if (!topics.base_odometry.empty())
-      for (const std::string& t : require(present, path, topics.base_odometry, kOdometry))
-        kinds[t] = Kind::kOdometry;
-  } catch (const std::invalid_argument&) {
-    check.finish_or_refuse(path);
-    throw;
-  }
+  for (const std::string& t : require(present, path, topics.joint_states, kJointState))
+    kinds[t] = Kind::kJointStates;
+  if (!topics.joint_accelerations.empty())
+    for (const std::string& t :
+         require(present, path, topics.joint_accelerations, kJointAccelerations))
+      kinds[t] = Kind::kAccelerations;
+  if (!topics.base_odometry.empty())
+    for (const std::string& t : require(present, path, topics.base_odometry, kOdometry))
+      kinds[t] = Kind::kOdometry;
   std::vector<std::string> wanted;
   for (const auto& k : kinds) wanted.push_back(k.first);
+  rosbag::View view(bag, rosbag::TopicQuery(wanted));
+  const long total = view.size();
   long done = 0;
-  long total = 0;
-  const auto take = [&](const ReadAhead::Message& m) {
-    if (++done % 1024 == 0) progress(done, total);
-    if (m.error.empty())
-      builder.add(m.stamp, m.js.name, m.js.position, m.js.velocity, m.where);
-    else
-      unreadable.add(1, m.where + ": " + m.error);
-  };
-  const auto count_failure = [&](long failed_after, const std::string& failure) {
-    if (failed_after >= 0)
-      unreadable.add(std::max(1L, total - failed_after),
-                     path + ": after message " + std::to_string(failed_after) + " of " +
-                         std::to_string(total) + ": " + failure);
-    progress(total, total);
-  };
-  const bool joint_states_alone =
-      topics.joint_accelerations.empty() && topics.base_odometry.empty();
   ReadAhead ahead;  // joint states alone: read ahead on a second thread
-  if (joint_states_alone && check.running() &&
-      ahead.start(check, wanted, wanted.size() == present.size())) {
-    // The child reads the bag and hands over the messages: the bag is read once. What was read
-    // is thrown away when the child crashed (the error) or stopped short.
+  if (topics.joint_accelerations.empty() && topics.base_odometry.empty() && ahead.start(view)) {
     long failed_after = -1;
     std::string failure;
     ahead.consume(
         [&](const ReadAhead::Message& m) {
-          total = ahead.total();
-          take(m);
+          if (++done % 1024 == 0) progress(done, total);
+          if (m.error.empty())
+            builder.add(m.stamp, m.js.name, m.js.position, m.js.velocity, m.where);
+          else
+            unreadable.add(1, m.where + ": " + m.error);
         },
         failed_after, failure);
-    check.finish_or_refuse(path);
-    if (!ahead.ended())
-      throw std::runtime_error(path + ": the bag check's child process stopped reading it");
-    total = ahead.total();
-    return count_failure(failed_after, failure);
-  }
-  check.finish_or_refuse(path);  // the whole bag read safely before the parent reads it
-  rosbag::View view(bag, rosbag::TopicQuery(wanted));
-  total = view.size();
-  if (joint_states_alone && ahead.start(view)) {
-    long failed_after = -1;
-    std::string failure;
-    ahead.consume(take, failed_after, failure);
-    return count_failure(failed_after, failure);
+    if (failed_after >= 0)
+      unreadable.add(std::max(1L, total - failed_after),
+                     path + ": after message " + std::to_string(failed_after) + " of " +
+                         std::to_string(total) + ": " + failure);
+    return progress(total, total);
   }
   MessageReader reader;
   std::string where;  // reused: no allocation per message

@@ -132,11 +132,6 @@ std::string h5_reason() {
   return errno ? std::strerror(errno) : "HDF5 error";
 }
 
-// HDF5's errors are thrown, one line, not printed by the library: its setting is the calling
-// thread's (Debian's libhdf5 is thread-safe: one error stack per thread), so each call that may
-// be on another thread than the file's opening (mbk bag opens it beside "auto"'s choice) makes it.
-void unprinted_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
-
 }  // namespace
 
 // An identifier of the C API closed by its own function (outside the anonymous namespace: File's
@@ -297,7 +292,6 @@ struct H5Output::File {
   // (which zeroes a chunk, then copies the rows into it).
   void flush() {
     if (rows == 0) return;
-    unprinted_errors();
     for (Dataset& d : datasets) {
       std::vector<hsize_t> size{written + rows}, start{written}, count{rows};
       size.insert(size.end(), d.shape.begin(), d.shape.end());
@@ -332,7 +326,7 @@ H5Output::H5Output(const std::string& path, const std::string& shown, const mbk:
   // A file whose writing failed (a full disk) stays half-closed in the library, and its
   // termination at exit would crash on it: the process's end frees what is left instead.
   H5dont_atexit();
-  unprinted_errors();
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors are thrown, one line, not printed
   if (compression < 0 || compression > 9)
     throw std::invalid_argument("--h5-compression needs a level from 0 to 9");
   if (compression > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) <= 0)
@@ -387,8 +381,7 @@ H5Output::H5Output(const std::string& path, const std::string& shown, const mbk:
     f.batch[fields[i]] = f.datasets[first_batch + i].buffer.data();
 }
 
-// The identifiers are closed after this, silently.
-H5Output::~H5Output() { unprinted_errors(); }
+H5Output::~H5Output() = default;
 
 void H5Output::write(const mbk::OfflineRow& row, const mbk::Data<double>& data) {
   File& f = *file_;
@@ -410,7 +403,6 @@ void H5Output::set_time_origin(double seconds) {
 }
 
 void H5Output::close() {
-  unprinted_errors();
   File& f = *file_;
   if (f.closed) return;
   f.flush();

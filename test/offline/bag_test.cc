@@ -34,7 +34,6 @@
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/io/tidy_csv.h"
 #include "mb_kinematics/offline/bag_command.h"
-#include "mb_kinematics/offline/bag_input.h"
 #include "mb_kinematics/tools/bag_cli.h"
 #include "test/support/renamed_bvh.h"
 
@@ -880,27 +879,6 @@ TEST(BagTest, AFailedRunLeavesNoPartialOutput) {
   }
 }
 
-// With "auto" the outputs are opened while the windows are chosen (a thread of their own):
-// an output that cannot be made is the same one error line as with an estimator that has no
-// choice to make (opened after the reading), and the output opened beside it is removed.
-TEST(BagTest, AnOutputOpenedBesideTheChoiceFailsAsAlone) {
-  const std::string in = write_bag("beside.bag", 100, 1.0);
-  std::string errors[2];
-  for (const bool automatic : {true, false}) {
-    mbk_offline::BagOptions o = options(in, temp("beside_out.bag"));
-    o.out_h5 = "/nonexistent/dir/x.h5";
-    o.estimator = automatic ? "auto" : "centered_0.4s_4";
-    errors[automatic] = error_of(o);
-    EXPECT_NE(errors[automatic].find("/nonexistent/dir/x.h5: cannot create a file beside it"),
-              std::string::npos)
-        << errors[automatic];
-    EXPECT_FALSE(std::ifstream(temp("beside_out.bag")).good());
-    const std::string ls = "ls " + temp("beside_out.bag") + ".mbk-tmp-* >/dev/null 2>&1";
-    EXPECT_NE(std::system(ls.c_str()), 0) << "a temporary file left";
-  }
-  EXPECT_EQ(errors[0], errors[1]);
-}
-
 // Odometry whose quaternion components are finite but huge (1e200 times a unit
 // one) is the same rotation, not ignored.
 TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
@@ -1118,80 +1096,6 @@ TEST(BagTest, ADamagedChunkLosesItsMessagesAlone) {
   without.out_csv = temp("without.csv");
   EXPECT_EQ(mbk_offline::run_bag(without).read, s.read);
   EXPECT_EQ(file_bytes(damaged.out_csv), file_bytes(without.out_csv));
-}
-
-// What read_bag takes from a bag, everything compared below: the recording's rows, the log of
-// drops and notes, the messages it could not read.
-struct TakenFromBag {
-  mbk::Recording rec;
-  long read = 0;
-  mbk::DropLog log;
-  mbk_offline::Unreadable unreadable;
-};
-
-TakenFromBag take_from_bag(const std::string& path, bool checked) {
-  const mbk::Model model = mbk::load_model_file(kModel);
-  mbk::RecordingBuilder builder(model);
-  mbk_offline::BaseOdometry base;
-  TakenFromBag taken;
-  mbk_offline::read_bag(
-      path, {}, builder, base, taken.unreadable, [](long, long) {}, checked);
-  taken.rec = builder.finish();
-  taken.read = builder.samples_read();
-  taken.log = builder.log();
-  return taken;
-}
-
-template <typename T>
-bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-// The messages read_bag takes from the bag check's child process (the bag read once, by the
-// child) are those its own reading takes after the check (`checked`), bit for bit: on a bag of
-// joint states alone, one with messages of another type and another topic (the child reads the
-// rest of the bag after the messages), one with a message larger than the socket's buffer
-// (65,536 names: dropped, unequal lengths), one with a damaged chunk (the same messages lost,
-// the same first one named).
-TEST(BagTest, TheMessagesTheBagCheckHandsOverAreTheBagsOwn) {
-  const mbk::Model model = mbk::load_model_file(kModel);
-  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
-  const std::vector<std::string> bags = {
-      write_bag("handed_plain.bag", 200, 2),
-      write_mixed("handed_mixed.bag", "/joint_states",
-                  [](int i, double t, auto& bag) {
-                    if (i == 0 || i == 70) write_string(bag, t);
-                    if (i == 30) {
-                      std_msgs::String other;
-                      other.data = "elsewhere";
-                      bag.write("/other", ros::Time(t), other);
-                    }
-                  }),
-      write_mixed("handed_huge.bag", "/joint_states",
-                  [&](int i, double t, auto& bag) {
-                    if (i != 10) return;
-                    sensor_msgs::JointState js = sample(model, waves, t - 0.005);
-                    js.name.resize(1u << 16, "x");
-                    bag.write("/joint_states", ros::Time(t - 0.005), js);
-                  }),
-      write_damaged_chunk_bag("handed_damaged.bag")};
-  for (const std::string& bag : bags) {
-    const TakenFromBag handed = take_from_bag(bag, false), own = take_from_bag(bag, true);
-    EXPECT_GT(handed.rec.rows(), 90) << bag;
-    EXPECT_EQ(handed.rec.nq, own.rec.nq) << bag;
-    EXPECT_TRUE(same_bytes(handed.rec.stamp, own.rec.stamp)) << bag;
-    EXPECT_TRUE(same_bytes(handed.rec.position, own.rec.position)) << bag;
-    EXPECT_TRUE(same_bytes(handed.rec.velocity, own.rec.velocity)) << bag;
-    EXPECT_TRUE(same_bytes(handed.rec.given, own.rec.given)) << bag;
-    EXPECT_EQ(handed.read, own.read) << bag;
-    EXPECT_EQ(handed.log.drops, own.log.drops) << bag;
-    EXPECT_EQ(handed.log.notes, own.log.notes) << bag;
-    EXPECT_EQ(handed.log.example, own.log.example) << bag;
-    EXPECT_EQ(handed.unreadable.count, own.unreadable.count) << bag;
-    EXPECT_EQ(handed.unreadable.first, own.unreadable.first) << bag;
-  }
-  EXPECT_EQ(take_from_bag(bags[1], false).unreadable.count, 2);  // the two strings
-  EXPECT_GT(take_from_bag(bags[3], false).unreadable.count, 0);  // the damaged chunk's
 }
 
 // Stamps jittered so that every interval differs, more of them than the survey's
