@@ -24,6 +24,7 @@ MBK_DEMO_PACKAGES=(
   pybind11-dev python3-dev python3-numpy  # the Python module (doc/python.md)
   libmujoco-dev libsdformat-dev  # MJCF and SDFormat models (doc/conventions.md)
   libhdf5-dev  # mbk bag --h5 (doc/recorded_data.md)
+  libbz2-dev libroslz4-dev  # a bag's chunks checked before librosbag reads them
   python3-roslaunch rosbash python3-rostopic python3-sensor-msgs python3-geometry-msgs
   python3-rosservice  # the docs' rosservice call ~reload, ~get_partial_velocities
 )

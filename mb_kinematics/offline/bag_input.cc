@@ -25,6 +25,7 @@
 #include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/quaternion_scale.h"
 #include "mb_kinematics/io/text_file.h"
+#include "mb_kinematics/offline/bag_records.h"
 
 namespace mbk_offline {
 namespace {
@@ -232,28 +233,6 @@ class MessageReader {
   nav_msgs::Odometry odometry_;
 };
 
-// Every top-level record of the bag (header length, header, data length, data) within the
-// file, before librosbag reads it: it allocates what a damaged length says (GBs) first.
-void check_record_lengths(const std::string& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  const std::uint64_t size = in ? static_cast<std::uint64_t>(in.tellg()) : 0;
-  char magic[13] = {};
-  in.seekg(0);
-  if (!in.read(magic, sizeof magic) || std::string(magic, sizeof magic) != "#ROSBAG V2.0\n")
-    return;  // not a bag: rosbag's error to give
-  std::uint64_t at = 13;
-  for (int part = 0; in && at < size; part = 1 - part) {
-    std::uint32_t length = 0;
-    in.seekg(static_cast<std::streamoff>(at));
-    if (!in.read(reinterpret_cast<char*>(&length), 4) || at + 4 + length > size)
-      throw std::invalid_argument(path + ": damaged or truncated bag: the record " +
-                                  (part ? "data" : "header") + " at byte " + std::to_string(at) +
-                                  " goes beyond the end of the file; `rosbag reindex " + path +
-                                  "` may recover it");
-    at += 4 + length;
-  }
-}
-
 // Reads the whole bag as read_bag will (its index, every chunk, every message's bytes) in a
 // child process: librosbag itself crashes on some damaged headers (a flipped byte in a chunk or
 // index record), and a crash there must be an error, not the end of mbk. Exceptions are left to
@@ -400,7 +379,7 @@ void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBu
               const std::function<void(long, long)>& progress, bool checked) {
   mbk::check_regular_file(path, "the recording");  // a pipe or /dev/zero: read without end
   rosbag::Bag bag;
-  if (!checked) check_record_lengths(path), survive_or_refuse(path, bag);
+  if (!checked) check_bag_records(path), survive_or_refuse(path, bag);
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagUnindexedException&) {

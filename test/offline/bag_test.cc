@@ -710,8 +710,9 @@ TEST(BagTest, ColumnOptionsNeedTheirOutput) {
     mbk_offline::check_column_options({"--angles", "--scale"}, {"--h5"}, false);
     ADD_FAILURE() << "--angles without --csv or --mot accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()),
-              "--angles sets the joint angles of the CSV and the OpenSim file: give --csv or --mot");
+    EXPECT_EQ(
+        std::string(e.what()),
+        "--angles sets the joint angles of the CSV and the OpenSim file: give --csv or --mot");
   }
   EXPECT_NO_THROW(mbk_offline::check_column_options({"--body-axes"}, {"--h5", "--csv"}, false));
 }
@@ -908,9 +909,11 @@ TEST(BagTest, HugeOdometryQuaternionsAreTheirRotation) {
   EXPECT_EQ(s.log.notes.count("base odometry ignored"), 0u);
 }
 
-// One flipped bit that crashes librosbag itself (a segfault in its reading, found
-// by flipping random bits of this bag) is an error naming the bag, not a crash of mbk.
-TEST(BagTest, ABagThatCrashesLibrosbagIsAnError) {
+// Two flipped bits that crashed librosbag itself (a segfault in its copy of a message, found by
+// flipping random bits of this bag): each a message record's data length inside the chunk, now
+// refused by name before librosbag reads the bag. Any other crash of librosbag's reading is
+// refused as "damaged bag: reading it crashes librosbag" (survive_or_refuse, bag_input.cc).
+TEST(BagTest, FlipsThatCrashedLibrosbagAreErrorsNamingTheRecord) {
   const std::string in = write_bag("flip_src.bag", 100, 2.0);
   std::string bytes = read_file(in);
   ASSERT_EQ(bytes.size(), 204133u) << "the bag's layout changed: find another crashing flip";
@@ -919,8 +922,8 @@ TEST(BagTest, ABagThatCrashesLibrosbagIsAnError) {
     damaged[flip.first] = static_cast<char>(damaged[flip.first] ^ flip.second);
     std::ofstream(temp("flip.bag"), std::ios::binary) << damaged;
     const std::string e = error_of(options(temp("flip.bag"), temp("flip_out.bag")));
-    EXPECT_NE(e.find("flip.bag: damaged bag: reading it crashes librosbag"), std::string::npos)
-        << e;
+    EXPECT_NE(e.find("flip.bag: damaged bag: the record at byte "), std::string::npos) << e;
+    EXPECT_NE(e.find(" goes beyond the chunk's 195598 bytes"), std::string::npos) << e;
   }
 }
 
@@ -1096,6 +1099,109 @@ TEST(BagTest, ADamagedChunkLosesItsMessagesAlone) {
   without.out_csv = temp("without.csv");
   EXPECT_EQ(mbk_offline::run_bag(without).read, s.read);
   EXPECT_EQ(file_bytes(damaged.out_csv), file_bytes(without.out_csv));
+}
+
+std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + at, 4);
+  return v;
+}
+
+void set_u32_at(std::string& bytes, std::size_t at, std::uint32_t v) {
+  std::memcpy(&bytes[at], &v, 4);
+}
+
+// Where each record inside an uncompressed chunk's data (at, length) starts in the file.
+std::vector<std::size_t> records_in_chunk(const std::string& bytes, std::size_t at,
+                                          std::size_t length) {
+  std::vector<std::size_t> records;
+  for (std::size_t r = at; r < at + length;) {
+    records.push_back(r);
+    const std::size_t header = u32_at(bytes, r);
+    r += 8 + header + u32_at(bytes, r + 4 + header);
+  }
+  return records;
+}
+
+// Where the data of the first index record (op 0x04) lies in a bag file's bytes.
+std::size_t first_index_data(const std::string& bytes) {
+  for (std::size_t at = 13; at + 8 <= bytes.size();) {
+    const std::size_t header = u32_at(bytes, at), data_at = at + 8 + header;
+    if (bytes.substr(at + 4, header).find(std::string("op=\x04", 4)) != std::string::npos)
+      return data_at;
+    at = data_at + u32_at(bytes, at + 4 + header);
+  }
+  return 0;
+}
+
+// A message record inside a chunk whose data length reaches past the chunk (librosbag copies
+// what it says out of its buffer: a crash, or other bytes taken for the message's; found by
+// flipping bits of a bag), and an index entry pointing inside a record: each an error naming
+// the bag and the byte, before librosbag reads the bag.
+TEST(BagTest, ARecordBeyondItsChunkOrAnIndexInsideARecordIsAnError) {
+  const std::string bytes = file_bytes(write_bag("records_src.bag", 100, 2.0));
+  const auto chunks = chunk_data(bytes);
+  ASSERT_FALSE(chunks.empty());
+  const auto [at, length] = chunks[0];
+  const std::vector<std::size_t> records = records_in_chunk(bytes, at, length);
+  ASSERT_GE(records.size(), 3u);
+  ASSERT_EQ(records.back() + 8 + u32_at(bytes, records.back()) +
+                u32_at(bytes, records.back() + 4 + u32_at(bytes, records.back())),
+            at + length);
+
+  std::string beyond = bytes;
+  const std::size_t data_length_at = records[1] + 4 + u32_at(bytes, records[1]);
+  set_u32_at(beyond, data_length_at,
+             u32_at(bytes, data_length_at) + static_cast<std::uint32_t>(length));
+  std::ofstream(temp("beyond.bag"), std::ios::binary) << beyond;
+  std::string e = error_of(options(temp("beyond.bag"), temp("beyond_out.bag")));
+  EXPECT_NE(e.find("beyond.bag: damaged bag: the record at byte " +
+                   std::to_string(records[1] - at) + " of the chunk at byte "),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("goes beyond the chunk's " + std::to_string(length) + " bytes"),
+            std::string::npos)
+      << e;
+
+  std::string inside = bytes;
+  const std::size_t index = first_index_data(bytes);
+  ASSERT_GT(index, 0u);
+  const std::uint32_t first = u32_at(bytes, index + 8);  // the first entry's offset
+  ASSERT_EQ(first, records[1] - at) << "the first message follows the connection record";
+  set_u32_at(inside, index + 8, first + 4);
+  std::ofstream(temp("inside.bag"), std::ios::binary) << inside;
+  e = error_of(options(temp("inside.bag"), temp("inside_out.bag")));
+  EXPECT_NE(e.find("inside.bag: damaged bag: the index at byte "), std::string::npos) << e;
+  EXPECT_NE(e.find("points at byte " + std::to_string(first + 4) + " of the chunk at byte "),
+            std::string::npos)
+      << e;
+  EXPECT_FALSE(std::ifstream(temp("beyond_out.bag")) || std::ifstream(temp("inside_out.bag")));
+}
+
+// Chunks compressed with LZ4 and bz2 are decompressed for the check as librosbag does: every
+// message read, the same output as the uncompressed bag's.
+TEST(BagTest, CompressedChunksAreCheckedAndRead) {
+  const mbk::Model model = mbk::load_model_file(kModel);
+  const std::vector<mbk::Wave> waves = mbk::demo_waves(model);
+  std::vector<std::string> outputs;
+  for (const auto compression :
+       {rosbag::compression::Uncompressed, rosbag::compression::LZ4, rosbag::compression::BZ2}) {
+    const std::string name = "compressed_" + std::to_string(static_cast<int>(compression));
+    {
+      rosbag::Bag bag(temp(name + ".bag"), rosbag::bagmode::Write);
+      bag.setCompression(compression);
+      bag.setChunkThreshold(4096);
+      for (int i = 0; i < 300; ++i)
+        bag.write("/joint_states", ros::Time(1.0 + i / 100.0),
+                  sample(model, waves, 1.0 + i / 100.0));
+    }
+    mbk_offline::BagOptions o = options(temp(name + ".bag"), "");
+    o.out_csv = temp(name + ".csv");
+    EXPECT_EQ(mbk_offline::run_bag(o).read, 300) << name;
+    outputs.push_back(file_bytes(o.out_csv));
+  }
+  EXPECT_EQ(outputs[1], outputs[0]);
+  EXPECT_EQ(outputs[2], outputs[0]);
 }
 
 // Stamps jittered so that every interval differs, more of them than the survey's
