@@ -41,7 +41,8 @@ struct Unreadable {
 // types it has). A bag that becomes unreadable part way keeps what was read and counts the rest in
 // `unreadable`, as it counts every message that cannot be read. `progress(done, total)` is called
 // now and then with message counts. With topics.base_odometry, `base` receives the odometry.
-// The bag is first read whole in a child process (librosbag crashes on some damaged bags);
+// The bag's records are first checked (check_bag_records), then it is read whole in a child
+// process (librosbag crashes on some damaged bags);
 // `checked`: an earlier read_bag of this run did that already (mbk bag's second pass).
 void read_bag(const std::string& path, const BagTopics& topics, mbk::RecordingBuilder& builder,
               BaseOdometry& base, Unreadable& unreadable,
