@@ -53,6 +53,7 @@ void body_acceleration_errors(const Model& model, const PartialVelocities<S>& pv
 
 // The same from the state, each body's as its columns are done: with a streamed pv
 // (PartialVelocities(model, kStreamed)), in memory for the bodies alive at once, not N x depth.
+// Of data, only the poses and omega_k are set (DataSums::kOmega).
 template <typename S>
 void body_acceleration_errors(const Model& model, const JointState<S>& state,
                               PartialVelocities<S>& pv, Data<S>& data, const S* speed_se,
@@ -61,9 +62,13 @@ void body_acceleration_errors(const Model& model, const JointState<S>& state,
   const int n = model.body_count();
   alpha_se.assign(n + 1, Vec3<S>::Zero());
   acceleration_se.assign(n + 1, Vec3<S>::Zero());
-  partial_velocity_kinematics(model, state, pv, data, Level::kAcceleration, [&](int k) {
-    body_acceleration_error(pv, data, k, speed_se, speed_dot_se, alpha_se[k], acceleration_se[k]);
-  });
+  partial_velocity_kinematics(
+      model, state, pv, data, Level::kAcceleration,
+      [&](int k) {
+        body_acceleration_error(pv, data, k, speed_se, speed_dot_se, alpha_se[k],
+                                acceleration_se[k]);
+      },
+      DataSums::kOmega);  // the errors read the columns and omega_k alone
 }
 
 }  // namespace mbk

@@ -110,6 +110,12 @@ struct NoCallback {
   void operator()(int) const {}
 };
 
+// What partial_velocity_kinematics sums into Data beyond the poses and the columns: every
+// velocity and acceleration (kAll), or omega_k alone (kOmega: the columns' users, e.g.
+// core/body_errors.h, need no other sum; data's other velocities and accelerations are left as
+// they were). The columns and omega_k are the same bits either way.
+enum class DataSums { kAll, kOmega };
+
 // Same outputs as forward_kinematics, through the partial velocity arrays: omega_k = sum_r
 // omega_kr y_r, v_k = sum_r v_kr y_r, alpha_k = sum_r (omega_kr y_r' + omega_kr' y_r),
 // a_k = sum_r (v_kr y_r' + v_kr' y_r). No allocation. At Level::kAcceleration, done(k) is called
@@ -117,7 +123,8 @@ struct NoCallback {
 template <typename S, typename Done = NoCallback>
 void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
                                  PartialVelocities<S>& pv, Data<S>& data,
-                                 Level level = Level::kAcceleration, Done done = {}) {
+                                 Level level = Level::kAcceleration, Done done = {},
+                                 DataSums sums = DataSums::kAll) {
   assert(sized_for(data, model) && pv.begin.size() == model.bodies.size() &&
          "partial_velocity_kinematics: Data or PartialVelocities made for another model");
   assert((!pv.streamed || level == Level::kAcceleration) &&
@@ -170,7 +177,22 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
       pv.omega_dot[i] = own.omega_dot;
       pv.origin_velocity_dot[i] = own.origin_velocity_dot;
     }
-    Vec3<S> omega = Vec3<S>::Zero(), v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
+    Vec3<S> omega = Vec3<S>::Zero();
+    if (sums == DataSums::kOmega) {
+      for (int i = bk; i < bk + nk; ++i) {  // the loops below without their other sums
+        pv.velocity[i] = pv.origin_velocity[i] + pv.omega[i].cross(rho);
+        omega += pv.omega[i] * y[pv.speed[i]];
+      }
+      data.omega[k] = omega;
+      for (int i = bk; i < bk + nk && accelerations; ++i)
+        pv.velocity_dot[i] = pv.origin_velocity_dot[i] + pv.omega_dot[i].cross(rho) +
+                             pv.omega[i].cross(omega.cross(rho));
+      if (!accelerations) continue;
+      done(k);
+      if (pv.streamed) pv.close(model, k);
+      continue;
+    }
+    Vec3<S> v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
     for (int i = bk; i < bk + nk; ++i) {
       pv.velocity[i] = pv.origin_velocity[i] + pv.omega[i].cross(rho);
       const S yr = y[pv.speed[i]];

@@ -20,6 +20,24 @@ namespace {
 constexpr int kMaxOrder = 6, kMaxNamedOrder = 5;
 constexpr double kDoubleEpsilon = std::numeric_limits<double>::epsilon();
 
+// std::lower_bound(t + from, t + i, x) (ahead: false; the first stamp not before x) or
+// std::upper_bound(t + i, t + to, x) (ahead: true; the first stamp after x), found by steps that
+// double from i: a window's edge lies a window's length from i, not the segment's.
+int search_from(const std::vector<double>& t, int i, int bound, double x, bool ahead) {
+  const auto beyond = [&](int k) { return ahead ? x < t[k] : t[k] < x; };
+  int near = i, step = 1;  // the edge lies between near and far (far exclusive when ahead)
+  for (;;) {
+    const int far = ahead ? std::min(bound, i + step) : std::max(bound, i - step);
+    if (far == bound || beyond(far)) {
+      const auto first = t.begin() + (ahead ? near : far), last = t.begin() + (ahead ? far : near);
+      return static_cast<int>(
+          (ahead ? std::upper_bound(first, last, x) : std::lower_bound(first, last, x)) -
+          t.begin());
+    }
+    near = far, step *= 2;
+  }
+}
+
 // The window [begin, end) for sample i inside segment [sb, se): centred where it can be,
 // shifted to one side near the segment's ends.
 void window_range(const OfflineEstimator& e, const std::vector<double>& t, int sb, int se, int i,
@@ -34,8 +52,8 @@ void window_range(const OfflineEstimator& e, const std::vector<double>& t, int s
   double lo = t[i] - half, hi = t[i] + half;
   if (lo < t[sb]) hi += t[sb] - lo, lo = t[sb];              // one-sided at the start
   if (hi > t[se - 1]) lo -= hi - t[se - 1], hi = t[se - 1];  // and at the end
-  begin = static_cast<int>(std::lower_bound(t.begin() + sb, t.begin() + i, lo) - t.begin());
-  end = static_cast<int>(std::upper_bound(t.begin() + i, t.begin() + se, hi) - t.begin());
+  begin = search_from(t, i, sb, lo, false);
+  end = search_from(t, i, se, hi, true);
   // Sparse samples: widen to order + 3 samples (nearest first) so the fit still smooths.
   while (end - begin < e.order + 3 && (begin > sb || end < se)) {
     if (begin > sb && (end >= se || t[i] - t[begin - 1] <= t[end] - t[i]))
@@ -87,10 +105,11 @@ OfflineEstimator make_offline_estimator(const std::string& name) {
              used == static_cast<int>(name.size())) {
     e.window_samples = samples;
   } else {
-    throw std::invalid_argument("unknown offline estimator '" + name +
-                                "' (known: auto, centered_<samples>_<order>, e.g. centered_9_4, "
-                                "centered_<seconds>s_<order>, e.g. centered_0.1s_3, "
-                                "butterworth:<cutoff Hz>, e.g. butterworth:6, or butterworth:auto)");
+    throw std::invalid_argument(
+        "unknown offline estimator '" + name +
+        "' (known: auto, centered_<samples>_<order>, e.g. centered_9_4, "
+        "centered_<seconds>s_<order>, e.g. centered_0.1s_3, "
+        "butterworth:<cutoff Hz>, e.g. butterworth:6, or butterworth:auto)");
   }
   e.order = order;
   const bool window_ok = e.window_seconds != 0
@@ -191,7 +210,15 @@ void window_offsets(const std::vector<double>& t, int i, const DerivativeWeights
                     double* d) {
   const int n = w.count;
   if (period > 0 && (t[w.row(n - 1)] - t[w.begin]) / period < 0x1p50) {
-    for (int j = 0; j < n; ++j) d[j] = nearest_whole((t[w.row(j)] - t[i]) / period) * period;
+    typedef double Pack __attribute__((vector_size(2 * sizeof(double))));
+    constexpr double kShift = 6755399441055744.0;  // nearest_whole's, lane by lane: the same bits
+    int j = 0;
+    for (; j + 2 <= n; j += 2) {
+      const Pack offset = Pack{t[w.row(j)], t[w.row(j + 1)]} - t[i];
+      const Pack whole = ((offset / period + kShift) - kShift) * period;
+      std::memcpy(&d[j], &whole, sizeof whole);
+    }
+    for (; j < n; ++j) d[j] = nearest_whole((t[w.row(j)] - t[i]) / period) * period;
     return;
   }
   long long ns[kMaxOfflineWindow];
@@ -246,48 +273,61 @@ void offset_weights(const double* d, int n, int order, DerivativeWeights& w) {
 }
 
 // The weights are a function of the offsets and the order alone: each thread keeps the last ones
-// of up to kSlots windows (slot by a hash of the offsets), found again only by the same order and
-// the same offsets to the bit. A regular recording's windows repeat from sample to sample, so the
-// weights of each window are computed about once per thread; the results are those of computing
-// them again, whatever a thread computed before.
+// of up to 2 kSets windows (two in each set, the set by a hash of the offsets; a new window
+// replaces the one of its set used less recently), found again only by the same order and the
+// same offsets to the bit. A regular recording's windows repeat from sample to sample, so the
+// weights of each window are computed about once per thread (two ways a set: the few dozen
+// windows of a sample seldom evict each other); the results are those of computing them again,
+// whatever a thread computed before.
 class WeightCache {
  public:
   // The weights of (d, n, order) into w; false when not kept (then `keep` them after computing).
   bool find(const double* d, int n, int order, DerivativeWeights& w) {
-    Slot& s = slot(d, n, order);
-    if (s.order != order || s.n != n || std::memcmp(s.d, d, n * sizeof(double)) != 0) return false;
-    std::copy_n(s.value, n, w.value.begin()), std::copy_n(s.first, n, w.first.begin());
-    std::copy_n(s.second, n, w.second.begin());
-    return true;
+    Set& set = set_of(d, n, order);
+    for (int way = 0; way < 2; ++way) {
+      const Slot& s = set.way[way];
+      if (s.order != order || s.n != n || std::memcmp(s.d, d, n * sizeof(double)) != 0) continue;
+      std::copy_n(s.value, n, w.value.begin()), std::copy_n(s.first, n, w.first.begin());
+      std::copy_n(s.second, n, w.second.begin());
+      set.recent = way;
+      return true;
+    }
+    return false;
   }
   void keep(const double* d, int n, int order, const DerivativeWeights& w) {
-    Slot& s = slot(d, n, order);
+    Set& set = set_of(d, n, order);
+    set.recent = 1 - set.recent;
+    Slot& s = set.way[set.recent];
     s.order = order, s.n = n;
     std::copy_n(d, n, s.d);
     std::copy_n(w.value.begin(), n, s.value), std::copy_n(w.first.begin(), n, s.first);
     std::copy_n(w.second.begin(), n, s.second);
   }
   static WeightCache& of_this_thread() {
-    thread_local std::unique_ptr<WeightCache> cache(new WeightCache);  // on the heap: 84 kB
+    thread_local std::unique_ptr<WeightCache> cache(new WeightCache);  // on the heap: 338 kB
     return *cache;
   }
 
  private:
-  static constexpr int kSlots = 64;
+  static constexpr int kSets = 128;
   struct Slot {
     int order = -1, n = 0;
     double d[kMaxOfflineWindow], value[kMaxOfflineWindow], first[kMaxOfflineWindow],
         second[kMaxOfflineWindow];
   };
-  Slot& slot(const double* d, int n, int order) {
+  struct Set {
+    Slot way[2];
+    int recent = 0;  // the way found or kept last
+  };
+  Set& set_of(const double* d, int n, int order) {
     std::uint64_t a, b, c;
     std::memcpy(&a, &d[0], 8), std::memcpy(&b, &d[1], 8), std::memcpy(&c, &d[n - 1], 8);
     std::uint64_t h = (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^
                       (c * 0x165667B19E3779F9ull) ^ (static_cast<std::uint64_t>(n) << 8 | order);
     h ^= h >> 29;
-    return slots_[(h * 0xBF58476D1CE4E5B9ull) >> 58];  // the top 6 bits: kSlots
+    return sets_[(h * 0xBF58476D1CE4E5B9ull) >> 57];  // the top 7 bits: kSets
   }
-  Slot slots_[kSlots];
+  Set sets_[kSets];
 };
 
 }  // namespace

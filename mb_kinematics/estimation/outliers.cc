@@ -18,6 +18,22 @@ double median_of_sorted(const double* values, int count) {
 // The windows kept on the stack (a recording's are 2 kOutlierHalfWindow + 1 long).
 constexpr int kMostOnStack = 64;
 
+// values[0, count) in increasing order, as std::sort orders them; a window already in order, or
+// in strictly decreasing order (a smooth series' windows, but near its turns), without sorting.
+// Up to 16 values std::sort is an insertion sort, which keeps equal values (0 and -0) in their
+// order, as a window in order keeps them; a strictly decreasing one has no equal values.
+void sort_window(double* values, int count) {
+  bool increasing = count <= 16, decreasing = count <= 16;
+  for (int i = 1; i < count && (increasing || decreasing); ++i) {
+    increasing = increasing && !(values[i] < values[i - 1]);
+    decreasing = decreasing && values[i] < values[i - 1];
+  }
+  if (decreasing)
+    std::reverse(values, values + count);
+  else if (!increasing)
+    std::sort(values, values + count);
+}
+
 }  // namespace
 
 // The window sorted once; its deviations |v - m| then come in increasing order by merging the two
@@ -27,7 +43,7 @@ OutlierTest hampel_test(double* values, int count, double x) {
   OutlierTest out;
   double deviations[kMostOnStack];
   double* const d = count <= kMostOnStack ? deviations : values;
-  std::sort(values, values + count);
+  sort_window(values, count);
   out.median = median_of_sorted(values, count);
   const double m = out.median;
   if (d == values) {  // a long window: in place, sorted again

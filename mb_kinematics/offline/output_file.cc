@@ -8,10 +8,15 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <mutex>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 #include "mb_kinematics/core/printable.h"
@@ -81,6 +86,38 @@ mode_t default_mode() {
 
 }  // namespace
 
+// Every kPeriod until stopped, the writing of the file's dirty pages started
+// (sync_file_range(SYNC_FILE_RANGE_WRITE) starts it, and waits for none of it; its errors are
+// the writer's to meet): see output_file.h.
+class OutputFile::Writeback {
+ public:
+  explicit Writeback(int fd) : fd_(fd), thread_([this] { run(); }) {}
+  ~Writeback() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    stopped_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  static constexpr std::chrono::milliseconds kPeriod{10};
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stopped_.wait_for(lock, kPeriod, [this] { return stop_; })) {
+#ifdef __linux__
+      sync_file_range(fd_, 0, 0, SYNC_FILE_RANGE_WRITE);
+#endif
+    }
+  }
+  int fd_;
+  std::mutex mutex_;
+  std::condition_variable stopped_;
+  bool stop_ = false;
+  std::thread thread_;  // last: started once the fields above are made
+};
+
 OutputFile::OutputFile(const std::string& path, bool named) : path_(path) {
   if (named && in_place(path)) {
     writing_ = path;
@@ -107,15 +144,23 @@ void OutputFile::create_temporary() {
     throw std::invalid_argument(writing_ + ": cannot set up (" + error + ")");
   }
   device_ = st.st_dev, inode_ = st.st_ino;
+  try {
+    writeback_ = std::make_unique<Writeback>(fd_);
+  } catch (const std::system_error&) {  // no thread: the pages are written at the close
+  }
 }
 
+void OutputFile::stop_writeback() { writeback_.reset(); }
+
 OutputFile::~OutputFile() {
+  stop_writeback();
   if (!committed_ && fd_ >= 0) unlink(writing_.c_str());
   forget_temporary(slot_);
   if (fd_ >= 0) close(fd_);
 }
 
 void OutputFile::commit() {
+  stop_writeback();
   if (fd_ >= 0) {
     struct stat st;
     if (lstat(writing_.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_dev != device_ ||

@@ -10,10 +10,17 @@
 // a file left by a run that was killed (SIGKILL, a power cut) is removed by the next run on the
 // same output once that process is gone; SIGINT, SIGTERM and SIGHUP remove it at once
 // (temporary_files.h).
+//
+// While the temporary file is written, a thread of its own starts the writing of its pages to the
+// disk every few milliseconds (Writeback, output_file.cc): ext4 writes a file's delayed blocks
+// when a file truncated at its opening (libhdf5's and the writers' O_TRUNC) is closed, and when
+// it is renamed over another, on the closing or renaming thread; started beside the computing,
+// they are mostly written by then.
 #pragma once
 
 #include <sys/types.h>
 
+#include <memory>
 #include <string>
 
 namespace mbk_offline {
@@ -34,6 +41,9 @@ class OutputFile {
 
  private:
   void create_temporary();
+  void stop_writeback();
+  class Writeback;
+  std::unique_ptr<Writeback> writeback_;  // of the temporary file, until commit
   std::string path_, writing_;
   int fd_ = -1;       // the temporary file, open while it is written
   dev_t device_ = 0;  // and its identity

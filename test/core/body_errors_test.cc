@@ -91,7 +91,8 @@ TEST(BodyErrorsTest, StreamedEqualsTheWholeArraysInMemoryOfTheBodiesAlive) {
                                     acceleration_se.data(), streamed_alpha_se, streamed_a_se);
     EXPECT_EQ(streamed_alpha_se, alpha_se);
     EXPECT_EQ(streamed_a_se, a_se);
-    EXPECT_EQ(streamed_data.alpha, data.alpha);
+    EXPECT_EQ(streamed_data.omega, data.omega);  // DataSums::kOmega: omega_k, not alpha_k
+    EXPECT_EQ(streamed_data.rotation, data.rotation);
     EXPECT_LT(streamed.entries(), whole.entries());
   }
   const mbk::Model chain = mbk::make_chain(300, mbk::JointType::kRevolute);

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -116,6 +118,44 @@ TEST(Outliers, SameBitsAsSelection) {
     outliers += got.outlier;
   }
   EXPECT_GT(outliers, 100);  // the spikes were tested too
+}
+
+// Windows already in order or in decreasing order (a smooth series', taken without sorting) give
+// the bits of a std::sort'ed window: ties of 0 and -0 keep their order, as std::sort's insertion
+// sort keeps them for up to 16 values (longer windows are sorted by std::sort).
+TEST(Outliers, WindowsInOrderSameBitsAsSorted) {
+  const auto bits = [](double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+  };
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> count(1, 16), step(0, 2);
+  for (int k = 0; k < 20000; ++k) {
+    std::vector<double> window(count(rng));
+    double v = -0.5 * step(rng);
+    for (double& w : window) {  // increasing, with ties and zeros of both signs
+      w = v == 0 && step(rng) == 0 ? -0.0 : v;
+      v += 0.25 * step(rng);
+    }
+    if (k % 2 == 1) {  // decreasing: strictly where k % 4 == 1, with ties where k % 4 == 3
+      std::reverse(window.begin(), window.end());
+      if (k % 4 == 1)
+        for (size_t i = 0; i < window.size(); ++i) window[i] = 1.5 * window.size() - i;
+    }
+    const double x = window[k % window.size()];
+    std::vector<double> sorted = window, values = window;
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<double> in_order = sorted;  // taken as it is
+    const mbk::OutlierTest want =
+        mbk::hampel_test(in_order.data(), static_cast<int>(in_order.size()), x);
+    const mbk::OutlierTest got =
+        mbk::hampel_test(values.data(), static_cast<int>(values.size()), x);
+    for (size_t i = 0; i < values.size(); ++i) ASSERT_EQ(bits(values[i]), bits(sorted[i])) << k;
+    ASSERT_EQ(bits(got.median), bits(want.median)) << k;
+    ASSERT_EQ(bits(got.scale), bits(want.scale)) << k;
+    ASSERT_EQ(got.outlier, want.outlier) << k;
+  }
 }
 
 }  // namespace
