@@ -106,6 +106,16 @@ __attribute__((always_inline)) inline V splat(double x) {
   return load<V>(lanes);
 }
 
+// Every lane of a comparison's mask set.
+template <typename M>
+__attribute__((always_inline)) inline bool every_lane(const M& m) {
+  long lanes[sizeof(M) / sizeof(long)];
+  std::memcpy(lanes, &m, sizeof lanes);
+  bool every = true;
+  for (const long lane : lanes) every = every && lane != 0;
+  return every;
+}
+
 // predict_update at t with x[i] on each filter i with step[i] != 0, its state before kept in
 // `before`: the filters of a vector V at a time, each operation once on all (those not to
 // update discarded by a blend), the last ones one by one.
@@ -125,15 +135,20 @@ __attribute__((always_inline)) inline void step_all(double t, const double* x, c
     Filter<V> f = old;
     const V dt = t - t_old, xi = load<V>(x + i);
     predict_update<V>(f, dt, xi, q, r);
-    const auto keep = [&](double* p, const V& v) { store(p + i, m ? v : load<V>(p + i)); };
-    keep(before.t, t_old);
-    keep(before.s0, old.s0), keep(before.s1, old.s1), keep(before.s2, old.s2);
-    keep(before.p00, old.p00), keep(before.p01, old.p01), keep(before.p02, old.p02);
-    keep(before.p11, old.p11), keep(before.p12, old.p12), keep(before.p22, old.p22);
-    keep(now.t, splat<V>(t));
-    keep(now.s0, f.s0), keep(now.s1, f.s1), keep(now.s2, f.s2);
-    keep(now.p00, f.p00), keep(now.p01, f.p01), keep(now.p02, f.p02);
-    keep(now.p11, f.p11), keep(now.p12, f.p12), keep(now.p22, f.p22);
+    const auto write = [&](const auto& keep) {
+      keep(before.t, t_old);
+      keep(before.s0, old.s0), keep(before.s1, old.s1), keep(before.s2, old.s2);
+      keep(before.p00, old.p00), keep(before.p01, old.p01), keep(before.p02, old.p02);
+      keep(before.p11, old.p11), keep(before.p12, old.p12), keep(before.p22, old.p22);
+      keep(now.t, splat<V>(t));
+      keep(now.s0, f.s0), keep(now.s1, f.s1), keep(now.s2, f.s2);
+      keep(now.p00, f.p00), keep(now.p01, f.p01), keep(now.p02, f.p02);
+      keep(now.p11, f.p11), keep(now.p12, f.p12), keep(now.p22, f.p22);
+    };
+    if (every_lane(m))  // the common case: stored as they are, nothing to blend
+      write([&](double* p, const V& v) { store(p + i, v); });
+    else
+      write([&](double* p, const V& v) { store(p + i, m ? v : load<V>(p + i)); });
   }
   for (; i < n; ++i) {
     if (step[i] == 0) continue;
