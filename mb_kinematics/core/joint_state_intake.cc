@@ -141,8 +141,19 @@ int JointStateIntake::take(const std::vector<double>& position) {
     for (int i = e; i < e + 4; ++i) sign_[i] = flip ? -1.0 : 1.0;
     flipped += flip;
   }
+  // The arrays' starts in locals (read once, not again after each store); without Euler
+  // parameters every sign is 1 and the positions are taken as they are (1 * x is x).
+  const int* place = place_.data();
+  const double* sign = sign_.data();
+  double* last = last_.data();
+  char* taken = taken_.data();
+  if (euler_.empty()) {
+    for (int i = 0; i < model_.nq; ++i)
+      if (place[i] >= 0) last[i] = position[place[i]], taken[i] = 1;
+    return flipped;
+  }
   for (int i = 0; i < model_.nq; ++i)
-    if (place_[i] >= 0) last_[i] = sign_[i] * position[place_[i]], taken_[i] = 1;
+    if (place[i] >= 0) last[i] = sign[i] * position[place[i]], taken[i] = 1;
   return flipped;
 }
 

@@ -135,16 +135,29 @@ bool JointStateInput::steady(const sensor_msgs::JointState& msg, double t) const
 // The values of a steady message: what take_each does to a coordinate that has a value of this
 // kind, set at a stamp not after t and within max_gap of it.
 void JointStateInput::take_steady(const sensor_msgs::JointState& msg, double t) {
-  const std::vector<int>& coordinate_of = intake_.coordinates();
-  const std::vector<double>& last = intake_.last();
-  const bool velocity_given = !msg.velocity.empty();
-  for (size_t i = 0; i < coordinate_of.size(); ++i) {
+  // The arrays' starts in locals: read once, not again after each store.
+  const int* coordinate_of = intake_.coordinates().data();
+  const size_t n = intake_.coordinates().size();
+  const double* last = intake_.last().data();
+  const double* velocity = msg.velocity.data();
+  Coordinate* coordinates = coordinates_.data();
+  double* sample = sample_.data();
+  if (msg.velocity.empty()) {
+    for (size_t i = 0; i < n; ++i) {
+      const int j = coordinate_of[i];
+      if (j < 0) continue;
+      coordinates[j].stamp = t;
+      sample[j] = last[j];
+    }
+    return;
+  }
+  for (size_t i = 0; i < n; ++i) {
     const int j = coordinate_of[i];
     if (j < 0) continue;
-    Coordinate& c = coordinates_[j];
-    if (velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
+    Coordinate& c = coordinates[j];
+    c.velocity = intake_.sign(j) * velocity[i];
     c.stamp = t;
-    sample_[j] = velocity_given ? c.velocity : last[j];
+    sample[j] = c.velocity;
   }
 }
 
