@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace mbk {
 namespace {
@@ -19,6 +21,35 @@ bool all_finite(const std::vector<double>& x) {
   return x.empty() || (Eigen::Map<const Eigen::ArrayXd>(x.data(), x.size()) * 0.0).sum() == 0.0;
 }
 
+// The first `n` bytes at p and at q equal, for the short strings of joint names: eight bytes at a
+// time and the last eight (overlapping), or the first and last four, two, or the one byte,
+// inline; std::string's == calls memcmp for each name (a sample's names are compared whole).
+bool same_bytes(const char* p, const char* q, size_t n) {
+  const auto same = [p, q](size_t at, auto word) {
+    decltype(word) a, b;
+    std::memcpy(&a, p + at, sizeof a);
+    std::memcpy(&b, q + at, sizeof b);
+    return a == b;
+  };
+  if (n >= 8) {
+    for (size_t i = 0; i + 8 <= n; i += 8)
+      if (!same(i, uint64_t())) return false;
+    return same(n - 8, uint64_t());
+  }
+  if (n >= 4) return same(0, uint32_t()) && same(n - 4, uint32_t());
+  if (n >= 2) return same(0, uint16_t()) && same(n - 2, uint16_t());
+  return n == 0 || p[0] == q[0];
+}
+
+// a == b, name by name with same_bytes.
+bool same_names(const std::vector<std::string>& a, const std::vector<std::string>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].size() != b[i].size() || !same_bytes(a[i].data(), b[i].data(), a[i].size()))
+      return false;
+  return true;
+}
+
 }  // namespace
 
 CoordinateLookup::CoordinateLookup(const Model& model) {
@@ -27,7 +58,7 @@ CoordinateLookup::CoordinateLookup(const Model& model) {
 
 const std::vector<int>& CoordinateLookup::look_up(const std::vector<std::string>& names,
                                                   bool* changed) {
-  const bool differ = names != names_;  // a full compare: cheaper than hashing each name
+  const bool differ = !same_names(names, names_);  // a full compare: cheaper than hashing each
   if (changed) *changed = differ;
   if (!differ) return coordinate_of_;
   names_ = names;
@@ -110,8 +141,19 @@ int JointStateIntake::take(const std::vector<double>& position) {
     for (int i = e; i < e + 4; ++i) sign_[i] = flip ? -1.0 : 1.0;
     flipped += flip;
   }
+  // The arrays' starts in locals (read once, not again after each store); without Euler
+  // parameters every sign is 1 and the positions are taken as they are (1 * x is x).
+  const int* place = place_.data();
+  const double* sign = sign_.data();
+  double* last = last_.data();
+  char* taken = taken_.data();
+  if (euler_.empty()) {
+    for (int i = 0; i < model_.nq; ++i)
+      if (place[i] >= 0) last[i] = position[place[i]], taken[i] = 1;
+    return flipped;
+  }
   for (int i = 0; i < model_.nq; ++i)
-    if (place_[i] >= 0) last_[i] = sign_[i] * position[place_[i]], taken_[i] = 1;
+    if (place[i] >= 0) last[i] = sign[i] * position[place[i]], taken[i] = 1;
   return flipped;
 }
 

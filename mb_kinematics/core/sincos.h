@@ -75,11 +75,15 @@ void sin_cos(S x, S& s, S& c) {
 
 // sin_cos of x[0..n-1] into s and c (arrays apart from x), bit for bit: for double, one loop
 // without branches over every angle (the compiler vectorizes it), then libm for the rare large
-// or non-finite ones.
+// or non-finite ones, looked for one by one only when a vectorized pass finds some (an int
+// flag: GCC vectorizes the OR of ints, not of bools).
 template <typename S>
 void sin_cos(const S* x, int n, S* s, S* c) {
   if constexpr (std::is_same_v<S, double>) {
     for (int i = 0; i < n; ++i) detail::sin_cos_reduced(x[i], s[i], c[i]);
+    int large = 0;
+    for (int i = 0; i < n; ++i) large |= !(std::abs(x[i]) < detail::kReducedBound);
+    if (!large) return;
     for (int i = 0; i < n; ++i)
       if (!(std::abs(x[i]) < detail::kReducedBound)) s[i] = std::sin(x[i]), c[i] = std::cos(x[i]);
   } else {

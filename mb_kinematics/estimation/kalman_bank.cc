@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 
 // The vector helpers below are always inlined (V4 into the AVX2 copy alone): no vector crosses a
@@ -105,6 +106,16 @@ __attribute__((always_inline)) inline V splat(double x) {
   return load<V>(lanes);
 }
 
+// Every lane of a comparison's mask set.
+template <typename M>
+__attribute__((always_inline)) inline bool every_lane(const M& m) {
+  long lanes[sizeof(M) / sizeof(long)];
+  std::memcpy(lanes, &m, sizeof lanes);
+  bool every = true;
+  for (const long lane : lanes) every = every && lane != 0;
+  return every;
+}
+
 // predict_update at t with x[i] on each filter i with step[i] != 0, its state before kept in
 // `before`: the filters of a vector V at a time, each operation once on all (those not to
 // update discarded by a blend), the last ones one by one.
@@ -124,15 +135,20 @@ __attribute__((always_inline)) inline void step_all(double t, const double* x, c
     Filter<V> f = old;
     const V dt = t - t_old, xi = load<V>(x + i);
     predict_update<V>(f, dt, xi, q, r);
-    const auto keep = [&](double* p, const V& v) { store(p + i, m ? v : load<V>(p + i)); };
-    keep(before.t, t_old);
-    keep(before.s0, old.s0), keep(before.s1, old.s1), keep(before.s2, old.s2);
-    keep(before.p00, old.p00), keep(before.p01, old.p01), keep(before.p02, old.p02);
-    keep(before.p11, old.p11), keep(before.p12, old.p12), keep(before.p22, old.p22);
-    keep(now.t, splat<V>(t));
-    keep(now.s0, f.s0), keep(now.s1, f.s1), keep(now.s2, f.s2);
-    keep(now.p00, f.p00), keep(now.p01, f.p01), keep(now.p02, f.p02);
-    keep(now.p11, f.p11), keep(now.p12, f.p12), keep(now.p22, f.p22);
+    const auto write = [&](const auto& keep) {
+      keep(before.t, t_old);
+      keep(before.s0, old.s0), keep(before.s1, old.s1), keep(before.s2, old.s2);
+      keep(before.p00, old.p00), keep(before.p01, old.p01), keep(before.p02, old.p02);
+      keep(before.p11, old.p11), keep(before.p12, old.p12), keep(before.p22, old.p22);
+      keep(now.t, splat<V>(t));
+      keep(now.s0, f.s0), keep(now.s1, f.s1), keep(now.s2, f.s2);
+      keep(now.p00, f.p00), keep(now.p01, f.p01), keep(now.p02, f.p02);
+      keep(now.p11, f.p11), keep(now.p12, f.p12), keep(now.p22, f.p22);
+    };
+    if (every_lane(m))  // the common case: stored as they are, nothing to blend
+      write([&](double* p, const V& v) { store(p + i, v); });
+    else
+      write([&](double* p, const V& v) { store(p + i, m ? v : load<V>(p + i)); });
   }
   for (; i < n; ++i) {
     if (step[i] == 0) continue;
@@ -157,6 +173,77 @@ __attribute__((target("avx2"))) void step_all_avx2(double t, const double* x, co
   step_all<V4>(t, x, step, q, r, n, now, before);
 }
 #endif
+
+// Marks in `step` (1 or 0) the filters step_all updates: used, with samples before (count > 0),
+// a finite t after their latest stamp, a finite x; counts their sample. Returns whether some used
+// filter is not among them. A loop without branches, of ints (|x| <= DBL_MAX: x finite), which
+// the compiler vectorizes.
+__attribute__((always_inline)) inline int mark_plain(double t, const double* x, const char* use,
+                                                     int n, const double* last, int* count,
+                                                     double* step) {
+  const int finite_t = std::isfinite(t);
+  int others = 0;
+  for (int i = 0; i < n; ++i) {
+    const int used = use[i] != 0;
+    const int plain = used & finite_t & (count[i] > 0) & (t > last[i]) &
+                      (std::abs(x[i]) <= std::numeric_limits<double>::max());
+    step[i] = plain;
+    count[i] += plain;
+    others |= used & !plain;
+  }
+  return others;
+}
+
+// Some used filter with 3 samples or more (estimates) has its first estimate (and with
+// `both` its second) beyond `bound` or NaN: likewise a loop without branches.
+__attribute__((always_inline)) inline int beyond(const char* use, const int* count,
+                                                 const double* s1, const double* s2, int n,
+                                                 int both, double bound) {
+  int outside = 0;
+  for (int i = 0; i < n; ++i) {
+    const int estimated = (use[i] != 0) & (count[i] >= 3);
+    const int first = std::abs(s1[i]) <= bound;  // NaN: false
+    const int second = !both | (std::abs(s2[i]) <= bound);
+    outside |= estimated & !(first & second);
+  }
+  return outside;
+}
+
+#if defined(__x86_64__)
+// The same loops on 256-bit vectors.
+__attribute__((target("avx2"))) int mark_plain_avx2(double t, const double* x, const char* use,
+                                                    int n, const double* last, int* count,
+                                                    double* step) {
+  return mark_plain(t, x, use, n, last, count, step);
+}
+
+__attribute__((target("avx2"))) int beyond_avx2(const char* use, const int* count, const double* s1,
+                                                const double* s2, int n, int both, double bound) {
+  return beyond(use, count, s1, s2, n, both, bound);
+}
+
+bool has_avx2() {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+}
+#endif
+
+// mark_plain and beyond, on 256-bit vectors where the CPU has them.
+int mark_plain_on_cpu(double t, const double* x, const char* use, int n, const double* last,
+                      int* count, double* step) {
+#if defined(__x86_64__)
+  if (has_avx2()) return mark_plain_avx2(t, x, use, n, last, count, step);
+#endif
+  return mark_plain(t, x, use, n, last, count, step);
+}
+
+int beyond_on_cpu(const char* use, const int* count, const double* s1, const double* s2, int n,
+                  int both, double bound) {
+#if defined(__x86_64__)
+  if (has_avx2()) return beyond_avx2(use, count, s1, s2, n, both, bound);
+#endif
+  return beyond(use, count, s1, s2, n, both, bound);
+}
 
 }  // namespace
 
@@ -213,18 +300,11 @@ int KalmanBank::estimate(int i, double& first, double& second) const {
 
 void KalmanBank::add(double t, const double* x, const char* use) {
   const int n = size();
-  const bool finite_t = std::isfinite(t);
-  for (int i = 0; i < n; ++i) {
-    const bool plain = use[i] && finite_t && count_[i] > 0 && t > now_.t[i] && std::isfinite(x[i]);
-    step_[i] = plain;
-    if (plain)
-      ++count_[i];
-    else if (use[i])
-      add(i, t, x[i]);
-  }
+  const int others = mark_plain_on_cpu(t, x, use, n, now_.t.data(), count_.data(), step_.data());
+  for (int i = 0; others && i < n; ++i)  // the others used, one by one
+    if (use[i] && step_[i] == 0) add(i, t, x[i]);
 #if defined(__x86_64__)
-  static const bool avx2 = __builtin_cpu_supports("avx2");
-  if (avx2)
+  if (has_avx2())
     return step_all_avx2(t, x, step_.data(), q_, r_, n, lane_pointers(now_),
                          lane_pointers(before_));
 #endif
@@ -232,14 +312,8 @@ void KalmanBank::add(double t, const double* x, const char* use) {
 }
 
 bool KalmanBank::bounded(const char* use, int derivatives, double bound) const {
-  bool within = true;
-  for (int i = 0; i < size(); ++i) {
-    const bool estimated = use[i] && count_[i] >= 3;
-    const bool first = std::abs(now_.s1[i]) <= bound;  // NaN: false
-    const bool second = derivatives < 2 || std::abs(now_.s2[i]) <= bound;
-    within = within && (!estimated || (first && second));
-  }
-  return within;
+  return !beyond_on_cpu(use, count_.data(), now_.s1.data(), now_.s2.data(), size(),
+                        derivatives >= 2, bound);
 }
 
 bool KalmanBank::all_estimated(double* first, double* second) const {

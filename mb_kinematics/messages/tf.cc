@@ -30,31 +30,33 @@ void half_angles(const double* x, int n, double* s, double* c) {
   mbk::sin_cos(x, n, s, c);
 }
 
-// The rotation of moving[first, end) into `transforms`: the plain turns from their half angles'
-// sines and cosines taken together, the others by mbk::joint_quaternion.
+// The rotation and the stamp of moving[first, end) into `transforms`: the plain turns from their
+// half angles' sines and cosines taken together, the others by mbk::joint_quaternion.
 void fill_rotations(const mbk::Model& model, const mbk::JointState<double>& state,
                     const std::vector<TfJoint>& moving, size_t first, size_t end,
+                    const ros::Time& stamp,
                     std::vector<geometry_msgs::TransformStamped>& transforms) {
   double half[kTurnBlock], s[kTurnBlock], c[kTurnBlock];
-  for (size_t i = first; i < end; ++i) {
-    const mbk::Body& body = model.bodies[moving[i].body];
-    half[i - first] = moving[i].plain_turn ? state.position[body.q_index] / 2 : 0.0;
-  }
-  half_angles(half, static_cast<int>(end - first), s, c);
-  for (size_t i = first; i < end; ++i) {
-    const mbk::Body& body = model.bodies[moving[i].body];
-    geometry_msgs::Quaternion& out = transforms[i].transform.rotation;
-    if (!moving[i].plain_turn) {
-      set_quaternion(
-          mbk::joint_quaternion(body.joint, moving[i].offset, state.position.data() + body.q_index),
-          out);
+  const double* q = state.position.data();
+  const TfJoint* joint = moving.data() + first;
+  const size_t n = end - first;
+  for (size_t i = 0; i < n; ++i) half[i] = joint[i].plain_turn ? q[joint[i].q_index] / 2 : 0.0;
+  half_angles(half, static_cast<int>(n), s, c);
+  geometry_msgs::TransformStamped* out = transforms.data() + first;
+  for (size_t i = 0; i < n; ++i) {
+    out[i].header.stamp = stamp;
+    geometry_msgs::Quaternion& rotation = out[i].transform.rotation;
+    if (!joint[i].plain_turn) {
+      set_quaternion(mbk::joint_quaternion(model.bodies[joint[i].body].joint, joint[i].offset,
+                                           q + joint[i].q_index),
+                     rotation);
       continue;
     }
-    const double si = s[i - first];  // joint_quaternion's values (a zero's sign aside)
-    out.w = c[i - first];
-    out.x = si * body.joint.axis.x();
-    out.y = si * body.joint.axis.y();
-    out.z = si * body.joint.axis.z();
+    const double si = s[i];  // joint_quaternion's values (a zero's sign aside)
+    rotation.w = c[i];
+    rotation.x = si * joint[i].axis.x();
+    rotation.y = si * joint[i].axis.y();
+    rotation.z = si * joint[i].axis.z();
   }
 }
 
@@ -64,8 +66,8 @@ TfJoint tf_joint(const mbk::Model& model, int body) {
   const mbk::Joint& joint = model.bodies[body].joint;
   const bool plain_turn =
       joint.type == mbk::JointType::kRevolute && joint.rotation == mbk::Mat3<double>::Identity();
-  return {body, Eigen::Quaterniond(joint.rotation), mbk::translation_count(joint.type) > 0,
-          plain_turn};
+  return {body,       Eigen::Quaterniond(joint.rotation), mbk::translation_count(joint.type) > 0,
+          plain_turn, model.bodies[body].q_index,         joint.axis};
 }
 
 std::vector<int> moving_bodies(const mbk::Model& model, int first) {
@@ -98,11 +100,11 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
                      std::vector<geometry_msgs::TransformStamped>& transforms,
                      const mbk::BaseMotion* base) {
   for (size_t first = 0; first < moving.size(); first += kTurnBlock)
-    fill_rotations(model, state, moving, first, std::min(moving.size(), first + kTurnBlock),
+    fill_rotations(model, state, moving, first, std::min(moving.size(), first + kTurnBlock), stamp,
                    transforms);
   mbk::JointMotion<double> m;
-  for (size_t i = 0; i < moving.size(); ++i) {
-    transforms[i].header.stamp = stamp;
+  const size_t n = moving.size();  // not read again after each joint_motion call
+  for (size_t i = 0; i < n; ++i) {
     if (!moving[i].translates) continue;  // q_k, set by init_transforms
     const mbk::Body& body = model.bodies[moving[i].body];
     const double* q = state.position.data() + body.q_index;
@@ -110,7 +112,7 @@ void fill_transforms(const mbk::Model& model, const mbk::JointState<double>& sta
     set_vector(body.joint.offset + m.translation,
                transforms[i].transform.translation);  // q_k + s_k in Bj
   }
-  if (transforms.size() == moving.size()) return;
+  if (transforms.size() == n) return;
   geometry_msgs::TransformStamped& root = transforms.back();  // the floating base
   root.header.stamp = stamp;
   if (!base) return;

@@ -26,6 +26,10 @@ struct TfJoint {
   // A revolute joint whose C_k is the identity (every URDF joint without rpy): SJK is the turn
   // (cos(q/2), sin(q/2) axis) alone, its sine and cosine taken with the other such joints'.
   bool plain_turn;
+  // The body's first coordinate and its joint's axis, copied here so that a sample's loop over
+  // the joints reads them without going through the model's bodies.
+  int q_index;
+  Eigen::Vector3d axis;
 };
 TfJoint tf_joint(const mbk::Model& model, int body);
 

@@ -77,10 +77,10 @@ bool JointStateInput::plainly_bounded(const sensor_msgs::JointState& msg) const 
 // What mbk::check_state would refuse, before any estimator sees it: the message's values over
 // the coordinates known so far (mimics applied).
 std::string JointStateInput::check_values(const sensor_msgs::JointState& msg, Update& update) {
-  if (plainly_bounded(msg)) return "";
+  plain_message_ = plainly_bounded(msg);
+  if (plain_message_) return "";
   for (int i = 0; i < model_.nq; ++i)
-    trial_.position[i] =
-        coordinates_[i].has_value ? coordinates_[i].position : initial_.position[i];
+    trial_.position[i] = coordinates_[i].has_value ? intake_.last()[i] : initial_.position[i];
   trial_.velocity.setZero();
   trial_.acceleration.setZero();
   for (size_t i = 0; i < msg.name.size(); ++i) {
@@ -119,6 +119,7 @@ JointStateInput::Update JointStateInput::add(const sensor_msgs::JointState& msg,
   steady_ = true;
   last_t_ = t;
   last_velocity_given_ = velocity_given;
+  last_plain_ = plain_message_;
   return update;
 }
 
@@ -134,17 +135,29 @@ bool JointStateInput::steady(const sensor_msgs::JointState& msg, double t) const
 // The values of a steady message: what take_each does to a coordinate that has a value of this
 // kind, set at a stamp not after t and within max_gap of it.
 void JointStateInput::take_steady(const sensor_msgs::JointState& msg, double t) {
-  const std::vector<int>& coordinate_of = intake_.coordinates();
-  const std::vector<double>& last = intake_.last();
-  const bool velocity_given = !msg.velocity.empty();
-  for (size_t i = 0; i < coordinate_of.size(); ++i) {
+  // The arrays' starts in locals: read once, not again after each store.
+  const int* coordinate_of = intake_.coordinates().data();
+  const size_t n = intake_.coordinates().size();
+  const double* last = intake_.last().data();
+  const double* velocity = msg.velocity.data();
+  Coordinate* coordinates = coordinates_.data();
+  double* sample = sample_.data();
+  if (msg.velocity.empty()) {
+    for (size_t i = 0; i < n; ++i) {
+      const int j = coordinate_of[i];
+      if (j < 0) continue;
+      coordinates[j].stamp = t;
+      sample[j] = last[j];
+    }
+    return;
+  }
+  for (size_t i = 0; i < n; ++i) {
     const int j = coordinate_of[i];
     if (j < 0) continue;
-    Coordinate& c = coordinates_[j];
-    c.position = last[j];
-    if (velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
+    Coordinate& c = coordinates[j];
+    c.velocity = intake_.sign(j) * velocity[i];
     c.stamp = t;
-    sample_[j] = velocity_given ? c.velocity : c.position;
+    sample[j] = c.velocity;
   }
 }
 
@@ -168,7 +181,6 @@ void JointStateInput::take_each(const sensor_msgs::JointState& msg, double t, Up
     }
     c.other_reset = c.other_reset && c.has_value && velocity_given == c.velocity_given;
     c.has_value = true;
-    c.position = intake_.last()[j];
     c.velocity_given = velocity_given;
     if (c.velocity_given) c.velocity = intake_.sign(j) * msg.velocity[i];
     take(j, t);
@@ -185,7 +197,7 @@ void JointStateInput::take(int j, double t) {
   c.stamp = t;
   if (!c.other_reset) (c.velocity_given ? positions_ : velocities_)->reset(j);
   c.other_reset = true;
-  sample_[j] = c.velocity_given ? c.velocity : c.position;
+  sample_[j] = c.velocity_given ? c.velocity : intake_.last()[j];
   sampled_[j] = 1;
 }
 
@@ -253,27 +265,44 @@ bool JointStateInput::settled(int i) const {
 
 // fill() when the last message taken named every coordinate, all from the input, with no
 // accelerations given: the values and the banks' estimates copied whole, as fill() would. False
-// when an estimate is missing: then `state` holds no value fill() would not write.
+// when an estimate is missing: then `state` holds no value fill() would not write. The positions
+// are the intake's last ones; the message's velocities (given) are the samples it put in its
+// bank, sample_ (take, take_steady: every coordinate's, as it named them all).
 bool JointStateInput::fill_every(mbk::Level level, mbk::JointState<double>& state) const {
   if (level != mbk::Level::kPose && !last_velocity_given_ &&
       !positions_->all_estimated(state.velocity.data(), level == mbk::Level::kAcceleration
                                                             ? state.acceleration.data()
                                                             : nullptr))
     return false;
-  for (int i = 0; i < model_.nq; ++i) state.position[i] = coordinates_[i].position;
+  std::copy(intake_.last().begin(), intake_.last().end(), state.position.data());
   if (level == mbk::Level::kPose || !last_velocity_given_) return true;
-  for (int i = 0; i < model_.nq; ++i) state.velocity[i] = coordinates_[i].velocity;
+  std::copy(sample_.begin(), sample_.end(), state.velocity.data());
   return level == mbk::Level::kVelocity ||
          velocities_->all_estimated(state.acceleration.data(), nullptr);
 }
 
 mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* accelerations,
                                  mbk::JointState<double>& state,
-                                 const std::vector<char>* from_input) const {
+                                 const std::vector<char>* from_input, bool* checked) const {
+  if (checked) *checked = false;
   const bool all_from_input =
       !from_input || std::find(from_input->begin(), from_input->end(), 0) == from_input->end();
-  if (steady_ && every_coordinate_ && !accelerations && all_from_input && fill_every(level, state))
+  if (steady_ && every_coordinate_ && !accelerations && all_from_input &&
+      fill_every(level, state)) {
+    // Proof that mbk::check_state accepts such a state at kAcceleration (its plainly_valid:
+    // every position, velocity and acceleration finite and within kMaxStateMagnitude, and no
+    // Euler parameters). The last message taken set every coordinate (every_coordinate_), and
+    // last_plain_ says that it was plainly_bounded: a model without mimics or Euler parameters
+    // (each position is the message's, sign 1, and there is no |e|^2 to look at), its
+    // positions and velocities finite (the intake) and within the bound. fill_every copied
+    // those, and the estimates of the bank it took (all_estimated: 3 samples or more for every
+    // coordinate) after check_estimates found every used estimate within the bound (bounded:
+    // NaN fails it), else it restarted that history and all_estimated failed. At
+    // kAcceleration every vector of `state` is written. Tested: JointStateInputPlain,
+    // CheckedAsCheckState (test/ros/joint_state_input_test.cc).
+    if (checked) *checked = level == mbk::Level::kAcceleration && last_plain_;
     return level;
+  }
   bool velocities = level != mbk::Level::kPose;
   bool accels = level == mbk::Level::kAcceleration;
   for (int i = 0; i < model_.nq; ++i) {
@@ -281,11 +310,11 @@ mbk::Level JointStateInput::fill(mbk::Level level, const AccelerationSample* acc
     if (c.mimic && !c.has_value) continue;  // the mimic rule, below
     if (from_input && !(*from_input)[i] &&
         !c.mimic) {  // ~missing_coordinates: held or zero, at rest
-      state.position[i] = c.has_value ? c.position : initial_.position[i];
+      state.position[i] = c.has_value ? intake_.last()[i] : initial_.position[i];
       state.velocity[i] = state.acceleration[i] = 0;
       continue;
     }
-    state.position[i] = c.position;
+    state.position[i] = intake_.last()[i];
     double first = 0, second = 0;  // the positions' estimates, when no velocity is given
     const int n = c.velocity_given ? 0 : positions_->estimate(i, first, second);
     if (velocities) {

@@ -93,10 +93,12 @@ class JointStateInput {
   // while some coordinate has too few samples for an estimate. `from_input` (model.nq flags;
   // null: all) picks the coordinates taken from the input; the others (~missing_coordinates)
   // get their last value if any, else the zero configuration (Euler parameters: identity), and
-  // zero derivatives, and do not lower the level.
+  // zero derivatives, and do not lower the level. `checked` (may be null): set true when every
+  // value of `state` is known to pass mbk::check_state without its look (see fill's proof),
+  // else false.
   mbk::Level fill(mbk::Level level, const AccelerationSample* accelerations,
-                  mbk::JointState<double>& state,
-                  const std::vector<char>* from_input = nullptr) const;
+                  mbk::JointState<double>& state, const std::vector<char>* from_input = nullptr,
+                  bool* checked = nullptr) const;
 
  private:
   struct Coordinate {
@@ -104,7 +106,7 @@ class JointStateInput {
     // The history of the other kind (positions when velocities are given) is reset and has
     // taken nothing since: take() need not reset it again.
     bool other_reset = false;
-    double position = 0, velocity = 0, stamp = 0;
+    double velocity = 0, stamp = 0;  // the position: intake_.last()
   };
   std::string validate(const sensor_msgs::JointState& msg, Update& update);
   std::string check_values(const sensor_msgs::JointState& msg, Update& update);
@@ -134,6 +136,8 @@ class JointStateInput {
   // last_used_ coordinates: every one (every_coordinate_) or not. A message with its names
   // (intake_.same_names) that follows it within max_gap is taken by take_steady.
   bool steady_ = false, last_velocity_given_ = false, every_coordinate_ = false;
+  // The message checked last, and the last one taken, was plainly_bounded.
+  bool plain_message_ = false, last_plain_ = false;
   double last_t_ = 0;
   int last_used_ = 0;
   mbk::JointState<double> initial_, trial_;  // the state before any sample; a message's values

@@ -155,10 +155,11 @@ bool NodeInput::cover(double t) {
 
 NodeInput::Fill NodeInput::fill(double t, const ros::Time& stamp, mbk::Level& level,
                                 Clock::time_point now) {
+  bool checked = false;  // check_state's verdict known: JointStateInput::fill
   level = input_->fill(level, input_->paired(t), base_ ? input_state_ : state_,
-                       &coverage_->from_input());
+                       &coverage_->from_input(), &checked);
   snapshot_published();
-  if (!base_) return check() ? Fill::kReady : Fill::kDropped;
+  if (!base_) return checked || check() ? Fill::kReady : Fill::kDropped;
   if (params_.base_odometry_wait > 0 && (waiting_count_ > 0 || !base_->covers(t))) {
     wait(t, stamp, level, now);  // in order behind the samples waiting already
     return Fill::kWaiting;

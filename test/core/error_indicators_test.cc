@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "mb_kinematics/core/kinematics_double.h"
 #include "test/support/test_models.h"
 
@@ -40,6 +42,24 @@ TEST(ErrorIndicators, PredictionResidualIsExactForQuadraticsAndSeesAJump) {
   EXPECT_LT(mbk::prediction_residual(a, b, dt), 1e-15);
   b.position[1] += 0.5;
   EXPECT_NEAR(mbk::prediction_residual(a, b, dt), 0.5, 1e-15);
+}
+
+// prediction_residual in one expression (no vector for the prediction) gives the bits of the
+// prediction made first, then the residual's norm, over a trajectory of a chain (nq = nv, as the
+// node's models).
+TEST(ErrorIndicators, PredictionResidualAsWithThePredictionMadeFirst) {
+  const mbk::Model model = mbk_test::revolute_chain(100);
+  const mbk_test::Trajectory trajectory(model, 6);
+  for (const double dt : {1e-3, 0.01, 0.37}) {
+    const mbk::JointState<double> a = trajectory.at<double>(0.2),
+                                  b = trajectory.at<double>(0.2 + dt);
+    const mbk::VecX<double> predicted =
+        a.position + a.velocity * dt + a.acceleration * (dt * dt / 2);
+    const double want = (b.position - predicted).lpNorm<Eigen::Infinity>();
+    const double got = mbk::prediction_residual(a, b, dt);
+    EXPECT_EQ(std::memcmp(&got, &want, sizeof got), 0) << dt << ": " << got << " against " << want;
+    EXPECT_GT(got, 0.0);
+  }
 }
 
 }  // namespace

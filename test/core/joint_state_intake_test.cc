@@ -68,4 +68,41 @@ TEST(JointStateIntakeTest, EulerParametersStayOnOneSide) {
   EXPECT_EQ(intake.last(), (std::vector<double>{-0.1, 0, 0, -0.99}));
 }
 
+// CoordinateLookup compares a sample's names with the last ones word by word (joint_state_intake.cc
+// same_bytes): every length from 0 to 40 and a name differing from the last in any one byte (the
+// words of each length, their overlapping tails) or in its length is told apart; the same names,
+// in strings of their own, are not.
+TEST(JointStateIntakeTest, NamesComparedWordByWord) {
+  const mbk::Model model = two_joints();
+  mbk::CoordinateLookup lookup(model);
+  for (size_t n = 0; n <= 40; ++n) {
+    std::string name;
+    for (size_t i = 0; i < n; ++i) name += static_cast<char>('a' + i % 26);
+    const std::vector<std::string> names{"J1", name, "J2"};
+    bool changed = false;
+    lookup.look_up(names, &changed);
+    lookup.look_up(std::vector<std::string>(names), &changed);  // equal, not the same storage
+    EXPECT_FALSE(changed) << n;
+    for (size_t i = 0; i < n; ++i) {
+      std::vector<std::string> other = names;
+      other[1][i] ^= 0x20;
+      lookup.look_up(other, &changed);
+      EXPECT_TRUE(changed) << n << " " << i;
+      lookup.look_up(names, &changed);
+      EXPECT_TRUE(changed) << n << " " << i;
+    }
+    for (const std::string& other : {name + "a", name.substr(0, n ? n - 1 : 0)}) {
+      if (other == name) continue;
+      lookup.look_up({"J1", other, "J2"}, &changed);
+      EXPECT_TRUE(changed) << n;
+      lookup.look_up(names, &changed);
+      EXPECT_TRUE(changed) << n;
+    }
+  }
+  bool changed = false;
+  lookup.look_up({"J1", "J2"}, &changed);
+  EXPECT_TRUE(changed);  // fewer names
+  EXPECT_EQ(lookup.coordinates(), (std::vector<int>{0, 1}));
+}
+
 }  // namespace

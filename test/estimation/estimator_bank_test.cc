@@ -114,4 +114,38 @@ TEST(EstimatorBank, BoundedLooksAtTheUsedEstimates) {
   }
 }
 
+// KalmanBank's bounded (one loop without branches, vectorized) is the verdict filter by filter,
+// from each one's estimates: 23 filters (full vectors and those left over), values now and then
+// of 1e300 either way (estimates beyond the bound, infinite or NaN), random filters used.
+TEST(KalmanBank, BoundedIsEachFiltersVerdict) {
+  const int n = 23;
+  mbk::KalmanBank bank(10.0, 1e-4, n);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> x(n);
+  std::vector<char> use(n);
+  int outside = 0;
+  for (int k = 0; k < 400; ++k) {
+    for (int i = 0; i < n; ++i) {
+      const double r = u(rng);
+      x[i] = r < 0.01 ? 1e300 : r < 0.02 ? -1e300 : std::sin(0.01 * k + i);
+      use[i] = u(rng) < 0.9;
+    }
+    bank.add(0.01 * k, x.data(), use.data());
+    for (int i = 0; i < n; ++i)
+      if (u(rng) < 0.02) bank.reset(i);
+    for (const int derivatives : {1, 2}) {
+      bool within = true;
+      for (int i = 0; i < n; ++i) {
+        double first = 0, second = 0;
+        if (!use[i] || bank.estimate(i, first, second) < 2) continue;
+        within = within && std::abs(first) <= 1e50 && (derivatives < 2 || std::abs(second) <= 1e50);
+      }
+      EXPECT_EQ(bank.bounded(use.data(), derivatives, 1e50), within) << k << " " << derivatives;
+      outside += !within;
+    }
+  }
+  EXPECT_GT(outside, 10);  // the jumps put some estimates beyond the bound
+}
+
 }  // namespace

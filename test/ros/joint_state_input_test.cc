@@ -8,6 +8,7 @@
 #include <boost/make_shared.hpp>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/io/urdf_model.h"
@@ -448,6 +449,69 @@ TEST(JointStateInputPlain, BoundsAsCheckState) {
   input.fill(Level::kPose, nullptr, state);
   EXPECT_EQ(state.position[0], 1e300);
   EXPECT_EQ(state.position[1], 0.5);
+}
+
+// fill's `checked` (NodeInput then skips mbk::check_state; the proof in fill): whenever it is
+// true, check_state accepts the state filled. Messages of random values naming every coordinate
+// of a plain model, with and without velocities: mostly small, now and then at the bound 1e50,
+// beyond it (a translation's refused; an angle's taken, not plainly bounded), or jumps of 1e49
+// whose estimates go beyond the bound (their histories restart); and on a model with a mimic,
+// never checked. The node's Kalman bank and a bank of other estimators (estimator_bank.h).
+TEST(JointStateInputPlain, CheckedAsCheckState) {
+  const mbk::Model plain = mbk::load_urdf_string(R"(<robot name="plain">
+    <link name="base"/><link name="arm"/><link name="slide"/>
+    <joint name="turn" type="continuous"><parent link="base"/><child link="arm"/>
+      <axis xyz="0 0 1"/></joint>
+    <joint name="push" type="prismatic"><parent link="arm"/><child link="slide"/>
+      <axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  </robot>)");
+  const mbk::Model mimic = model();
+  for (const char* name : {"kalman_smooth", "backward_difference"})  // KalmanBank, ClonedBank
+    for (const mbk::Model* m : {&plain, &mimic}) {
+      SCOPED_TRACE(name);
+      std::vector<std::string> names = m->coordinate_names;
+      const auto estimator = mbk::make_derivative_estimator(name);
+      mbk_ros::JointStateInput input(*m, *estimator, 0.5);
+      mbk::JointState<double> state(*m);
+      std::mt19937 rng(5);
+      std::uniform_real_distribution<double> u(-1, 1);
+      const auto value = [&] {
+        const double r = u(rng);
+        return r > 0.98 ? 1e50 : r > 0.96 ? -1e49 : r > 0.95 ? 3e50 : r > 0.94 ? -1e300 : u(rng);
+      };
+      int checked_count = 0, restarted = 0;
+      double t = 1.0;
+      for (int k = 0; k < 3000; ++k) {
+        t += 0.01;
+        sensor_msgs::JointState msg;
+        msg.name = names;
+        const bool velocities = (k / 200) % 4 != 3;
+        for (size_t i = 0; i < names.size(); ++i) {
+          msg.position.push_back(value());
+          if (velocities) msg.velocity.push_back(value());
+        }
+        const mbk_ros::JointStateInput::Update update = input.add(msg, t);
+        if (!update.error.empty()) continue;
+        bool checked = true;
+        input.fill(Level::kAcceleration, nullptr, state, nullptr, &checked);
+        if (checked) {
+          EXPECT_EQ(mbk::check_state(*m, state), "") << k;
+        }
+        checked_count += checked;
+        mbk::JointState<double> lower(*m);
+        input.fill(Level::kVelocity, nullptr, lower, nullptr, &checked);
+        EXPECT_FALSE(checked) << k;  // accelerations not written: not known
+        if (update.estimator_reset.empty()) continue;
+        EXPECT_FALSE(checked) << k;  // estimates beyond the bound: restarted, not all estimated
+        ++restarted;
+      }
+      if (m == &mimic) {
+        EXPECT_EQ(checked_count, 0);
+        continue;
+      }
+      EXPECT_GT(checked_count, 1000);
+      EXPECT_GT(restarted, 10);  // estimates beyond the bound were there to be told apart
+    }
 }
 
 // Messages of one layout (the same names, one publisher) take the steady path: each sample's

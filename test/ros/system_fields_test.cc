@@ -5,6 +5,7 @@
 // that a .bvh ~model lacks, in every message. No ROS master: the fill function only.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -40,6 +41,32 @@ mb_kinematics_msgs::SystemKinematics filled(const mbk::Model& model, unsigned se
   EXPECT_EQ(vec(msg.linear_momentum), s.linear_momentum);
   EXPECT_EQ(vec(msg.angular_momentum), s.angular_momentum);
   return msg;
+}
+
+// fill_kinematics' bodies (messages/body_kinematics.h): each body's vectors are Data's, the
+// orientation Eigen's quaternion of its rotation, whatever their order in the message.
+TEST(SystemFields, BodiesAreTheDataOfTheirIndex) {
+  const mbk::Model model = mbk_test::random_tree(30, 7);
+  const mbk_test::Trajectory trajectory(model, 7);
+  mbk::Data<double> data(model);
+  mbk::forward_kinematics(model, trajectory.at<double>(0.6), data, mbk::Level::kAcceleration);
+  mb_kinematics_msgs::BodyKinematicsArray msg;
+  mbk_messages::init_body_kinematics(model, "world", msg);
+  std::reverse(msg.bodies.begin(), msg.bodies.end());
+  mbk_messages::fill_kinematics(ros::Time(3.0), model, data, true, msg);
+  EXPECT_EQ(msg.header.stamp, ros::Time(3.0));
+  for (const mb_kinematics_msgs::BodyKinematics& b : msg.bodies) {
+    const int k = b.index;
+    EXPECT_EQ(vec(b.pose.position), data.origin[k]) << k;
+    EXPECT_EQ(vec(b.mass_center), data.mass_center[k]) << k;
+    EXPECT_EQ(vec(b.twist.angular), data.omega[k]) << k;
+    EXPECT_EQ(vec(b.twist.linear), data.mass_center_velocity[k]) << k;
+    EXPECT_EQ(vec(b.accel.angular), data.alpha[k]) << k;
+    EXPECT_EQ(vec(b.accel.linear), data.mass_center_acceleration[k]) << k;
+    const Eigen::Quaterniond q(data.rotation[k]);
+    const geometry_msgs::Quaternion& o = b.pose.orientation;
+    EXPECT_TRUE(o.x == q.x() && o.y == q.y() && o.z == q.z() && o.w == q.w()) << k;
+  }
 }
 
 TEST(SystemFields, AngularMomentumKnownWhenEveryBodyWithMassHasAnInertia) {

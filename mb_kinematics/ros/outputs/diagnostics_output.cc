@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <utility>
 
 #include "mb_kinematics/core/error_indicators.h"
 
@@ -27,6 +28,15 @@ std::string report_coverage(const CoordinateCoverage& c,
   status.add("bodies from invented or held values",
              names_or_none(none ? std::vector<std::string>() : c.affected()));
   return c.describe();
+}
+
+// `from`'s values into `to`, a state of the same model, a vector at a time in one memmove
+// (Eigen's assignment goes two numbers at a time): every sample's.
+void copy_values(const mbk::JointState<double>& from, mbk::JointState<double>& to) {
+  for (auto [a, b] :
+       {std::pair(&from.position, &to.position), std::pair(&from.velocity, &to.velocity),
+        std::pair(&from.acceleration, &to.acceleration)})
+    std::copy(a->data(), a->data() + a->size(), b->data());
 }
 
 }  // namespace
@@ -57,7 +67,7 @@ void DiagnosticsOutput::publish(const ros::Time& stamp, const Sample& sample) {
         mbk::prediction_residual(previous_state_, sample.state, t - previous_stamp_);
     max_residual_ = std::max(max_residual_, residual);
   }
-  previous_state_ = sample.state;
+  copy_values(sample.state, previous_state_);  // same sizes
   previous_stamp_ = full ? t : -1;
 }
 

@@ -2,6 +2,8 @@
 
 #include <ros/advertise_service_options.h>
 
+#include <algorithm>
+
 #include "mb_kinematics/core/chain_partial_velocity.h"
 #include "mb_kinematics/messages/fields.h"
 
@@ -58,8 +60,9 @@ PartialVelocitiesService::~PartialVelocitiesService() {
 
 void PartialVelocitiesService::publish(const ros::Time& stamp, const Sample& sample) {
   std::lock_guard<std::mutex> lock(latest_mutex_);
-  latest_.state.position = sample.state.position;  // same sizes: no allocation
-  latest_.state.velocity = sample.state.velocity;
+  const mbk::VecX<double>&q = sample.state.position, &y = sample.state.velocity;
+  std::copy(q.data(), q.data() + q.size(), latest_.state.position.data());  // one memmove each
+  std::copy(y.data(), y.data() + y.size(), latest_.state.velocity.data());
   latest_.published = sample.published;  // same size: no allocation
   latest_.stamp = stamp;
   latest_.has_sample = true;
