@@ -226,7 +226,7 @@ void read_input(const InputReading& r, mbk::RecordingBuilder& builder, BaseOdome
       input, r.in, builder, base, unreadable,
       [&](long done, long total) { bar.update(done, total); }, checked);
   s.unreadable = unreadable.count;
-  s.unreadable_example = unreadable.first;
+  s.unreadable_example = mbk::printable(unreadable.first);  // librosbag's text: the bag's bytes
 }
 
 // The outputs opened (under temporary names) for `base_model`'s bodies (the model of `file`,

@@ -29,6 +29,7 @@
 #include "mb_kinematics/analysis/demo_trajectory.h"
 #include "mb_kinematics/core/floating_base.h"
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/printable.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/estimation/offline_estimator.h"
 #include "mb_kinematics/io/load_model.h"
@@ -940,6 +941,27 @@ TEST(BagTest, DamagedHeadersPrintOnlyMbksOwnLines) {
   std::istringstream lines(err);
   for (std::string line; std::getline(lines, line);)
     EXPECT_TRUE(line.rfind("mbk", 0) == 0 || line.rfind("  ", 0) == 0) << line;
+}
+
+// librosbag's error for a chunk's damaged compression field quotes the field's bytes: the
+// summary's example of an unreadable message is printable (a byte that is not UTF-8 escaped;
+// found by flipping bits of a bag).
+TEST(BagTest, AnUnreadableMessagesExampleIsPrintable) {
+  std::string damaged = read_file(write_bag("compression_src.bag", 100, 1.0));
+  const std::size_t at = damaged.find("compression=none");
+  ASSERT_NE(at, std::string::npos);
+  damaged[at + 12] = static_cast<char>(damaged[at + 12] ^ 128);  // "none" -> "\xeeone"
+  std::ofstream(temp("compression.bag"), std::ios::binary) << damaged;
+  mbk_offline::BagOptions o = options(temp("compression.bag"), "");
+  o.out_csv = temp("compression.csv");
+  std::string example;
+  try {
+    example = mbk_offline::run_bag(o).unreadable_example;
+  } catch (const std::invalid_argument& e) {  // nothing readable: an error, its example in it
+    example = e.what();
+  }
+  EXPECT_NE(example.find("\\xeeone"), std::string::npos) << example;
+  EXPECT_EQ(mbk::printable(example), example);
 }
 
 // A std_msgs/String connection on /joint_states, before or after the
