@@ -45,12 +45,15 @@ if [ -z "$sanitize" ]; then
   fuzz_build=$!
   trap '[ -z "$fuzz_build" ] || kill -- -"$fuzz_build" 2>/dev/null || true' EXIT
 fi
+# The install check first, beside the fuzz build: its steps run one at a time (catkin's
+# configure, the downstream package's two builds), so the fuzz build has the other core; the
+# package it installs is built, and the tests' build after it compiles nothing of it again.
+[ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 (cd "$MBK_WS/build" && make -j2 tests >>"$MBK_WS/build.log" 2>&1) || {
   tail -n 60 "$MBK_WS/build.log"
   echo "test build failed: full log in $MBK_WS/build.log" >&2
   exit 1
 }
-[ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 echo "== ctest (${SECONDS} s in)"
 cd "$MBK_WS/build"
 set +e
