@@ -14,9 +14,9 @@ sanitize=${1:-}
 source "$(dirname "$0")/common.sh"
 build_args=()
 skip=()
-# ctest's slots: four on two cores (test/schedule.cmake: most tests wait, and a busy one takes
+# ctest's slots: six on two cores (test/schedule.cmake: most tests wait, and a busy one takes
 # two); two under the sanitizers, whose instrumented processes keep the cores busier.
-jobs=4
+jobs=6
 if [ -n "$sanitize" ]; then
   MBK_WS=$MBK_WS-sanitize
   flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
