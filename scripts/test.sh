@@ -14,9 +14,9 @@ sanitize=${1:-}
 source "$(dirname "$0")/common.sh"
 build_args=()
 skip=()
-# ctest's slots: four on two cores (test/schedule.cmake: most tests wait, and a busy one takes
+# ctest's slots: six on two cores (test/schedule.cmake: most tests wait, and a busy one takes
 # two); two under the sanitizers, whose instrumented processes keep the cores busier.
-jobs=4
+jobs=6
 if [ -n "$sanitize" ]; then
   MBK_WS=$MBK_WS-sanitize
   flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
@@ -32,10 +32,16 @@ if [ -n "$sanitize" ]; then
   # our library (test/ros/nodelet.test).
   export MBK_SANITIZER_PRELOAD="env LD_PRELOAD=$(g++ -print-file-name=libasan.so)"
 fi
+# The user + system CPU seconds of the processes this script has waited for, on each phase's
+# line beside its wall seconds: a wall time on a shared machine says little alone
+# (doc/building.md, "Where the time goes").
+cpu_seconds() {  # /proc/PID/stat's cutime and cstime, in clock ticks
+  awk -v hz="$(getconf CLK_TCK)" '{ printf "%.0f", ($16 + $17) / hz }' "/proc/$$/stat"
+}
 MBK_PACKAGES+=("${MBK_TEST_PACKAGES[@]}")
 mbk_install_deps
 mbk_build -DCATKIN_ENABLE_TESTING=ON "${build_args[@]}"
-echo "== building tests (${SECONDS} s in)"
+echo "== building tests (${SECONDS} s in, $(cpu_seconds) CPU s)"
 # The fuzz harnesses' clang build (scripts/fuzz.sh --build) beside the tests' build: ctest's
 # fuzz_smoke, the longest test, then waits for it (a lock) rather than starting it; its output
 # is in <workspace>/fuzz/build.log, and a failed build fails fuzz_smoke, which builds again.
@@ -45,13 +51,16 @@ if [ -z "$sanitize" ]; then
   fuzz_build=$!
   trap '[ -z "$fuzz_build" ] || kill -- -"$fuzz_build" 2>/dev/null || true' EXIT
 fi
+# The install check first, beside the fuzz build: its steps run one at a time (catkin's
+# configure, the downstream package's two builds), so the fuzz build has the other core; the
+# package it installs is built, and the tests' build after it compiles nothing of it again.
+[ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
 (cd "$MBK_WS/build" && make -j2 tests >>"$MBK_WS/build.log" 2>&1) || {
   tail -n 60 "$MBK_WS/build.log"
   echo "test build failed: full log in $MBK_WS/build.log" >&2
   exit 1
 }
-[ -n "$sanitize" ] || "$MBK_SRC/test/install/install_test.sh" "$MBK_SRC" "$MBK_WS"
-echo "== ctest (${SECONDS} s in)"
+echo "== ctest (${SECONDS} s in, $(cpu_seconds) CPU s)"
 cd "$MBK_WS/build"
 set +e
 ctest --output-on-failure -j"$jobs" "${skip[@]}" 2>&1 | tee "$MBK_WS/ctest.log" | grep -v '^Total Test time'

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <iostream>
 #include <mutex>
+#include <random>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -49,6 +50,17 @@ pid_t owner(const std::string& name, const std::string& base) {
   const long pid = std::strtol(digits, &end, 10);
   if (end == digits || !(*end == '\0' || *end == '-') || pid <= 0) return 0;
   return static_cast<pid_t>(pid);
+}
+
+// Six random letters and digits, as mkostemp's XXXXXX: a name no one can plant a file at ahead.
+std::string random_suffix() {
+  static const char kChars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+  static std::mutex lock;  // outputs may be opened on several threads
+  static std::mt19937_64 random{std::random_device{}()};
+  const std::lock_guard<std::mutex> hold(lock);
+  std::string suffix(6, 'X');
+  for (char& c : suffix) c = kChars[random() % (sizeof kChars - 1)];
+  return suffix;
 }
 
 bool running(pid_t pid) { return pid == getpid() || kill(pid, 0) == 0 || errno == EPERM; }
@@ -128,13 +140,24 @@ OutputFile::OutputFile(const std::string& path, bool named) : path_(path) {
 }
 
 void OutputFile::create_temporary() {
-  std::string name = path_ + kTag + std::to_string(getpid()) + "-XXXXXX";
-  fd_ = mkostemp(name.data(), O_CLOEXEC);
-  if (fd_ < 0)
-    throw std::invalid_argument(path_ + ": cannot create a file beside it (" +
-                                std::strerror(errno) + ")");
-  slot_ = record_temporary(name);
-  writing_ = name;
+  // The name goes to the signal handler (record_temporary) before the file exists: made first
+  // (mkostemp), a signal before its recording left it behind (test_h5_signal_leaves_nothing on a
+  // busy machine). A signal in between removes no file (the name is this process's own).
+  const std::string stem = path_ + kTag + std::to_string(getpid()) + "-";
+  for (int attempt = 1; fd_ < 0; ++attempt) {
+    const std::string name = stem + random_suffix();
+    slot_ = record_temporary(name);
+    fd_ = open(name.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd_ >= 0) {
+      writing_ = name;
+      break;
+    }
+    const int error = errno;
+    forget_temporary(slot_);
+    if (error != EEXIST || attempt == 100)
+      throw std::invalid_argument(path_ + ": cannot create a file beside it (" +
+                                  std::strerror(error) + ")");
+  }
   struct stat st;
   if (fchmod(fd_, default_mode()) != 0 || fstat(fd_, &st) != 0) {
     const std::string error = std::strerror(errno);
