@@ -1071,27 +1071,34 @@ std::string write_bz2_bag(const std::string& name, int skip_from = 0, int skip_t
   return temp(name);
 }
 
-// Where each chunk record's data (op 0x05) lies in a bag file's bytes: offset and length.
-std::vector<std::pair<std::size_t, std::size_t>> chunk_data(const std::string& bytes) {
-  const auto u32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    std::memcpy(&v, bytes.data() + at, 4);
-    return std::size_t{v};
-  };
-  std::vector<std::pair<std::size_t, std::size_t>> chunks;
+std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + at, 4);
+  return v;
+}
+
+void set_u32_at(std::string& bytes, std::size_t at, std::uint32_t v) {
+  std::memcpy(&bytes[at], &v, 4);
+}
+
+// Where the data of each top-level record of kind `op` (0x05: a chunk, 0x04: an index) lies in a
+// bag file's bytes: offset and length.
+std::vector<std::pair<std::size_t, std::size_t>> record_data(const std::string& bytes, char op) {
+  std::vector<std::pair<std::size_t, std::size_t>> records;
   for (std::size_t at = 13; at + 8 <= bytes.size();) {
-    const std::size_t header = u32(at), data_at = at + 8 + header, length = u32(at + 4 + header);
-    if (bytes.substr(at + 4, header).find(std::string("op=\x05", 4)) != std::string::npos)
-      chunks.emplace_back(data_at, length);
+    const std::size_t header = u32_at(bytes, at), data_at = at + 8 + header,
+                      length = u32_at(bytes, at + 4 + header);
+    if (bytes.substr(at + 4, header).find(std::string("op=") + op) != std::string::npos)
+      records.emplace_back(data_at, length);
     at = data_at + length;
   }
-  return chunks;
+  return records;
 }
 
 // write_bz2_bag's bag with 16 bytes of its middle chunk's data inverted, as `name`: its path.
 std::string write_damaged_chunk_bag(const std::string& name) {
   std::string bytes = file_bytes(write_bz2_bag("undamaged_" + name));
-  const auto chunks = chunk_data(bytes);
+  const auto chunks = record_data(bytes, 0x05);
   EXPECT_GE(chunks.size(), 20u);
   if (chunks.empty()) return temp(name);
   const auto [at, length] = chunks[chunks.size() / 2];
@@ -1123,16 +1130,6 @@ TEST(BagTest, ADamagedChunkLosesItsMessagesAlone) {
   EXPECT_EQ(file_bytes(damaged.out_csv), file_bytes(without.out_csv));
 }
 
-std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
-  std::uint32_t v = 0;
-  std::memcpy(&v, bytes.data() + at, 4);
-  return v;
-}
-
-void set_u32_at(std::string& bytes, std::size_t at, std::uint32_t v) {
-  std::memcpy(&bytes[at], &v, 4);
-}
-
 // Where each record inside an uncompressed chunk's data (at, length) starts in the file.
 std::vector<std::size_t> records_in_chunk(const std::string& bytes, std::size_t at,
                                           std::size_t length) {
@@ -1145,24 +1142,13 @@ std::vector<std::size_t> records_in_chunk(const std::string& bytes, std::size_t 
   return records;
 }
 
-// Where the data of the first index record (op 0x04) lies in a bag file's bytes.
-std::size_t first_index_data(const std::string& bytes) {
-  for (std::size_t at = 13; at + 8 <= bytes.size();) {
-    const std::size_t header = u32_at(bytes, at), data_at = at + 8 + header;
-    if (bytes.substr(at + 4, header).find(std::string("op=\x04", 4)) != std::string::npos)
-      return data_at;
-    at = data_at + u32_at(bytes, at + 4 + header);
-  }
-  return 0;
-}
-
 // A message record inside a chunk whose data length reaches past the chunk (librosbag copies
 // what it says out of its buffer: a crash, or other bytes taken for the message's; found by
 // flipping bits of a bag), and an index entry pointing inside a record: each an error naming
 // the bag and the byte, before librosbag reads the bag.
 TEST(BagTest, ARecordBeyondItsChunkOrAnIndexInsideARecordIsAnError) {
   const std::string bytes = file_bytes(write_bag("records_src.bag", 100, 2.0));
-  const auto chunks = chunk_data(bytes);
+  const auto chunks = record_data(bytes, 0x05);
   ASSERT_FALSE(chunks.empty());
   const auto [at, length] = chunks[0];
   const std::vector<std::size_t> records = records_in_chunk(bytes, at, length);
@@ -1186,8 +1172,9 @@ TEST(BagTest, ARecordBeyondItsChunkOrAnIndexInsideARecordIsAnError) {
       << e;
 
   std::string inside = bytes;
-  const std::size_t index = first_index_data(bytes);
-  ASSERT_GT(index, 0u);
+  const auto indexes = record_data(bytes, 0x04);
+  ASSERT_FALSE(indexes.empty());
+  const std::size_t index = indexes[0].first;
   const std::uint32_t first = u32_at(bytes, index + 8);  // the first entry's offset
   ASSERT_EQ(first, records[1] - at) << "the first message follows the connection record";
   set_u32_at(inside, index + 8, first + 4);
