@@ -177,46 +177,35 @@ void partial_velocity_kinematics(const Model& model, const JointState<S>& state,
       pv.omega_dot[i] = own.omega_dot;
       pv.origin_velocity_dot[i] = own.origin_velocity_dot;
     }
-    Vec3<S> omega = Vec3<S>::Zero();
-    if (sums == DataSums::kOmega) {
-      for (int i = bk; i < bk + nk; ++i) {  // the loops below without their other sums
-        pv.velocity[i] = pv.origin_velocity[i] + pv.omega[i].cross(rho);
-        omega += pv.omega[i] * y[pv.speed[i]];
-      }
-      data.omega[k] = omega;
-      for (int i = bk; i < bk + nk && accelerations; ++i)
-        pv.velocity_dot[i] = pv.origin_velocity_dot[i] + pv.omega_dot[i].cross(rho) +
-                             pv.omega[i].cross(omega.cross(rho));
-      if (!accelerations) continue;
-      done(k);
-      if (pv.streamed) pv.close(model, k);
-      continue;
-    }
-    Vec3<S> v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
+    const bool all = sums == DataSums::kAll;  // else omega_k alone
+    Vec3<S> omega = Vec3<S>::Zero(), v = Vec3<S>::Zero(), vo = Vec3<S>::Zero();
     for (int i = bk; i < bk + nk; ++i) {
       pv.velocity[i] = pv.origin_velocity[i] + pv.omega[i].cross(rho);
       const S yr = y[pv.speed[i]];
       omega += pv.omega[i] * yr;
+      if (!all) continue;
       v += pv.velocity[i] * yr;
       vo += pv.origin_velocity[i] * yr;
     }
     data.omega[k] = omega;
-    data.mass_center_velocity[k] = v;
-    data.origin_velocity[k] = vo;
+    if (all) data.mass_center_velocity[k] = v, data.origin_velocity[k] = vo;
     if (!accelerations) continue;
 
     Vec3<S> alpha = Vec3<S>::Zero(), a = Vec3<S>::Zero(), ao = Vec3<S>::Zero();
     for (int i = bk; i < bk + nk; ++i) {
       pv.velocity_dot[i] = pv.origin_velocity_dot[i] + pv.omega_dot[i].cross(rho) +
                            pv.omega[i].cross(omega.cross(rho));
+      if (!all) continue;
       const S yr = y[pv.speed[i]], ydr = yd[pv.speed[i]];
       alpha += pv.omega[i] * ydr + pv.omega_dot[i] * yr;
       a += pv.velocity[i] * ydr + pv.velocity_dot[i] * yr;
       ao += pv.origin_velocity[i] * ydr + pv.origin_velocity_dot[i] * yr;
     }
-    data.alpha[k] = alpha;
-    data.mass_center_acceleration[k] = a;
-    data.origin_acceleration[k] = ao;
+    if (all) {
+      data.alpha[k] = alpha;
+      data.mass_center_acceleration[k] = a;
+      data.origin_acceleration[k] = ao;
+    }
     done(k);
     if (pv.streamed) pv.close(model, k);
   }
