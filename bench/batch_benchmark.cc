@@ -15,17 +15,16 @@
 //   compute/<model>/<outputs>/threads:T the same states' batch on T threads with every sample
 //                                       written into one sample's arrays (in L1): the computation
 //                                       less the outputs' memory traffic and the state check
+//   check/<model>/<outputs>/threads:T   the state check alone (the batch's first pass)
 //   write/<model>/<outputs>/threads:T   the writes alone: one sample's outputs (in L1) stored
 //                                       into every sample's rows of arrays touched before, with
-//                                       ordinary stores (each line read for ownership first, as
-//                                       the batch's stores)
+//                                       ordinary stores (each line read for ownership first)
 //   stream/<model>/<outputs>/threads:T  the same with streaming (non-temporal) stores: each line
-//                                       written once, never read
+//                                       written once, never read (stream_copy, as the batch's)
 //
 // Models: human = config/human_body.urdf (37 bodies), panda = test/robots/panda.urdf (7-joint
 // arm, hand and fingers: 12 bodies). Arguments: --benchmark_format=json for bench/python_batch.py.
 #include <benchmark/benchmark.h>
-#include <emmintrin.h>
 
 #include <cstring>
 #include <random>
@@ -36,9 +35,11 @@
 #include "mb_kinematics/core/kinematics_double.h"
 #include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/core/state.h"
+#include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
 #include "mb_kinematics/io/load_model.h"
 #include "mb_kinematics/offline/batch_kinematics.h"
+#include "mb_kinematics/offline/stream_copy.h"
 
 namespace {
 
@@ -120,12 +121,12 @@ void batch(benchmark::State& state, const std::string& name, Outputs outputs) {
 }
 
 // What batch_kinematics computes and writes for each sample (its compute_sample), every sample
-// into one sample's arrays per thread: no output leaves the caches.
+// into one sample's arrays per thread, at the level the outputs need: no output leaves the caches.
 void compute(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
   const Batch b(model, outputs, 0);  // for its states
   const int threads = static_cast<int>(state.range(0));
-  const mbk::Level level = mbk::batch_level(b.out);
+  const mbk::Level level = mbk::batch_level(Batch(model, outputs, 1, false).out);
   for (auto _ : state)
     mbk::split_runs(kSamples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
       Batch one(model, outputs, 1, false);
@@ -141,6 +142,26 @@ void compute(benchmark::State& state, const std::string& name, Outputs outputs) 
         mbk::forward_kinematics(model, joints, data, level);
         mbk::write_batch_fields(model, data, 0, level, one.out, system);
         benchmark::DoNotOptimize(one.arrays.front().data());
+      }
+    });
+  set_counters(state, model, 0);
+}
+
+// batch_kinematics' first pass: every sample's state checked (check_state) before any is written.
+void check(benchmark::State& state, const std::string& name, Outputs outputs) {
+  const mbk::Model& model = model_of(name);
+  const Batch b(model, outputs, 0);
+  const int threads = static_cast<int>(state.range(0));
+  for (auto _ : state)
+    mbk::split_runs(kSamples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
+      mbk::JointState<double> joints(model);
+      for (std::size_t s = begin; s < end; ++s) {
+        joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
+        joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
+        joints.acceleration =
+            Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
+        mbk::apply_mimics(model, joints);
+        if (!mbk::check_state(model, joints).empty()) std::abort();
       }
     });
   set_counters(state, model, 0);
@@ -165,20 +186,6 @@ void copy(benchmark::State& state, const std::string& name, Outputs outputs) {
   set_counters(state, model, bytes);
 }
 
-// Doubles [from, from + n) to `to` with SSE2 streaming stores (8-byte ones up to and from a
-// 16-byte boundary).
-void stream_doubles(double* to, const double* from, std::size_t n) {
-  const auto one = [&] {
-    long long bits;
-    std::memcpy(&bits, from++, 8);
-    _mm_stream_si64(reinterpret_cast<long long*>(to++), bits);
-    --n;
-  };
-  while (n > 0 && reinterpret_cast<std::uintptr_t>(to) % 16 != 0) one();
-  for (; n >= 2; to += 2, from += 2, n -= 2) _mm_stream_pd(to, _mm_loadu_pd(from));
-  if (n > 0) one();
-}
-
 // The outputs' writes without the computation: one sample's arrays (in L1) into every sample's
 // rows, with ordinary stores (memcpy of a few KB) or streaming ones.
 void write_rows(benchmark::State& state, const std::string& name, Outputs outputs, bool streaming) {
@@ -192,11 +199,11 @@ void write_rows(benchmark::State& state, const std::string& name, Outputs output
         for (std::size_t i = 0; i < b.arrays.size(); ++i) {
           const std::size_t n = one.arrays[i].size();
           if (streaming)
-            stream_doubles(b.arrays[i].data() + s * n, one.arrays[i].data(), n);
+            mbk::stream_copy(b.arrays[i].data() + s * n, one.arrays[i].data(), n * sizeof(double));
           else
             std::memcpy(b.arrays[i].data() + s * n, one.arrays[i].data(), n * sizeof(double));
         }
-      _mm_sfence();
+      mbk::stream_fence();
     });
     benchmark::DoNotOptimize(b.arrays.front().data());
   }
@@ -230,6 +237,7 @@ void register_all() {
       add("batch", batch, name, outputs);
     for (const Outputs outputs : {Outputs::kFull, Outputs::kAll}) {
       add("compute", compute, name, outputs);
+      add("check", check, name, outputs);
       add("copy", copy, name, outputs);
       add("write", write, name, outputs);
       add("stream", stream, name, outputs);

@@ -16,6 +16,7 @@
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
 #include "mb_kinematics/core/system_kinematics.h"
+#include "mb_kinematics/offline/stream_copy.h"
 
 namespace mbk {
 namespace {
@@ -207,28 +208,74 @@ void write_partials(const Model& model, const PartialVelocities<double>& pv, std
   }
 }
 
+// Input row s into output row `row` of `out`.
 template <typename T>
-void compute_sample(const Model& model, const BatchInput& in, std::size_t s, Level level,
-                    const BatchOutput<T>& out, Workspace& w) {
+void compute_sample(const Model& model, const BatchInput& in, std::size_t s, std::size_t row,
+                    Level level, const BatchOutput<T>& out, Workspace& w) {
   load_sample(model, in, s, w.state);
   if (w.pv) partial_velocity_kinematics(model, w.state, *w.pv, *w.scratch, level);
   forward_kinematics(model, w.state, w.data, level);
-  write_batch_fields(model, w.data, s, level, out, w.system);
-  if (w.pv) write_partials(model, *w.pv, s, out);
+  write_batch_fields(model, w.data, row, level, out, w.system);
+  if (w.pv) write_partials(model, *w.pv, row, out);
 }
 
-// Samples [begin, end) written straight into the caller's arrays (each thread its own rows, so
-// fresh arrays are first touched by the threads that fill them), with ordinary stores: the
-// caches absorb and write back the rows while the next samples compute (doc/speed.md#python).
+// The numbers per sample of each field of `out` (0: not asked for).
+template <typename T>
+std::array<std::size_t, kBatchFieldCount> row_sizes(const Model& model, const BatchOutput<T>& out) {
+  std::array<std::size_t, kBatchFieldCount> size{};
+  for (int f = 0; f < kBatchFieldCount; ++f)
+    if (out.field[f])
+      size[f] = batch_field_size(model, static_cast<BatchField>(f), out.bodies.size());
+  return size;
+}
+
+// One sample's outputs in a buffer that stays in the caches, streamed to the caller's rows once
+// computed (stream_copy): each line of the arrays is written once, not read first, and the
+// workspace is not evicted by the outputs (doc/speed.md#python).
+template <typename T>
+struct StagedRow {
+  StagedRow(const Model& model, const BatchOutput<T>& out) : size(row_sizes(model, out)) {
+    std::size_t total = 0;
+    for (const std::size_t n : size) total += n;
+    buffer.resize(total);
+    row.bodies = out.bodies;
+    total = 0;
+    for (int f = 0; f < kBatchFieldCount; ++f)
+      if (size[f] > 0) {
+        row.field[f] = buffer.data() + total;
+        total += size[f];
+      }
+  }
+  void stream_to(const BatchOutput<T>& out, std::size_t s) const {
+    for (int f = 0; f < kBatchFieldCount; ++f)
+      if (size[f] > 0) stream_copy(out.field[f] + s * size[f], row.field[f], size[f] * sizeof(T));
+  }
+  std::array<std::size_t, kBatchFieldCount> size;
+  std::vector<T> buffer;
+  BatchOutput<T> row;  // row 0 of each field of `out`, in `buffer`
+};
+
+// Samples [begin, end) into the caller's arrays (each thread its own rows, so fresh arrays are
+// first touched by the threads that fill them): streamed from a staged row when `streamed`, else
+// written in place with ordinary stores, which leave them in the caches for the caller.
 template <typename T>
 void compute_range(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
-                   Level level, const BatchOutput<T>& out) {
+                   Level level, const BatchOutput<T>& out, bool streamed) {
   Workspace w(model);
   if (any_partials(out)) {
     w.pv = std::make_unique<PartialVelocities<double>>(model);
     w.scratch = std::make_unique<Data<double>>(model);
   }
-  for (std::size_t s = begin; s < end; ++s) compute_sample(model, in, s, level, out, w);
+  if (!streamed) {
+    for (std::size_t s = begin; s < end; ++s) compute_sample(model, in, s, s, level, out, w);
+    return;
+  }
+  const StagedRow<T> staged(model, out);
+  for (std::size_t s = begin; s < end; ++s) {
+    compute_sample(model, in, s, 0, level, staged.row, w);
+    staged.stream_to(out, s);
+  }
+  stream_fence();
 }
 
 // The first sample in [begin, end) that check_state rejects, with its message; `end` if none.
@@ -328,8 +375,10 @@ void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutpu
     if (bad[t] < in.samples * (t + 1) / threads)
       throw std::invalid_argument("sample " + std::to_string(bad[t]) + ": " + problems[t]);
   const Level level = batch_level(out);
+  std::size_t bytes = 0;
+  for (const std::size_t n : row_sizes(model, out)) bytes += n * sizeof(T) * in.samples;
   split_runs(in.samples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
-    compute_range(model, in, begin, end, level, out);
+    compute_range(model, in, begin, end, level, out, bytes > kBatchStreamBytes);
   });
 }
 

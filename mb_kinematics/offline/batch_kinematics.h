@@ -102,6 +102,13 @@ void write_batch_fields(const Model& model, const Data<double>& data, std::size_
 template <typename T>
 Level batch_level(const BatchOutput<T>& out);
 
+// A call whose outputs take more than this many bytes streams them to memory
+// (offline/stream_copy.h): each sample computed into a buffer in L1 and copied to its rows with
+// streaming stores, which write each line once instead of reading it first (doc/speed.md#python).
+// Smaller outputs (the L2 caches of a few cores) are written in place with ordinary stores, which
+// leave them in the caches for the caller's next read.
+constexpr std::size_t kBatchStreamBytes = std::size_t{4} << 20;
+
 // Computes every sample into `out` (T = double or float) on `threads` threads (0: the machine's
 // cores; never more than the samples). First checks everything and throws std::invalid_argument
 // with a one-line message, writing nothing: a body index out of range, a field that needs

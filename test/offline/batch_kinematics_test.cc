@@ -200,6 +200,58 @@ TEST(BatchKinematics, OnlyTheFieldsAskedForAndTheirLevel) {
   EXPECT_THROW(mbk::batch_kinematics(model, inputs.in, omega.out, 1), std::invalid_argument);
 }
 
+// Every field of every sample, one number past the start of each array (4 or 8 bytes off a 16-byte
+// boundary), on `threads` threads, against `reference`: each sample computed alone, whose outputs
+// are below kBatchStreamBytes (written in place).
+template <typename T>
+void expect_rows_of_samples_alone(const mbk::Model& model, int threads) {
+  const std::vector<int> bodies = all_bodies(model);
+  std::array<std::size_t, mbk::kBatchFieldCount> size{};
+  std::size_t bytes_per_sample = 0;
+  for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
+    size[f] = mbk::batch_field_size(model, static_cast<BatchField>(f), bodies.size());
+    bytes_per_sample += size[f] * sizeof(T);
+  }
+  ASSERT_LT(bytes_per_sample, mbk::kBatchStreamBytes);
+  const std::size_t samples = mbk::kBatchStreamBytes / bytes_per_sample + 2;  // streamed
+  const Inputs inputs(model, static_cast<int>(samples));
+  std::array<std::vector<T>, mbk::kBatchFieldCount> arrays;
+  mbk::BatchOutput<T> out;
+  out.bodies = bodies;
+  for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
+    arrays[f].assign(samples * size[f] + 2, T(-7));
+    out.field[f] = arrays[f].data() + 1;
+  }
+  mbk::batch_kinematics(model, inputs.in, out, threads);
+  for (std::size_t s = 0; s < samples; ++s) {
+    mbk::BatchInput one = inputs.in;
+    one.samples = 1;
+    one.position += s * model.nq;
+    one.velocity += s * model.nv;
+    one.acceleration += s * model.nv;
+    Outputs<T> alone(model, 1, bodies);
+    mbk::batch_kinematics(model, one, alone.out, 1);
+    for (int f = 0; f < mbk::kBatchFieldCount; ++f)
+      ASSERT_EQ(
+          0, std::memcmp(alone.arrays[f].data(), out.field[f] + s * size[f], size[f] * sizeof(T)))
+          << mbk::batch_field_traits(static_cast<BatchField>(f)).name << ", sample " << s << " of "
+          << samples << ", threads " << threads;
+  }
+  for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
+    EXPECT_EQ(T(-7), arrays[f].front()) << "written before the array";
+    EXPECT_EQ(T(-7), arrays[f].back()) << "written past the array";
+  }
+}
+
+// Outputs above kBatchStreamBytes are computed into a staged row and streamed (stream_copy).
+TEST(BatchKinematics, StreamedOutputsAreTheSamplesAloneBitForBit) {
+  for (const mbk::Model& model : {models()[2], models()[3]})
+    for (const int threads : {1, 3}) {
+      expect_rows_of_samples_alone<double>(model, threads);
+      expect_rows_of_samples_alone<float>(model, threads);
+    }
+}
+
 TEST(BatchKinematics, FloatIsTheDoubleRounded) {
   const mbk::Model model = models()[0];
   const Inputs inputs(model, 6);
