@@ -25,6 +25,7 @@
 // Models: human = config/human_body.urdf (37 bodies), panda = test/robots/panda.urdf (7-joint
 // arm, hand and fingers: 12 bodies). Arguments: --benchmark_format=json for bench/python_batch.py.
 #include <benchmark/benchmark.h>
+#include <sys/mman.h>
 
 #include <cstring>
 #include <random>
@@ -44,6 +45,28 @@
 namespace {
 
 constexpr std::size_t kSamples = 100000;
+
+// Memory with transparent huge pages asked for (madvise) before its first touch, as the Python
+// module's fresh arrays (offline/retained_blocks.h) and numpy's np.empty above 4 MiB.
+template <typename T>
+struct HugePages {
+  using value_type = T;
+  HugePages() = default;
+  template <typename U>
+  explicit HugePages(const HugePages<U>&) {}
+  T* allocate(std::size_t n) {
+    void* p = mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
+                   -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    madvise(p, n * sizeof(T), MADV_HUGEPAGE);
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t n) { munmap(p, n * sizeof(T)); }
+  bool operator==(const HugePages&) const { return true; }
+  bool operator!=(const HugePages&) const { return false; }
+};
+template <typename T>
+using Array = std::vector<T, HugePages<T>>;
 
 const mbk::Model& model_of(const std::string& name) {
   static const mbk::Model human =
@@ -76,7 +99,7 @@ struct Batch {
         bool states = true) {
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> u(-0.5, 0.5);
-    for (std::vector<double>* x : {&q, &v, &a}) {
+    for (Array<double>* x : {&q, &v, &a}) {
       x->resize(states ? kSamples * (x == &q ? model.nq : model.nv) : 0);
       for (double& value : *x) value = u(rng);
     }
@@ -95,9 +118,9 @@ struct Batch {
       bytes_per_sample += mbk::batch_field_size(model, field, out.bodies.size()) * sizeof(double);
     }
   }
-  std::vector<double> q, v, a;
+  Array<double> q, v, a;
   mbk::BatchInput in;
-  std::vector<std::vector<double>> arrays;
+  std::vector<Array<double>> arrays;
   mbk::BatchOutput<double> out;
   std::size_t bytes = 0, bytes_per_sample = 0;
 };
@@ -171,7 +194,7 @@ void check(benchmark::State& state, const std::string& name, Outputs outputs) {
 void copy(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
   const std::size_t bytes = Batch(model, outputs, 0, false).bytes_per_sample * kSamples;
-  std::vector<char> from(bytes, 1), to(bytes, 0);
+  Array<char> from(bytes, 1), to(bytes, 0);
   const std::size_t threads = static_cast<std::size_t>(state.range(0));
   for (auto _ : state) {
     std::vector<std::thread> pool;

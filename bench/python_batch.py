@@ -213,13 +213,12 @@ def parallel_copy(to, source, threads=2):
 
 def chunk_rows(n):
     """Human, 2 threads, the full and the all outputs, best (median) of 5: batch_benchmark's
-    plain copy of the same bytes, its computation alone (compute/), its writes alone (write/,
-    stream/) and its batch into arrays touched before; then five rounds of a 2-thread numpy
-    copy of the same bytes into the out= arrays, out= (against that copy), fresh arrays (against
-    out=) and chunks of 10,000 rows
-    (kinematics_chunks, against out=; and into one chunk's arrays made before, out=); the
-    chunks' peak memory against one chunk's arrays. The
-    load average before and after."""
+    plain copy of the same bytes, its computation alone (compute/), its state check (check/),
+    its writes alone (write/, stream/) and its batch into arrays touched before; then five
+    rounds of a 2-thread numpy copy of the same bytes into the out= arrays, out= (against that
+    copy), fresh arrays (against out=) and chunks of 10,000 rows (kinematics_chunks, against
+    out=; and into one chunk's arrays made before, out=); the chunks' peak memory against one
+    chunk's arrays. The load average before and after."""
     load = os.getloadavg()
     cpp = cpp_rows("human/(full|all)/threads:2", 5)
     model = mb_kinematics.load(os.path.join(ROOT, MODELS["human"]))
@@ -227,9 +226,12 @@ def chunk_rows(n):
     rows = {}
     for kind, names in (("full", FULL), ("all", ALL)):
         fresh0 = model.kinematics(q[:1], v[:1], a[:1], outputs=names)
-        out = {k: np.zeros((n,) + x.shape[1:]) for k, x in fresh0.items()}
+        # np.ones, as the table above: its memory (np.empty's) gets transparent huge pages, as
+        # the fresh arrays' do; np.zeros' got none here (numpy 1.24), and a call took 1.15x as
+        # long to write into them (doc/speed.md).
+        out = {k: np.ones((n,) + x.shape[1:]) for k, x in fresh0.items()}
         r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
-             for what in ("copy", "compute", "write", "stream", "batch")}
+             for what in ("copy", "compute", "check", "write", "stream", "batch")}
         source = {k: np.ones_like(x) for k, x in out.items()}
         r.update(numpy_copy=[], out=[], fresh=[], chunks=[], chunks_out=[])
         chunk_out = {k: np.ones((10000,) + x.shape[1:]) for k, x in fresh0.items()}
@@ -260,6 +262,7 @@ def chunk_rows(n):
              ("the same, into the out= arrays (numpy, 2 threads, interleaved)", "numpy_copy", None,
               ""),
              ("computation alone (C++, compute/)", "compute", "copy", "the copy"),
+             ("the state check alone (C++, check/)", "check", "copy", "the copy"),
              ("the writes alone, ordinary stores (C++, write/)", "write", "copy", "the copy"),
              ("the writes alone, streaming stores (C++, stream/)", "stream", "copy", "the copy"),
              ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
