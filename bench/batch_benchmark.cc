@@ -55,8 +55,8 @@ struct HugePages {
   template <typename U>
   explicit HugePages(const HugePages<U>&) {}
   T* allocate(std::size_t n) {
-    void* p = mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS,
-                   -1, 0);
+    void* p =
+        mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
     if (p == MAP_FAILED) throw std::bad_alloc();
     madvise(p, n * sizeof(T), MADV_HUGEPAGE);
     return static_cast<T*>(p);

@@ -146,6 +146,17 @@ void put_rows(T* v, const std::vector<Vec3<double>>& values, const std::vector<i
   for (std::size_t i = 0; i < bodies.size(); ++i) put(v + i * 3, values[bodies[i]]);
 }
 
+// The per-body fields that are one vector of Data per body, with that vector: for every body in
+// order, rows 1..N of it are one run of the field's row in the caller's array.
+using DataVector = std::vector<Vec3<double>> Data<double>::*;
+constexpr std::pair<BatchField, DataVector> kDataVectors[] = {
+    {BatchField::kOrigin, &Data<double>::origin},
+    {BatchField::kMassCenter, &Data<double>::mass_center},
+    {BatchField::kOmega, &Data<double>::omega},
+    {BatchField::kAlpha, &Data<double>::alpha},
+    {BatchField::kVelocity, &Data<double>::mass_center_velocity},
+    {BatchField::kAcceleration, &Data<double>::mass_center_acceleration}};
+
 // Sample s's rows of the per-body outputs, copied from Data, a field at a time (each field's
 // rows of a sample are one run of the caller's array). Writing in place instead would need every
 // kernel to treat the ground, which has no row in the caller's arrays, apart.
@@ -156,15 +167,8 @@ void write_bodies(const Model& model, const Data<double>& data, std::size_t s,
   const bool every_body = nb > 0 && every_body_in_order(out.bodies);
   if (T* r = out[BatchField::kRotation])
     for (std::size_t i = 0; i < nb; ++i) put(r + (s * nb + i) * 9, data.rotation[out.bodies[i]]);
-  const std::pair<BatchField, const std::vector<Vec3<double>>*> vectors[] = {
-      {BatchField::kOrigin, &data.origin},
-      {BatchField::kMassCenter, &data.mass_center},
-      {BatchField::kOmega, &data.omega},
-      {BatchField::kAlpha, &data.alpha},
-      {BatchField::kVelocity, &data.mass_center_velocity},
-      {BatchField::kAcceleration, &data.mass_center_acceleration}};
-  for (const auto& [field, values] : vectors)
-    if (T* v = out[field]) put_rows(v + s * nb * 3, *values, out.bodies, every_body);
+  for (const auto& [field, vector] : kDataVectors)
+    if (T* v = out[field]) put_rows(v + s * nb * 3, data.*vector, out.bodies, every_body);
   if (any_segment_frames(out))
     for (std::size_t i = 0; i < nb; ++i)
       write_segment_frames(model, data, out.bodies[i], s * nb + i, out);
@@ -235,24 +239,35 @@ std::array<std::size_t, kBatchFieldCount> row_sizes(const Model& model, const Ba
 template <typename T>
 struct StagedRow {
   StagedRow(const Model& model, const BatchOutput<T>& out) : size(row_sizes(model, out)) {
+    if (std::is_same_v<T, double> && !out.bodies.empty() && every_body_in_order(out.bodies))
+      for (const auto& [field, vector] : kDataVectors)
+        if (out[field]) direct[static_cast<int>(field)] = vector;
     std::size_t total = 0;
-    for (const std::size_t n : size) total += n;
+    for (int f = 0; f < kBatchFieldCount; ++f)
+      if (!direct[f]) total += size[f];
     buffer.resize(total);
     row.bodies = out.bodies;
     total = 0;
     for (int f = 0; f < kBatchFieldCount; ++f)
-      if (size[f] > 0) {
+      if (size[f] > 0 && !direct[f]) {
         row.field[f] = buffer.data() + total;
         total += size[f];
       }
   }
-  void stream_to(const BatchOutput<T>& out, std::size_t s) const {
-    for (int f = 0; f < kBatchFieldCount; ++f)
-      if (size[f] > 0) stream_copy(out.field[f] + s * size[f], row.field[f], size[f] * sizeof(T));
+  // Sample s's rows, from `row` or, for `direct` fields, from `data`.
+  void stream_to(const BatchOutput<T>& out, std::size_t s, const Data<double>& data) const {
+    for (int f = 0; f < kBatchFieldCount; ++f) {
+      if (size[f] == 0) continue;
+      const void* from = direct[f] ? static_cast<const void*>((data.*direct[f])[1].data())
+                                   : static_cast<const void*>(row.field[f]);
+      stream_copy(out.field[f] + s * size[f], from, size[f] * sizeof(T));
+    }
   }
   std::array<std::size_t, kBatchFieldCount> size;
+  // Fields streamed straight from Data's rows 1..N (doubles, every body in order): no copy in L1.
+  std::array<DataVector, kBatchFieldCount> direct{};
   std::vector<T> buffer;
-  BatchOutput<T> row;  // row 0 of each field of `out`, in `buffer`
+  BatchOutput<T> row;  // row 0 of each other field of `out`, in `buffer`
 };
 
 // Samples [begin, end) into the caller's arrays (each thread its own rows, so fresh arrays are
@@ -273,7 +288,7 @@ void compute_range(const Model& model, const BatchInput& in, std::size_t begin, 
   const StagedRow<T> staged(model, out);
   for (std::size_t s = begin; s < end; ++s) {
     compute_sample(model, in, s, 0, level, staged.row, w);
-    staged.stream_to(out, s);
+    staged.stream_to(out, s, w.data);
   }
   stream_fence();
 }

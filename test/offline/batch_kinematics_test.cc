@@ -204,8 +204,8 @@ TEST(BatchKinematics, OnlyTheFieldsAskedForAndTheirLevel) {
 // boundary), on `threads` threads, against `reference`: each sample computed alone, whose outputs
 // are below kBatchStreamBytes (written in place).
 template <typename T>
-void expect_rows_of_samples_alone(const mbk::Model& model, int threads) {
-  const std::vector<int> bodies = all_bodies(model);
+void expect_rows_of_samples_alone(const mbk::Model& model, const std::vector<int>& bodies,
+                                  int threads) {
   std::array<std::size_t, mbk::kBatchFieldCount> size{};
   std::size_t bytes_per_sample = 0;
   for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
@@ -243,12 +243,14 @@ void expect_rows_of_samples_alone(const mbk::Model& model, int threads) {
   }
 }
 
-// Outputs above kBatchStreamBytes are computed into a staged row and streamed (stream_copy).
+// Outputs above kBatchStreamBytes are computed into a staged row and streamed (stream_copy); with
+// every body in order, doubles' vectors straight from Data.
 TEST(BatchKinematics, StreamedOutputsAreTheSamplesAloneBitForBit) {
   for (const mbk::Model& model : {models()[2], models()[3]})
     for (const int threads : {1, 3}) {
-      expect_rows_of_samples_alone<double>(model, threads);
-      expect_rows_of_samples_alone<float>(model, threads);
+      expect_rows_of_samples_alone<double>(model, all_bodies(model), threads);
+      expect_rows_of_samples_alone<float>(model, all_bodies(model), threads);
+      expect_rows_of_samples_alone<double>(model, {5, 2, 5, model.body_count()}, threads);
     }
 }
 
