@@ -27,6 +27,7 @@
 #include <benchmark/benchmark.h>
 #include <sys/mman.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <string>
@@ -46,22 +47,31 @@ namespace {
 
 constexpr std::size_t kSamples = 100000;
 
-// Memory with transparent huge pages asked for (madvise) before its first touch, as the Python
-// module's fresh arrays (offline/retained_blocks.h) and numpy's np.empty above 4 MiB.
+// Memory of 1 MiB and more with transparent huge pages asked for (madvise) before its first touch,
+// as the Python module's fresh arrays (offline/retained_blocks.h) and numpy's np.empty above 4
+// MiB; smaller from malloc (one sample's arrays: each on a page of its own would share the
+// caches' sets with the others).
 template <typename T>
 struct HugePages {
   using value_type = T;
   HugePages() = default;
   template <typename U>
   explicit HugePages(const HugePages<U>&) {}
+  static bool large(std::size_t n) { return n * sizeof(T) >= (std::size_t{1} << 20); }
   T* allocate(std::size_t n) {
-    void* p =
-        mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-    madvise(p, n * sizeof(T), MADV_HUGEPAGE);
+    void* p = large(n) ? mmap(nullptr, n * sizeof(T), PROT_READ | PROT_WRITE,
+                              MAP_PRIVATE | MAP_ANONYMOUS, -1, 0)
+                       : std::malloc(n * sizeof(T));
+    if (p == MAP_FAILED || p == nullptr) throw std::bad_alloc();
+    if (large(n)) madvise(p, n * sizeof(T), MADV_HUGEPAGE);
     return static_cast<T*>(p);
   }
-  void deallocate(T* p, std::size_t n) { munmap(p, n * sizeof(T)); }
+  void deallocate(T* p, std::size_t n) {
+    if (large(n))
+      munmap(p, n * sizeof(T));
+    else
+      std::free(p);
+  }
   bool operator==(const HugePages&) const { return true; }
   bool operator!=(const HugePages&) const { return false; }
 };
