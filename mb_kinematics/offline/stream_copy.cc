@@ -27,8 +27,8 @@ void stream16(char*& to, const char*& from, std::size_t& bytes) {
   to += 16, from += 16, bytes -= 16;
 }
 
-// From a 32-byte boundary of `to`: half the store instructions of SSE2's (a whole batch 5 %
-// faster, doc/speed.md#python).
+// From a 32-byte boundary of `to`: half the store instructions of SSE2's, and a batch 4-8 %
+// faster (doc/speed.md#python).
 __attribute__((target("avx"))) void stream32_avx(char*& to, const char*& from, std::size_t& bytes) {
   for (; bytes >= 32; to += 32, from += 32, bytes -= 32)
     _mm256_stream_si256(reinterpret_cast<__m256i*>(to),
