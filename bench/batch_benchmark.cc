@@ -153,6 +153,15 @@ void batch(benchmark::State& state, const std::string& name, Outputs outputs) {
   set_counters(state, model, b.bytes);
 }
 
+// Row s of the batch's states into `joints`, mimic coordinates from their sources (as the batch's
+// load_sample).
+void load(const mbk::Model& model, const Batch& b, std::size_t s, mbk::JointState<double>& joints) {
+  joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
+  joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
+  joints.acceleration = Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
+  mbk::apply_mimics(model, joints);
+}
+
 // What batch_kinematics computes and writes for each sample (its compute_sample), every sample
 // into one sample's arrays per thread, at the level the outputs need: no output leaves the caches.
 void compute(benchmark::State& state, const std::string& name, Outputs outputs) {
@@ -167,11 +176,7 @@ void compute(benchmark::State& state, const std::string& name, Outputs outputs) 
       mbk::Data<double> data(model);
       mbk::SystemKinematics<double> system;
       for (std::size_t s = begin; s < end; ++s) {
-        joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
-        joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
-        joints.acceleration =
-            Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
-        mbk::apply_mimics(model, joints);
+        load(model, b, s, joints);
         mbk::forward_kinematics(model, joints, data, level);
         mbk::write_batch_fields(model, data, 0, level, one.out, system);
         benchmark::DoNotOptimize(one.arrays.front().data());
@@ -189,12 +194,8 @@ void check(benchmark::State& state, const std::string& name, Outputs outputs) {
     mbk::split_runs(kSamples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
       mbk::JointState<double> joints(model);
       for (std::size_t s = begin; s < end; ++s) {
-        joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
-        joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
-        joints.acceleration =
-            Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
-        mbk::apply_mimics(model, joints);
-        if (!mbk::check_state(model, joints).empty()) std::abort();
+        load(model, b, s, joints);
+        if (!mbk::check_state(model, joints).empty()) std::abort();  // the states are all valid
       }
     });
   set_counters(state, model, 0);
