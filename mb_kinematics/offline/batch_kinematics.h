@@ -104,10 +104,10 @@ Level batch_level(const BatchOutput<T>& out);
 
 // A call whose outputs take more than this many bytes streams them to memory
 // (offline/stream_copy.h): each sample computed into a buffer in L1 and copied to its rows with
-// streaming stores, which write each line once instead of reading it first (doc/speed.md#python).
-// Smaller outputs (the L2 caches of a few cores) are written in place with ordinary stores, which
-// leave them in the caches for the caller's next read.
-constexpr std::size_t kBatchStreamBytes = std::size_t{4} << 20;
+// streaming stores, which write each line once instead of reading it first. Smaller outputs are
+// written in place with ordinary stores, which leave them in the caches for the caller's next
+// read: faster up to about half of a 32 MiB L3 cache, slower above it (doc/speed.md#python).
+constexpr std::size_t kBatchStreamBytes = std::size_t{16} << 20;
 
 // Computes every sample into `out` (T = double or float) on `threads` threads (0: the machine's
 // cores; never more than the samples). First checks everything and throws std::invalid_argument

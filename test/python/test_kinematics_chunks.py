@@ -73,11 +73,11 @@ def test_chunks_into_arrays_of_ones_own(human):
 
 @pytest.mark.parametrize("dtype", [np.float64, np.float32])
 def test_one_call_equals_small_calls(human, dtype):
-    """3000 samples of the default outputs (24 MB in float64, 12 in float32) in one call, streamed
-    (above 4 MiB), and in calls of 20 samples, written in place."""
-    q, v, a = random_states(human, 3000, seed=6)
+    """6000 samples of the default outputs (48 MB in float64, 24 in float32) in one call, streamed
+    (above 16 MiB), and in calls of 20 samples, written in place."""
+    q, v, a = random_states(human, 6000, seed=6)
     big = human.kinematics(q, v, a, outputs=None, threads=2, dtype=dtype)
-    for start in range(0, 3000, 20):
+    for start in range(0, 6000, 20):
         small = human.kinematics(q[start:start + 20], v[start:start + 20], a[start:start + 20],
                                  threads=1, dtype=dtype)
         for name in small:
