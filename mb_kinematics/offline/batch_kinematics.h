@@ -103,9 +103,9 @@ template <typename T>
 Level batch_level(const BatchOutput<T>& out);
 
 // A call whose outputs take more than this many bytes streams them to memory
-// (offline/stream_copy.h): each sample computed into a buffer in L1 and copied to its rows with
-// streaming stores, which write each line once instead of reading it first. Smaller outputs are
-// written in place with ordinary stores, which leave them in the caches for the caller's next
+// (offline/stream_copy.h): each sample computed into a one-sample buffer and copied to its rows
+// with streaming stores, which write each line once instead of reading it first. Smaller outputs
+// are written in place with ordinary stores, which leave them in the caches for the caller's next
 // read: faster up to about half of a 32 MiB L3 cache, slower above it (doc/speed.md#python).
 constexpr std::size_t kBatchStreamBytes = std::size_t{16} << 20;
 
