@@ -3,9 +3,10 @@
 scripts/fuzz.sh beside the libFuzzer harnesses: each case draws a model, samples, outputs and
 for each output an array to write into: a fresh one, a view into a buffer that q, velocity or
 another output also live in (overlapping or not), or one of the wrong dtype, shape, order or
-writeability. Property: the call raises ValueError or TypeError, or every array holds the same
-bits as a call with fresh arrays; a crash, another exception or other numbers is a finding (the
-case's seed is printed; `--case SEED` replays it).
+writeability; one case in 50 has enough samples for the call to stream its rows. Property: the
+call raises ValueError or TypeError, or every array holds the same bits as fresh arrays written
+in place (calls of at most 64 samples); a crash, another exception or other numbers is a finding
+(the case's seed is printed; `--case SEED` replays it).
 
     python_out_fuzz.py [--seconds S | --runs N] [--seed S] [--case SEED]
 """
@@ -23,18 +24,30 @@ MODELS = ["config/human_body.urdf", "config/ten_body.yaml", "test/robots/panda.u
 KINDS = ["fresh", "fresh", "shared", "shared", "dtype", "shape", "strided", "read-only"]
 
 
+# Bytes of outputs above which a call streams its rows (kBatchStreamBytes,
+# offline/batch_kinematics.h), and the samples of a case drawn above it.
+STREAMED_BYTES = 16 << 20
+MOST_STREAMED_SAMPLES = 40000
+
+
 def draw_case(rng, models):
     model = models[rng.integers(len(models))]
-    samples = int(rng.integers(0, 6))
     single = rng.random() < 0.2
-    rows = 1 if single else samples
-    q = rng.uniform(-1.5, 1.5, (rows, model.nq))
-    v = rng.uniform(-2, 2, (rows, model.nv)) if rng.random() < 0.7 else None
-    a = rng.uniform(-5, 5, (rows, model.nv)) if v is not None and rng.random() < 0.7 else None
-    level = 2 if a is not None else 1 if v is not None else 0
+    velocity, acceleration = rng.random() < 0.7, rng.random() < 0.7
+    level = 2 if velocity and acceleration else 1 if velocity else 0
     allowed = [n for n in mb_kinematics.OUTPUTS
                if mb_kinematics._TRAITS[n]["level"] <= level]
     outputs = sorted(set(rng.choice(allowed, size=int(rng.integers(1, 4))).tolist()))
+    samples = int(rng.integers(0, 6))
+    if not single and rng.random() < 0.02:  # enough samples for streamed rows, where it takes few
+        per_sample = sum(8 * int(np.prod(shaped(model, n, 1, True))) for n in outputs)
+        samples = STREAMED_BYTES // per_sample + 1 + int(rng.integers(0, 3))
+        if samples > MOST_STREAMED_SAMPLES:
+            samples = int(rng.integers(0, 6))
+    rows = 1 if single else samples
+    q = rng.uniform(-1.5, 1.5, (rows, model.nq))
+    v = rng.uniform(-2, 2, (rows, model.nv)) if velocity else None
+    a = rng.uniform(-5, 5, (rows, model.nv)) if velocity and acceleration else None
     return model, single, q, v, a, outputs
 
 
@@ -75,6 +88,15 @@ def make_out(rng, model, outputs, rows, single, q, v):
     return q, v, out
 
 
+def in_place(model, args, outputs, single):
+    """The outputs computed into fresh arrays in calls small enough to be written in place."""
+    if single or len(args[0]) <= 64:
+        return model.kinematics(*args, outputs=outputs)
+    chunks = [{n: x.copy() for n, x in out.items()}  # each chunk reuses the first's arrays
+              for _, out in model.kinematics_chunks(*args, outputs=outputs, rows=64)]
+    return {n: np.concatenate([c[n] for c in chunks]) for n in outputs}
+
+
 def one_case(seed, models):
     rng = np.random.default_rng(seed)
     model, single, q, v, a, outputs = draw_case(rng, models)
@@ -82,8 +104,7 @@ def one_case(seed, models):
     q, v, out = make_out(rng, model, outputs, rows, single, q, v)
     args = (q[0] if single else q, None if v is None else (v[0] if single else v),
             None if a is None else (a[0] if single else a))
-    expected = model.kinematics(*[None if x is None else x.copy() for x in args],
-                                outputs=outputs)
+    expected = in_place(model, [None if x is None else x.copy() for x in args], outputs, single)
     try:
         got = model.kinematics(*args, outputs=outputs, out=out,
                                threads=int(rng.integers(1, 4)))
