@@ -70,11 +70,12 @@ struct Workspace {
 // Row s of the inputs into `state`, mimic coordinates from their sources (as `mbk eval`).
 void load_sample(const Model& model, const BatchInput& in, std::size_t s,
                  JointState<double>& state) {
-  state.position = Eigen::Map<const VecX<double>>(in.position + s * model.nq, model.nq);
-  if (in.velocity)
-    state.velocity = Eigen::Map<const VecX<double>>(in.velocity + s * model.nv, model.nv);
-  if (in.acceleration)
-    state.acceleration = Eigen::Map<const VecX<double>>(in.acceleration + s * model.nv, model.nv);
+  const auto row = [s](const double* rows, int width, VecX<double>& to) {  // `to`: width numbers
+    std::memcpy(to.data(), rows + s * width, static_cast<std::size_t>(width) * sizeof(double));
+  };
+  row(in.position, model.nq, state.position);
+  if (in.velocity) row(in.velocity, model.nv, state.velocity);
+  if (in.acceleration) row(in.acceleration, model.nv, state.acceleration);
   apply_mimics(model, state);
 }
 
