@@ -194,8 +194,10 @@ void weight_rows(int n, int order, double scale, const double (&g)[3][kMaxOrder 
     weight_row_pack(w.first[j], order, scale, g, w.value[j], w.first[j], w.second[j]);
 }
 
-// x rounded to the nearest whole number (ties to even), inline; for |x| < 2^51.
-inline double nearest_whole(double x) {
+// x rounded to the nearest whole number (ties to even), inline; for |x| < 2^51. T: a double, or a
+// pack of doubles (GNU vectors) rounded lane by lane with the same bits.
+template <typename T>
+inline T nearest_whole(T x) {
   constexpr double kShift = 6755399441055744.0;  // 1.5 x 2^52: the sum keeps no fraction
   return (x + kShift) - kShift;
 }
@@ -211,11 +213,10 @@ void window_offsets(const std::vector<double>& t, int i, const DerivativeWeights
   const int n = w.count;
   if (period > 0 && (t[w.row(n - 1)] - t[w.begin]) / period < 0x1p50) {
     typedef double Pack __attribute__((vector_size(2 * sizeof(double))));
-    constexpr double kShift = 6755399441055744.0;  // nearest_whole's, lane by lane: the same bits
     int j = 0;
     for (; j + 2 <= n; j += 2) {
       const Pack offset = Pack{t[w.row(j)], t[w.row(j + 1)]} - t[i];
-      const Pack whole = ((offset / period + kShift) - kShift) * period;
+      const Pack whole = nearest_whole(offset / period) * period;
       std::memcpy(&d[j], &whole, sizeof whole);
     }
     for (; j < n; ++j) d[j] = nearest_whole((t[w.row(j)] - t[i]) / period) * period;
