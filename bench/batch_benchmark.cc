@@ -153,12 +153,16 @@ void batch(benchmark::State& state, const std::string& name, Outputs outputs) {
   set_counters(state, model, b.bytes);
 }
 
-// Row s of the batch's states into `joints`, mimic coordinates from their sources (as the batch's
-// load_sample).
+// Row s of the batch's states into `joints` (sized for the model), mimic coordinates from their
+// sources, as the batch's load_sample: a memcpy of each row.
 void load(const mbk::Model& model, const Batch& b, std::size_t s, mbk::JointState<double>& joints) {
-  joints.position = Eigen::Map<const Eigen::VectorXd>(b.q.data() + s * model.nq, model.nq);
-  joints.velocity = Eigen::Map<const Eigen::VectorXd>(b.v.data() + s * model.nv, model.nv);
-  joints.acceleration = Eigen::Map<const Eigen::VectorXd>(b.a.data() + s * model.nv, model.nv);
+  const auto row = [s](const Array<double>& rows, int width, Eigen::VectorXd& to) {
+    std::memcpy(to.data(), rows.data() + s * width,
+                static_cast<std::size_t>(width) * sizeof(double));
+  };
+  row(b.q, model.nq, joints.position);
+  row(b.v, model.nv, joints.velocity);
+  row(b.a, model.nv, joints.acceleration);
   mbk::apply_mimics(model, joints);
 }
 
