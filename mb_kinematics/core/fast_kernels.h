@@ -98,7 +98,7 @@ void axis_pose(const BodyStep& b, int k, const DataView<S>& data, Vec3<S>& d) {
 template <typename S>
 void folded_turn(const Mat3<double>* p, const Mat3<S>& s0j, S c, S s, Mat3<S>& s0k) {
   const Mat3<S> sjk = p[0].cast<S>() + c * p[1].cast<S>() + s * p[2].cast<S>();
-  s0k = s0j * sjk;
+  s0k = product<S>(s0j, sjk);
 }
 
 // Revolute joint about any axis a with any C_k.
@@ -120,7 +120,8 @@ void planar_pose(const Model& model, const BodyStep& b, int k, const S* q, const
   const Mat3<S>& s0j = data.rotation[b.lower];
   const S* x = q + b.q_index;
   folded_turn(p, s0j, data.cosine[b.angle], data.sine[b.angle], data.rotation[k]);
-  d = s0j * (b.offset.cast<S>() + p[3].col(0).cast<S>() * x[0] + p[3].col(1).cast<S>() * x[1]);
+  d = product<S>(s0j,
+                 b.offset.cast<S>() + p[3].col(0).cast<S>() * x[0] + p[3].col(1).cast<S>() * x[1]);
 }
 
 // A ball or free joint's frames in R components: M = S0J C_k, and for angles in the order
@@ -161,15 +162,15 @@ void ball_pose(const Model& model, const BodyStep& b, int k, const S* q, const D
   const S* x = q + b.q_index;
   const S* angles = kFreeJoint<K> ? x + 3 : x;
   if (b.matrices >= 0)
-    f.m = s0j * model.steps.matrices[b.matrices].cast<S>();  // C_k
+    f.m = product<S>(s0j, model.steps.matrices[b.matrices].cast<S>());  // C_k
   else
     f.m = s0j;
   if constexpr (kAngles<K>)
     angles_pose<O>(data.cosine + b.angle, data.sine + b.angle, f, data.rotation[k]);
   else
-    data.rotation[k] = f.m * rotation_euler(angles);
+    data.rotation[k] = product<S>(f.m, rotation_euler(angles));
   d = times_constant(s0j, b.offset, b.offset_shape);
-  if constexpr (kFreeJoint<K>) d += f.m * Vec3<S>(x[0], x[1], x[2]);
+  if constexpr (kFreeJoint<K>) d += product<S>(f.m, Vec3<S>(x[0], x[1], x[2]));
 }
 
 // Prismatic (kTranslates) or fixed joint: SJK = C_k (I when not kRotated), s_k = (C_k a) q.
@@ -178,11 +179,11 @@ void rigid_pose(const Model& model, const BodyStep& b, int k, const S* q, const 
                 Vec3<S>& d) {
   const Mat3<S>& s0j = data.rotation[b.lower];
   if constexpr (kRotated)
-    data.rotation[k] = s0j * model.steps.matrices[b.matrices].cast<S>();
+    data.rotation[k] = product<S>(s0j, model.steps.matrices[b.matrices].cast<S>());
   else
     data.rotation[k] = s0j;
   if constexpr (kTranslates)
-    d = s0j * (b.offset.cast<S>() + b.axis.cast<S>() * q[b.q_index]);
+    d = product<S>(s0j, b.offset.cast<S>() + b.axis.cast<S>() * q[b.q_index]);
   else
     d = times_constant(s0j, b.offset, b.offset_shape);
 }
@@ -217,7 +218,7 @@ void revolute_terms(const Model& model, const BodyStep& b, int k, const StateVie
                     const DataView<S>& data, JointTerms<Vec3<S>>& t) {
   revolute_pose(model, b, k, data, t.d);
   if constexpr (L != Level::kPose) {
-    const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
+    const Vec3<S> u = product<S>(data.rotation[b.lower], b.axis.cast<S>());
     t.w = u * state.y[b.v_index];
     if constexpr (L == Level::kAcceleration) t.wd = u * state.yd[b.v_index];
   }
@@ -229,7 +230,7 @@ void prismatic_terms(const Model& model, const BodyStep& b, int k, const StateVi
                      const DataView<S>& data, JointTerms<Vec3<S>>& t) {
   rigid_pose<kRotated, true>(model, b, k, state.q, data, t.d);
   if constexpr (L != Level::kPose) {
-    const Vec3<S> u = data.rotation[b.lower] * b.axis.cast<S>();
+    const Vec3<S> u = product<S>(data.rotation[b.lower], b.axis.cast<S>());
     t.sd = u * state.y[b.v_index];
     if constexpr (L == Level::kAcceleration) t.sdd = u * state.yd[b.v_index];
   }
@@ -275,12 +276,13 @@ void ball_terms(const Model& model, const BodyStep& b, int k, const StateView<S>
       Vec3<S> w, wd = Vec3<S>::Zero();  // wd: set only at kAcceleration
       detail::euler_rates(state.q + b.q_index + kAngular, y + kAngular,
                           L == Level::kAcceleration ? yd + kAngular : nullptr, model.speeds, w, wd);
-      t.w = f.m * w;
-      if constexpr (L == Level::kAcceleration) t.wd = f.m * wd;
+      t.w = product<S>(f.m, w);
+      if constexpr (L == Level::kAcceleration) t.wd = product<S>(f.m, wd);
     }
     if constexpr (kFreeJoint<K>) {
-      t.sd = f.m * Vec3<S>(y[0], y[1], y[2]);
-      if constexpr (L == Level::kAcceleration) t.sdd = f.m * Vec3<S>(yd[0], yd[1], yd[2]);
+      t.sd = product<S>(f.m, Vec3<S>(y[0], y[1], y[2]));
+      if constexpr (L == Level::kAcceleration)
+        t.sdd = product<S>(f.m, Vec3<S>(yd[0], yd[1], yd[2]));
     }
   }
 }
@@ -314,14 +316,14 @@ void planar_terms(const Model& model, const BodyStep& b, int k, const StateView<
     const Mat3<S>& s0j = data.rotation[b.lower];
     const Vec3<S> u1 = model.steps.matrices[b.matrices + 3].col(0).cast<S>();
     const Vec3<S> u2 = model.steps.matrices[b.matrices + 3].col(1).cast<S>();
-    const Vec3<S> n = s0j * b.axis.cast<S>();
+    const Vec3<S> n = product<S>(s0j, b.axis.cast<S>());
     const S* y = state.y + b.v_index;
     t.w = n * y[2];
-    t.sd = s0j * (u1 * y[0] + u2 * y[1]);
+    t.sd = product<S>(s0j, u1 * y[0] + u2 * y[1]);
     if constexpr (L == Level::kAcceleration) {
       const S* yd = state.yd + b.v_index;
       t.wd = n * yd[2];
-      t.sdd = s0j * (u1 * yd[0] + u2 * yd[1]);
+      t.sdd = product<S>(s0j, u1 * yd[0] + u2 * yd[1]);
     }
   }
 }
@@ -420,7 +422,9 @@ void kernel_step(const Model& model, const BodyStep& b, int k, const StateView<S
                  const DataView<S>& data) {
   with_kernel(b.kernel, [&](auto kernel) {
     constexpr JointKernel K = decltype(kernel)::value;
-    if constexpr (uses_joint_motion<S>(K)) {
+    if constexpr (uses_joint_motion<S>(K) && kLanes<S>) {
+      __builtin_unreachable();  // models with a generic kernel do not run on lanes
+    } else if constexpr (uses_joint_motion<S>(K)) {
       motion_step<L>(model, k, state, data);
     } else if constexpr (kAvx2 && kFourLanes<L, K>) {
       v4::revolute_step<L, K>(model, b, k, state, data);

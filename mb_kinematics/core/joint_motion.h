@@ -56,8 +56,8 @@ Mat3<S> rotation_123(S alpha, S beta, S gamma) {
 template <typename S>
 Mat3<S> rotation_euler(const S* e) {
   const Vec3<S> v(e[0], e[1], e[2]), w = S(2) * v;  // w = 2 v
-  const S n2 = v.squaredNorm() + e[3] * e[3];
-  const S d = e[3] * e[3] - v.squaredNorm(), f = S(2) * e[3];
+  const S n2 = detail::squared_norm(v) + e[3] * e[3];
+  const S d = e[3] * e[3] - detail::squared_norm(v), f = S(2) * e[3];
   Mat3<S> r;
   r << d + w.x() * v.x(), w.x() * v.y() - f * v.z(), w.x() * v.z() + f * v.y(),  //
       w.y() * v.x() + f * v.z(), d + w.y() * v.y(), w.y() * v.z() - f * v.x(),   //
@@ -146,13 +146,13 @@ int euler_columns(const S* e, const S* ed, SpeedKind speeds, Vec3<S>* angular,
     return 3;
   }
   const Vec3<S> v(e[0], e[1], e[2]);
-  const S n2 = v.squaredNorm() + e[3] * e[3];
+  const S n2 = detail::squared_norm(v) + e[3] * e[3];
   for (int i = 0; i < 3; ++i)
     angular[i] = S(2) / n2 * (e[3] * Vec3<S>::Unit(i) + v.cross(Vec3<S>::Unit(i)));
   angular[3] = S(-2) / n2 * v;
   if (!ed) return 4;
   const Vec3<S> vd(ed[0], ed[1], ed[2]);
-  const S n2_dot = S(2) * (v.dot(vd) + e[3] * ed[3]);
+  const S n2_dot = S(2) * (detail::dot(v, vd) + e[3] * ed[3]);
   for (int i = 0; i < 3; ++i)
     angular_dot[i] = S(2) / n2 * (ed[3] * Vec3<S>::Unit(i) + vd.cross(Vec3<S>::Unit(i))) -
                      n2_dot / n2 * angular[i];
@@ -181,11 +181,11 @@ void euler_rates(const S* e, const S* y, const S* yd, SpeedKind speeds, Vec3<S>&
     return;
   }
   const Vec3<S> v(e[0], e[1], e[2]), vd(y[0], y[1], y[2]);
-  const S n2 = v.squaredNorm() + e[3] * e[3];
+  const S n2 = detail::squared_norm(v) + e[3] * e[3];
   w = S(2) / n2 * (e[3] * vd - y[3] * v + v.cross(vd));
   if (!yd) return;
   const Vec3<S> vdd(yd[0], yd[1], yd[2]);
-  const S n2_dot = S(2) * (v.dot(vd) + e[3] * y[3]);
+  const S n2_dot = S(2) * (detail::dot(v, vd) + e[3] * y[3]);
   wd = S(2) / n2 * (e[3] * vdd - yd[3] * v + v.cross(vdd)) - n2_dot / n2 * w;
 }
 

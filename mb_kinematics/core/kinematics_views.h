@@ -41,8 +41,8 @@ namespace detail {
 // on long chains, and never on the human model, whose depth is at most 6).
 template <typename S>
 void reorthonormalize(Mat3<S>& r) {
-  const Mat3<S> rtr = r.transpose() * r;
-  r = r * (S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
+  const Mat3<S> rtr = transpose_product<S>(r, r);
+  r = product<S>(r, S(1.5) * Mat3<S>::Identity() - S(0.5) * rtr);
 }
 
 // Where Data keeps a point's motion (the origins', or the mass centers').
@@ -112,7 +112,7 @@ Vec3<S> times_constant(const Mat3<S>& m, const Vec3<double>& v, VectorShape shap
     case VectorShape::kDense:
       break;
   }
-  return m * v.cast<S>();
+  return product<S>(m, v.cast<S>());
 }
 
 }  // namespace detail

@@ -60,7 +60,8 @@ template <Level L = Level::kAcceleration, typename S>
 PointMotion<Vec3<S>> body_point(const Data<S>& data, int k, const Vec3<S>& r) {
   const PointMotion<Vec3<S>> o{data.origin[k], data.origin_velocity[k],
                                data.origin_acceleration[k]};
-  return fixed_point<L>(o, data.omega[k], data.alpha[k], Vec3<S>(data.rotation[k] * r));  // S0K r
+  const Vec3<S> rho = detail::product<S>(data.rotation[k], r);  // S0K r
+  return fixed_point<L>(o, data.omega[k], data.alpha[k], rho);
 }
 
 }  // namespace mbk

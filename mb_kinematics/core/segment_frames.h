@@ -13,7 +13,7 @@ namespace mbk {
 // x (R components) in Bk's axes: S0K^T x.
 template <typename S>
 Vec3<S> in_body_axes(const Data<S>& data, int k, const Vec3<S>& x) {
-  return data.rotation[k].transpose() * x;
+  return detail::transpose_product<S>(data.rotation[k], x);
 }
 
 // Bk relative to Bj = L(k) (R for a body on R: then these are Bk's absolute rotation, omega and
@@ -32,8 +32,8 @@ RelativeMotion<S> relative_motion(const Model& model, const Data<S>& data, int k
   const int j = model.bodies[k].lower;
   const Mat3<S> sj_t = data.rotation[j].transpose();
   const Vec3<S> w = data.omega[k] - data.omega[j];
-  return {sj_t * data.rotation[k], sj_t * w,
-          sj_t * (data.alpha[k] - data.alpha[j] - data.omega[j].cross(w))};
+  return {detail::product<S>(sj_t, data.rotation[k]), detail::product<S>(sj_t, w),
+          detail::product<S>(sj_t, data.alpha[k] - data.alpha[j] - data.omega[j].cross(w))};
 }
 
 }  // namespace mbk

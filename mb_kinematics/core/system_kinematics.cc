@@ -99,6 +99,7 @@ __attribute__((target("avx2"))) void system_sums_avx2(const Model& model, const 
   for (int k = 0; k <= model.body_count(); ++k) {
     const Body& body = model.bodies[k];
     out.mass += body.mass;
+    out.has_mass = out.has_mass || body.mass > 0;
     inertias = inertias && !lacks_inertia(body);
     const __m256d m = _mm256_set1_pd(body.mass);
     g = add(g, mul(m, load3(p(k))));
@@ -106,7 +107,7 @@ __attribute__((target("avx2"))) void system_sums_avx2(const Model& model, const 
     acceleration = add(acceleration, mul(m, load3(a(k))));
   }
   out.angular_momentum_known = inertias;
-  if (!(out.mass > 0)) return;  // no mass center: every vector zero
+  if (!out.has_mass) return;  // no mass center: every vector zero
   const __m256d total = _mm256_set1_pd(out.mass);
   g = _mm256_div_pd(g, total);
   const __m256d vg = _mm256_div_pd(momentum, total);

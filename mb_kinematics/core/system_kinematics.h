@@ -23,6 +23,7 @@ struct SystemKinematics {
   Vec3<S> linear_momentum = Vec3<S>::Zero();   // M v_G
   Vec3<S> angular_momentum = Vec3<S>::Zero();  // H_G, when angular_momentum_known
   bool angular_momentum_known = false;         // every body with mass has an inertia
+  bool has_mass = false;                       // M > 0: p_G, v_G and a_G are defined
 };
 
 // A body with a mass but no inertia: H_G is unknown when any body lacks one.
@@ -55,10 +56,11 @@ void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics
   bool inertias = true;  // inertias_known, in the same pass
   for (int k = 0; k <= n; ++k) {
     out.mass += S(model.bodies[k].mass);
+    out.has_mass = out.has_mass || model.bodies[k].mass > 0;  // masses are >= 0 (model.cc)
     inertias = inertias && !lacks_inertia(model.bodies[k]);
   }
   out.angular_momentum_known = level != Level::kPose && inertias;
-  if (!(out.mass > S(0))) return;
+  if (!out.has_mass) return;
   Vec3<S> p0, v0, a0;
   root_mass_center(model, data, p0, v0, a0);
   const auto p = [&](int k) -> const Vec3<S>& { return k ? data.mass_center[k] : p0; };
@@ -77,7 +79,8 @@ void system_kinematics(const Model& model, const Data<S>& data, SystemKinematics
   for (int k = 0; k <= n; ++k) {
     const Body& body = model.bodies[k];
     const Mat3<S>& s0k = data.rotation[k];
-    const Vec3<S> spin = s0k * (body.inertia.cast<S>() * (s0k.transpose() * data.omega[k]));
+    const Vec3<S> local = detail::transpose_product<S>(s0k, data.omega[k]);  // S0K^T omega_k
+    const Vec3<S> spin = detail::product<S>(s0k, detail::product<S>(body.inertia.cast<S>(), local));
     const Vec3<S> orbit = (p(k) - out.mass_center).cross(v(k) - out.velocity);
     out.angular_momentum += spin + S(body.mass) * orbit;  // doc/method.md 9, H_G
   }

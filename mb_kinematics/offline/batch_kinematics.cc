@@ -7,9 +7,13 @@
 #include <stdexcept>
 #include <thread>
 #include <type_traits>
+#ifdef __x86_64__
+#include <immintrin.h>
+#endif
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/kinematics_double4.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/segment_frames.h"
 #include "mb_kinematics/core/split_runs.h"
@@ -79,21 +83,23 @@ void load_sample(const Model& model, const BatchInput& in, std::size_t s,
   apply_mimics(model, state);
 }
 
-template <typename T>
-void put(T* out, const Vec3<double>& v) {
+// The writers below take the workspace's scalar S: double, or Double4 (four samples, a lane each,
+// written to a row of Double4 that four_rows then turns into four samples' rows).
+template <typename T, typename S>
+void put(T* out, const Vec3<S>& v) {
   for (int i = 0; i < 3; ++i) out[i] = static_cast<T>(v[i]);
 }
 
-template <typename T>
-void put(T* out, const Mat3<double>& m) {  // row by row
+template <typename T, typename S>
+void put(T* out, const Mat3<S>& m) {  // row by row
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) out[a * 3 + b] = static_cast<T>(m(a, b));
 }
 
-template <typename T>
-void put_or_nan(T* out, const Vec3<double>& v, bool known) {
+template <typename T, typename S>
+void put_or_nan(T* out, const Vec3<S>& v, bool known) {
   for (int i = 0; i < 3; ++i)
-    out[i] = known ? static_cast<T>(v[i]) : std::numeric_limits<T>::quiet_NaN();
+    out[i] = known ? static_cast<T>(v[i]) : T(std::numeric_limits<double>::quiet_NaN());
 }
 
 template <typename T>
@@ -103,10 +109,10 @@ bool any_relative(const BatchOutput<T>& out) {
 }
 
 // The segment frames and joint motion of body k (core/segment_frames.h) into row `row`.
-template <typename T>
-void write_segment_frames(const Model& model, const Data<double>& data, int k, std::size_t row,
+template <typename T, typename S>
+void write_segment_frames(const Model& model, const Data<S>& data, int k, std::size_t row,
                           const BatchOutput<T>& out) {
-  const std::pair<BatchField, const std::vector<Vec3<double>>*> in_body[] = {
+  const std::pair<BatchField, const std::vector<Vec3<S>>*> in_body[] = {
       {BatchField::kOmegaBody, &data.omega},
       {BatchField::kAlphaBody, &data.alpha},
       {BatchField::kVelocityBody, &data.mass_center_velocity},
@@ -114,7 +120,7 @@ void write_segment_frames(const Model& model, const Data<double>& data, int k, s
   for (const auto& [field, values] : in_body)
     if (T* v = out[field]) put(v + row * 3, in_body_axes(data, k, (*values)[k]));
   if (!any_relative(out)) return;
-  const RelativeMotion<double> m = relative_motion(model, data, k);
+  const RelativeMotion<S> m = relative_motion(model, data, k);
   if (T* r = out[BatchField::kRelativeRotation]) put(r + row * 9, m.rotation);
   if (T* w = out[BatchField::kRelativeOmega]) put(w + row * 3, m.omega);
   if (T* a = out[BatchField::kRelativeAlpha]) put(a + row * 3, m.alpha);
@@ -133,15 +139,15 @@ bool every_body_in_order(const std::vector<int>& bodies) {
   return true;
 }
 
-// The rows of `values` of the chosen bodies into v, 3 numbers a row: in double for every body in
-// order, one copy of Data's run of rows 1..N.
-template <typename T>
-void put_rows(T* v, const std::vector<Vec3<double>>& values, const std::vector<int>& bodies,
+// The rows of `values` of the chosen bodies into v, 3 numbers a row: in S itself for every body
+// in order, one copy of Data's run of rows 1..N.
+template <typename T, typename S>
+void put_rows(T* v, const std::vector<Vec3<S>>& values, const std::vector<int>& bodies,
               bool every_body) {
-  static_assert(sizeof(Vec3<double>) == 3 * sizeof(double), "Vec3<double>: three packed doubles");
-  if constexpr (std::is_same_v<T, double>)
+  static_assert(sizeof(Vec3<S>) == 3 * sizeof(S), "Vec3<S>: three packed numbers");
+  if constexpr (std::is_same_v<T, S>)
     if (every_body) {
-      std::memcpy(v, values[1].data(), bodies.size() * sizeof(Vec3<double>));
+      std::memcpy(v, values[1].data(), bodies.size() * sizeof(Vec3<S>));
       return;
     }
   for (std::size_t i = 0; i < bodies.size(); ++i) put(v + i * 3, values[bodies[i]]);
@@ -149,26 +155,28 @@ void put_rows(T* v, const std::vector<Vec3<double>>& values, const std::vector<i
 
 // The per-body fields that are one vector of Data per body, with that vector: for every body in
 // order, rows 1..N of it are one run of the field's row in the caller's array.
-using DataVector = std::vector<Vec3<double>> Data<double>::*;
-constexpr std::pair<BatchField, DataVector> kDataVectors[] = {
-    {BatchField::kOrigin, &Data<double>::origin},
-    {BatchField::kMassCenter, &Data<double>::mass_center},
-    {BatchField::kOmega, &Data<double>::omega},
-    {BatchField::kAlpha, &Data<double>::alpha},
-    {BatchField::kVelocity, &Data<double>::mass_center_velocity},
-    {BatchField::kAcceleration, &Data<double>::mass_center_acceleration}};
+template <typename S>
+using DataVector = std::vector<Vec3<S>> Data<S>::*;
+template <typename S>
+constexpr std::pair<BatchField, DataVector<S>> kDataVectors[] = {
+    {BatchField::kOrigin, &Data<S>::origin},
+    {BatchField::kMassCenter, &Data<S>::mass_center},
+    {BatchField::kOmega, &Data<S>::omega},
+    {BatchField::kAlpha, &Data<S>::alpha},
+    {BatchField::kVelocity, &Data<S>::mass_center_velocity},
+    {BatchField::kAcceleration, &Data<S>::mass_center_acceleration}};
 
 // Sample s's rows of the per-body outputs, copied from Data, a field at a time (each field's
 // rows of a sample are one run of the caller's array). Writing in place instead would need every
 // kernel to treat the ground, which has no row in the caller's arrays, apart.
-template <typename T>
-void write_bodies(const Model& model, const Data<double>& data, std::size_t s,
+template <typename T, typename S>
+void write_bodies(const Model& model, const Data<S>& data, std::size_t s,
                   const BatchOutput<T>& out) {
   const std::size_t nb = out.bodies.size();
   const bool every_body = nb > 0 && every_body_in_order(out.bodies);
   if (T* r = out[BatchField::kRotation])
     for (std::size_t i = 0; i < nb; ++i) put(r + (s * nb + i) * 9, data.rotation[out.bodies[i]]);
-  for (const auto& [field, vector] : kDataVectors)
+  for (const auto& [field, vector] : kDataVectors<S>)
     if (T* v = out[field]) put_rows(v + s * nb * 3, data.*vector, out.bodies, every_body);
   if (any_segment_frames(out))
     for (std::size_t i = 0; i < nb; ++i)
@@ -177,11 +185,11 @@ void write_bodies(const Model& model, const Data<double>& data, std::size_t s,
 
 // As `mbk eval`'s JSON: the vectors are NaN where it writes null (no mass: no mass center; a body
 // with mass but no inertia: no angular momentum).
-template <typename T>
-void write_system(const SystemKinematics<double>& sys, std::size_t s, const BatchOutput<T>& out) {
-  const bool g = sys.mass > 0;
+template <typename T, typename S>
+void write_system(const SystemKinematics<S>& sys, std::size_t s, const BatchOutput<T>& out) {
+  const bool g = sys.has_mass;
   if (T* m = out[BatchField::kSystemMass]) m[s] = static_cast<T>(sys.mass);
-  const std::pair<BatchField, const Vec3<double>*> vectors[] = {
+  const std::pair<BatchField, const Vec3<S>*> vectors[] = {
       {BatchField::kSystemMassCenter, &sys.mass_center},
       {BatchField::kSystemVelocity, &sys.velocity},
       {BatchField::kSystemAcceleration, &sys.acceleration},
@@ -213,6 +221,19 @@ void write_partials(const Model& model, const PartialVelocities<double>& pv, std
   }
 }
 
+// write_batch_fields for the workspace's scalar S (double or Double4).
+template <typename T, typename S>
+void write_fields(const Model& model, const Data<S>& data, std::size_t s, Level level,
+                  const BatchOutput<T>& out, SystemKinematics<S>& system) {
+  write_bodies(model, data, s, out);
+  if (out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
+      out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
+      out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum]) {
+    system_kinematics(model, data, system, level);
+    write_system(system, s, out);
+  }
+}
+
 // Input row s into output row `row` of `out`.
 template <typename T>
 void compute_sample(const Model& model, const BatchInput& in, std::size_t s, std::size_t row,
@@ -220,7 +241,7 @@ void compute_sample(const Model& model, const BatchInput& in, std::size_t s, std
   load_sample(model, in, s, w.state);
   if (w.pv) partial_velocity_kinematics(model, w.state, *w.pv, *w.scratch, level);
   forward_kinematics(model, w.state, w.data, level);
-  write_batch_fields(model, w.data, row, level, out, w.system);
+  write_fields(model, w.data, row, level, out, w.system);
   if (w.pv) write_partials(model, *w.pv, row, out);
 }
 
@@ -241,7 +262,7 @@ template <typename T>
 struct StagedRow {
   StagedRow(const Model& model, const BatchOutput<T>& out) : size(row_sizes(model, out)) {
     if (std::is_same_v<T, double> && !out.bodies.empty() && every_body_in_order(out.bodies))
-      for (const auto& [field, vector] : kDataVectors)
+      for (const auto& [field, vector] : kDataVectors<double>)
         if (out[field]) direct[static_cast<int>(field)] = vector;
     std::size_t total = 0;
     for (int f = 0; f < kBatchFieldCount; ++f)
@@ -266,28 +287,154 @@ struct StagedRow {
   }
   std::array<std::size_t, kBatchFieldCount> size;
   // Fields streamed straight from Data's rows 1..N (doubles, every body in order): no copy in L1.
-  std::array<DataVector, kBatchFieldCount> direct{};
+  std::array<DataVector<double>, kBatchFieldCount> direct{};
   std::vector<T> buffer;
   BatchOutput<T> row;  // row 0 of each other field of `out`, in `buffer`
 };
 
+#ifdef MBK_AVX2_DISPATCH
+// Four samples at once (core/kinematics_double4.h), a lane each: their states in one JointState,
+// their outputs written by the same writers as one row of Double4 (each number's four samples
+// together), then turned into the four samples' rows of each field, which follow each other in
+// the caller's array, and copied there. With every body in order, the vectors of Data
+// (kDataVectors) are turned straight from Data. Compiled for AVX2 (MBK_FOUR), which
+// four_samples_at_once requires.
+#define MBK_FOUR __attribute__((target("avx2"))) MBK_FLATTEN
+struct FourSamples {
+  FourSamples(const Model& model, const BatchOutput<double>& out)
+      : state(model), data(model), size(row_sizes(model, out)) {
+    if (!out.bodies.empty() && every_body_in_order(out.bodies))
+      for (const auto& [field, vector] : kDataVectors<Double4>)
+        if (out[field]) direct[static_cast<int>(field)] = vector;
+    std::size_t total = 0;
+    for (const std::size_t n : size) total += n;
+    lanes.resize(total);
+    rows.resize(4 * *std::max_element(size.begin(), size.end()));
+    row.bodies = out.bodies;
+    total = 0;
+    for (int f = 0; f < kBatchFieldCount; ++f)
+      if (size[f] > 0 && !direct[f]) {
+        row.field[f] = lanes.data() + total;
+        total += size[f];
+      }
+  }
+  // The numbers of field f, four samples each: from `row`, or from Data for `direct` fields.
+  const Double4* numbers(int f) const {
+    return direct[f] ? (data.*direct[f])[1].data() : row.field[f];
+  }
+  JointState<Double4> state;
+  Data<Double4> data;
+  SystemKinematics<Double4> system;
+  std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
+  std::array<DataVector<Double4>, kBatchFieldCount> direct{};
+  std::vector<Double4> lanes;  // a row of every other field, four samples a number
+  BatchOutput<Double4> row;    // row 0 of each other field, in `lanes`
+  std::vector<double> rows;    // four samples' rows of one field
+};
+
+// The 4 x 4 block of doubles a[0..3][0..3] into b[j][i] = a[i][j] (a[i], b[j]: four doubles, at
+// any alignment), in registers.
+MBK_FOUR void transpose4(const double* a0, const double* a1, const double* a2, const double* a3,
+                         double* b0, double* b1, double* b2, double* b3) {
+  const __m256d a = _mm256_loadu_pd(a0), b = _mm256_loadu_pd(a1), c = _mm256_loadu_pd(a2),
+                d = _mm256_loadu_pd(a3);
+  const __m256d ab0 = _mm256_unpacklo_pd(a, b), ab1 = _mm256_unpackhi_pd(a, b);
+  const __m256d cd0 = _mm256_unpacklo_pd(c, d), cd1 = _mm256_unpackhi_pd(c, d);
+  _mm256_storeu_pd(b0, _mm256_permute2f128_pd(ab0, cd0, 0x20));
+  _mm256_storeu_pd(b1, _mm256_permute2f128_pd(ab1, cd1, 0x20));
+  _mm256_storeu_pd(b2, _mm256_permute2f128_pd(ab0, cd0, 0x31));
+  _mm256_storeu_pd(b3, _mm256_permute2f128_pd(ab1, cd1, 0x31));
+}
+
+// The n numbers of four samples' rows (rows[l n + e]: sample l's number e) into the lanes of x
+// (x[e] lane l), or back (four_rows): four numbers at a time, by transpose4.
+MBK_FOUR void four_lanes(const double* rows, std::size_t n, Double4* x) {
+  double* lanes = &x[0].v[0];
+  std::size_t e = 0;
+  for (; e + 4 <= n; e += 4)
+    transpose4(rows + e, rows + n + e, rows + 2 * n + e, rows + 3 * n + e, lanes + 4 * e,
+               lanes + 4 * e + 4, lanes + 4 * e + 8, lanes + 4 * e + 12);
+  for (; e < n; ++e)
+    for (int l = 0; l < 4; ++l) x[e].v[l] = rows[l * n + e];
+}
+
+MBK_FOUR void four_rows(const Double4* x, std::size_t n, double* rows) {
+  const double* lanes = &x[0].v[0];
+  std::size_t e = 0;
+  for (; e + 4 <= n; e += 4)
+    transpose4(lanes + 4 * e, lanes + 4 * e + 4, lanes + 4 * e + 8, lanes + 4 * e + 12, rows + e,
+               rows + n + e, rows + 2 * n + e, rows + 3 * n + e);
+  for (; e < n; ++e)
+    for (int l = 0; l < 4; ++l) rows[l * n + e] = x[e].v[l];
+}
+
+// Input rows s..s+3 into the lanes of `state`, mimic coordinates from their sources.
+MBK_FOUR void load_four(const Model& model, const BatchInput& in, std::size_t s,
+                        JointState<Double4>& state) {
+  four_lanes(in.position + s * model.nq, model.nq, state.position.data());
+  if (in.velocity) four_lanes(in.velocity + s * model.nv, model.nv, state.velocity.data());
+  if (in.acceleration)
+    four_lanes(in.acceleration + s * model.nv, model.nv, state.acceleration.data());
+  apply_mimics(model, state);
+}
+
+// Input rows s..s+3 into output rows s..s+3 of `out`: streamed, or copied with ordinary stores.
+MBK_FOUR void compute_four(const Model& model, const BatchInput& in, std::size_t s, Level level,
+                           const BatchOutput<double>& out, bool streamed, FourSamples& w) {
+  load_four(model, in, s, w.state);
+  forward_kinematics(model, w.state, w.data, level);
+  write_fields(model, w.data, 0, level, w.row, w.system);
+  for (int f = 0; f < kBatchFieldCount; ++f) {
+    const std::size_t n = w.size[f];
+    if (n == 0) continue;
+    four_rows(w.numbers(f), n, w.rows.data());
+    double* to = out.field[f] + s * n;
+    if (streamed)
+      stream_copy(to, w.rows.data(), 4 * n * sizeof(double));
+    else
+      std::memcpy(to, w.rows.data(), 4 * n * sizeof(double));
+  }
+}
+
+// Samples [begin, end) four at a time, as far as they go; returns the first left.
+std::size_t compute_fours(const Model& model, const BatchInput& in, std::size_t begin,
+                          std::size_t end, Level level, const BatchOutput<double>& out,
+                          bool streamed) {
+  FourSamples four(model, out);
+  for (; begin + 4 <= end; begin += 4) compute_four(model, in, begin, level, out, streamed, four);
+  return begin;
+}
+#undef MBK_FOUR
+#else
+std::size_t compute_fours(const Model&, const BatchInput&, std::size_t begin, std::size_t, Level,
+                          const BatchOutput<double>&, bool) {
+  return begin;  // four_samples_at_once is false
+}
+#endif
+
 // Samples [begin, end) into the caller's arrays (each thread its own rows, so fresh arrays are
 // first touched by the threads that fill them): streamed from a staged row when `streamed`, else
-// written in place with ordinary stores, which leave them in the caches for the caller.
+// written in place with ordinary stores, which leave them in the caches for the caller. Four at
+// a time where the model and CPU allow it (four_samples_at_once) and no partial velocities are
+// asked for, the rest one at a time.
 template <typename T>
 void compute_range(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
                    Level level, const BatchOutput<T>& out, bool streamed) {
+  std::size_t s = begin;
+  if constexpr (std::is_same_v<T, double>)
+    if (!any_partials(out) && end - begin >= 4 && four_samples_at_once(model))
+      s = compute_fours(model, in, begin, end, level, out, streamed);
   Workspace w(model);
   if (any_partials(out)) {
     w.pv = std::make_unique<PartialVelocities<double>>(model);
     w.scratch = std::make_unique<Data<double>>(model);
   }
   if (!streamed) {
-    for (std::size_t s = begin; s < end; ++s) compute_sample(model, in, s, s, level, out, w);
+    for (; s < end; ++s) compute_sample(model, in, s, s, level, out, w);
     return;
   }
   const StagedRow<T> staged(model, out);
-  for (std::size_t s = begin; s < end; ++s) {
+  for (; s < end; ++s) {
     compute_sample(model, in, s, 0, level, staged.row, w);
     staged.stream_to(out, s, w.data);
   }
@@ -328,13 +475,7 @@ void check_request(const Model& model, const BatchInput& in, const BatchOutput<T
 template <typename T>
 void write_batch_fields(const Model& model, const Data<double>& data, std::size_t s, Level level,
                         const BatchOutput<T>& out, SystemKinematics<double>& system) {
-  write_bodies(model, data, s, out);
-  if (out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
-      out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
-      out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum]) {
-    system_kinematics(model, data, system, level);
-    write_system(system, s, out);
-  }
+  write_fields(model, data, s, level, out, system);
 }
 
 const BatchFieldTraits& batch_field_traits(BatchField field) {

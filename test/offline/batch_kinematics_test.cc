@@ -12,6 +12,7 @@
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/kinematics_double4.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/system_kinematics.h"
@@ -200,27 +201,40 @@ TEST(BatchKinematics, OnlyTheFieldsAskedForAndTheirLevel) {
   EXPECT_THROW(mbk::batch_kinematics(model, inputs.in, omega.out, 1), std::invalid_argument);
 }
 
-// Every field of every sample, one number past the start of each array (4 or 8 bytes off a 16-byte
-// boundary), on `threads` threads, against `reference`: each sample computed alone, whose outputs
-// are below kBatchStreamBytes (written in place).
+bool is_partial(BatchField f) {
+  return f == BatchField::kPartialOmega || f == BatchField::kPartialVelocity ||
+         f == BatchField::kPartialOmegaDot || f == BatchField::kPartialVelocityDot;
+}
+
+// How a batch is asked for in expect_rows_of_samples_alone.
+struct Request {
+  bool streamed = true;  // outputs above kBatchStreamBytes, or 23 samples written in place
+  bool partials = true;  // with the partial velocities (every sample alone), or without (four
+                         // samples at once where the model and CPU allow it)
+};
+
+// Every field of every sample (the partial velocities only with r.partials), one number past the
+// start of each array (4 or 8 bytes off a 16-byte boundary), on `threads` threads, against each
+// sample computed alone (in place, one at a time).
 template <typename T>
 void expect_rows_of_samples_alone(const mbk::Model& model, const std::vector<int>& bodies,
-                                  int threads) {
+                                  int threads, Request r = {}) {
   std::array<std::size_t, mbk::kBatchFieldCount> size{};
   std::size_t bytes_per_sample = 0;
   for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
+    if (!r.partials && is_partial(static_cast<BatchField>(f))) continue;
     size[f] = mbk::batch_field_size(model, static_cast<BatchField>(f), bodies.size());
     bytes_per_sample += size[f] * sizeof(T);
   }
   ASSERT_LT(bytes_per_sample, mbk::kBatchStreamBytes);
-  const std::size_t samples = mbk::kBatchStreamBytes / bytes_per_sample + 2;  // streamed
+  const std::size_t samples = r.streamed ? mbk::kBatchStreamBytes / bytes_per_sample + 2 : 23;
   const Inputs inputs(model, static_cast<int>(samples));
   std::array<std::vector<T>, mbk::kBatchFieldCount> arrays;
   mbk::BatchOutput<T> out;
   out.bodies = bodies;
   for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
     arrays[f].assign(samples * size[f] + 2, T(-7));
-    out.field[f] = arrays[f].data() + 1;
+    if (size[f] > 0) out.field[f] = arrays[f].data() + 1;
   }
   mbk::batch_kinematics(model, inputs.in, out, threads);
   for (std::size_t s = 0; s < samples; ++s) {
@@ -252,6 +266,26 @@ TEST(BatchKinematics, StreamedOutputsAreTheSamplesAloneBitForBit) {
       expect_rows_of_samples_alone<float>(model, all_bodies(model), threads);
       expect_rows_of_samples_alone<double>(model, {5, 2, 5, model.body_count()}, threads);
     }
+}
+
+// Without the partial velocities, a batch of doubles computes four samples at once where the
+// model and CPU allow it (core/kinematics_double4.h; the human model and pr2 on AVX2 CPUs), the
+// rest of each thread's run one at a time: still each sample alone bit for bit, the segment frames
+// included, in place and streamed, for every body in order and chosen bodies.
+TEST(BatchKinematics, FourSamplesAtOnceAreTheSamplesAloneBitForBit) {
+#if defined(__x86_64__)
+  if (__builtin_cpu_supports("avx2")) {
+    EXPECT_TRUE(mbk::four_samples_at_once(models()[2])) << "the human model";
+    EXPECT_TRUE(mbk::four_samples_at_once(models()[3])) << "pr2";
+  }
+#endif
+  for (const mbk::Model& model : models())
+    for (const int threads : {1, 3})
+      for (const bool streamed : {false, true}) {
+        const Request r{streamed, false};
+        expect_rows_of_samples_alone<double>(model, all_bodies(model), threads, r);
+        expect_rows_of_samples_alone<double>(model, {5, 2, 5, model.body_count()}, threads, r);
+      }
 }
 
 TEST(BatchKinematics, FloatIsTheDoubleRounded) {
