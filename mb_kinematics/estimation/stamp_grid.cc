@@ -9,6 +9,9 @@ namespace {
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
+// A gap of more periods than this is no grid's (the count of periods stays far inside a long).
+constexpr double kMostPeriods = 1e12;
+
 // Stamps within this of their grid times are on it already, to double rounding: not moved.
 double double_rounding(double largest_stamp) { return 64 * kEpsilon * largest_stamp; }
 
@@ -38,8 +41,8 @@ void StampGridFit::add(double t) {
     // The period so far: the first interval, then the mean over the periods counted.
     const double h = k_ > 0 ? (last_ - first_) / k_ : d;
     const double periods = std::round(d / h);
-    broken_ = !(periods >= 1) || std::abs(d - periods * h) > 0.25 * h;
-    k_ += static_cast<long>(periods);
+    broken_ = !(periods >= 1 && periods <= kMostPeriods) || std::abs(d - periods * h) > 0.25 * h;
+    if (!broken_) k_ += static_cast<long>(periods);
   }
   last_ = t;
   largest_ = std::max(largest_, std::abs(t));
@@ -67,7 +70,7 @@ void StampGridFit::check(double t) {
   if (!fitted_) return;
   const long double u = static_cast<long double>(t) - first_;
   const long double k = std::round((u - a_) / b_);
-  if (!(k > last_k_)) {
+  if (!(k > last_k_ && k <= last_k_ + kMostPeriods)) {
     fitted_ = false;
     return;
   }

@@ -100,6 +100,13 @@ TEST(StampGridTest, TextRoundingWidensTheTolerance) {
   EXPECT_FALSE(mbk::find_stamp_grid(off, 0.75e-3).found);
 }
 
+// A first interval of 1e-20 s makes the next gap 1e20 periods, more than a count of periods holds
+// (a fuzzer's stamps: test/fuzz/regressions/recording/; converting it to a long was undefined).
+TEST(StampGridTest, GapsOfTooManyPeriodsHaveNoGrid) {
+  EXPECT_FALSE(mbk::find_stamp_grid({0.0, 1e-20, 1.0, 2.0}).found);
+  EXPECT_TRUE(mbk::find_stamp_grid({0.0, 1e-3, 2e-3, 1000.0, 1000.001}).found);  // 1e6 periods
+}
+
 TEST(StampGridTest, TooFewOrUnevenStampsHaveNoGrid) {
   EXPECT_FALSE(mbk::find_stamp_grid({}).found);
   EXPECT_FALSE(mbk::find_stamp_grid({1.0, 1.001}).found);
