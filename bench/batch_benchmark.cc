@@ -32,9 +32,11 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "mb_kinematics/core/kinematics_double.h"
+#include "mb_kinematics/core/kinematics_double4.h"
 #include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
@@ -166,8 +168,10 @@ void load(const mbk::Model& model, const Batch& b, std::size_t s, mbk::JointStat
   mbk::apply_mimics(model, joints);
 }
 
-// What batch_kinematics computes and writes for each sample (its compute_sample), every sample
-// into one sample's arrays per thread, at the level the outputs need: no output leaves the caches.
+// What batch_kinematics computes and writes for each sample one at a time (its compute_sample: the
+// path of partial velocities, float32 and CPUs without AVX2; `lanes/` for the four at once of the
+// others), every sample into one sample's arrays per thread, at the level the outputs need: no
+// output leaves the caches.
 void compute(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
   const Batch b(model, outputs, 0);  // for its states
@@ -186,6 +190,50 @@ void compute(benchmark::State& state, const std::string& name, Outputs outputs) 
         benchmark::DoNotOptimize(one.arrays.front().data());
       }
     });
+  set_counters(state, model, 0);
+}
+
+// The recursion and the system's sums alone, at the outputs' level, nothing written: one sample
+// at a time (`kinematics/`), or four at once in the lanes of a Double4 (`lanes/`,
+// core/kinematics_double4.h; the batch's path in double without partial velocities), each lane
+// loaded number by number.
+template <bool kLanes>
+void kinematics(benchmark::State& state, const std::string& name, Outputs outputs) {
+  const mbk::Model& model = model_of(name);
+  if (kLanes && !mbk::four_samples_at_once(model)) return state.SkipWithError("no lanes here");
+  const Batch b(model, outputs, 0);  // for its states
+  const int threads = static_cast<int>(state.range(0));
+  const mbk::Level level = mbk::batch_level(Batch(model, outputs, 1, false).out);
+  using S = std::conditional_t<kLanes, mbk::Double4, double>;
+  constexpr std::size_t kStep = kLanes ? 4 : 1;
+  for (auto _ : state)
+    mbk::split_runs(kSamples / kStep, threads,
+                    [&](std::size_t, std::size_t begin, std::size_t end) {
+                      mbk::JointState<S> joints(model);
+                      mbk::Data<S> data(model);
+                      mbk::SystemKinematics<S> system;
+                      for (std::size_t g = begin; g < end; ++g) {
+                        for (std::size_t l = 0; l < kStep; ++l) {
+                          const std::size_t s = g * kStep + l;
+                          const auto lane = [l](S& x) -> double& {
+                            if constexpr (kLanes)
+                              return x.v[l];
+                            else
+                              return x;
+                          };
+                          for (int i = 0; i < model.nq; ++i)
+                            lane(joints.position[i]) = b.q[s * model.nq + i];
+                          for (int i = 0; i < model.nv; ++i) {
+                            lane(joints.velocity[i]) = b.v[s * model.nv + i];
+                            lane(joints.acceleration[i]) = b.a[s * model.nv + i];
+                          }
+                        }
+                        mbk::apply_mimics(model, joints);
+                        mbk::forward_kinematics(model, joints, data, level);
+                        mbk::system_kinematics(model, data, system, level);
+                        benchmark::DoNotOptimize(&system);
+                      }
+                    });
   set_counters(state, model, 0);
 }
 
@@ -275,6 +323,8 @@ void register_all() {
       add("batch", batch, name, outputs);
     for (const Outputs outputs : {Outputs::kFull, Outputs::kAll}) {
       add("compute", compute, name, outputs);
+      add("kinematics", kinematics<false>, name, outputs);
+      add("lanes", kinematics<true>, name, outputs);
       add("check", check, name, outputs);
       add("copy", copy, name, outputs);
       add("write", write, name, outputs);
