@@ -44,38 +44,35 @@ decltype(auto) plain(const M& m) {
 // each column on a packet, (a_i0 b_0j + a_i1 b_1j) + a_i2 b_2j, and row 2 alone, a_20 b_0j +
 // (a_21 b_1j + a_22 b_2j); a^T b sums every row as rows 0 and 1. Eigen's own code for a scalar
 // it does not vectorize sums every row as row 2 of a b (test/core/kinematics_double4_test.cc).
+template <bool kTransposed, typename S, typename A, typename B>
+auto lanes_product(const A& a, const B& b) {
+  const auto& x = plain(a);
+  const auto& y = plain(b);
+  Eigen::Matrix<S, 3, B::ColsAtCompileTime> r;
+  for (int j = 0; j < y.cols(); ++j)
+    for (int i = 0; i < 3; ++i) {
+      const S t0 = (kTransposed ? x(0, i) : x(i, 0)) * y(0, j);
+      const S t1 = (kTransposed ? x(1, i) : x(i, 1)) * y(1, j);
+      const S t2 = (kTransposed ? x(2, i) : x(i, 2)) * y(2, j);
+      r(i, j) = kTransposed || i < 2 ? (t0 + t1) + t2 : t0 + (t1 + t2);
+    }
+  return r;
+}
+
 template <typename S, typename A, typename B>
 auto product(const A& a, const B& b) {
-  if constexpr (!kLanes<S>) {
+  if constexpr (kLanes<S>)
+    return lanes_product<false, S>(a, b);
+  else
     return a * b;
-  } else {
-    using R = Eigen::Matrix<S, 3, B::ColsAtCompileTime>;
-    const auto& x = plain(a);
-    const auto& y = plain(b);
-    R r;
-    for (int j = 0; j < y.cols(); ++j)
-      for (int i = 0; i < 3; ++i) {
-        const S t0 = x(i, 0) * y(0, j), t1 = x(i, 1) * y(1, j), t2 = x(i, 2) * y(2, j);
-        r(i, j) = i < 2 ? (t0 + t1) + t2 : t0 + (t1 + t2);
-      }
-    return r;
-  }
 }
 
 template <typename S, typename A, typename B>
 auto transpose_product(const A& a, const B& b) {
-  if constexpr (!kLanes<S>) {
+  if constexpr (kLanes<S>)
+    return lanes_product<true, S>(a, b);
+  else
     return a.transpose() * b;
-  } else {
-    using R = Eigen::Matrix<S, 3, B::ColsAtCompileTime>;
-    const auto& x = plain(a);
-    const auto& y = plain(b);
-    R r;
-    for (int j = 0; j < y.cols(); ++j)
-      for (int i = 0; i < 3; ++i)
-        r(i, j) = (x(0, i) * y(0, j) + x(1, i) * y(1, j)) + x(2, i) * y(2, j);
-    return r;
-  }
 }
 
 // a . b and |a|^2 of three-vectors: Eigen's. For samples in lanes, each lane as Eigen sums them
