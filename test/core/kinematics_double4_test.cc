@@ -23,8 +23,10 @@ using mbk::JointType;
 using mbk::Level;
 using mbk::SpeedKind;
 
-bool cpu_has_avx2() {
-#if defined(__x86_64__)
+// Whether this build has the lanes (the AVX2 copy's dispatch: not in sanitizer builds) and this
+// CPU runs them.
+bool lanes_here() {
+#ifdef MBK_AVX2_DISPATCH
   return __builtin_cpu_supports("avx2");
 #else
   return false;
@@ -84,7 +86,7 @@ void expect_bits(const Eigen::Matrix<double, R, C>& expected,
 
 void expect_lanes_are_samples(const mbk::Model& model, const std::string& where,
                               const mbk::Model* twin = nullptr) {
-  ASSERT_EQ(mbk::four_samples_at_once(model), cpu_has_avx2() && !has_generic_kernel(model))
+  ASSERT_EQ(mbk::four_samples_at_once(model), lanes_here() && !has_generic_kernel(model))
       << where;
   const std::array<mbk::JointState<double>, 4> states = four_states(model, twin ? *twin : model);
   const mbk::JointState<Double4> lanes = lanes_of(model, states);

@@ -273,7 +273,7 @@ TEST(BatchKinematics, StreamedOutputsAreTheSamplesAloneBitForBit) {
 // rest of each thread's run one at a time: still each sample alone bit for bit, the segment frames
 // included, in place and streamed, for every body in order and chosen bodies.
 TEST(BatchKinematics, FourSamplesAtOnceAreTheSamplesAloneBitForBit) {
-#if defined(__x86_64__)
+#ifdef MBK_AVX2_DISPATCH  // the lanes' build (not a sanitizer's)
   if (__builtin_cpu_supports("avx2")) {
     EXPECT_TRUE(mbk::four_samples_at_once(models()[2])) << "the human model";
     EXPECT_TRUE(mbk::four_samples_at_once(models()[3])) << "pr2";
