@@ -107,6 +107,7 @@ BodySteps make_body_steps(const Model& model, KernelChoice choice) {
     const Body& body = model.bodies[k];
     BodyStep& step = out.steps[k];
     step.kernel = choice == KernelChoice::kFast ? kernel_of(body.joint) : JointKernel::kGeneric;
+    out.generic = out.generic || step.kernel == JointKernel::kGeneric;
     step.reorthonormalize = body.depth % detail::kReorthonormalizeEvery == 0;
     step.lower = body.lower;
     step.q_index = body.q_index;

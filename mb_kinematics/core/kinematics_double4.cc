@@ -9,16 +9,15 @@ namespace {
 
 #ifdef MBK_AVX2_DISPATCH
 template <Level L>
-__attribute__((target("avx2"))) MBK_FLATTEN void lanes_kinematics_avx2(const Model& model,
-                                                                 const JointState<Double4>& state,
-                                                                 Data<Double4>& data) {
+__attribute__((target("avx2"))) MBK_FLATTEN void lanes_kinematics_avx2(
+    const Model& model, const JointState<Double4>& state, Data<Double4>& data) {
   detail::kinematics_loop<L, Double4>(model, state, data);
 }
 
 __attribute__((target("avx2"))) MBK_FLATTEN void lanes_system_avx2(const Model& model,
-                                                             const Data<Double4>& data,
-                                                             SystemKinematics<Double4>& out,
-                                                             Level level) {
+                                                                   const Data<Double4>& data,
+                                                                   SystemKinematics<Double4>& out,
+                                                                   Level level) {
   system_kinematics<Double4>(model, data, out, level);
 }
 #endif
@@ -33,10 +32,7 @@ void expect_four_samples(const Model& model) {
 bool four_samples_at_once(const Model& model) {
 #ifdef MBK_AVX2_DISPATCH
   static const bool avx2 = __builtin_cpu_supports("avx2");  // not has_avx2: ctest update_once
-  if (!avx2) return false;
-  for (int k = 1; k <= model.body_count(); ++k)
-    if (model.steps.steps[k].kernel == JointKernel::kGeneric) return false;
-  return true;
+  return avx2 && !model.steps.generic;
 #else
   (void)model;
   return false;

@@ -255,14 +255,15 @@ std::array<std::size_t, kBatchFieldCount> row_sizes(const Model& model, const Ba
   return size;
 }
 
-// One sample's outputs in a buffer that stays in the caches, streamed to the caller's rows once
-// computed (stream_copy): each line of the arrays is written once, not read first, and the
-// workspace is not evicted by the outputs (doc/speed.md#python).
-template <typename T>
-struct StagedRow {
-  StagedRow(const Model& model, const BatchOutput<T>& out) : size(row_sizes(model, out)) {
-    if (std::is_same_v<T, double> && !out.bodies.empty() && every_body_in_order(out.bodies))
-      for (const auto& [field, vector] : kDataVectors<double>)
+// Row 0 of every field of `out`, in numbers U, in a buffer that stays in the caches, for the
+// writers to fill; with every body in order and U the workspace's own scalar (`from_data`), the
+// vectors of Data (kDataVectors) are left out and taken straight from Data instead (`direct`).
+template <typename U, typename T>
+struct RowBuffer {
+  RowBuffer(const Model& model, const BatchOutput<T>& out, bool from_data)
+      : size(row_sizes(model, out)) {
+    if (from_data && !out.bodies.empty() && every_body_in_order(out.bodies))
+      for (const auto& [field, vector] : kDataVectors<U>)
         if (out[field]) direct[static_cast<int>(field)] = vector;
     std::size_t total = 0;
     for (int f = 0; f < kBatchFieldCount; ++f)
@@ -276,20 +277,33 @@ struct StagedRow {
         total += size[f];
       }
   }
-  // Sample s's rows, from `row` or, for `direct` fields, from `data`.
+  // The numbers of field f's row: from `row`, or from `data` for `direct` fields.
+  const U* numbers(int f, const Data<U>& data) const {
+    return direct[f] ? (data.*direct[f])[1].data() : row.field[f];
+  }
+  std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
+  std::array<DataVector<U>, kBatchFieldCount> direct{};
+  std::vector<U> buffer;
+  BatchOutput<U> row;  // row 0 of each other field of `out`, in `buffer`
+};
+
+// One sample's outputs in a RowBuffer, streamed to the caller's rows once computed (stream_copy):
+// each line of the arrays is written once, not read first, and the workspace is not evicted by
+// the outputs (doc/speed.md#python). Doubles' Data vectors are streamed straight from Data.
+template <typename T>
+struct StagedRow : RowBuffer<T, T> {
+  StagedRow(const Model& model, const BatchOutput<T>& out)
+      : RowBuffer<T, T>(model, out, std::is_same_v<T, double>) {}
+  // Sample s's rows.
   void stream_to(const BatchOutput<T>& out, std::size_t s, const Data<double>& data) const {
     for (int f = 0; f < kBatchFieldCount; ++f) {
-      if (size[f] == 0) continue;
-      const void* from = direct[f] ? static_cast<const void*>((data.*direct[f])[1].data())
-                                   : static_cast<const void*>(row.field[f]);
-      stream_copy(out.field[f] + s * size[f], from, size[f] * sizeof(T));
+      const std::size_t n = this->size[f];
+      if (n == 0) continue;
+      const void* from = this->row.field[f];
+      if constexpr (std::is_same_v<T, double>) from = this->numbers(f, data);
+      stream_copy(out.field[f] + s * n, from, n * sizeof(T));
     }
   }
-  std::array<std::size_t, kBatchFieldCount> size;
-  // Fields streamed straight from Data's rows 1..N (doubles, every body in order): no copy in L1.
-  std::array<DataVector<double>, kBatchFieldCount> direct{};
-  std::vector<T> buffer;
-  BatchOutput<T> row;  // row 0 of each other field of `out`, in `buffer`
 };
 
 #ifdef MBK_AVX2_DISPATCH
@@ -302,34 +316,14 @@ struct StagedRow {
 #define MBK_FOUR __attribute__((target("avx2"))) MBK_FLATTEN
 struct FourSamples {
   FourSamples(const Model& model, const BatchOutput<double>& out)
-      : state(model), data(model), size(row_sizes(model, out)) {
-    if (!out.bodies.empty() && every_body_in_order(out.bodies))
-      for (const auto& [field, vector] : kDataVectors<Double4>)
-        if (out[field]) direct[static_cast<int>(field)] = vector;
-    std::size_t total = 0;
-    for (const std::size_t n : size) total += n;
-    lanes.resize(total);
-    rows.resize(4 * *std::max_element(size.begin(), size.end()));
-    row.bodies = out.bodies;
-    total = 0;
-    for (int f = 0; f < kBatchFieldCount; ++f)
-      if (size[f] > 0 && !direct[f]) {
-        row.field[f] = lanes.data() + total;
-        total += size[f];
-      }
-  }
-  // The numbers of field f, four samples each: from `row`, or from Data for `direct` fields.
-  const Double4* numbers(int f) const {
-    return direct[f] ? (data.*direct[f])[1].data() : row.field[f];
+      : state(model), data(model), lanes(model, out, true) {
+    rows.resize(4 * *std::max_element(lanes.size.begin(), lanes.size.end()));
   }
   JointState<Double4> state;
   Data<Double4> data;
   SystemKinematics<Double4> system;
-  std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
-  std::array<DataVector<Double4>, kBatchFieldCount> direct{};
-  std::vector<Double4> lanes;  // a row of every other field, four samples a number
-  BatchOutput<Double4> row;    // row 0 of each other field, in `lanes`
-  std::vector<double> rows;    // four samples' rows of one field
+  RowBuffer<Double4, double> lanes;  // a row of every field, four samples a number
+  std::vector<double> rows;          // four samples' rows of one field
 };
 
 // The 4 x 4 block of doubles a[0..3][0..3] into b[j][i] = a[i][j] (a[i], b[j]: four doubles, at
@@ -383,11 +377,11 @@ MBK_FOUR void compute_four(const Model& model, const BatchInput& in, std::size_t
                            const BatchOutput<double>& out, bool streamed, FourSamples& w) {
   load_four(model, in, s, w.state);
   forward_kinematics(model, w.state, w.data, level);
-  write_fields(model, w.data, 0, level, w.row, w.system);
+  write_fields(model, w.data, 0, level, w.lanes.row, w.system);
   for (int f = 0; f < kBatchFieldCount; ++f) {
-    const std::size_t n = w.size[f];
+    const std::size_t n = w.lanes.size[f];
     if (n == 0) continue;
-    four_rows(w.numbers(f), n, w.rows.data());
+    four_rows(w.lanes.numbers(f, w.data), n, w.rows.data());
     double* to = out.field[f] + s * n;
     if (streamed)
       stream_copy(to, w.rows.data(), 4 * n * sizeof(double));
