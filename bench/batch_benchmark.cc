@@ -193,46 +193,59 @@ void compute(benchmark::State& state, const std::string& name, Outputs outputs) 
   set_counters(state, model, 0);
 }
 
-// The recursion and the system's sums alone, at the outputs' level, nothing written: one sample
-// at a time (`kinematics/`), or four at once in the lanes of a Double4 (`lanes/`,
-// core/kinematics_double4.h; the batch's path in double without partial velocities), each lane
-// loaded number by number.
-template <bool kLanes>
+// Lane l of x: x itself for a double.
+template <typename S>
+double& lane(S& x, std::size_t l) {
+  if constexpr (std::is_same_v<S, double>)
+    return x;
+  else
+    return x.v[l];
+}
+
+// Row s of the batch's states into lane l of `joints`, number by number.
+template <typename S>
+void load_lane(const mbk::Model& model, const Batch& b, std::size_t s, std::size_t l,
+               mbk::JointState<S>& joints) {
+  for (int i = 0; i < model.nq; ++i) lane(joints.position[i], l) = b.q[s * model.nq + i];
+  for (int i = 0; i < model.nv; ++i) {
+    lane(joints.velocity[i], l) = b.v[s * model.nv + i];
+    lane(joints.acceleration[i], l) = b.a[s * model.nv + i];
+  }
+}
+
+// The recursion and the system's sums alone, at `level`, nothing written, for groups [begin, end)
+// of sizeof(S) / sizeof(double) samples: one sample at a time in double, four at once in the
+// lanes of a Double4 (core/kinematics_double4.h; the batch's path in double without partial
+// velocities), each lane loaded number by number.
+template <typename S>
+void kinematics_run(const mbk::Model& model, const Batch& b, mbk::Level level, std::size_t begin,
+                    std::size_t end) {
+  constexpr std::size_t kLanes = sizeof(S) / sizeof(double);
+  mbk::JointState<S> joints(model);
+  mbk::Data<S> data(model);
+  mbk::SystemKinematics<S> system;
+  for (std::size_t g = begin; g < end; ++g) {
+    for (std::size_t l = 0; l < kLanes; ++l) load_lane(model, b, g * kLanes + l, l, joints);
+    mbk::apply_mimics(model, joints);
+    mbk::forward_kinematics(model, joints, data, level);
+    mbk::system_kinematics(model, data, system, level);
+    benchmark::DoNotOptimize(&system);
+  }
+}
+
+// kinematics_run on every sample: `kinematics/` (double) and `lanes/` (Double4).
+template <typename S>
 void kinematics(benchmark::State& state, const std::string& name, Outputs outputs) {
+  constexpr std::size_t kLanes = sizeof(S) / sizeof(double);
   const mbk::Model& model = model_of(name);
-  if (kLanes && !mbk::four_samples_at_once(model)) return state.SkipWithError("no lanes here");
+  if (kLanes > 1 && !mbk::four_samples_at_once(model)) return state.SkipWithError("no lanes here");
   const Batch b(model, outputs, 0);  // for its states
   const int threads = static_cast<int>(state.range(0));
   const mbk::Level level = mbk::batch_level(Batch(model, outputs, 1, false).out);
-  using S = std::conditional_t<kLanes, mbk::Double4, double>;
-  constexpr std::size_t kStep = kLanes ? 4 : 1;
   for (auto _ : state)
-    mbk::split_runs(kSamples / kStep, threads,
+    mbk::split_runs(kSamples / kLanes, threads,
                     [&](std::size_t, std::size_t begin, std::size_t end) {
-                      mbk::JointState<S> joints(model);
-                      mbk::Data<S> data(model);
-                      mbk::SystemKinematics<S> system;
-                      for (std::size_t g = begin; g < end; ++g) {
-                        for (std::size_t l = 0; l < kStep; ++l) {
-                          const std::size_t s = g * kStep + l;
-                          const auto lane = [l](S& x) -> double& {
-                            if constexpr (kLanes)
-                              return x.v[l];
-                            else
-                              return x;
-                          };
-                          for (int i = 0; i < model.nq; ++i)
-                            lane(joints.position[i]) = b.q[s * model.nq + i];
-                          for (int i = 0; i < model.nv; ++i) {
-                            lane(joints.velocity[i]) = b.v[s * model.nv + i];
-                            lane(joints.acceleration[i]) = b.a[s * model.nv + i];
-                          }
-                        }
-                        mbk::apply_mimics(model, joints);
-                        mbk::forward_kinematics(model, joints, data, level);
-                        mbk::system_kinematics(model, data, system, level);
-                        benchmark::DoNotOptimize(&system);
-                      }
+                      kinematics_run<S>(model, b, level, begin, end);
                     });
   set_counters(state, model, 0);
 }
@@ -323,8 +336,8 @@ void register_all() {
       add("batch", batch, name, outputs);
     for (const Outputs outputs : {Outputs::kFull, Outputs::kAll}) {
       add("compute", compute, name, outputs);
-      add("kinematics", kinematics<false>, name, outputs);
-      add("lanes", kinematics<true>, name, outputs);
+      add("kinematics", kinematics<double>, name, outputs);
+      add("lanes", kinematics<mbk::Double4>, name, outputs);
       add("check", check, name, outputs);
       add("copy", copy, name, outputs);
       add("write", write, name, outputs);
