@@ -21,6 +21,10 @@
 //                                       ordinary stores (each line read for ownership first)
 //   stream/<model>/<outputs>/threads:T  the same with streaming (non-temporal) stores: each line
 //                                       written once, never read (stream_copy, as the batch's)
+//   batch4/<model>/<outputs>/threads:T  batch/ with four samples at once at most (most_lanes 4),
+//                                       as on a CPU with AVX2 and no AVX-512F
+//   kinematics/, lanes4/, lanes8/       the recursion and the system's sums alone, nothing
+//                                       written: one sample at a time, four and eight at once
 //
 // Models: human = config/human_body.urdf (37 bodies), panda = test/robots/panda.urdf (7-joint
 // arm, hand and fingers: 12 bodies). Arguments: --benchmark_format=json for bench/python_batch.py.
@@ -36,7 +40,7 @@
 #include <vector>
 
 #include "mb_kinematics/core/kinematics_double.h"
-#include "mb_kinematics/core/kinematics_double4.h"
+#include "mb_kinematics/core/kinematics_lanes.h"
 #include "mb_kinematics/core/split_runs.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/state_check.h"
@@ -147,11 +151,12 @@ void set_counters(benchmark::State& state, const mbk::Model& model, std::size_t 
   state.counters["GB_per_s"] = benchmark::Counter(runs * bytes * 1e-9, benchmark::Counter::kIsRate);
 }
 
+template <int kMostLanes>
 void batch(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
   Batch b(model, outputs);
   const int threads = static_cast<int>(state.range(0));
-  for (auto _ : state) mbk::batch_kinematics(model, b.in, b.out, threads);
+  for (auto _ : state) mbk::batch_kinematics(model, b.in, b.out, threads, kMostLanes);
   set_counters(state, model, b.bytes);
 }
 
@@ -169,9 +174,9 @@ void load(const mbk::Model& model, const Batch& b, std::size_t s, mbk::JointStat
 }
 
 // What batch_kinematics computes and writes for each sample one at a time (its compute_sample: the
-// path of partial velocities, float32 and CPUs without AVX2; `lanes/` for the four at once of the
-// others), every sample into one sample's arrays per thread, at the level the outputs need: no
-// output leaves the caches.
+// path of partial velocities, float32 and CPUs without AVX2; `lanes4/` and `lanes8/` for the
+// samples at once of the others), every sample into one sample's arrays per thread, at the level
+// the outputs need: no output leaves the caches.
 void compute(benchmark::State& state, const std::string& name, Outputs outputs) {
   const mbk::Model& model = model_of(name);
   const Batch b(model, outputs, 0);  // for its states
@@ -214,9 +219,9 @@ void load_lane(const mbk::Model& model, const Batch& b, std::size_t s, std::size
 }
 
 // The recursion and the system's sums alone, at `level`, nothing written, for groups [begin, end)
-// of sizeof(S) / sizeof(double) samples: one sample at a time in double, four at once in the
-// lanes of a Double4 (core/kinematics_double4.h; the batch's path in double without partial
-// velocities), each lane loaded number by number.
+// of sizeof(S) / sizeof(double) samples: one sample at a time in double, four or eight at once in
+// the lanes of a Double4 or Double8 (core/kinematics_lanes.h; the batch's path in double without
+// partial velocities), each lane loaded number by number.
 template <typename S>
 void kinematics_run(const mbk::Model& model, const Batch& b, mbk::Level level, std::size_t begin,
                     std::size_t end) {
@@ -233,12 +238,13 @@ void kinematics_run(const mbk::Model& model, const Batch& b, mbk::Level level, s
   }
 }
 
-// kinematics_run on every sample: `kinematics/` (double) and `lanes/` (Double4).
+// kinematics_run on every sample: `kinematics/` (double), `lanes4/` (Double4), `lanes8/` (Double8).
 template <typename S>
 void kinematics(benchmark::State& state, const std::string& name, Outputs outputs) {
   constexpr std::size_t kLanes = sizeof(S) / sizeof(double);
   const mbk::Model& model = model_of(name);
-  if (kLanes > 1 && !mbk::four_samples_at_once(model)) return state.SkipWithError("no lanes here");
+  if (mbk::samples_at_once(model) < static_cast<int>(kLanes))
+    return state.SkipWithError("not this many lanes here");
   const Batch b(model, outputs, 0);  // for its states
   const int threads = static_cast<int>(state.range(0));
   const mbk::Level level = mbk::batch_level(Batch(model, outputs, 1, false).out);
@@ -333,11 +339,14 @@ void add(const char* row, Run run, const char* name, Outputs outputs) {
 void register_all() {
   for (const char* name : {"human", "panda"}) {
     for (const Outputs outputs : {Outputs::kFull, Outputs::kPose, Outputs::kAll})
-      add("batch", batch, name, outputs);
+      add("batch", batch<8>, name, outputs);
+    for (const Outputs outputs : {Outputs::kFull, Outputs::kAll})
+      add("batch4", batch<4>, name, outputs);
     for (const Outputs outputs : {Outputs::kFull, Outputs::kAll}) {
       add("compute", compute, name, outputs);
       add("kinematics", kinematics<double>, name, outputs);
-      add("lanes", kinematics<mbk::Double4>, name, outputs);
+      add("lanes4", kinematics<mbk::Double4>, name, outputs);
+      add("lanes8", kinematics<mbk::Double8>, name, outputs);
       add("check", check, name, outputs);
       add("copy", copy, name, outputs);
       add("write", write, name, outputs);

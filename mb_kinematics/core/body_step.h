@@ -82,7 +82,7 @@ struct BodySteps {
   // The coordinate of every angle the kernels turn by, body by body: forward_kinematics takes
   // their sines and cosines together (Data::sine, Data::cosine) before the bodies.
   std::vector<int> angles;
-  bool generic = false;  // some body runs the generic kernel (kinematics_double4.h: no lanes)
+  bool generic = false;  // some body runs the generic kernel (kinematics_lanes.h: no lanes)
 };
 
 }  // namespace mbk

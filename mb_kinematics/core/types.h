@@ -11,8 +11,8 @@ template <typename S>
 using Vec3 = Eigen::Matrix<S, 3, 1>;
 template <typename S>
 using Mat3 = Eigen::Matrix<S, 3, 3>;
-// Whether S holds several samples, a lane each (double4.h): the recursion's templates run on it,
-// not the generic kernel, whose joint_motion branches on values.
+// Whether S holds several samples, a lane each (double_lanes.h): the recursion's templates run on
+// it, not the generic kernel, whose joint_motion branches on values.
 template <typename S>
 inline constexpr bool kLanes = false;
 
@@ -39,11 +39,11 @@ decltype(auto) plain(const M& m) {
 }
 
 // a b (a 3x3, b 3x3 or 3x1) and a^T b, for every product of the recursion and the system's:
-// Eigen's. For samples in lanes (kLanes, double4.h), each lane as Eigen computes it in double
-// on SSE2's packets of two (the portable build's; kinematics_double4.h): a b sums rows 0 and 1 of
+// Eigen's. For samples in lanes (kLanes, double_lanes.h), each lane as Eigen computes it in double
+// on SSE2's packets of two (the portable build's; kinematics_lanes.h): a b sums rows 0 and 1 of
 // each column on a packet, (a_i0 b_0j + a_i1 b_1j) + a_i2 b_2j, and row 2 alone, a_20 b_0j +
 // (a_21 b_1j + a_22 b_2j); a^T b sums every row as rows 0 and 1. Eigen's own code for a scalar
-// it does not vectorize sums every row as row 2 of a b (test/core/kinematics_double4_test.cc).
+// it does not vectorize sums every row as row 2 of a b (test/core/kinematics_lanes_test.cc).
 template <bool kTransposed, typename S, typename A, typename B>
 auto lanes_product(const A& a, const B& b) {
   const auto& x = plain(a);

@@ -13,7 +13,7 @@
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
-#include "mb_kinematics/core/kinematics_double4.h"
+#include "mb_kinematics/core/kinematics_lanes.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/segment_frames.h"
 #include "mb_kinematics/core/split_runs.h"
@@ -83,8 +83,8 @@ void load_sample(const Model& model, const BatchInput& in, std::size_t s,
   apply_mimics(model, state);
 }
 
-// The writers below take the workspace's scalar S: double, or Double4 (four samples, a lane each,
-// written to a row of Double4 that four_rows then turns into four samples' rows).
+// The writers below take the workspace's scalar S: double, or DoubleLanes (several samples, a lane
+// each, written to a row of DoubleLanes that to_rows then turns into the samples' rows).
 template <typename T, typename S>
 void put(T* out, const Vec3<S>& v) {
   for (int i = 0; i < 3; ++i) out[i] = static_cast<T>(v[i]);
@@ -221,7 +221,7 @@ void write_partials(const Model& model, const PartialVelocities<double>& pv, std
   }
 }
 
-// write_batch_fields for the workspace's scalar S (double or Double4).
+// write_batch_fields for the workspace's scalar S (double or DoubleLanes).
 template <typename T, typename S>
 void write_fields(const Model& model, const Data<S>& data, std::size_t s, Level level,
                   const BatchOutput<T>& out, SystemKinematics<S>& system) {
@@ -307,29 +307,30 @@ struct StagedRow : RowBuffer<T, T> {
 };
 
 #ifdef MBK_AVX2_DISPATCH
-// Four samples at once (core/kinematics_double4.h), a lane each: their states in one JointState,
-// their outputs written by the same writers as one row of Double4 (each number's four samples
-// together), then turned into the four samples' rows of each field, which follow each other in
-// the caller's array, and copied there. With every body in order, the vectors of Data
-// (kDataVectors) are turned straight from Data. Compiled for AVX2 (MBK_FOUR), which
-// four_samples_at_once requires.
-#define MBK_FOUR __attribute__((target("avx2"))) MBK_FLATTEN
-struct FourSamples {
-  FourSamples(const Model& model, const BatchOutput<double>& out)
+// N samples at once (core/kinematics_lanes.h), a lane each: their states in one JointState, their
+// outputs written by the same writers as one row of DoubleLanes<N> (each number's N samples
+// together), then turned into the N samples' rows of each field, which follow each other in the
+// caller's array, and copied there. With every body in order, the vectors of Data
+// (kDataVectors) are turned straight from Data.
+template <int N>
+struct LaneSamples {
+  using Lanes = DoubleLanes<N>;
+  LaneSamples(const Model& model, const BatchOutput<double>& out)
       : state(model), data(model), lanes(model, out, true) {
-    rows.resize(4 * *std::max_element(lanes.size.begin(), lanes.size.end()));
+    rows.resize(N * *std::max_element(lanes.size.begin(), lanes.size.end()));
   }
-  JointState<Double4> state;
-  Data<Double4> data;
-  SystemKinematics<Double4> system;
-  RowBuffer<Double4, double> lanes;  // a row of every field, four samples a number
-  std::vector<double> rows;          // four samples' rows of one field
+  JointState<Lanes> state;
+  Data<Lanes> data;
+  SystemKinematics<Lanes> system;
+  RowBuffer<Lanes, double> lanes;  // a row of every field, N samples a number
+  std::vector<double> rows;        // N samples' rows of one field
 };
 
 // The 4 x 4 block of doubles a[0..3][0..3] into b[j][i] = a[i][j] (a[i], b[j]: four doubles, at
 // any alignment), in registers.
-MBK_FOUR void transpose4(const double* a0, const double* a1, const double* a2, const double* a3,
-                         double* b0, double* b1, double* b2, double* b3) {
+__attribute__((target("avx2"))) void transpose4(const double* a0, const double* a1,
+                                                const double* a2, const double* a3, double* b0,
+                                                double* b1, double* b2, double* b3) {
   const __m256d a = _mm256_loadu_pd(a0), b = _mm256_loadu_pd(a1), c = _mm256_loadu_pd(a2),
                 d = _mm256_loadu_pd(a3);
   const __m256d ab0 = _mm256_unpacklo_pd(a, b), ab1 = _mm256_unpackhi_pd(a, b);
@@ -340,84 +341,122 @@ MBK_FOUR void transpose4(const double* a0, const double* a1, const double* a2, c
   _mm256_storeu_pd(b3, _mm256_permute2f128_pd(ab1, cd1, 0x31));
 }
 
-// The n numbers of four samples' rows (rows[l n + e]: sample l's number e) into the lanes of x
-// (x[e] lane l), or back (four_rows): four numbers at a time, by transpose4.
-MBK_FOUR void four_lanes(const double* rows, std::size_t n, Double4* x) {
+// The n numbers of N samples' rows (rows[l n + e]: sample l's number e) into the lanes of x
+// (x[e] lane l), or back (to_rows): four numbers of four samples at a time, by transpose4.
+template <int N>
+void to_lanes(const double* rows, std::size_t n, DoubleLanes<N>* x) {
   double* lanes = &x[0].v[0];
   std::size_t e = 0;
   for (; e + 4 <= n; e += 4)
-    transpose4(rows + e, rows + n + e, rows + 2 * n + e, rows + 3 * n + e, lanes + 4 * e,
-               lanes + 4 * e + 4, lanes + 4 * e + 8, lanes + 4 * e + 12);
+    for (int h = 0; h < N; h += 4) {
+      const double* a = rows + h * n + e;
+      double* b = lanes + N * e + h;
+      transpose4(a, a + n, a + 2 * n, a + 3 * n, b, b + N, b + 2 * N, b + 3 * N);
+    }
   for (; e < n; ++e)
-    for (int l = 0; l < 4; ++l) x[e].v[l] = rows[l * n + e];
+    for (int l = 0; l < N; ++l) x[e].v[l] = rows[l * n + e];
 }
 
-MBK_FOUR void four_rows(const Double4* x, std::size_t n, double* rows) {
+template <int N>
+void to_rows(const DoubleLanes<N>* x, std::size_t n, double* rows) {
   const double* lanes = &x[0].v[0];
   std::size_t e = 0;
   for (; e + 4 <= n; e += 4)
-    transpose4(lanes + 4 * e, lanes + 4 * e + 4, lanes + 4 * e + 8, lanes + 4 * e + 12, rows + e,
-               rows + n + e, rows + 2 * n + e, rows + 3 * n + e);
+    for (int h = 0; h < N; h += 4) {
+      const double* a = lanes + N * e + h;
+      double* b = rows + h * n + e;
+      transpose4(a, a + N, a + 2 * N, a + 3 * N, b, b + n, b + 2 * n, b + 3 * n);
+    }
   for (; e < n; ++e)
-    for (int l = 0; l < 4; ++l) rows[l * n + e] = x[e].v[l];
+    for (int l = 0; l < N; ++l) rows[l * n + e] = x[e].v[l];
 }
 
-// Input rows s..s+3 into the lanes of `state`, mimic coordinates from their sources.
-MBK_FOUR void load_four(const Model& model, const BatchInput& in, std::size_t s,
-                        JointState<Double4>& state) {
-  four_lanes(in.position + s * model.nq, model.nq, state.position.data());
-  if (in.velocity) four_lanes(in.velocity + s * model.nv, model.nv, state.velocity.data());
+// Input rows s..s+N-1 into the lanes of `state`, mimic coordinates from their sources.
+template <int N>
+void load_lanes(const Model& model, const BatchInput& in, std::size_t s,
+                JointState<DoubleLanes<N>>& state) {
+  to_lanes(in.position + s * model.nq, model.nq, state.position.data());
+  if (in.velocity) to_lanes(in.velocity + s * model.nv, model.nv, state.velocity.data());
   if (in.acceleration)
-    four_lanes(in.acceleration + s * model.nv, model.nv, state.acceleration.data());
+    to_lanes(in.acceleration + s * model.nv, model.nv, state.acceleration.data());
   apply_mimics(model, state);
 }
 
-// Input rows s..s+3 into output rows s..s+3 of `out`: streamed, or copied with ordinary stores.
-MBK_FOUR void compute_four(const Model& model, const BatchInput& in, std::size_t s, Level level,
-                           const BatchOutput<double>& out, bool streamed, FourSamples& w) {
-  load_four(model, in, s, w.state);
+// Input rows s..s+N-1 into output rows s..s+N-1 of `out`: streamed, or copied with ordinary
+// stores.
+template <int N>
+void compute_lanes(const Model& model, const BatchInput& in, std::size_t s, Level level,
+                   const BatchOutput<double>& out, bool streamed, LaneSamples<N>& w) {
+  load_lanes(model, in, s, w.state);
   forward_kinematics(model, w.state, w.data, level);
   write_fields(model, w.data, 0, level, w.lanes.row, w.system);
   for (int f = 0; f < kBatchFieldCount; ++f) {
     const std::size_t n = w.lanes.size[f];
     if (n == 0) continue;
-    four_rows(w.lanes.numbers(f, w.data), n, w.rows.data());
+    to_rows(w.lanes.numbers(f, w.data), n, w.rows.data());
     double* to = out.field[f] + s * n;
     if (streamed)
-      stream_copy(to, w.rows.data(), 4 * n * sizeof(double));
+      stream_copy(to, w.rows.data(), N * n * sizeof(double));
     else
-      std::memcpy(to, w.rows.data(), 4 * n * sizeof(double));
+      std::memcpy(to, w.rows.data(), N * n * sizeof(double));
   }
 }
 
-// Samples [begin, end) four at a time, as far as they go; returns the first left.
-std::size_t compute_fours(const Model& model, const BatchInput& in, std::size_t begin,
-                          std::size_t end, Level level, const BatchOutput<double>& out,
-                          bool streamed) {
-  FourSamples four(model, out);
-  for (; begin + 4 <= end; begin += 4) compute_four(model, in, begin, level, out, streamed, four);
+// compute_lanes compiled for the least instruction set that has the lanes' vectors, everything
+// it calls inlined into it (the recursion and the system's sums are kinematics_lanes.cc's).
+__attribute__((target("avx2"))) MBK_FLATTEN void compute_four(const Model& model,
+                                                              const BatchInput& in, std::size_t s,
+                                                              Level level,
+                                                              const BatchOutput<double>& out,
+                                                              bool streamed, LaneSamples<4>& w) {
+  compute_lanes(model, in, s, level, out, streamed, w);
+}
+
+__attribute__((target("avx512f"))) MBK_FLATTEN void compute_eight(
+    const Model& model, const BatchInput& in, std::size_t s, Level level,
+    const BatchOutput<double>& out, bool streamed, LaneSamples<8>& w) {
+  compute_lanes(model, in, s, level, out, streamed, w);
+}
+
+// Samples [begin, end) N at a time, as far as they go; returns the first left.
+template <int N, typename Compute>
+std::size_t compute_groups(const Model& model, const BatchInput& in, std::size_t begin,
+                           std::size_t end, Level level, const BatchOutput<double>& out,
+                           bool streamed, Compute compute) {
+  LaneSamples<N> w(model, out);
+  for (; begin + N <= end; begin += N) compute(model, in, begin, level, out, streamed, w);
   return begin;
 }
-#undef MBK_FOUR
+
+// Samples [begin, end) in groups of `lanes` (8 or 4), then of four, as far as they go; returns
+// the first left.
+std::size_t compute_in_lanes(const Model& model, const BatchInput& in, std::size_t begin,
+                             std::size_t end, Level level, const BatchOutput<double>& out,
+                             bool streamed, int lanes) {
+  if (lanes >= 8)
+    begin = compute_groups<8>(model, in, begin, end, level, out, streamed, compute_eight);
+  if (lanes >= 4 && begin + 4 <= end)
+    begin = compute_groups<4>(model, in, begin, end, level, out, streamed, compute_four);
+  return begin;
+}
 #else
-std::size_t compute_fours(const Model&, const BatchInput&, std::size_t begin, std::size_t, Level,
-                          const BatchOutput<double>&, bool) {
-  return begin;  // four_samples_at_once is false
+std::size_t compute_in_lanes(const Model&, const BatchInput&, std::size_t begin, std::size_t, Level,
+                             const BatchOutput<double>&, bool, int) {
+  return begin;  // samples_at_once is 1
 }
 #endif
 
 // Samples [begin, end) into the caller's arrays (each thread its own rows, so fresh arrays are
 // first touched by the threads that fill them): streamed from a staged row when `streamed`, else
-// written in place with ordinary stores, which leave them in the caches for the caller. Four at
-// a time where the model and CPU allow it (four_samples_at_once) and no partial velocities are
-// asked for, the rest one at a time.
+// written in place with ordinary stores, which leave them in the caches for the caller. Up to
+// `lanes` at a time (8 or 4) in double without partial velocities, the rest one at a time.
 template <typename T>
 void compute_range(const Model& model, const BatchInput& in, std::size_t begin, std::size_t end,
-                   Level level, const BatchOutput<T>& out, bool streamed) {
+                   Level level, const BatchOutput<T>& out, bool streamed, int lanes) {
   std::size_t s = begin;
   if constexpr (std::is_same_v<T, double>)
-    if (!any_partials(out) && end - begin >= 4 && four_samples_at_once(model))
-      s = compute_fours(model, in, begin, end, level, out, streamed);
+    if (!any_partials(out) && lanes >= 4)
+      s = compute_in_lanes(model, in, begin, end, level, out, streamed, lanes);
   Workspace w(model);
   if (any_partials(out)) {
     w.pv = std::make_unique<PartialVelocities<double>>(model);
@@ -512,7 +551,7 @@ Level batch_level(const BatchOutput<T>& out) {
 
 template <typename T>
 void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutput<T>& out,
-                      int threads) {
+                      int threads, int most_lanes) {
   check_request(model, in, out);
   if (in.samples == 0) return;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -528,8 +567,9 @@ void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutpu
   const Level level = batch_level(out);
   std::size_t bytes = 0;
   for (const std::size_t n : row_sizes(model, out)) bytes += n * sizeof(T) * in.samples;
+  const int lanes = std::min(most_lanes, samples_at_once(model));
   split_runs(in.samples, threads, [&](std::size_t, std::size_t begin, std::size_t end) {
-    compute_range(model, in, begin, end, level, out, bytes > kBatchStreamBytes);
+    compute_range(model, in, begin, end, level, out, bytes > kBatchStreamBytes, lanes);
   });
 }
 
@@ -537,7 +577,9 @@ template void write_batch_fields(const Model&, const Data<double>&, std::size_t,
                                  const BatchOutput<double>&, SystemKinematics<double>&);
 template Level batch_level(const BatchOutput<double>&);
 template Level batch_level(const BatchOutput<float>&);
-template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<double>&, int);
-template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<float>&, int);
+template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<double>&, int,
+                               int);
+template void batch_kinematics(const Model&, const BatchInput&, const BatchOutput<float>&, int,
+                               int);
 
 }  // namespace mbk

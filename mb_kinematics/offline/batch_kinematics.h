@@ -114,8 +114,11 @@ constexpr std::size_t kBatchStreamBytes = std::size_t{16} << 20;
 // with a one-line message, writing nothing: a body index out of range, a field that needs
 // velocities or accelerations the input lacks, or a sample check_state rejects ("sample 12: body 3
 // 'arm', coordinate 'elbow': not finite (nan)").
+// In double without partial velocities, the samples go up to samples_at_once(model)
+// (core/kinematics_lanes.h) at once, at most `most_lanes` (a benchmark's or test's choice: 4 on a
+// CPU that has 8, 1 for one at a time); the numbers are the same.
 template <typename T>
 void batch_kinematics(const Model& model, const BatchInput& in, const BatchOutput<T>& out,
-                      int threads = 0);
+                      int threads = 0, int most_lanes = 8);
 
 }  // namespace mbk

@@ -12,7 +12,7 @@
 
 #include "mb_kinematics/core/independent_speeds.h"
 #include "mb_kinematics/core/kinematics_double.h"
-#include "mb_kinematics/core/kinematics_double4.h"
+#include "mb_kinematics/core/kinematics_lanes.h"
 #include "mb_kinematics/core/partial_velocity.h"
 #include "mb_kinematics/core/state.h"
 #include "mb_kinematics/core/system_kinematics.h"
@@ -209,8 +209,9 @@ bool is_partial(BatchField f) {
 // How a batch is asked for in expect_rows_of_samples_alone.
 struct Request {
   bool streamed = true;  // outputs above kBatchStreamBytes, or 23 samples written in place
-  bool partials = true;  // with the partial velocities (every sample alone), or without (four
-                         // samples at once where the model and CPU allow it)
+  bool partials = true;  // with the partial velocities (every sample alone), or without (samples
+                         // in lanes where the model and CPU allow it)
+  int most_lanes = 8;    // batch_kinematics' most_lanes
 };
 
 // Every field of every sample (the partial velocities only with r.partials), one number past the
@@ -236,7 +237,7 @@ void expect_rows_of_samples_alone(const mbk::Model& model, const std::vector<int
     arrays[f].assign(samples * size[f] + 2, T(-7));
     if (size[f] > 0) out.field[f] = arrays[f].data() + 1;
   }
-  mbk::batch_kinematics(model, inputs.in, out, threads);
+  mbk::batch_kinematics(model, inputs.in, out, threads, r.most_lanes);
   for (std::size_t s = 0; s < samples; ++s) {
     mbk::BatchInput one = inputs.in;
     one.samples = 1;
@@ -249,7 +250,7 @@ void expect_rows_of_samples_alone(const mbk::Model& model, const std::vector<int
       ASSERT_EQ(
           0, std::memcmp(alone.arrays[f].data(), out.field[f] + s * size[f], size[f] * sizeof(T)))
           << mbk::batch_field_traits(static_cast<BatchField>(f)).name << ", sample " << s << " of "
-          << samples << ", threads " << threads;
+          << samples << ", threads " << threads << ", most lanes " << r.most_lanes;
   }
   for (int f = 0; f < mbk::kBatchFieldCount; ++f) {
     EXPECT_EQ(T(-7), arrays[f].front()) << "written before the array";
@@ -268,24 +269,25 @@ TEST(BatchKinematics, StreamedOutputsAreTheSamplesAloneBitForBit) {
     }
 }
 
-// Without the partial velocities, a batch of doubles computes four samples at once where the
-// model and CPU allow it (core/kinematics_double4.h; the human model and pr2 on AVX2 CPUs), the
-// rest of each thread's run one at a time: still each sample alone bit for bit, the segment frames
-// included, in place and streamed, for every body in order and chosen bodies.
-TEST(BatchKinematics, FourSamplesAtOnceAreTheSamplesAloneBitForBit) {
+// Without the partial velocities, a batch of doubles computes eight or four samples at once where
+// the model and CPU allow it (core/kinematics_lanes.h; the human model and pr2 on AVX-512F and on
+// AVX2 CPUs: eight, then four, then one at a time in each thread's run; four and one with
+// most_lanes 4): still each sample alone bit for bit, the segment frames included, in place and
+// streamed, for every body in order and chosen bodies.
+TEST(BatchKinematics, SamplesInLanesAreTheSamplesAloneBitForBit) {
 #ifdef MBK_AVX2_DISPATCH  // the lanes' build (not a sanitizer's)
-  if (__builtin_cpu_supports("avx2")) {
-    EXPECT_TRUE(mbk::four_samples_at_once(models()[2])) << "the human model";
-    EXPECT_TRUE(mbk::four_samples_at_once(models()[3])) << "pr2";
-  }
+  const int lanes = __builtin_cpu_supports("avx512f") ? 8 : __builtin_cpu_supports("avx2") ? 4 : 1;
+  EXPECT_EQ(lanes, mbk::samples_at_once(models()[2])) << "the human model";
+  EXPECT_EQ(lanes, mbk::samples_at_once(models()[3])) << "pr2";
 #endif
   for (const mbk::Model& model : models())
     for (const int threads : {1, 3})
-      for (const bool streamed : {false, true}) {
-        const Request r{streamed, false};
-        expect_rows_of_samples_alone<double>(model, all_bodies(model), threads, r);
-        expect_rows_of_samples_alone<double>(model, {5, 2, 5, model.body_count()}, threads, r);
-      }
+      for (const bool streamed : {false, true})
+        for (const int most_lanes : {8, 4}) {
+          const Request r{streamed, false, most_lanes};
+          expect_rows_of_samples_alone<double>(model, all_bodies(model), threads, r);
+          expect_rows_of_samples_alone<double>(model, {5, 2, 5, model.body_count()}, threads, r);
+        }
 }
 
 TEST(BatchKinematics, FloatIsTheDoubleRounded) {

@@ -1,15 +1,17 @@
-// forward_kinematics and system_kinematics of four samples at once (core/kinematics_double4.h):
-// each lane is its sample's computation in double bit for bit, for every joint type's kernel and
-// Euler order, both kinds of speeds, every level, mimic joints and trees deep enough to be
-// reorthonormalized; a model the lanes do not take (a generic kernel) is told and refused.
-#include "mb_kinematics/core/kinematics_double4.h"
+// forward_kinematics and system_kinematics of four and of eight samples at once
+// (core/kinematics_lanes.h): each lane is its sample's computation in double bit for bit, for every
+// joint type's kernel and Euler order, both kinds of speeds, every level, mimic joints and trees
+// deep enough to be reorthonormalized; lanes the CPU or the model does not take (a generic kernel)
+// are told and refused.
+#include "mb_kinematics/core/kinematics_lanes.h"
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "mb_kinematics/analysis/model_generators.h"
 #include "mb_kinematics/core/kinematics_double.h"
@@ -18,16 +20,17 @@
 
 namespace {
 
-using mbk::Double4;
+using mbk::DoubleLanes;
 using mbk::JointType;
 using mbk::Level;
 using mbk::SpeedKind;
 
 // Whether this build has the lanes (the AVX2 copy's dispatch: not in sanitizer builds) and this
-// CPU runs them.
+// CPU runs N of them.
+template <int N>
 bool lanes_here() {
 #ifdef MBK_AVX2_DISPATCH
-  return __builtin_cpu_supports("avx2");
+  return N == 4 ? __builtin_cpu_supports("avx2") : __builtin_cpu_supports("avx512f");
 #else
   return false;
 #endif
@@ -39,28 +42,27 @@ bool has_generic_kernel(const mbk::Model& model) {
   return false;
 }
 
-// Four states of one smooth trajectory, far apart in time. A model with angular-velocity speeds
+// N states of one smooth trajectory, far apart in time. A model with angular-velocity speeds
 // takes it from `twin`, the same model with coordinate-derivative speeds.
-std::array<mbk::JointState<double>, 4> four_states(const mbk::Model& model,
-                                                   const mbk::Model& twin) {
+std::vector<mbk::JointState<double>> states_of(const mbk::Model& model, const mbk::Model& twin,
+                                               int n) {
   const mbk_test::Trajectory trajectory(twin, 5);
-  std::array<mbk::JointState<double>, 4> states{
-      mbk::JointState<double>(model), mbk::JointState<double>(model),
-      mbk::JointState<double>(model), mbk::JointState<double>(model)};
-  const double times[] = {0.3, 1.1, 2.9, 4.7};
-  for (int l = 0; l < 4; ++l) {
+  std::vector<mbk::JointState<double>> states(n, mbk::JointState<double>(model));
+  for (int l = 0; l < n; ++l) {
+    const double t = 0.3 + 4.4 * l / (n - 1) + 0.05 * (l % 3);
     states[l] = model.speeds == SpeedKind::kAngularVelocity
-                    ? mbk_test::state_with_angular_speeds(model, twin, trajectory, times[l])
-                    : trajectory.at<double>(times[l]);
+                    ? mbk_test::state_with_angular_speeds(model, twin, trajectory, t)
+                    : trajectory.at<double>(t);
     mbk::apply_mimics(model, states[l]);
   }
   return states;
 }
 
-mbk::JointState<Double4> lanes_of(const mbk::Model& model,
-                                  const std::array<mbk::JointState<double>, 4>& states) {
-  mbk::JointState<Double4> lanes(model);
-  for (int l = 0; l < 4; ++l) {
+template <int N>
+mbk::JointState<DoubleLanes<N>> lanes_of(const mbk::Model& model,
+                                         const std::vector<mbk::JointState<double>>& states) {
+  mbk::JointState<DoubleLanes<N>> lanes(model);
+  for (int l = 0; l < N; ++l) {
     for (int i = 0; i < model.nq; ++i) lanes.position[i].v[l] = states[l].position[i];
     for (int i = 0; i < model.nv; ++i) {
       lanes.velocity[i].v[l] = states[l].velocity[i];
@@ -71,37 +73,44 @@ mbk::JointState<Double4> lanes_of(const mbk::Model& model,
 }
 
 // Bitwise: -0.0 and NaN patterns count.
-void expect_bits(double expected, const Double4& actual, int lane, const std::string& where) {
+template <int N>
+void expect_bits(double expected, const DoubleLanes<N>& actual, int lane,
+                 const std::string& where) {
   const double a = actual.v[lane];
   EXPECT_EQ(0, std::memcmp(&expected, &a, sizeof(double)))
       << where << " lane " << lane << ": " << expected << " vs " << a;
 }
 
-template <int R, int C>
+template <int N, int R, int C>
 void expect_bits(const Eigen::Matrix<double, R, C>& expected,
-                 const Eigen::Matrix<Double4, R, C>& actual, int lane, const std::string& where) {
+                 const Eigen::Matrix<DoubleLanes<N>, R, C>& actual, int lane,
+                 const std::string& where) {
   for (int i = 0; i < R; ++i)
     for (int j = 0; j < C; ++j) expect_bits(expected(i, j), actual(i, j), lane, where);
 }
 
+template <int N>
 void expect_lanes_are_samples(const mbk::Model& model, const std::string& where,
                               const mbk::Model* twin = nullptr) {
-  ASSERT_EQ(mbk::four_samples_at_once(model), lanes_here() && !has_generic_kernel(model))
-      << where;
-  const std::array<mbk::JointState<double>, 4> states = four_states(model, twin ? *twin : model);
-  const mbk::JointState<Double4> lanes = lanes_of(model, states);
-  if (!mbk::four_samples_at_once(model)) {
-    mbk::Data<Double4> data(model);
+  using Lanes = DoubleLanes<N>;
+  const bool runs = lanes_here<N>() && !has_generic_kernel(model);
+  ASSERT_EQ(mbk::samples_at_once(model) >= N, runs) << where;
+  const std::vector<mbk::JointState<double>> states = states_of(model, twin ? *twin : model, N);
+  const mbk::JointState<Lanes> lanes = lanes_of<N>(model, states);
+  if (!runs) {
+    mbk::Data<Lanes> data(model);
+    mbk::SystemKinematics<Lanes> system;
     EXPECT_THROW(mbk::forward_kinematics(model, lanes, data, Level::kPose), std::logic_error);
+    EXPECT_THROW(mbk::system_kinematics(model, data, system, Level::kPose), std::logic_error);
     return;
   }
   for (const Level level : {Level::kPose, Level::kVelocity, Level::kAcceleration}) {
     const std::string at = where + " level " + std::to_string(static_cast<int>(level));
-    mbk::Data<Double4> data4(model);
-    mbk::SystemKinematics<Double4> system4;
+    mbk::Data<Lanes> data4(model);
+    mbk::SystemKinematics<Lanes> system4;
     mbk::forward_kinematics(model, lanes, data4, level);
     mbk::system_kinematics(model, data4, system4, level);
-    for (int l = 0; l < 4; ++l) {
+    for (int l = 0; l < N; ++l) {
       mbk::Data<double> data(model);
       mbk::SystemKinematics<double> system;
       mbk::forward_kinematics(model, states[l], data, level);
@@ -138,15 +147,22 @@ mbk::Model tree_of(JointType type, unsigned seed, SpeedKind speeds) {
   return model;
 }
 
-TEST(FourSamples, EveryJointTypesKernelLaneByLane) {
+// Four lanes (AVX2) and eight (AVX-512F).
+template <typename Lanes>
+class SamplesInLanes : public testing::Test {};
+using LaneCounts = testing::Types<std::integral_constant<int, 4>, std::integral_constant<int, 8>>;
+TYPED_TEST_SUITE(SamplesInLanes, LaneCounts);
+
+TYPED_TEST(SamplesInLanes, EveryJointTypesKernelLaneByLane) {
   for (JointType type : mbk::all_joint_types())
     for (SpeedKind speeds : {SpeedKind::kCoordinateDerivatives, SpeedKind::kAngularVelocity}) {
       const mbk::Model twin = tree_of(type, 3, SpeedKind::kCoordinateDerivatives);
-      expect_lanes_are_samples(tree_of(type, 3, speeds), mbk::to_string(type), &twin);
+      expect_lanes_are_samples<TypeParam::value>(tree_of(type, 3, speeds), mbk::to_string(type),
+                                                 &twin);
     }
 }
 
-TEST(FourSamples, EveryEulerOrderLaneByLane) {
+TYPED_TEST(SamplesInLanes, EveryEulerOrderLaneByLane) {
   constexpr int kOrders = static_cast<int>(mbk::EulerOrder::kLast) + 1;
   for (JointType type : {JointType::kBall123, JointType::kFree123})
     for (int order = 0; order < kOrders; ++order) {
@@ -154,26 +170,28 @@ TEST(FourSamples, EveryEulerOrderLaneByLane) {
       for (int k = 1; k <= model.body_count(); ++k)
         model.bodies[k].joint.euler_order = static_cast<mbk::EulerOrder>(order);
       mbk::finalize_model(model);
-      expect_lanes_are_samples(model, mbk::to_string(type) + " order " + std::to_string(order));
+      expect_lanes_are_samples<TypeParam::value>(
+          model, mbk::to_string(type) + " order " + std::to_string(order));
     }
 }
 
 // Mixed trees; a chain deep enough for the Newton-Schulz step (every 32 joints); the human model;
 // pr2 (mimic joints, set in each lane from their sources); a mixed tree on the generic kernel
 // alone, which the lanes refuse.
-TEST(FourSamples, ModelsLaneByLane) {
+TYPED_TEST(SamplesInLanes, ModelsLaneByLane) {
   for (unsigned seed = 1; seed <= 3; ++seed)
-    expect_lanes_are_samples(mbk_test::random_tree(40, seed), "mixed " + std::to_string(seed));
-  expect_lanes_are_samples(mbk_test::revolute_chain(70), "chain of 70");
-  expect_lanes_are_samples(mbk::load_model_file(mbk_test::source_path("config/human_body.urdf")),
-                           "human");
+    expect_lanes_are_samples<TypeParam::value>(mbk_test::random_tree(40, seed),
+                                               "mixed " + std::to_string(seed));
+  expect_lanes_are_samples<TypeParam::value>(mbk_test::revolute_chain(70), "chain of 70");
+  expect_lanes_are_samples<TypeParam::value>(
+      mbk::load_model_file(mbk_test::source_path("config/human_body.urdf")), "human");
   const mbk::Model pr2 = mbk::load_model_file(mbk_test::source_path("test/robots/pr2.urdf"));
   ASSERT_FALSE(pr2.mimics.empty());
-  expect_lanes_are_samples(pr2, "pr2");
+  expect_lanes_are_samples<TypeParam::value>(pr2, "pr2");
   mbk::Model generic = mbk_test::random_tree(12, 4);
   generic.steps = mbk::make_body_steps(generic, mbk::KernelChoice::kGenericOnly);
   ASSERT_TRUE(has_generic_kernel(generic));
-  expect_lanes_are_samples(generic, "generic kernels");
+  expect_lanes_are_samples<TypeParam::value>(generic, "generic kernels");
 }
 
 }  // namespace
