@@ -27,13 +27,34 @@ struct RelativeMotion {
   Vec3<S> alpha;
 };
 
+// Its parts, each alone (the batch writes a field at a time). S0J^T is made a matrix before the
+// products: Eigen sums a b and a^T b in different orders (types.h), and these are the numbers
+// `mbk eval` has always written.
 template <typename S>
-RelativeMotion<S> relative_motion(const Model& model, const Data<S>& data, int k) {
+Mat3<S> relative_rotation(const Model& model, const Data<S>& data, int k) {
+  const Mat3<S> sj_t = data.rotation[model.bodies[k].lower].transpose();
+  return detail::product<S>(sj_t, data.rotation[k]);
+}
+
+template <typename S>
+Vec3<S> relative_omega(const Model& model, const Data<S>& data, int k) {
+  const int j = model.bodies[k].lower;
+  const Mat3<S> sj_t = data.rotation[j].transpose();
+  return detail::product<S>(sj_t, Vec3<S>(data.omega[k] - data.omega[j]));
+}
+
+template <typename S>
+Vec3<S> relative_alpha(const Model& model, const Data<S>& data, int k) {
   const int j = model.bodies[k].lower;
   const Mat3<S> sj_t = data.rotation[j].transpose();
   const Vec3<S> w = data.omega[k] - data.omega[j];
-  return {detail::product<S>(sj_t, data.rotation[k]), detail::product<S>(sj_t, w),
-          detail::product<S>(sj_t, data.alpha[k] - data.alpha[j] - data.omega[j].cross(w))};
+  return detail::product<S>(sj_t, Vec3<S>(data.alpha[k] - data.alpha[j] - data.omega[j].cross(w)));
+}
+
+template <typename S>
+RelativeMotion<S> relative_motion(const Model& model, const Data<S>& data, int k) {
+  return {relative_rotation(model, data, k), relative_omega(model, data, k),
+          relative_alpha(model, data, k)};
 }
 
 }  // namespace mbk

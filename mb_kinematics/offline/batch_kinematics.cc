@@ -102,36 +102,6 @@ void put_or_nan(T* out, const Vec3<S>& v, bool known) {
     out[i] = known ? static_cast<T>(v[i]) : T(std::numeric_limits<double>::quiet_NaN());
 }
 
-template <typename T>
-bool any_relative(const BatchOutput<T>& out) {
-  return out[BatchField::kRelativeRotation] || out[BatchField::kRelativeOmega] ||
-         out[BatchField::kRelativeAlpha];
-}
-
-// The segment frames and joint motion of body k (core/segment_frames.h) into row `row`.
-template <typename T, typename S>
-void write_segment_frames(const Model& model, const Data<S>& data, int k, std::size_t row,
-                          const BatchOutput<T>& out) {
-  const std::pair<BatchField, const std::vector<Vec3<S>>*> in_body[] = {
-      {BatchField::kOmegaBody, &data.omega},
-      {BatchField::kAlphaBody, &data.alpha},
-      {BatchField::kVelocityBody, &data.mass_center_velocity},
-      {BatchField::kAccelerationBody, &data.mass_center_acceleration}};
-  for (const auto& [field, values] : in_body)
-    if (T* v = out[field]) put(v + row * 3, in_body_axes(data, k, (*values)[k]));
-  if (!any_relative(out)) return;
-  const RelativeMotion<S> m = relative_motion(model, data, k);
-  if (T* r = out[BatchField::kRelativeRotation]) put(r + row * 9, m.rotation);
-  if (T* w = out[BatchField::kRelativeOmega]) put(w + row * 3, m.omega);
-  if (T* a = out[BatchField::kRelativeAlpha]) put(a + row * 3, m.alpha);
-}
-
-template <typename T>
-bool any_segment_frames(const BatchOutput<T>& out) {
-  return out[BatchField::kOmegaBody] || out[BatchField::kAlphaBody] ||
-         out[BatchField::kVelocityBody] || out[BatchField::kAccelerationBody] || any_relative(out);
-}
-
 // Whether `bodies` is 1..N, every body in order (Model.kinematics' default).
 bool every_body_in_order(const std::vector<int>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i)
@@ -166,21 +136,65 @@ constexpr std::pair<BatchField, DataVector<S>> kDataVectors[] = {
     {BatchField::kVelocity, &Data<S>::mass_center_velocity},
     {BatchField::kAcceleration, &Data<S>::mass_center_acceleration}};
 
-// Sample s's rows of the per-body outputs, copied from Data, a field at a time (each field's
-// rows of a sample are one run of the caller's array). Writing in place instead would need every
-// kernel to treat the ground, which has no row in the caller's arrays, apart.
+// The vectors of Data the segment-frame fields read in Bk's axes (core/segment_frames.h).
+template <typename S>
+constexpr std::pair<BatchField, DataVector<S>> kInBodyVectors[] = {
+    {BatchField::kOmegaBody, &Data<S>::omega},
+    {BatchField::kAlphaBody, &Data<S>::alpha},
+    {BatchField::kVelocityBody, &Data<S>::mass_center_velocity},
+    {BatchField::kAccelerationBody, &Data<S>::mass_center_acceleration}};
+
+// Field's vector in `table`; null if it has none.
+template <typename S, std::size_t kSize>
+DataVector<S> vector_of(const std::pair<BatchField, DataVector<S>> (&table)[kSize],
+                        BatchField field) {
+  for (const auto& [f, vector] : table)
+    if (f == field) return vector;
+  return nullptr;
+}
+
+// One sample's row of a per-body field (the partial velocities aside) into v: the chosen bodies'
+// blocks from `data`, or computed from it (the segment frames and joint motion,
+// core/segment_frames.h).
+template <typename T, typename S>
+void write_body_field(const Model& model, const Data<S>& data, BatchField field,
+                      const std::vector<int>& bodies, bool every_body, T* v) {
+  const std::size_t nb = bodies.size();
+  if (const DataVector<S> vector = vector_of(kDataVectors<S>, field))
+    return put_rows(v, data.*vector, bodies, every_body);
+  if (const DataVector<S> vector = vector_of(kInBodyVectors<S>, field)) {
+    for (std::size_t i = 0; i < nb; ++i)
+      put(v + i * 3, in_body_axes(data, bodies[i], (data.*vector)[bodies[i]]));
+  } else if (field == BatchField::kRotation) {
+    for (std::size_t i = 0; i < nb; ++i) put(v + i * 9, data.rotation[bodies[i]]);
+  } else if (field == BatchField::kRelativeRotation) {
+    for (std::size_t i = 0; i < nb; ++i) put(v + i * 9, relative_rotation(model, data, bodies[i]));
+  } else if (field == BatchField::kRelativeOmega) {
+    for (std::size_t i = 0; i < nb; ++i) put(v + i * 3, relative_omega(model, data, bodies[i]));
+  } else if (field == BatchField::kRelativeAlpha) {
+    for (std::size_t i = 0; i < nb; ++i) put(v + i * 3, relative_alpha(model, data, bodies[i]));
+  }
+}
+
+// Whether `field` is written by write_body_field.
+bool is_body_field(BatchField field) {
+  const BatchFieldTraits& t = kTraits[static_cast<int>(field)];
+  return t.per_body && t.width > 0;
+}
+
+// Sample s's rows of the per-body outputs, a field at a time (each field's rows of a sample are
+// one run of the caller's array). Writing in place instead would need every kernel to treat the
+// ground, which has no row in the caller's arrays, apart.
 template <typename T, typename S>
 void write_bodies(const Model& model, const Data<S>& data, std::size_t s,
                   const BatchOutput<T>& out) {
   const std::size_t nb = out.bodies.size();
   const bool every_body = nb > 0 && every_body_in_order(out.bodies);
-  if (T* r = out[BatchField::kRotation])
-    for (std::size_t i = 0; i < nb; ++i) put(r + (s * nb + i) * 9, data.rotation[out.bodies[i]]);
-  for (const auto& [field, vector] : kDataVectors<S>)
-    if (T* v = out[field]) put_rows(v + s * nb * 3, data.*vector, out.bodies, every_body);
-  if (any_segment_frames(out))
-    for (std::size_t i = 0; i < nb; ++i)
-      write_segment_frames(model, data, out.bodies[i], s * nb + i, out);
+  for (int f = 0; f < kBatchFieldCount; ++f) {
+    const BatchField field = static_cast<BatchField>(f);
+    if (T* v = out[field]; v && is_body_field(field))
+      write_body_field(model, data, field, out.bodies, every_body, v + s * nb * kTraits[f].width);
+  }
 }
 
 // As `mbk eval`'s JSON: the vectors are NaN where it writes null (no mass: no mass center; a body
@@ -221,14 +235,19 @@ void write_partials(const Model& model, const PartialVelocities<double>& pv, std
   }
 }
 
-// write_batch_fields for the workspace's scalar S (double or DoubleLanes).
+template <typename T>
+bool any_system(const BatchOutput<T>& out) {
+  return out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
+         out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
+         out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum];
+}
+
+// write_batch_fields for the workspace's scalar S.
 template <typename T, typename S>
 void write_fields(const Model& model, const Data<S>& data, std::size_t s, Level level,
                   const BatchOutput<T>& out, SystemKinematics<S>& system) {
   write_bodies(model, data, s, out);
-  if (out[BatchField::kSystemMass] || out[BatchField::kSystemMassCenter] ||
-      out[BatchField::kSystemVelocity] || out[BatchField::kSystemAcceleration] ||
-      out[BatchField::kLinearMomentum] || out[BatchField::kAngularMomentum]) {
+  if (any_system(out)) {
     system_kinematics(model, data, system, level);
     write_system(system, s, out);
   }
@@ -255,15 +274,16 @@ std::array<std::size_t, kBatchFieldCount> row_sizes(const Model& model, const Ba
   return size;
 }
 
-// Row 0 of every field of `out`, in numbers U, in a buffer that stays in the caches, for the
-// writers to fill; with every body in order and U the workspace's own scalar (`from_data`), the
-// vectors of Data (kDataVectors) are left out and taken straight from Data instead (`direct`).
-template <typename U, typename T>
-struct RowBuffer {
-  RowBuffer(const Model& model, const BatchOutput<T>& out, bool from_data)
-      : size(row_sizes(model, out)) {
-    if (from_data && !out.bodies.empty() && every_body_in_order(out.bodies))
-      for (const auto& [field, vector] : kDataVectors<U>)
+// One sample's outputs in a buffer that stays in the caches, streamed to the caller's rows once
+// computed (stream_copy): each line of the arrays is written once, not read first, and the
+// workspace is not evicted by the outputs (doc/speed.md#python). With every body in order, the
+// vectors of Data (kDataVectors) of doubles are left out of the buffer and streamed straight
+// from Data (`direct`).
+template <typename T>
+struct StagedRow {
+  StagedRow(const Model& model, const BatchOutput<T>& out) : size(row_sizes(model, out)) {
+    if (std::is_same_v<T, double> && !out.bodies.empty() && every_body_in_order(out.bodies))
+      for (const auto& [field, vector] : kDataVectors<double>)
         if (out[field]) direct[static_cast<int>(field)] = vector;
     std::size_t total = 0;
     for (int f = 0; f < kBatchFieldCount; ++f)
@@ -277,54 +297,66 @@ struct RowBuffer {
         total += size[f];
       }
   }
-  // The numbers of field f's row: from `row`, or from `data` for `direct` fields.
-  const U* numbers(int f, const Data<U>& data) const {
-    return direct[f] ? (data.*direct[f])[1].data() : row.field[f];
-  }
-  std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
-  std::array<DataVector<U>, kBatchFieldCount> direct{};
-  std::vector<U> buffer;
-  BatchOutput<U> row;  // row 0 of each other field of `out`, in `buffer`
-};
-
-// One sample's outputs in a RowBuffer, streamed to the caller's rows once computed (stream_copy):
-// each line of the arrays is written once, not read first, and the workspace is not evicted by
-// the outputs (doc/speed.md#python). Doubles' Data vectors are streamed straight from Data.
-template <typename T>
-struct StagedRow : RowBuffer<T, T> {
-  StagedRow(const Model& model, const BatchOutput<T>& out)
-      : RowBuffer<T, T>(model, out, std::is_same_v<T, double>) {}
   // Sample s's rows.
   void stream_to(const BatchOutput<T>& out, std::size_t s, const Data<double>& data) const {
     for (int f = 0; f < kBatchFieldCount; ++f) {
-      const std::size_t n = this->size[f];
+      const std::size_t n = size[f];
       if (n == 0) continue;
-      const void* from = this->row.field[f];
-      if constexpr (std::is_same_v<T, double>) from = this->numbers(f, data);
+      const void* from = row.field[f];
+      if (direct[f]) from = (data.*direct[f])[1].data();
       stream_copy(out.field[f] + s * n, from, n * sizeof(T));
     }
   }
+  std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
+  std::array<DataVector<double>, kBatchFieldCount> direct{};
+  std::vector<T> buffer;
+  BatchOutput<T> row;  // row 0 of each other field of `out`, in `buffer`
 };
 
 #ifdef MBK_AVX2_DISPATCH
-// N samples at once (core/kinematics_lanes.h), a lane each: their states in one JointState, their
-// outputs written by the same writers as one row of DoubleLanes<N> (each number's N samples
-// together), then turned into the N samples' rows of each field, which follow each other in the
-// caller's array, and copied there. With every body in order, the vectors of Data
-// (kDataVectors) are turned straight from Data.
+// N samples at once (core/kinematics_lanes.h), a lane each: their states in one JointState, each
+// field's row written by the same writers as one row of DoubleLanes<N> (each number's N samples
+// together), then turned into the N samples' rows, which follow each other in the caller's array,
+// and copied there, a field at a time: the row and the rows stay in L1. With every body in order,
+// the vectors of Data (kDataVectors) are turned straight from Data.
 template <int N>
 struct LaneSamples {
   using Lanes = DoubleLanes<N>;
   LaneSamples(const Model& model, const BatchOutput<double>& out)
-      : state(model), data(model), lanes(model, out, true) {
-    rows.resize(N * *std::max_element(lanes.size.begin(), lanes.size.end()));
+      : state(model),
+        data(model),
+        size(row_sizes(model, out)),
+        every_body(!out.bodies.empty() && every_body_in_order(out.bodies)) {
+    const std::size_t most = *std::max_element(size.begin(), size.end());
+    numbers.resize(most);
+    rows.resize(N * most);
   }
   JointState<Lanes> state;
   Data<Lanes> data;
   SystemKinematics<Lanes> system;
-  RowBuffer<Lanes, double> lanes;  // a row of every field, N samples a number
-  std::vector<double> rows;        // N samples' rows of one field
+  std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
+  bool every_body;
+  std::vector<Lanes> numbers;  // one field's row, N samples a number
+  std::vector<double> rows;    // the N samples' rows of that field
 };
+
+// Field's row of the N samples in w: from Data, or written into w.numbers.
+template <int N>
+const DoubleLanes<N>* lane_row(const Model& model, BatchField field, const std::vector<int>& bodies,
+                               LaneSamples<N>& w) {
+  using Lanes = DoubleLanes<N>;
+  if (const DataVector<Lanes> vector = vector_of(kDataVectors<Lanes>, field);
+      vector && w.every_body)
+    return (w.data.*vector)[1].data();
+  if (is_body_field(field)) {
+    write_body_field(model, w.data, field, bodies, w.every_body, w.numbers.data());
+  } else {
+    BatchOutput<Lanes> one;
+    one[field] = w.numbers.data();
+    write_system(w.system, 0, one);
+  }
+  return w.numbers.data();
+}
 
 // The 4 x 4 block of doubles a[0..3][0..3] into b[j][i] = a[i][j] (a[i], b[j]: four doubles, at
 // any alignment), in registers.
@@ -389,11 +421,11 @@ void compute_lanes(const Model& model, const BatchInput& in, std::size_t s, Leve
                    const BatchOutput<double>& out, bool streamed, LaneSamples<N>& w) {
   load_lanes(model, in, s, w.state);
   forward_kinematics(model, w.state, w.data, level);
-  write_fields(model, w.data, 0, level, w.lanes.row, w.system);
+  if (any_system(out)) system_kinematics(model, w.data, w.system, level);
   for (int f = 0; f < kBatchFieldCount; ++f) {
-    const std::size_t n = w.lanes.size[f];
+    const std::size_t n = w.size[f];
     if (n == 0) continue;
-    to_rows(w.lanes.numbers(f, w.data), n, w.rows.data());
+    to_rows(lane_row(model, static_cast<BatchField>(f), out.bodies, w), n, w.rows.data());
     double* to = out.field[f] + s * n;
     if (streamed)
       stream_copy(to, w.rows.data(), N * n * sizeof(double));
