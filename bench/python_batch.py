@@ -214,7 +214,8 @@ def parallel_copy(to, source, threads=2):
 def chunk_rows(n):
     """Human, 2 threads, the full and the all outputs, best (median) of 5: batch_benchmark's
     plain copy of the same bytes, its computation alone (compute/), its state check (check/),
-    its writes alone (write/, stream/) and its batch into arrays touched before; then five
+    its writes alone (write/, stream/) and its batch into arrays touched before (with at most
+    four samples at once too, batch4/); then five
     rounds of a 2-thread numpy copy of the same bytes into the out= arrays, out= (against that
     copy), fresh arrays (against out=) and chunks of 10,000 rows (kinematics_chunks, against
     out=; and into one chunk's arrays made before, out=); the chunks' peak memory against one
@@ -231,7 +232,7 @@ def chunk_rows(n):
         # long to write into them (doc/speed.md).
         out = {k: np.ones((n,) + x.shape[1:]) for k, x in fresh0.items()}
         r = {what: cpp["%s/human/%s/threads:2" % (what, kind)]
-             for what in ("copy", "compute", "check", "write", "stream", "batch")}
+             for what in ("copy", "compute", "check", "write", "stream", "batch", "batch4")}
         source = {k: np.ones_like(x) for k, x in out.items()}
         r.update(numpy_copy=[], out=[], fresh=[], chunks=[], chunks_out=[])
         chunk_out = {k: np.ones((10000,) + x.shape[1:]) for k, x in fresh0.items()}
@@ -266,6 +267,7 @@ def chunk_rows(n):
              ("the writes alone, ordinary stores (C++, write/)", "write", "copy", "the copy"),
              ("the writes alone, streaming stores (C++, stream/)", "stream", "copy", "the copy"),
              ("C++ batch_kinematics, arrays touched before (batch/)", "batch", "copy", "the copy"),
+             ("the same, four samples at once at most (batch4/)", "batch4", "batch", "batch/"),
              ("out=", "out", "numpy_copy", "the numpy copy"),
              ("fresh arrays", "fresh", "out", "out="),
              ("kinematics_chunks, rows=10000", "chunks", "out", "out="),
