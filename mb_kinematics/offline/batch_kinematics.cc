@@ -465,7 +465,7 @@ std::size_t compute_groups(const Model& model, const BatchInput& in, std::size_t
 std::size_t compute_in_lanes(const Model& model, const BatchInput& in, std::size_t begin,
                              std::size_t end, Level level, const BatchOutput<double>& out,
                              bool streamed, int lanes) {
-  if (lanes >= 8)
+  if (lanes >= 8 && begin + 8 <= end)
     begin = compute_groups<8>(model, in, begin, end, level, out, streamed, compute_eight);
   if (lanes >= 4 && begin + 4 <= end)
     begin = compute_groups<4>(model, in, begin, end, level, out, streamed, compute_four);
