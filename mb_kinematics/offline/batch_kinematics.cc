@@ -373,34 +373,37 @@ __attribute__((target("avx2"))) void transpose4(const double* a0, const double* 
   _mm256_storeu_pd(b3, _mm256_permute2f128_pd(ab1, cd1, 0x31));
 }
 
+// b[j][i] = a[i][j] for the rows x cols matrix a (row i from a + i a_stride) into b (row j from
+// b + j b_stride): 4 x 4 blocks by transpose4, the numbers past the last whole block one by one.
+void transpose(const double* a, std::size_t a_stride, std::size_t rows, std::size_t cols, double* b,
+               std::size_t b_stride) {
+  const auto one = [&](std::size_t i, std::size_t j) { b[j * b_stride + i] = a[i * a_stride + j]; };
+  std::size_t i = 0;
+  for (; i + 4 <= rows; i += 4) {
+    std::size_t j = 0;
+    for (; j + 4 <= cols; j += 4) {
+      const double* x = a + i * a_stride + j;
+      double* y = b + j * b_stride + i;
+      transpose4(x, x + a_stride, x + 2 * a_stride, x + 3 * a_stride, y, y + b_stride,
+                 y + 2 * b_stride, y + 3 * b_stride);
+    }
+    for (; j < cols; ++j)
+      for (std::size_t r = i; r < i + 4; ++r) one(r, j);
+  }
+  for (; i < rows; ++i)
+    for (std::size_t j = 0; j < cols; ++j) one(i, j);
+}
+
 // The n numbers of N samples' rows (rows[l n + e]: sample l's number e) into the lanes of x
-// (x[e] lane l), or back (to_rows): four numbers of four samples at a time, by transpose4.
+// (x[e] lane l), or back (to_rows).
 template <int N>
 void to_lanes(const double* rows, std::size_t n, DoubleLanes<N>* x) {
-  double* lanes = &x[0].v[0];
-  std::size_t e = 0;
-  for (; e + 4 <= n; e += 4)
-    for (int h = 0; h < N; h += 4) {
-      const double* a = rows + h * n + e;
-      double* b = lanes + N * e + h;
-      transpose4(a, a + n, a + 2 * n, a + 3 * n, b, b + N, b + 2 * N, b + 3 * N);
-    }
-  for (; e < n; ++e)
-    for (int l = 0; l < N; ++l) x[e].v[l] = rows[l * n + e];
+  transpose(rows, n, N, n, &x[0].v[0], N);
 }
 
 template <int N>
 void to_rows(const DoubleLanes<N>* x, std::size_t n, double* rows) {
-  const double* lanes = &x[0].v[0];
-  std::size_t e = 0;
-  for (; e + 4 <= n; e += 4)
-    for (int h = 0; h < N; h += 4) {
-      const double* a = lanes + N * e + h;
-      double* b = rows + h * n + e;
-      transpose4(a, a + N, a + 2 * N, a + 3 * N, b, b + n, b + 2 * n, b + 3 * n);
-    }
-  for (; e < n; ++e)
-    for (int l = 0; l < N; ++l) rows[l * n + e] = x[e].v[l];
+  transpose(&x[0].v[0], N, n, N, rows, n);
 }
 
 // Input rows s..s+N-1 into the lanes of `state`, mimic coordinates from their sources.
