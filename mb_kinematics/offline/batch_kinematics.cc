@@ -317,8 +317,10 @@ struct StagedRow {
 // N samples at once (core/kinematics_lanes.h), a lane each: their states in one JointState, each
 // field's row written by the same writers as one row of DoubleLanes<N> (each number's N samples
 // together), then turned into the N samples' rows, which follow each other in the caller's array,
-// and copied there, a field at a time: the row and the rows stay in L1. With every body in order,
-// the vectors of Data (kDataVectors) are turned straight from Data.
+// and copied there, a field at a time: the row and the rows stay in L1; eight lanes of a field of
+// eight numbers or more, streamed, go from the row to the caller's array in registers
+// (stream_transpose8). With every body in order, the vectors of Data (kDataVectors) are turned
+// straight from Data.
 template <int N>
 struct LaneSamples {
   using Lanes = DoubleLanes<N>;
@@ -428,8 +430,13 @@ void compute_lanes(const Model& model, const BatchInput& in, std::size_t s, Leve
   for (int f = 0; f < kBatchFieldCount; ++f) {
     const std::size_t n = w.size[f];
     if (n == 0) continue;
-    to_rows(lane_row(model, static_cast<BatchField>(f), out.bodies, w), n, w.rows.data());
+    const DoubleLanes<N>* row = lane_row(model, static_cast<BatchField>(f), out.bodies, w);
     double* to = out.field[f] + s * n;
+    if (N == 8 && streamed && n >= 8) {  // straight from the lanes to memory
+      stream_transpose8(&row[0].v[0], n, to);
+      continue;
+    }
+    to_rows(row, n, w.rows.data());
     if (streamed)
       stream_copy(to, w.rows.data(), N * n * sizeof(double));
     else

@@ -9,6 +9,15 @@
 #endif
 
 namespace mbk {
+namespace {
+
+// stream_transpose8 with ordinary stores.
+void transpose8(const double* a, std::size_t n, double* b) {
+  for (std::size_t l = 0; l < 8; ++l)
+    for (std::size_t e = 0; e < n; ++e) b[l * n + e] = a[e * 8 + l];
+}
+
+}  // namespace
 
 #if defined(__x86_64__)
 namespace {
@@ -50,6 +59,94 @@ bool has_avx() {
   return avx;
 }
 
+bool has_avx512f() {
+  static const bool avx512f = __builtin_cpu_supports("avx512f");
+  return avx512f;
+}
+
+// c[l] = (r[0][l], ..., r[7][l]): the 8 x 8 block r transposed, in 24 permutes. (GCC 12's
+// unpack and shuffle intrinsics start from _mm512_undefined_pd, which -Wuninitialized takes for
+// a read of an uninitialized variable: GCC bug 105593, fixed in GCC 13.)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+__attribute__((target("avx512f"))) void transpose8x8(const __m512d r[8], __m512d c[8]) {
+  const __m512i low = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13);
+  const __m512i high = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  __m512d t[8], u[8];
+  for (int i = 0; i < 8; i += 2) {  // t[i] = r[i][0] r[i+1][0] r[i][2] ..., t[i+1]: the odd ones
+    t[i] = _mm512_unpacklo_pd(r[i], r[i + 1]);
+    t[i + 1] = _mm512_unpackhi_pd(r[i], r[i + 1]);
+  }
+  for (int i = 0; i < 8; i += 4)  // u[i + d]: rows i..i+3 of columns d and d + 4
+    for (int d = 0; d < 2; ++d) {
+      u[i + d] = _mm512_permutex2var_pd(t[i + d], low, t[i + d + 2]);
+      u[i + d + 2] = _mm512_permutex2var_pd(t[i + d], high, t[i + d + 2]);
+    }
+  for (int d = 0; d < 4; ++d) {
+    c[d] = _mm512_shuffle_f64x2(u[d], u[d + 4], 0x44);
+    c[d + 4] = _mm512_shuffle_f64x2(u[d], u[d + 4], 0xEE);
+  }
+}
+#pragma GCC diagnostic pop
+
+// stream_transpose8 on AVX-512F. Row l of b starts offset[l] numbers into a 64-byte line; its line
+// m (m = 0, 1, ...) is numbers 8 m - offset[l] .. 8 m - offset[l] + 7 of the row, which are the
+// last offset[l] numbers of column l's block m - 1 of a and the first 8 - offset[l] of its block
+// m, joined by one permute. The first and last lines of each row, which it shares with the rows
+// before and after it, are kept and joined at the end.
+__attribute__((target("avx512f"))) void stream_transpose8_avx512(const double* a, std::size_t n,
+                                                                 double* b) {
+  alignas(64) static const long long kJoin[8][8] = {
+      {8, 9, 10, 11, 12, 13, 14, 15}, {7, 8, 9, 10, 11, 12, 13, 14}, {6, 7, 8, 9, 10, 11, 12, 13},
+      {5, 6, 7, 8, 9, 10, 11, 12},    {4, 5, 6, 7, 8, 9, 10, 11},    {3, 4, 5, 6, 7, 8, 9, 10},
+      {2, 3, 4, 5, 6, 7, 8, 9},       {1, 2, 3, 4, 5, 6, 7, 8}};
+  const std::size_t o = address(reinterpret_cast<char*>(b)) / 8 % 8;
+  double* const lines = b - o;  // 64-byte aligned
+  std::size_t offset[8];
+  double* first[8];  // row l's first line
+  for (std::size_t l = 0; l < 8; ++l) {
+    offset[l] = (o + l * n) % 8;
+    first[l] = lines + (o + l * n) / 8 * 8;
+  }
+  alignas(64) double head[8][8], tail[8][8];  // each row's first and last line, if shared
+  __m512d before[8] = {};                     // each column's block m - 1
+  const std::size_t blocks = (n + 7) / 8;
+  for (std::size_t m = 0; m <= blocks; ++m) {
+    __m512d r[8], c[8];
+    for (std::size_t i = 0; i < 8; ++i)
+      r[i] = 8 * m + i < n ? _mm512_loadu_pd(a + (8 * m + i) * 8) : _mm512_setzero_pd();
+    transpose8x8(r, c);
+    for (std::size_t l = 0; l < 8; ++l) {
+      const auto start =
+          static_cast<std::ptrdiff_t>(8 * m) - static_cast<std::ptrdiff_t>(offset[l]);
+      const auto rows = static_cast<std::ptrdiff_t>(n);
+      if (start < rows) {
+        const __m512d line =
+            _mm512_permutex2var_pd(before[l], _mm512_load_si512(kJoin[offset[l]]), c[l]);
+        if (start < 0)
+          _mm512_store_pd(head[l], line);
+        else if (start + 8 > rows)
+          _mm512_store_pd(tail[l], line);
+        else
+          _mm512_stream_pd(first[l] + 8 * m, line);
+      }
+      before[l] = c[l];
+    }
+  }
+  // Row l - 1's last line is row l's first (n >= 8); b's first and last lines are shared with the
+  // numbers around b.
+  for (std::size_t l = 1; l < 8; ++l)
+    if (offset[l] > 0)
+      _mm512_stream_pd(first[l],
+                       _mm512_mask_blend_pd(static_cast<__mmask8>((1u << offset[l]) - 1),
+                                            _mm512_load_pd(head[l]), _mm512_load_pd(tail[l - 1])));
+  if (o > 0) {
+    _mm512_mask_storeu_pd(first[0], static_cast<__mmask8>(0xFFu << o), _mm512_load_pd(head[0]));
+    _mm512_mask_storeu_pd(lines + (o + 8 * n) / 8 * 8, static_cast<__mmask8>((1u << o) - 1),
+                          _mm512_load_pd(tail[7]));
+  }
+}
+
 }  // namespace
 
 void stream_copy(void* destination, const void* source, std::size_t bytes) {
@@ -71,11 +168,18 @@ void stream_copy(void* destination, const void* source, std::size_t bytes) {
 
 void stream_fence() { _mm_sfence(); }
 
+void stream_transpose8(const double* a, std::size_t n, double* b) {
+  if (has_avx512f() && n >= 8) return stream_transpose8_avx512(a, n, b);
+  transpose8(a, n, b);
+}
+
 #else  // no streaming stores: ordinary ones
 
 void stream_copy(void* to, const void* from, std::size_t bytes) { std::memcpy(to, from, bytes); }
 
 void stream_fence() {}
+
+void stream_transpose8(const double* a, std::size_t n, double* b) { transpose8(a, n, b); }
 
 #endif
 

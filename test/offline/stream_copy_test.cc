@@ -28,4 +28,32 @@ TEST(StreamCopy, TheBytesOfMemcpyAtEveryAlignmentAndLength) {
       }
 }
 
+// stream_transpose8: b[l n + e] = a[8 e + l] for every n up to past a few 8 x 8 blocks (the
+// fields of the batch's eight lanes: 9, 111 and 333 numbers for the human model) and every
+// alignment of b in its 64-byte line, nothing outside b touched.
+TEST(StreamCopy, TransposeOfEightColumnsAtEveryAlignmentAndLength) {
+  std::vector<std::size_t> lengths;
+  for (std::size_t n = 1; n <= 40; ++n) lengths.push_back(n);
+  lengths.insert(lengths.end(), {111, 333});
+  for (const std::size_t n : lengths) {
+    std::vector<double> a(8 * n);
+    for (std::size_t i = 0; i < a.size(); ++i) a[i] = 0.5 + static_cast<double>(i);
+    for (std::size_t offset = 0; offset < 8; ++offset) {
+      std::vector<double> storage(8 * n + 32, -7.0);
+      double* start = storage.data();  // the first 64-byte boundary in storage
+      while (reinterpret_cast<std::uintptr_t>(start) % 64 != 0) ++start;
+      double* b = start + offset;
+      mbk::stream_transpose8(a.data(), n, b);
+      mbk::stream_fence();
+      for (double* x = storage.data(); x < storage.data() + storage.size(); ++x) {
+        const std::ptrdiff_t i = x - b;
+        const bool inside = i >= 0 && i < static_cast<std::ptrdiff_t>(8 * n);
+        const double expected = inside ? a[i % n * 8 + i / n] : -7.0;
+        ASSERT_EQ(expected, *x) << "number " << i << " of b (n " << n << ", b at " << offset
+                                << " numbers past a 64-byte boundary)";
+      }
+    }
+  }
+}
+
 }  // namespace
