@@ -338,8 +338,9 @@ struct LaneSamples {
   SystemKinematics<Lanes> system;
   std::array<std::size_t, kBatchFieldCount> size;  // numbers per sample of each field
   bool every_body;
-  std::vector<Lanes> numbers;  // one field's row, N samples a number
-  std::vector<double> rows;    // the N samples' rows of that field
+  std::vector<Lanes> numbers;                   // one field's row, N samples a number
+  std::vector<double> rows;                     // the N samples' rows of that field
+  std::array<HeldLine, kBatchFieldCount> held;  // each field's line that the next group completes
 };
 
 // Field's row of the N samples in w: from Data, or written into w.numbers.
@@ -433,7 +434,7 @@ void compute_lanes(const Model& model, const BatchInput& in, std::size_t s, Leve
     const DoubleLanes<N>* row = lane_row(model, static_cast<BatchField>(f), out.bodies, w);
     double* to = out.field[f] + s * n;
     if (N == 8 && streamed && n >= 8) {  // straight from the lanes to memory
-      stream_transpose8(&row[0].v[0], n, to);
+      stream_transpose8(&row[0].v[0], n, to, w.held[f]);
       continue;
     }
     to_rows(row, n, w.rows.data());
@@ -467,6 +468,7 @@ std::size_t compute_groups(const Model& model, const BatchInput& in, std::size_t
                            bool streamed, Compute compute) {
   LaneSamples<N> w(model, out);
   for (; begin + N <= end; begin += N) compute(model, in, begin, level, out, streamed, w);
+  for (HeldLine& line : w.held) write_held(line);
   return begin;
 }
 

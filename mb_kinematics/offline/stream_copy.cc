@@ -12,12 +12,18 @@ namespace mbk {
 namespace {
 
 // stream_transpose8 with ordinary stores.
-void transpose8(const double* a, std::size_t n, double* b) {
+void transpose8(const double* a, std::size_t n, double* b, HeldLine& held) {
+  write_held(held);
   for (std::size_t l = 0; l < 8; ++l)
     for (std::size_t e = 0; e < n; ++e) b[l * n + e] = a[e * 8 + l];
 }
 
 }  // namespace
+
+void write_held(HeldLine& held) {
+  if (held.at) std::copy(held.numbers, held.numbers + held.count, held.at);
+  held.at = nullptr;
+}
 
 #if defined(__x86_64__)
 namespace {
@@ -95,7 +101,7 @@ __attribute__((target("avx512f"))) void transpose8x8(const __m512d r[8], __m512d
 // m, joined by one permute. The first and last lines of each row, which it shares with the rows
 // before and after it, are kept and joined at the end.
 __attribute__((target("avx512f"))) void stream_transpose8_avx512(const double* a, std::size_t n,
-                                                                 double* b) {
+                                                                 double* b, HeldLine& held) {
   alignas(64) static const long long kJoin[8][8] = {
       {8, 9, 10, 11, 12, 13, 14, 15}, {7, 8, 9, 10, 11, 12, 13, 14}, {6, 7, 8, 9, 10, 11, 12, 13},
       {5, 6, 7, 8, 9, 10, 11, 12},    {4, 5, 6, 7, 8, 9, 10, 11},    {3, 4, 5, 6, 7, 8, 9, 10},
@@ -133,18 +139,25 @@ __attribute__((target("avx512f"))) void stream_transpose8_avx512(const double* a
       before[l] = c[l];
     }
   }
-  // Row l - 1's last line is row l's first (n >= 8); b's first and last lines are shared with the
-  // numbers around b.
+  // Row l - 1's last line is row l's first (n >= 8).
   for (std::size_t l = 1; l < 8; ++l)
     if (offset[l] > 0)
       _mm512_stream_pd(first[l],
                        _mm512_mask_blend_pd(static_cast<__mmask8>((1u << offset[l]) - 1),
                                             _mm512_load_pd(head[l]), _mm512_load_pd(tail[l - 1])));
-  if (o > 0) {
-    _mm512_mask_storeu_pd(first[0], static_cast<__mmask8>(0xFFu << o), _mm512_load_pd(head[0]));
-    _mm512_mask_storeu_pd(lines + (o + 8 * n) / 8 * 8, static_cast<__mmask8>((1u << o) - 1),
-                          _mm512_load_pd(tail[7]));
+  // b's first line: completing the line held, or shared with numbers before b; its last line.
+  if (held.at && (o == 0 || held.at != first[0] || held.count != o)) write_held(held);
+  if (o == 0) return;
+  const __mmask8 before_b = static_cast<__mmask8>((1u << o) - 1);
+  if (held.at) {
+    _mm512_stream_pd(first[0], _mm512_mask_blend_pd(before_b, _mm512_load_pd(head[0]),
+                                                    _mm512_loadu_pd(held.numbers)));
+  } else {
+    _mm512_mask_storeu_pd(first[0], static_cast<__mmask8>(~before_b), _mm512_load_pd(head[0]));
   }
+  held.at = lines + (o + 8 * n) / 8 * 8;
+  held.count = o;
+  _mm512_storeu_pd(held.numbers, _mm512_load_pd(tail[7]));
 }
 
 }  // namespace
@@ -168,9 +181,9 @@ void stream_copy(void* destination, const void* source, std::size_t bytes) {
 
 void stream_fence() { _mm_sfence(); }
 
-void stream_transpose8(const double* a, std::size_t n, double* b) {
-  if (has_avx512f() && n >= 8) return stream_transpose8_avx512(a, n, b);
-  transpose8(a, n, b);
+void stream_transpose8(const double* a, std::size_t n, double* b, HeldLine& held) {
+  if (has_avx512f() && n >= 8) return stream_transpose8_avx512(a, n, b, held);
+  transpose8(a, n, b, held);
 }
 
 #else  // no streaming stores: ordinary ones
@@ -179,7 +192,9 @@ void stream_copy(void* to, const void* from, std::size_t bytes) { std::memcpy(to
 
 void stream_fence() {}
 
-void stream_transpose8(const double* a, std::size_t n, double* b) { transpose8(a, n, b); }
+void stream_transpose8(const double* a, std::size_t n, double* b, HeldLine& held) {
+  transpose8(a, n, b, held);
+}
 
 #endif
 

@@ -11,13 +11,27 @@ namespace mbk {
 // are weakly ordered: call stream_fence() before another thread reads `to`.
 void stream_copy(void* to, const void* from, std::size_t bytes);
 
+// A 64-byte line of the caller's array that one block written by stream_transpose8 ends inside:
+// its first `count` numbers, held until the next block, which starts where this one ended,
+// completes the line, so that it is written once and whole.
+struct HeldLine {
+  double* at = nullptr;  // the line (64-byte aligned); null: none held
+  std::size_t count = 0;
+  double numbers[8];
+};
+
 // The transpose of the n x 8 matrix a (row e: a + 8 e) into b (row l: b + l n), n >= 8, b's lines
-// written with streaming stores, each once and whole, but for the two it may share with what is
-// before and after it (ordinary stores, only to b's numbers): eight samples' rows of a field from
-// its numbers in DoubleLanes<8> (a[8 e + l]: sample l's number e), as the batch streams them
-// (offline/batch_kinematics.cc). On CPUs with AVX-512F in registers, straight from a to memory;
-// elsewhere one number at a time. Call stream_fence() before another thread reads b.
-void stream_transpose8(const double* a, std::size_t n, double* b);
+// written with streaming stores, each once and whole: eight samples' rows of a field from its
+// numbers in DoubleLanes<8> (a[8 e + l]: sample l's number e), as the batch streams them
+// (offline/batch_kinematics.cc). A line b ends inside is held in `held` (and written by the next
+// call if b follows on, or by write_held); a first line b shares with a line held is completed
+// and written, one it shares with anything else written with ordinary stores, only to b's
+// numbers. On CPUs with AVX-512F in registers, straight from a to memory; elsewhere one number at
+// a time. Call stream_fence() before another thread reads b.
+void stream_transpose8(const double* a, std::size_t n, double* b, HeldLine& held);
+
+// The numbers `held` holds, written with ordinary stores; then it holds none.
+void write_held(HeldLine& held);
 
 // Orders the streaming stores before every later store (sfence).
 void stream_fence();

@@ -43,7 +43,9 @@ TEST(StreamCopy, TransposeOfEightColumnsAtEveryAlignmentAndLength) {
       double* start = storage.data();  // the first 64-byte boundary in storage
       while (reinterpret_cast<std::uintptr_t>(start) % 64 != 0) ++start;
       double* b = start + offset;
-      mbk::stream_transpose8(a.data(), n, b);
+      mbk::HeldLine held;
+      mbk::stream_transpose8(a.data(), n, b, held);
+      mbk::write_held(held);
       mbk::stream_fence();
       for (double* x = storage.data(); x < storage.data() + storage.size(); ++x) {
         const std::ptrdiff_t i = x - b;
@@ -54,6 +56,40 @@ TEST(StreamCopy, TransposeOfEightColumnsAtEveryAlignmentAndLength) {
       }
     }
   }
+}
+
+// Blocks one after the other, as the batch's groups of eight samples write a field: the line two
+// blocks share is held by the first and completed by the next; one held when the next block does
+// not follow on is written alone (as is the last, by write_held). Every number of every block,
+// nothing between or around them.
+TEST(StreamCopy, TransposesOfBlocksThatFollowOnAndThatDoNot) {
+  for (const std::size_t n : {8, 9, 13, 111})
+    for (std::size_t offset = 0; offset < 8; ++offset) {
+      const std::size_t blocks = 4, gap = 3;  // blocks 0..2 follow on, block 3 after a gap
+      std::vector<double> a(blocks * 8 * n);
+      for (std::size_t i = 0; i < a.size(); ++i) a[i] = 0.25 + static_cast<double>(i);
+      std::vector<double> storage(blocks * 8 * n + gap + 32, -7.0);
+      double* start = storage.data();
+      while (reinterpret_cast<std::uintptr_t>(start) % 64 != 0) ++start;
+      std::vector<double*> b;
+      for (std::size_t k = 0; k < blocks; ++k)
+        b.push_back(start + offset + k * 8 * n + (k == blocks - 1 ? gap : 0));
+      mbk::HeldLine held;
+      for (std::size_t k = 0; k < blocks; ++k)
+        mbk::stream_transpose8(a.data() + k * 8 * n, n, b[k], held);
+      mbk::write_held(held);
+      mbk::stream_fence();
+      for (double* x = storage.data(); x < storage.data() + storage.size(); ++x) {
+        double expected = -7.0;
+        for (std::size_t k = 0; k < blocks; ++k) {
+          const std::ptrdiff_t i = x - b[k];
+          if (i >= 0 && i < static_cast<std::ptrdiff_t>(8 * n))
+            expected = a[k * 8 * n + i % n * 8 + i / n];
+        }
+        ASSERT_EQ(expected, *x) << "number " << x - start << " (n " << n << ", blocks from "
+                                << offset << " numbers past a 64-byte boundary)";
+      }
+    }
 }
 
 }  // namespace
