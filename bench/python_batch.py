@@ -279,6 +279,8 @@ def chunk_rows(n):
         for kind in ("full", "all"):
             t = rows[kind][what]
             ratio = ("%.2fx %s" % (min(t) / min(rows[kind][peer]), against)) if peer else ""
+            if what == "out":  # and against the plain copy of the aim
+                ratio += ", %.2fx the C++ one" % (min(t) / min(rows[kind]["copy"]))
             cells += ["%.1f (%.1f)" % (min(t) * 1e3, np.median(t) * 1e3), ratio]
         print("| %s | %s | %s | %s | %s | %s |" % ((label,) + tuple(cells) +
                                                    (aims.get(what, ""),)))
