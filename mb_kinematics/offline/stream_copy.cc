@@ -11,11 +11,12 @@
 namespace mbk {
 namespace {
 
-// stream_transpose8 with ordinary stores.
+// stream_transpose8 with ordinary stores, b at any address (numpy's arrays need not be on a
+// double's boundary).
 void transpose8(const double* a, std::size_t n, double* b, HeldLine& held) {
   write_held(held);
   for (std::size_t l = 0; l < 8; ++l)
-    for (std::size_t e = 0; e < n; ++e) b[l * n + e] = a[e * 8 + l];
+    for (std::size_t e = 0; e < n; ++e) std::memcpy(b + l * n + e, a + e * 8 + l, sizeof(double));
 }
 
 }  // namespace
@@ -182,7 +183,8 @@ void stream_copy(void* destination, const void* source, std::size_t bytes) {
 void stream_fence() { _mm_sfence(); }
 
 void stream_transpose8(const double* a, std::size_t n, double* b, HeldLine& held) {
-  if (has_avx512f() && n >= 8) return stream_transpose8_avx512(a, n, b, held);
+  if (has_avx512f() && n >= 8 && address(reinterpret_cast<char*>(b)) % sizeof(double) == 0)
+    return stream_transpose8_avx512(a, n, b, held);
   transpose8(a, n, b, held);
 }
 

@@ -20,14 +20,15 @@ struct HeldLine {
   double numbers[8];
 };
 
-// The transpose of the n x 8 matrix a (row e: a + 8 e) into b (row l: b + l n), n >= 8, b's lines
+// The transpose of the n x 8 matrix a (row e: a + 8 e) into b (row l: b + l n), b's lines
 // written with streaming stores, each once and whole: eight samples' rows of a field from its
 // numbers in DoubleLanes<8> (a[8 e + l]: sample l's number e), as the batch streams them
 // (offline/batch_kinematics.cc). A line b ends inside is held in `held` (and written by the next
 // call if b follows on, or by write_held); a first line b shares with a line held is completed
 // and written, one it shares with anything else written with ordinary stores, only to b's
-// numbers. On CPUs with AVX-512F in registers, straight from a to memory; elsewhere one number at
-// a time. Call stream_fence() before another thread reads b.
+// numbers. On CPUs with AVX-512F, for n >= 8 and b on a double's boundary, in registers,
+// straight from a to memory; else one number at a time with ordinary stores (b at any address).
+// Call stream_fence() before another thread reads b.
 void stream_transpose8(const double* a, std::size_t n, double* b, HeldLine& held);
 
 // The numbers `held` holds, written with ordinary stores; then it holds none.

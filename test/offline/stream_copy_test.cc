@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace {
@@ -90,6 +92,46 @@ TEST(StreamCopy, TransposesOfBlocksThatFollowOnAndThatDoNot) {
                                 << offset << " numbers past a 64-byte boundary)";
       }
     }
+}
+
+// b off a double's boundary (numpy's arrays may be: np.frombuffer at an odd offset), after a
+// block on one whose last line is held: the same numbers, one at a time, nothing around b
+// touched, the held line written first.
+TEST(StreamCopy, TransposeToAnyByte) {
+  const std::size_t n = 13;
+  std::vector<double> a(8 * n);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = 0.75 + static_cast<double>(i);
+  for (std::size_t shift = 1; shift < sizeof(double); ++shift) {
+    alignas(64) unsigned char storage[2 * 8 * 13 * sizeof(double) + 128];
+    std::fill(std::begin(storage), std::end(storage), 0xEE);
+    double* first = reinterpret_cast<double*>(storage + 8);  // 8 bytes past a 64-byte boundary
+    unsigned char* second = storage + 8 + 8 * n * sizeof(double) + shift;
+    mbk::HeldLine held;
+    mbk::stream_transpose8(a.data(), n, first, held);
+    mbk::stream_transpose8(a.data(), n, reinterpret_cast<double*>(second), held);
+    mbk::write_held(held);
+    mbk::stream_fence();
+    for (std::size_t i = 0; i < sizeof storage; ++i) {
+      const std::size_t begin = 8, end = 8 + 8 * n * sizeof(double);
+      double x;
+      std::size_t at = 0;
+      bool inside = true;
+      if (i >= begin && i < end) {
+        at = (i - begin) / sizeof(double);
+        std::memcpy(&x, storage + begin + at * sizeof(double), sizeof x);
+      } else if (i >= end + shift && i < end + shift + 8 * n * sizeof(double)) {
+        at = (i - end - shift) / sizeof(double);
+        std::memcpy(&x, second + at * sizeof(double), sizeof x);
+      } else {
+        inside = false;
+      }
+      if (inside)
+        ASSERT_EQ(a[at % n * 8 + at / n], x)
+            << "number " << at << ", second block " << shift << " bytes off a double's boundary";
+      else
+        ASSERT_EQ(0xEE, storage[i]) << "byte " << i << " outside both blocks, shift " << shift;
+    }
+  }
 }
 
 }  // namespace
