@@ -9,17 +9,10 @@ run's ratio and a summary. Not a test: the figures depend on the machine's load.
 """
 import argparse
 import json
-import os
 import statistics
 import subprocess
 
-
-def benchmark():
-    for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
-        path = os.path.join(prefix, "lib", "mb_kinematics", "batch_benchmark")
-        if prefix and os.path.isfile(path):
-            return path
-    raise RuntimeError("batch_benchmark not found: build it and source devel/setup.bash")
+from python_batch import batch_benchmark  # beside this script
 
 
 def one_run(path):
@@ -42,7 +35,7 @@ def main():
     parser.add_argument("--runs", type=int, default=18)
     parser.add_argument("--aim", type=float, default=1.25)
     arguments = parser.parse_args()
-    path = benchmark()
+    path = batch_benchmark()
     print("| run | full: batch/ (ms) | copy/ | ratio | all: batch/ (ms) | copy/ | ratio |")
     print("|---:|---:|---:|---:|---:|---:|---:|")
     ratios = {"full": [], "all": []}

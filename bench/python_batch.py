@@ -54,23 +54,28 @@ def best(f, repeats=3):
     return min(timings(f, repeats))
 
 
-def cpp_rows(pattern=".", repeats=1):
-    """batch_benchmark's rows matching `pattern` (seconds per run of 1e5 samples), from the
-    workspace: per row the times of `repeats` repetitions."""
+def batch_benchmark():
+    """The workspace's batch_benchmark (devel/setup.bash sourced)."""
     for prefix in os.environ.get("CMAKE_PREFIX_PATH", "").split(":"):
         path = os.path.join(prefix, "lib", "mb_kinematics", "batch_benchmark")
         if prefix and os.path.isfile(path):
-            out = subprocess.run([path, "--benchmark_format=json", "--benchmark_min_time=0.5",
-                                  "--benchmark_filter=" + pattern,
-                                  "--benchmark_repetitions=%d" % repeats],
-                                 capture_output=True, text=True, check=True).stdout
-            rows = {}
-            for b in json.loads(out)["benchmarks"]:
-                if b.get("run_type", "iteration") == "iteration":
-                    rows.setdefault(b["run_name"].replace("/real_time", ""), []).append(
-                        b["real_time"] / 1e3)
-            return rows
+            return path
     raise RuntimeError("batch_benchmark not found: build it and source devel/setup.bash")
+
+
+def cpp_rows(pattern=".", repeats=1):
+    """batch_benchmark's rows matching `pattern` (seconds per run of 1e5 samples), from the
+    workspace: per row the times of `repeats` repetitions."""
+    out = subprocess.run([batch_benchmark(), "--benchmark_format=json",
+                          "--benchmark_min_time=0.5", "--benchmark_filter=" + pattern,
+                          "--benchmark_repetitions=%d" % repeats],
+                         capture_output=True, text=True, check=True).stdout
+    rows = {}
+    for b in json.loads(out)["benchmarks"]:
+        if b.get("run_type", "iteration") == "iteration":
+            rows.setdefault(b["run_name"].replace("/real_time", ""), []).append(
+                b["real_time"] / 1e3)
+    return rows
 
 
 def peak_memory(name, outputs, n):
